@@ -1,0 +1,29 @@
+//! The scene: everything karstgen knows about the ground before it starts.
+//!
+//! A scene file (TOML, documented field by field in `docs/scene.md`) describes the domain box,
+//! the terrain, the geology (water tables, inception horizons), the key points (sinks, springs,
+//! waypoints), which sink drains to which spring, one section of parameters per stage, and the
+//! seed. [`Scene::load`] parses and validates it, reporting every problem at once with the
+//! file, line and field. Stages read the scene through this crate only; the hash of the
+//! sections a stage reads ([`Scene::sections_hash`]) is part of its artifact's key.
+//!
+//! Conventions: metres, z up, right-handed; azimuths in degrees clockwise from north (+y).
+
+pub mod domain;
+pub mod keypoint;
+pub mod params;
+pub mod rng;
+pub mod scene;
+pub mod surface;
+pub mod terrain;
+mod validate;
+
+pub use domain::Domain;
+pub use keypoint::{KeyPoint, KeyPointKind};
+pub use scene::{Connectivity, Geology, Link, Scene, SceneError};
+pub use validate::Problem;
+pub use surface::Surface;
+pub use terrain::Terrain;
+
+/// A point in space, metres, z up.
+pub type Point = glam::DVec3;

@@ -1,0 +1,153 @@
+//! The scene file: its structure, loading, validation and the hashes of its sections.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::params::{
+    CostgraphParams, HydroParams, MesherParams, MetricsParams, SamplingParams, SdfParams,
+    SkeletonParams,
+};
+use crate::validate::{self, Problem};
+use crate::{Domain, KeyPoint, KeyPointKind, Surface, Terrain};
+
+/// A whole scene, as read from its TOML file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Name of the scene; `cargo xtask run` writes into `out/<name>` by default.
+    pub name: String,
+    /// Seed of every random choice; same scene and seed give byte-identical artifacts.
+    #[serde(default)]
+    pub seed: u64,
+    pub domain: Domain,
+    pub terrain: Terrain,
+    #[serde(default)]
+    pub geology: Geology,
+    #[serde(default)]
+    pub keypoints: Vec<KeyPoint>,
+    #[serde(default)]
+    pub connectivity: Connectivity,
+    #[serde(default)]
+    pub sampling: SamplingParams,
+    #[serde(default)]
+    pub costgraph: CostgraphParams,
+    #[serde(default)]
+    pub skeleton: SkeletonParams,
+    #[serde(default)]
+    pub hydro: HydroParams,
+    #[serde(default)]
+    pub sdf: SdfParams,
+    #[serde(default)]
+    pub mesher: MesherParams,
+    #[serde(default)]
+    pub metrics: MetricsParams,
+}
+
+/// `[geology]`: the surfaces that guide karstification.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Geology {
+    /// Water tables, one per spring (springs name theirs). Below it is the phreatic zone.
+    pub water_tables: Vec<Surface>,
+    /// Inception horizons: bedding surfaces along which conduits preferentially develop.
+    pub horizons: Vec<Surface>,
+}
+
+/// `[connectivity]`: which sink may drain to which spring.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Connectivity {
+    /// One row per sink, one column per spring, both in scene order. 0: not connected,
+    /// 1: connected, 2: uncertain (the cheapest of the row's uncertain springs is kept).
+    /// Absent: every entry is 2.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub matrix: Option<Vec<Vec<u8>>>,
+}
+
+/// How sink `s` relates to spring `t` in the connectivity matrix.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Link {
+    None,
+    Connected,
+    Uncertain,
+}
+
+/// A scene that cannot be used, with every reason.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("{path}: cannot read the scene: {source}")]
+    Read { path: PathBuf, source: std::io::Error },
+    #[error("{}", format_problems(path, problems))]
+    Invalid { path: PathBuf, problems: Vec<Problem> },
+}
+
+fn format_problems(path: &Path, problems: &[Problem]) -> String {
+    let mut text = String::new();
+    for (i, p) in problems.iter().enumerate() {
+        if i > 0 {
+            text.push('\n');
+        }
+        text.push_str(&format!("{}{p}", path.display()));
+    }
+    text
+}
+
+impl From<SceneError> for karst_artifact::StageError {
+    fn from(e: SceneError) -> Self {
+        match e {
+            SceneError::Read { .. } | SceneError::Invalid { .. } => {
+                karst_artifact::StageError::BadInput(e.into())
+            }
+        }
+    }
+}
+
+impl Scene {
+    /// Reads, parses and validates a scene file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|source| SceneError::Read { path: path.to_path_buf(), source })?;
+        Scene::parse(&text, path)
+    }
+
+    /// Parses and validates scene text; `path` names it in messages.
+    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
+        let invalid = |problems| SceneError::Invalid { path: path.to_path_buf(), problems };
+        let scene: Scene = toml::from_str(text).map_err(|e| invalid(vec![validate::from_toml(text, &e)]))?;
+        let problems = validate::check(&scene, text);
+        if problems.is_empty() { Ok(scene) } else { Err(invalid(problems)) }
+    }
+
+    /// The key points of `kind`, with their index in `keypoints`, in scene order.
+    pub fn keypoints_of(&self, kind: KeyPointKind) -> impl Iterator<Item = (usize, &KeyPoint)> {
+        self.keypoints.iter().enumerate().filter(move |(_, k)| k.kind == kind)
+    }
+
+    /// The water table named `name`.
+    pub fn water_table(&self, name: &str) -> Option<&Surface> {
+        self.geology.water_tables.iter().find(|w| w.name == name)
+    }
+
+    /// Connectivity between the `sink`-th sink and the `spring`-th spring (scene order).
+    pub fn link(&self, sink: usize, spring: usize) -> Link {
+        match &self.connectivity.matrix {
+            None => Link::Uncertain,
+            Some(rows) => match rows[sink][spring] {
+                0 => Link::None,
+                1 => Link::Connected,
+                _ => Link::Uncertain,
+            },
+        }
+    }
+
+    /// Hash of the named top-level sections (defaults applied), for artifact keys.
+    pub fn sections_hash(&self, sections: &[&str]) -> String {
+        let value = serde_json::to_value(self).expect("a scene always serializes");
+        let texts: Vec<String> = sections
+            .iter()
+            .map(|name| format!("{name}={}", value.get(*name).cloned().unwrap_or_default()))
+            .collect();
+        karst_artifact::hash::hex_of_parts(texts.iter().map(|t| t.as_bytes()))
+    }
+}
