@@ -141,6 +141,11 @@ impl Scene {
         }
     }
 
+    /// Hash of the scene sections `stage` reads: the `params` of its artifact.
+    pub fn params_hash(&self, stage: karst_artifact::Stage) -> String {
+        self.sections_hash(stage.scene_sections())
+    }
+
     /// Hash of the named top-level sections (defaults applied), for artifact keys.
     pub fn sections_hash(&self, sections: &[&str]) -> String {
         let value = serde_json::to_value(self).expect("a scene always serializes");

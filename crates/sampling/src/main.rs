@@ -1,1 +1,25 @@
-fn main() {}
+//! `karst-sampling`: stage 1 of karstgen. `run SCENE --out DIR` writes DIR/samples.bin;
+//! `inspect FILE [--json]` prints a summary or the whole artifact.
+
+use std::process::ExitCode;
+
+use clap::Parser;
+use karst_artifact::cli::{InspectArgs, RunArgs, finish};
+use karst_sampling::stage;
+
+/// Poisson-disk sampling of the bedrock (karstgen stage 1).
+#[derive(Parser)]
+#[command(name = "karst-sampling", version)]
+enum Cli {
+    /// Sample the scene's bedrock into DIR/samples.bin.
+    Run(RunArgs),
+    /// Summarize a samples artifact (or print it whole with --json).
+    Inspect(InspectArgs),
+}
+
+fn main() -> ExitCode {
+    finish(match Cli::parse() {
+        Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
+        Cli::Inspect(args) => stage::inspect(&args),
+    })
+}

@@ -1,1 +1,25 @@
-fn main() {}
+//! `karst-sdf`: stage 5 of karstgen. `run SCENE --out DIR` writes DIR/sdf.bin;
+//! `inspect FILE [--json]` prints a summary or the whole artifact.
+
+use std::process::ExitCode;
+
+use clap::Parser;
+use karst_artifact::cli::{InspectArgs, RunArgs, finish};
+use karst_sdf::stage;
+
+/// Poisson-disk sampling of the bedrock (karstgen stage 5).
+#[derive(Parser)]
+#[command(name = "karst-sdf", version)]
+enum Cli {
+    /// Build the SDF model of DIR/skeleton.json and DIR/hydro.json into DIR/sdf.bin.
+    Run(RunArgs),
+    /// Summarize an sdf artifact (or print it whole with --json).
+    Inspect(InspectArgs),
+}
+
+fn main() -> ExitCode {
+    finish(match Cli::parse() {
+        Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
+        Cli::Inspect(args) => stage::inspect(&args),
+    })
+}

@@ -1,1 +1,25 @@
-fn main() {}
+//! `karst-skeleton`: stage 3 of karstgen. `run SCENE --out DIR` writes DIR/skeleton.json and the karstnet export;
+//! `inspect FILE [--json]` prints a summary or the whole artifact.
+
+use std::process::ExitCode;
+
+use clap::Parser;
+use karst_artifact::cli::{InspectArgs, RunArgs, finish};
+use karst_skeleton::stage;
+
+/// Poisson-disk sampling of the bedrock (karstgen stage 3).
+#[derive(Parser)]
+#[command(name = "karst-skeleton", version)]
+enum Cli {
+    /// Route the sinks to their springs on DIR/costgraph.bin into DIR/skeleton.json.
+    Run(RunArgs),
+    /// Summarize a skeleton artifact (or print it whole with --json).
+    Inspect(InspectArgs),
+}
+
+fn main() -> ExitCode {
+    finish(match Cli::parse() {
+        Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
+        Cli::Inspect(args) => stage::inspect(&args),
+    })
+}

@@ -1,0 +1,87 @@
+//! The skeleton artifact: nodes, conduits and the route of every sink.
+
+use serde::{Deserialize, Serialize};
+
+use karst_artifact::{Kind, Payload};
+
+/// Whether a node lies above (vadose) or below (phreatic) the water table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Zone {
+    Vadose,
+    Phreatic,
+}
+
+/// A node of the network: a sample the conduits pass through.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Node {
+    pub position: [f64; 3],
+    /// Index of the sample in `samples.bin`.
+    pub sample: u32,
+    /// Name of the key point at this node, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub keypoint: Option<String>,
+    pub zone: Zone,
+}
+
+/// A conduit: a chain of nodes between two ends (junctions, dead ends or key points), with the
+/// radius of the passage at each node. A conduit whose ends coincide is a loop.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Conduit {
+    pub nodes: Vec<u32>,
+    /// Radius at each node, metres.
+    pub radius: Vec<f64>,
+}
+
+/// The route water takes from one sink to one spring.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Route {
+    pub sink: String,
+    pub spring: String,
+    /// The sink's weight (its recharge).
+    pub weight: f64,
+    /// Nodes from sink to spring.
+    pub nodes: Vec<u32>,
+    /// Cost of the path in the cost graph.
+    pub cost: f64,
+}
+
+/// The conduit network.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Skeleton {
+    pub nodes: Vec<Node>,
+    pub conduits: Vec<Conduit>,
+    pub routes: Vec<Route>,
+}
+
+impl Payload for Skeleton {
+    const KIND: Kind = Kind::Skeleton;
+    const SCHEMA: u32 = 1;
+}
+
+impl Skeleton {
+    /// Every link between two nodes, once, as (a, b) with a < b, in conduit order.
+    pub fn links(&self) -> Vec<[u32; 2]> {
+        self.conduits
+            .iter()
+            .flat_map(|c| c.nodes.windows(2).map(|w| [w[0].min(w[1]), w[0].max(w[1])]))
+            .collect()
+    }
+
+    /// Total length of the conduits, metres.
+    pub fn total_length(&self) -> f64 {
+        self.conduits.iter().map(|c| self.conduit_length(c)).sum()
+    }
+
+    /// Length of one conduit, metres.
+    pub fn conduit_length(&self, conduit: &Conduit) -> f64 {
+        conduit
+            .nodes
+            .windows(2)
+            .map(|w| {
+                let [a, b] = [w[0], w[1]].map(|i| self.nodes[i as usize].position);
+                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+            })
+            .sum()
+    }
+}
