@@ -1,1 +1,10 @@
+//! karstgen's task runner, as a library so that tests drive exactly what `cargo xtask` does.
+//!
+//! - [`pipeline`]: run the stages in order like make, skipping up-to-date artifacts;
+//! - [`diff`]: compare two artifacts of the same kind semantically;
+//! - [`bench`]: time every stage on the benchmark scenes.
 
+pub mod bench;
+pub mod diff;
+pub mod executor;
+pub mod pipeline;

@@ -1,1 +1,222 @@
-fn main() {}
+//! `cargo xtask`: run the pipeline, diff and bless artifacts, benchmark, test.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+use clap::{Parser, Subcommand};
+
+use karst_artifact::{Stage, StageError};
+use karst_geology::Scene;
+use xtask::executor::{Binaries, InProcess};
+use xtask::pipeline::{self, Selection};
+use xtask::{bench, diff};
+
+/// The embedded default scene, run when `cargo xtask run` is given no scene.
+const DEFAULT_SCENE: &str = include_str!("../../fixtures/scenes/default.toml");
+/// The scene whose artifacts are pinned in `fixtures/golden/tiny`.
+const GOLDEN_SCENE: &str = "fixtures/scenes/tiny.toml";
+const GOLDEN_DIR: &str = "fixtures/golden/tiny";
+/// Scenes timed by `cargo xtask bench`.
+const BENCH_SCENES: &[&str] = &["fixtures/scenes/tiny.toml", "fixtures/scenes/default.toml"];
+
+#[derive(Parser)]
+#[command(name = "cargo xtask", about = "karstgen's task runner")]
+struct Cli {
+    #[command(subcommand)]
+    command: Task,
+}
+
+#[derive(Subcommand)]
+enum Task {
+    /// Run the pipeline on SCENE (default: the embedded default scene), skipping up-to-date stages.
+    Run {
+        /// Scene file; without it, the embedded default scene runs into out/default.
+        scene: Option<PathBuf>,
+        /// Output folder (default out/<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Rerun this stage and every later one.
+        #[arg(long, value_parser = parse_stage)]
+        from: Option<Stage>,
+        /// Run only this stage.
+        #[arg(long, value_parser = parse_stage, conflicts_with = "from")]
+        only: Option<Stage>,
+        /// Rerun every stage.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Compare two artifacts of the same kind; exit 1 when they differ beyond tolerance.
+    Diff {
+        a: PathBuf,
+        b: PathBuf,
+        /// Relative tolerance on numbers.
+        #[arg(long, default_value_t = 1e-9)]
+        tol: f64,
+    },
+    /// Regenerate the golden artifacts of the tiny scene and print what changed.
+    Bless,
+    /// Time every stage of the benchmark scenes (median of RUNS runs).
+    Bench {
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+    },
+    /// Run the test suite (`cargo test --release --workspace`), after installing the karstnet
+    /// oracle in .venv when it is missing.
+    Test {
+        /// Extra arguments for cargo test.
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+}
+
+fn parse_stage(name: &str) -> Result<Stage, String> {
+    Stage::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Stage::ALL.iter().map(|s| s.name()).collect();
+        format!("unknown stage \"{name}\"; stages: {}", names.join(", "))
+    })
+}
+
+fn main() -> ExitCode {
+    let root = workspace_root();
+    if let Err(e) = std::env::set_current_dir(&root) {
+        eprintln!("error: cannot enter the workspace {}: {e}", root.display());
+        return ExitCode::from(1);
+    }
+    let result = match Cli::parse().command {
+        Task::Run { scene, out, from, only, force } => run(scene, out, Selection { from, only, force }),
+        Task::Diff { a, b, tol } => return diff_command(&a, &b, tol),
+        Task::Bless => bless(),
+        Task::Bench { runs } => bench_command(runs),
+        Task::Test { args } => return test(&args),
+    };
+    karst_artifact::cli::finish(result)
+}
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace").to_path_buf()
+}
+
+fn run(scene: Option<PathBuf>, out: Option<PathBuf>, selection: Selection) -> Result<(), StageError> {
+    let (scene_path, out) = match scene {
+        Some(path) => {
+            let parsed = Scene::load(&path)?;
+            let out = out.unwrap_or_else(|| pipeline::default_out(&parsed));
+            (path, out)
+        }
+        None => {
+            let out = out.unwrap_or_else(|| PathBuf::from("out/default"));
+            let path = out.join("scene.toml");
+            write_if_changed(&path, DEFAULT_SCENE)?;
+            (path, out)
+        }
+    };
+    let binaries = Binaries::build().map_err(StageError::Failure)?;
+    println!("scene {} → {}", scene_path.display(), out.display());
+    pipeline::run(&scene_path, &out, &selection, &binaries, true)?;
+    Ok(())
+}
+
+fn write_if_changed(path: &Path, text: &str) -> Result<(), StageError> {
+    if std::fs::read_to_string(path).ok().as_deref() == Some(text) {
+        return Ok(());
+    }
+    karst_artifact::atomic::write_bytes(path, text.as_bytes())
+        .map_err(|e| StageError::failure(format!("{}: cannot write: {e}", path.display())))
+}
+
+fn diff_command(a: &Path, b: &Path, tol: f64) -> ExitCode {
+    match diff::diff(a, b, tol) {
+        Ok(report) => {
+            let verdict = if report.differs() { "differ" } else { "match" };
+            println!("{} vs {}: {} artifacts {verdict}", a.display(), b.display(), report.kind.name());
+            print!("{}", report.summary());
+            ExitCode::from(u8::from(report.differs()))
+        }
+        Err(e) => karst_artifact::cli::finish(Err(e)),
+    }
+}
+
+fn bless() -> Result<(), StageError> {
+    let scratch = std::env::temp_dir().join(format!("karstgen-bless-{}", std::process::id()));
+    let selection = Selection { force: true, ..Selection::default() };
+    pipeline::run(Path::new(GOLDEN_SCENE), &scratch, &selection, &InProcess, false)?;
+    let golden = Path::new(GOLDEN_DIR);
+    std::fs::create_dir_all(golden).map_err(|e| StageError::failure(format!("{}: {e}", golden.display())))?;
+    for stage in Stage::ALL {
+        let (new, old) = (scratch.join(stage.file_name()), golden.join(stage.file_name()));
+        match diff::diff(&old, &new, 1e-9) {
+            Ok(report) if !report.differs() => println!("{}: unchanged", stage.file_name()),
+            Ok(report) => println!("{}: changed\n{}", stage.file_name(), report.summary()),
+            Err(_) => println!("{}: new", stage.file_name()),
+        }
+        std::fs::copy(&new, &old).map_err(|e| StageError::failure(format!("{}: {e}", old.display())))?;
+    }
+    let _ = std::fs::remove_dir_all(&scratch);
+    Ok(())
+}
+
+fn bench_command(runs: usize) -> Result<(), StageError> {
+    println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
+    for scene in BENCH_SCENES {
+        println!("\n{scene}");
+        println!("{:<10} {:>10}", "stage", "seconds");
+        for (stage, seconds) in bench::time_scene(Path::new(scene), runs)? {
+            println!("{:<10} {seconds:>10.4}", stage.name());
+        }
+    }
+    Ok(())
+}
+
+fn rayon_threads() -> usize {
+    std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)
+}
+
+/// The Python that has karstnet 1.2.5, installed into .venv when missing.
+fn karstnet_python() -> Result<PathBuf, String> {
+    let python = PathBuf::from(".venv/bin/python");
+    let has_karstnet = |p: &Path| {
+        Command::new(p)
+            .args(["-c", "import importlib.metadata as m; assert m.version('karstnet') == '1.2.5'"])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    if has_karstnet(&python) {
+        return Ok(python.canonicalize().unwrap_or(python));
+    }
+    eprintln!("installing karstnet==1.2.5 into .venv (the metrics oracle)...");
+    let steps: [&[&str]; 2] = [&["python3", "-m", "venv", ".venv"], &[".venv/bin/pip", "install", "--quiet", "karstnet==1.2.5"]];
+    for step in steps {
+        let status = Command::new(step[0]).args(&step[1..]).status().map_err(|e| format!("{}: {e}", step.join(" ")))?;
+        if !status.success() {
+            return Err(format!("`{}` failed", step.join(" ")));
+        }
+    }
+    if !has_karstnet(&python) {
+        return Err("karstnet 1.2.5 is still not importable from .venv/bin/python".into());
+    }
+    Ok(python.canonicalize().unwrap_or(python))
+}
+
+fn test(args: &[String]) -> ExitCode {
+    let python = match karstnet_python() {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: cannot install the karstnet oracle: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let status = Command::new(cargo)
+        .args(["test", "--release", "--workspace"])
+        .args(args)
+        .env("KARSTNET_PYTHON", &python)
+        .status();
+    match status {
+        Ok(s) if s.success() => ExitCode::SUCCESS,
+        Ok(_) => ExitCode::from(1),
+        Err(e) => {
+            eprintln!("error: cannot run cargo test: {e}");
+            ExitCode::from(1)
+        }
+    }
+}

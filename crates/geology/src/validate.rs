@@ -259,38 +259,40 @@ fn line_of_path(text: &str, path: &str) -> Option<usize> {
     Some(line_of(text, span.start))
 }
 
-/// Path of the innermost field whose value contains byte `offset`.
+/// Path of the innermost field whose key or value contains byte `offset`. Header tables
+/// (`[costgraph]`, `[[keypoints]]`) do not span their contents, so every child is searched.
 fn path_at(text: &str, offset: usize) -> String {
     let Ok(root) = DeTable::parse(text) else { return String::new() };
-    let mut path = String::new();
-    descend_table(root.get_ref(), offset, &mut path);
-    path
+    search_table(root.get_ref(), offset).unwrap_or_default()
 }
 
-fn descend_table(table: &DeTable, offset: usize, path: &mut String) {
-    for (key, value) in table.iter() {
-        if contains(&key.span(), offset) || contains(&value.span(), offset) {
-            if !path.is_empty() {
-                path.push('.');
-            }
-            path.push_str(key.get_ref());
-            descend_value(value.get_ref(), offset, path);
-            return;
+fn search_table(table: &DeTable, offset: usize) -> Option<String> {
+    table.iter().find_map(|(key, value)| {
+        let name = key.get_ref().to_string();
+        match search_value(value, offset) {
+            Some(rest) if rest.is_empty() => Some(name),
+            Some(rest) if rest.starts_with('[') => Some(format!("{name}{rest}")),
+            Some(rest) => Some(format!("{name}.{rest}")),
+            None if contains(&key.span(), offset) => Some(name),
+            None => None,
         }
-    }
+    })
 }
 
-fn descend_value(value: &DeValue, offset: usize, path: &mut String) {
-    match value {
-        DeValue::Table(t) => descend_table(t, offset, path),
-        DeValue::Array(items) => {
-            if let Some((i, item)) = items.iter().enumerate().find(|(_, v)| contains(&v.span(), offset)) {
-                path.push_str(&format!("[{i}]"));
-                descend_value(item.get_ref(), offset, path);
-            }
-        }
-        _ => {}
+/// Some(path below this value) when `offset` is inside it ("" for the value itself).
+fn search_value(value: &Spanned<DeValue>, offset: usize) -> Option<String> {
+    match value.get_ref() {
+        DeValue::Table(t) => search_table(t, offset),
+        DeValue::Array(items) => items.iter().enumerate().find_map(|(i, item)| {
+            search_value(item, offset).map(|rest| match rest.as_str() {
+                "" => format!("[{i}]"),
+                r if r.starts_with('[') => format!("[{i}]{r}"),
+                r => format!("[{i}].{r}"),
+            })
+        }),
+        _ => contains(&value.span(), offset).then(String::new),
     }
+    .or_else(|| contains(&value.span(), offset).then(String::new))
 }
 
 fn contains(span: &Range<usize>, offset: usize) -> bool {

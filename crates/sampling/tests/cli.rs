@@ -1,0 +1,62 @@
+//! The command-line contract of a stage binary: bad scenes exit with code 2 and a message that
+//! names the file, the line and the field; `inspect --json` prints header and payload.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn sampling(args: &[&str], out: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_karst-sampling")).args(args).arg("--out").arg(out).output().unwrap()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("karst-sampling-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn bad_scenes_exit_2_naming_file_line_and_field() {
+    let cases = [
+        ("unknown_field.toml", ":5: colour: unknown field `colour`"),
+        ("nan_radius.toml", "sampling.radius: NaN is not a finite number"),
+        ("inverted_box.toml", ":8: domain.max: inverted box: max.z = -60"),
+        ("syntax.toml", ":6: unclosed table, expected `]`"),
+        ("wrong_type.toml", "costgraph.k: invalid type: string \"sixteen\""),
+        ("sink_above_terrain.toml", "keypoints[0].position: \"sink-a\" at z = 59 is above the terrain"),
+    ];
+    let out = scratch("bad");
+    for (file, expected) in cases {
+        let scene = root().join("fixtures/bad").join(file);
+        let result = sampling(&["run", scene.to_str().unwrap()], &out);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(result.status.code(), Some(2), "{file}: {stderr}");
+        assert!(stderr.contains(file) && stderr.contains(expected), "{file}: {stderr}");
+        assert!(!out.join("samples.bin").exists(), "{file}: nothing may be written");
+    }
+    let missing = sampling(&["run", "no/such/scene.toml"], &out);
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("no/such/scene.toml"));
+}
+
+#[test]
+fn run_then_inspect_json() {
+    let out = scratch("ok");
+    let scene = root().join("fixtures/scenes/tiny.toml");
+    let result = sampling(&["run", scene.to_str().unwrap()], &out);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let file = out.join("samples.bin");
+    let json = Command::new(env!("CARGO_BIN_EXE_karst-sampling")).args(["inspect", "--json"]).arg(&file).output().unwrap();
+    let value: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    assert_eq!(value["header"]["kind"], "samples");
+    let n = value["payload"]["positions"].as_array().unwrap().len();
+    assert!(n > 100, "{n} samples");
+    let garbage = out.join("garbage.bin");
+    std::fs::write(&garbage, b"not an artifact").unwrap();
+    let bad = Command::new(env!("CARGO_BIN_EXE_karst-sampling")).arg("inspect").arg(&garbage).output().unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("garbage.bin: not a karstgen artifact"));
+}

@@ -1,0 +1,51 @@
+//! make-like staleness: up-to-date stages are skipped, editing a section reruns only the stages
+//! that read it and those downstream, and a corrupted input stops the next stage.
+
+use std::fs;
+
+use karst_artifact::{Stage, StageError};
+use karstgen_tests::{root, run, scratch};
+use xtask::pipeline::{Outcome, Selection};
+
+fn ran(reports: &[xtask::pipeline::StageReport]) -> Vec<Stage> {
+    reports.iter().filter(|r| matches!(r.outcome, Outcome::Ran { .. })).map(|r| r.stage).collect()
+}
+
+#[test]
+fn second_run_is_up_to_date_and_sdf_edit_reruns_sdf_and_mesher() {
+    let out = scratch("stale");
+    let scene = out.join("scene.toml");
+    let text = fs::read_to_string(root().join("fixtures/scenes/tiny.toml")).unwrap();
+    fs::write(&scene, &text).unwrap();
+    let first = run(&scene, &out, &Selection::default()).unwrap();
+    assert_eq!(ran(&first), Stage::ALL.to_vec());
+    let second = run(&scene, &out, &Selection::default()).unwrap();
+    assert!(second.iter().all(|r| r.outcome == Outcome::UpToDate), "{second:?}");
+
+    fs::write(&scene, format!("{text}\n[sdf]\nradius_scale = 1.25\n")).unwrap();
+    let third = run(&scene, &out, &Selection::default()).unwrap();
+    assert_eq!(ran(&third), vec![Stage::Sdf, Stage::Mesher]);
+
+    let only = run(&scene, &out, &Selection { only: Some(Stage::Hydro), ..Selection::default() }).unwrap();
+    assert_eq!(ran(&only), vec![Stage::Hydro]);
+    let from = run(&scene, &out, &Selection { from: Some(Stage::Mesher), ..Selection::default() }).unwrap();
+    assert_eq!(ran(&from), vec![Stage::Mesher, Stage::Metrics]);
+}
+
+#[test]
+fn flipped_byte_in_samples_stops_costgraph_with_a_checksum_error() {
+    let out = scratch("flip");
+    let scene = root().join("fixtures/scenes/tiny.toml");
+    run(&scene, &out, &Selection::default()).unwrap();
+    let samples = out.join("samples.bin");
+    let mut bytes = fs::read(&samples).unwrap();
+    let last = bytes.len() - 10;
+    bytes[last] ^= 0x01;
+    fs::write(&samples, bytes).unwrap();
+    let err = run(&scene, &out, &Selection { from: Some(Stage::Costgraph), ..Selection::default() }).unwrap_err();
+    let StageError::BadInput(message) = err else { panic!("expected bad input, got {err}") };
+    let message = message.to_string();
+    assert!(message.contains("samples.bin") && message.contains("checksum"), "{message}");
+    // The previous costgraph artifact is still there and intact.
+    karst_artifact::read_artifact::<karst_costgraph::CostGraph>(&out.join("costgraph.bin")).unwrap();
+}
