@@ -42,7 +42,8 @@ fn flipped_byte_in_samples_stops_costgraph_with_a_checksum_error() {
     let last = bytes.len() - 10;
     bytes[last] ^= 0x01;
     fs::write(&samples, bytes).unwrap();
-    let err = run(&scene, &out, &Selection { from: Some(Stage::Costgraph), ..Selection::default() }).unwrap_err();
+    let err =
+        run(&scene, &out, &Selection { from: Some(Stage::Costgraph), ..Selection::default() }).unwrap_err();
     let StageError::BadInput(message) = err else { panic!("expected bad input, got {err}") };
     let message = message.to_string();
     assert!(message.contains("samples.bin") && message.contains("checksum"), "{message}");

@@ -75,7 +75,13 @@ pub fn diff(a: &Path, b: &Path, tol: f64) -> Result<Report, StageError> {
             for key in ma.keys().chain(mb.keys()) {
                 let f: &mut FieldDiff = fields.entry(key.clone()).or_default();
                 if f.compared == 0 && f.counts.is_empty() {
-                    compare(ma.get(key).unwrap_or(&Value::Null), mb.get(key).unwrap_or(&Value::Null), key, tol, f);
+                    compare(
+                        ma.get(key).unwrap_or(&Value::Null),
+                        mb.get(key).unwrap_or(&Value::Null),
+                        key,
+                        tol,
+                        f,
+                    );
                 }
             }
         }
@@ -124,7 +130,9 @@ fn compare(a: &Value, b: &Value, path: &str, tol: f64, f: &mut FieldDiff) {
             let (x, y) = (x.as_f64().unwrap_or(f64::NAN), y.as_f64().unwrap_or(f64::NAN));
             f.compared += 1;
             let d = (x - y).abs();
-            if !(d <= tol * 1f64.max(x.abs()).max(y.abs())) {
+            // NaN never compares within tolerance, so it counts as a difference.
+            let within = d <= tol * 1f64.max(x.abs()).max(y.abs());
+            if !within {
                 f.differing += 1;
             }
             if d > 0.0 && f.largest.as_ref().is_none_or(|(best, _)| d > *best) {

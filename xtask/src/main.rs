@@ -184,9 +184,13 @@ fn karstnet_python() -> Result<PathBuf, String> {
         return Ok(python.canonicalize().unwrap_or(python));
     }
     eprintln!("installing karstnet==1.2.5 into .venv (the metrics oracle)...");
-    let steps: [&[&str]; 2] = [&["python3", "-m", "venv", ".venv"], &[".venv/bin/pip", "install", "--quiet", "karstnet==1.2.5"]];
+    let steps: [&[&str]; 2] =
+        [&["python3", "-m", "venv", ".venv"], &[".venv/bin/pip", "install", "--quiet", "karstnet==1.2.5"]];
     for step in steps {
-        let status = Command::new(step[0]).args(&step[1..]).status().map_err(|e| format!("{}: {e}", step.join(" ")))?;
+        let status = Command::new(step[0])
+            .args(&step[1..])
+            .status()
+            .map_err(|e| format!("{}: {e}", step.join(" ")))?;
         if !status.success() {
             return Err(format!("`{}` failed", step.join(" ")));
         }

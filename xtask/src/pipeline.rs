@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use karst_artifact::pipeline::{producer, stage_key};
-use karst_artifact::{InputRef, Stage, StageError, read_header};
+use karst_artifact::{InputRef, Payload, Stage, StageError, read_header};
 use karst_geology::Scene;
 
 use crate::executor::Executor;
@@ -47,8 +47,9 @@ pub fn run(
     verbose: bool,
 ) -> Result<Vec<StageReport>, StageError> {
     let scene = Scene::load(scene_path)?;
-    std::fs::create_dir_all(out)
-        .map_err(|e| StageError::failure(format!("{}: cannot create the output folder: {e}", out.display())))?;
+    std::fs::create_dir_all(out).map_err(|e| {
+        StageError::failure(format!("{}: cannot create the output folder: {e}", out.display()))
+    })?;
     let mut reports = Vec::new();
     for stage in Stage::ALL {
         let start = Instant::now();
@@ -86,7 +87,20 @@ pub fn expected_key(scene: &Scene, stage: Stage, out: &Path) -> Option<String> {
             Some(InputRef { name: input.kind().name().into(), payload_blake3: header.payload_blake3 })
         })
         .collect::<Option<Vec<_>>>()?;
-    Some(stage_key(stage, &producer(stage), &scene.params_hash(stage), &inputs))
+    Some(stage_key(stage, &producer(stage), schema(stage), &scene.params_hash(stage), &inputs))
+}
+
+/// The payload schema this build writes for `stage`.
+pub fn schema(stage: Stage) -> u32 {
+    match stage {
+        Stage::Sampling => karst_sampling::Samples::SCHEMA,
+        Stage::Costgraph => karst_costgraph::CostGraph::SCHEMA,
+        Stage::Skeleton => karst_skeleton::Skeleton::SCHEMA,
+        Stage::Hydro => karst_hydro::Hydro::SCHEMA,
+        Stage::Sdf => karst_sdf::SdfModel::SCHEMA,
+        Stage::Mesher => karst_mesher::Mesh::SCHEMA,
+        Stage::Metrics => karst_metrics::stage::MetricsReport::SCHEMA,
+    }
 }
 
 fn up_to_date(scene: &Scene, stage: Stage, out: &Path) -> bool {

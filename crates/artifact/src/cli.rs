@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use crate::envelope::{Header, InputRef, Payload, Provenance, read_artifact};
 use crate::error::StageError;
-use crate::pipeline::{Stage, producer, stage_key};
+use crate::pipeline::{Stage, producer};
 
 /// `karst-<stage> run SCENE [--out DIR]`.
 #[derive(Debug, Clone, clap::Args)]
@@ -53,15 +53,14 @@ impl StageRun {
     pub fn read_input<P: Payload>(&mut self, stage: Stage) -> Result<P, StageError> {
         debug_assert!(self.stage.inputs().contains(&stage));
         let (header, payload) = read_artifact::<P>(&self.path_of(stage))?;
-        self.inputs.push(InputRef { name: stage.kind().name().into(), payload_blake3: header.payload_blake3 });
+        self.inputs
+            .push(InputRef { name: stage.kind().name().into(), payload_blake3: header.payload_blake3 });
         Ok(payload)
     }
 
     /// The provenance of this run's artifact, given the hash of the scene sections it read.
     pub fn provenance(&self, params: &str) -> Provenance {
-        let producer = producer(self.stage);
-        let key = stage_key(self.stage, &producer, params, &self.inputs);
-        Provenance { producer, key, inputs: self.inputs.clone(), params: params.to_string() }
+        Provenance { producer: producer(self.stage), inputs: self.inputs.clone(), params: params.to_string() }
     }
 
     /// Path of this run's own artifact.

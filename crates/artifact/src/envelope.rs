@@ -99,11 +99,11 @@ pub struct Header {
     pub payload_blake3: String,
 }
 
-/// Where an artifact comes from: everything in the header but the payload's own figures.
+/// Where an artifact comes from: who made it, from which inputs and scene sections. The key
+/// is derived from it and the payload's schema when the artifact is written.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Provenance {
     pub producer: String,
-    pub key: String,
     pub inputs: Vec<InputRef>,
     pub params: String,
 }
@@ -117,15 +117,27 @@ pub trait Payload: Serialize + DeserializeOwned {
 }
 
 /// Encodes `payload`, then atomically writes header and payload to `path`.
-pub fn write_artifact<P: Payload>(path: &Path, provenance: &Provenance, payload: &P) -> Result<Header, Error> {
+pub fn write_artifact<P: Payload>(
+    path: &Path,
+    provenance: &Provenance,
+    payload: &P,
+) -> Result<Header, Error> {
     let bytes = encode(payload)?;
+    let stage = crate::pipeline::Stage::of_kind(P::KIND);
+    let key = crate::pipeline::stage_key(
+        stage,
+        &provenance.producer,
+        P::SCHEMA,
+        &provenance.params,
+        &provenance.inputs,
+    );
     let header = Header {
         format: FORMAT.to_string(),
         kind: P::KIND,
         schema: P::SCHEMA,
         producer: provenance.producer.clone(),
         encoding: P::KIND.encoding(),
-        key: provenance.key.clone(),
+        key,
         inputs: provenance.inputs.clone(),
         params: provenance.params.clone(),
         payload_len: bytes.len() as u64,
@@ -156,9 +168,7 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
     let header = read_header_from(path, &mut reader)?;
     check_kind_and_schema::<P>(path, &header)?;
     let mut payload = Vec::with_capacity(header.payload_len.min(1 << 32) as usize);
-    reader
-        .read_to_end(&mut payload)
-        .map_err(|source| Error::Open { path: path.into(), source })?;
+    reader.read_to_end(&mut payload).map_err(|source| Error::Open { path: path.into(), source })?;
     let stage = P::KIND.stage_name().to_string();
     if payload.len() as u64 != header.payload_len {
         return Err(Error::Length {
@@ -257,7 +267,7 @@ mod tests {
     }
 
     fn provenance() -> Provenance {
-        Provenance { producer: "test 0".into(), key: "k".into(), inputs: vec![], params: "p".into() }
+        Provenance { producer: "test 0".into(), inputs: vec![], params: "p".into() }
     }
 
     fn scratch(name: &str) -> std::path::PathBuf {

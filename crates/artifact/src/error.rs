@@ -78,10 +78,6 @@ impl StageError {
 
 impl From<Error> for StageError {
     fn from(e: Error) -> Self {
-        if e.is_bad_input() {
-            StageError::BadInput(e.into())
-        } else {
-            StageError::Failure(e.into())
-        }
+        if e.is_bad_input() { StageError::BadInput(e.into()) } else { StageError::Failure(e.into()) }
     }
 }

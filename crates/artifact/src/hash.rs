@@ -22,10 +22,7 @@ mod tests {
 
     #[test]
     fn parts_are_length_prefixed() {
-        assert_ne!(
-            hex_of_parts([b"ab".as_slice(), b"c"]),
-            hex_of_parts([b"a".as_slice(), b"bc"])
-        );
+        assert_ne!(hex_of_parts([b"ab".as_slice(), b"c"]), hex_of_parts([b"a".as_slice(), b"bc"]));
         assert_eq!(hex(b"x").len(), 64);
     }
 }

@@ -19,8 +19,7 @@ pub mod pipeline;
 pub mod progress;
 
 pub use envelope::{
-    Encoding, Header, InputRef, Kind, Payload, Provenance, read_artifact, read_header,
-    write_artifact,
+    Encoding, Header, InputRef, Kind, Payload, Provenance, read_artifact, read_header, write_artifact,
 };
 pub use error::{Error, StageError};
 pub use pipeline::Stage;

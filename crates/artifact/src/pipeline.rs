@@ -121,12 +121,13 @@ impl Stage {
     }
 }
 
-/// The key of an artifact: the hash of the stage, the producer's name and version, the hash of
-/// the scene sections it reads and its inputs' payload hashes. Equal keys mean the stage would
-/// write the same artifact again.
-pub fn stage_key(stage: Stage, producer: &str, params: &str, inputs: &[InputRef]) -> String {
+/// The key of an artifact: the hash of the stage, the producer's name and version, the payload
+/// schema, the hash of the scene sections it reads and its inputs' payload hashes. Equal keys
+/// mean the stage would write the same artifact again.
+pub fn stage_key(stage: Stage, producer: &str, schema: u32, params: &str, inputs: &[InputRef]) -> String {
+    let schema = schema.to_le_bytes();
     let mut parts: Vec<&[u8]> =
-        vec![b"karstgen-key-1", stage.name().as_bytes(), producer.as_bytes(), params.as_bytes()];
+        vec![b"karstgen-key-1", stage.name().as_bytes(), producer.as_bytes(), &schema, params.as_bytes()];
     for input in inputs {
         parts.push(input.name.as_bytes());
         parts.push(input.payload_blake3.as_bytes());
@@ -157,11 +158,12 @@ mod tests {
     #[test]
     fn key_depends_on_everything() {
         let input = |h: &str| InputRef { name: "samples".into(), payload_blake3: h.into() };
-        let base = stage_key(Stage::Costgraph, "p 1", "params", &[input("a")]);
-        assert_ne!(base, stage_key(Stage::Costgraph, "p 2", "params", &[input("a")]));
-        assert_ne!(base, stage_key(Stage::Costgraph, "p 1", "other", &[input("a")]));
-        assert_ne!(base, stage_key(Stage::Costgraph, "p 1", "params", &[input("b")]));
-        assert_ne!(base, stage_key(Stage::Skeleton, "p 1", "params", &[input("a")]));
-        assert_eq!(base, stage_key(Stage::Costgraph, "p 1", "params", &[input("a")]));
+        let base = stage_key(Stage::Costgraph, "p 1", 1, "params", &[input("a")]);
+        assert_ne!(base, stage_key(Stage::Costgraph, "p 2", 1, "params", &[input("a")]));
+        assert_ne!(base, stage_key(Stage::Costgraph, "p 1", 2, "params", &[input("a")]));
+        assert_ne!(base, stage_key(Stage::Costgraph, "p 1", 1, "other", &[input("a")]));
+        assert_ne!(base, stage_key(Stage::Costgraph, "p 1", 1, "params", &[input("b")]));
+        assert_ne!(base, stage_key(Stage::Skeleton, "p 1", 1, "params", &[input("a")]));
+        assert_eq!(base, stage_key(Stage::Costgraph, "p 1", 1, "params", &[input("a")]));
     }
 }

@@ -42,13 +42,8 @@ impl CostModel {
             Some(d) => self.horizon_weight * smoothstep(d / self.horizon_distance),
             None => 0.0,
         };
-        let depth = self
-            .water_tables
-            .iter()
-            .map(|w| -w.height_above(p))
-            .reduce(f64::max)
-            .unwrap_or(0.0)
-            .max(0.0);
+        let depth =
+            self.water_tables.iter().map(|w| -w.height_above(p)).reduce(f64::max).unwrap_or(0.0).max(0.0);
         1.0 + horizon + self.phreatic_weight * smoothstep(depth / self.phreatic_distance)
     }
 
@@ -70,7 +65,13 @@ mod tests {
     use super::*;
 
     fn model() -> CostModel {
-        let plane = |name: &str, z: f64| Surface { name: name.into(), elevation: z, origin: [0.0; 2], dip: 0.0, dip_direction: 0.0 };
+        let plane = |name: &str, z: f64| Surface {
+            name: name.into(),
+            elevation: z,
+            origin: [0.0; 2],
+            dip: 0.0,
+            dip_direction: 0.0,
+        };
         CostModel {
             horizons: vec![plane("h", 50.0)],
             water_tables: vec![plane("w", 20.0)],

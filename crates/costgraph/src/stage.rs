@@ -39,7 +39,9 @@ pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, StageError> 
     let costed: Vec<Vec<(u32, f32)>> = lists
         .into_par_iter()
         .enumerate()
-        .map(|(i, list)| list.into_iter().map(|(j, _)| (j, model.edge_cost(at(i as u32), at(j)) as f32)).collect())
+        .map(|(i, list)| {
+            list.into_iter().map(|(j, _)| (j, model.edge_cost(at(i as u32), at(j)) as f32)).collect()
+        })
         .collect();
     Ok(CostGraph::from_lists(costed))
 }
@@ -68,8 +70,16 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     let (header, graph) = read_artifact::<CostGraph>(&args.file)?;
     println!("{}: costgraph, schema {}, by {}", args.file.display(), header.schema, header.producer);
     println!("  nodes   {}", graph.node_count());
-    println!("  edges   {} ({:.1} per node)", graph.edge_count(), graph.edge_count() as f64 / graph.node_count().max(1) as f64);
-    println!("  bytes   {} payload ({:.1} per edge)", header.payload_len, header.payload_len as f64 / graph.edge_count().max(1) as f64);
+    println!(
+        "  edges   {} ({:.1} per node)",
+        graph.edge_count(),
+        graph.edge_count() as f64 / graph.node_count().max(1) as f64
+    );
+    println!(
+        "  bytes   {} payload ({:.1} per edge)",
+        header.payload_len,
+        header.payload_len as f64 / graph.edge_count().max(1) as f64
+    );
     let mut costs = graph.costs.clone();
     costs.sort_by(f32::total_cmp);
     if !costs.is_empty() {

@@ -1,7 +1,8 @@
 //! The scene: everything karstgen knows about the ground before it starts.
 //!
 //! A scene file (TOML, documented field by field in `docs/scene.md`) describes the domain box,
-//! the terrain, the geology (water tables, inception horizons), the key points (sinks, springs,
+//! the terrain, the geology (water tables, inception horizons, faults, fracture families), the
+//! key points (sinks, springs,
 //! waypoints), which sink drains to which spring, one section of parameters per stage, and the
 //! seed. [`Scene::load`] parses and validates it, reporting every problem at once with the
 //! file, line and field. Stages read the scene through this crate only; the hash of the
@@ -10,20 +11,23 @@
 //! Conventions: metres, z up, right-handed; azimuths in degrees clockwise from north (+y).
 
 pub mod domain;
+pub mod fracture;
 pub mod keypoint;
 pub mod params;
 pub mod rng;
 pub mod scene;
+mod spans;
 pub mod surface;
 pub mod terrain;
 mod validate;
 
 pub use domain::Domain;
+pub use fracture::FractureFamily;
 pub use keypoint::{KeyPoint, KeyPointKind};
 pub use scene::{Connectivity, Geology, Link, Scene, SceneError};
-pub use validate::Problem;
 pub use surface::Surface;
 pub use terrain::Terrain;
+pub use validate::Problem;
 
 /// A point in space, metres, z up.
 pub type Point = glam::DVec3;

@@ -52,10 +52,12 @@ mod tests {
 
     #[test]
     fn streams_are_reproducible_and_independent() {
-        let a: Vec<f64> = (0..4).map({
-            let mut r = Random::stream(7, "sampling", "poisson");
-            move |_| r.uniform()
-        }).collect();
+        let a: Vec<f64> = (0..4)
+            .map({
+                let mut r = Random::stream(7, "sampling", "poisson");
+                move |_| r.uniform()
+            })
+            .collect();
         let mut again = Random::stream(7, "sampling", "poisson");
         let mut other = Random::stream(7, "sampling", "other");
         assert_eq!(a[0], again.uniform());

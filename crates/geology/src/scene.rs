@@ -5,11 +5,10 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::params::{
-    CostgraphParams, HydroParams, MesherParams, MetricsParams, SamplingParams, SdfParams,
-    SkeletonParams,
+    CostgraphParams, HydroParams, MesherParams, MetricsParams, SamplingParams, SdfParams, SkeletonParams,
 };
 use crate::validate::{self, Problem};
-use crate::{Domain, KeyPoint, KeyPointKind, Surface, Terrain};
+use crate::{Domain, FractureFamily, KeyPoint, KeyPointKind, Surface, Terrain};
 
 /// A whole scene, as read from its TOML file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -52,6 +51,24 @@ pub struct Geology {
     pub water_tables: Vec<Surface>,
     /// Inception horizons: bedding surfaces along which conduits preferentially develop.
     pub horizons: Vec<Surface>,
+    /// Faults: inception surfaces that may be vertical.
+    pub faults: Vec<Surface>,
+    /// Fracture families: directions conduits tend to follow.
+    pub fractures: Vec<FractureFamily>,
+}
+
+impl Geology {
+    /// Intrinsic karstification potential P(p) in [0, 1] (KarstNSim §1.3: 1 = the most
+    /// karstifiable rock, Paris et al.'s relative resistance to flow is 1 − P). Every rock of
+    /// this version's scene is equally karstifiable.
+    pub fn potential(&self, _p: crate::Point) -> f64 {
+        1.0
+    }
+
+    /// Inception surfaces: horizons and faults.
+    pub fn inception_surfaces(&self) -> impl Iterator<Item = &Surface> {
+        self.horizons.iter().chain(&self.faults)
+    }
 }
 
 /// `[connectivity]`: which sink may drain to which spring.

@@ -5,11 +5,8 @@
 //! without its water table, ...). Lines are found by walking a span-preserving parse of the
 //! same text along the field's path.
 
+use crate::spans::{line_of, line_of_path, path_at};
 use std::fmt;
-use std::ops::Range;
-
-use toml::Spanned;
-use toml::de::{DeTable, DeValue};
 
 use crate::{KeyPointKind, Scene, Surface};
 
@@ -49,26 +46,32 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     let mut found = Checks { text, problems: Vec::new() };
     found.domain(scene);
     found.terrain(scene);
-    found.surfaces("geology.water_tables", &scene.geology.water_tables);
-    found.surfaces("geology.horizons", &scene.geology.horizons);
+    found.surfaces("geology.water_tables", &scene.geology.water_tables, false);
+    found.surfaces("geology.horizons", &scene.geology.horizons, false);
+    found.surfaces("geology.faults", &scene.geology.faults, true);
+    found.fractures(scene);
     found.keypoints(scene);
     found.connectivity(scene);
-    found.params(scene);
+    scene.sampling.check(&mut found);
+    scene.costgraph.check(&mut found);
+    scene.skeleton.check(&mut found);
+    scene.sdf.check(&mut found);
+    scene.mesher.check(&mut found);
     found.problems
 }
 
-struct Checks<'a> {
+pub(crate) struct Checks<'a> {
     text: &'a str,
     problems: Vec<Problem>,
 }
 
 impl Checks<'_> {
-    fn report(&mut self, field: &str, message: String) {
+    pub(crate) fn report(&mut self, field: &str, message: String) {
         let line = line_of_path(self.text, field);
         self.problems.push(Problem { line, field: field.to_string(), message });
     }
 
-    fn finite(&mut self, field: &str, values: &[f64]) -> bool {
+    pub(crate) fn finite(&mut self, field: &str, values: &[f64]) -> bool {
         if let Some(v) = values.iter().find(|v| !v.is_finite()) {
             self.report(field, format!("{v} is not a finite number"));
             return false;
@@ -76,13 +79,13 @@ impl Checks<'_> {
         true
     }
 
-    fn positive(&mut self, field: &str, value: f64) {
+    pub(crate) fn positive(&mut self, field: &str, value: f64) {
         if self.finite(field, &[value]) && value <= 0.0 {
             self.report(field, format!("must be > 0, got {value}"));
         }
     }
 
-    fn non_negative(&mut self, field: &str, value: f64) {
+    pub(crate) fn non_negative(&mut self, field: &str, value: f64) {
         if self.finite(field, &[value]) && value < 0.0 {
             self.report(field, format!("must be ≥ 0, got {value}"));
         }
@@ -97,7 +100,10 @@ impl Checks<'_> {
             if d.min[axis] >= d.max[axis] {
                 self.report(
                     "domain.max",
-                    format!("inverted box: max.{name} = {} is not above min.{name} = {}", d.max[axis], d.min[axis]),
+                    format!(
+                        "inverted box: max.{name} = {} is not above min.{name} = {}",
+                        d.max[axis], d.min[axis]
+                    ),
                 );
             }
         }
@@ -123,17 +129,37 @@ impl Checks<'_> {
         }
     }
 
-    fn surfaces(&mut self, list: &str, surfaces: &[Surface]) {
+    fn surfaces(&mut self, list: &str, surfaces: &[Surface], vertical_allowed: bool) {
         for (i, s) in surfaces.iter().enumerate() {
             let at = |f: &str| format!("{list}[{i}].{f}");
             self.finite(&at("elevation"), &[s.elevation]);
             self.finite(&at("origin"), &s.origin);
             self.finite(&at("dip_direction"), &[s.dip_direction]);
-            if self.finite(&at("dip"), &[s.dip]) && !(0.0..90.0).contains(&s.dip) {
-                self.report(&at("dip"), format!("must be in [0, 90) degrees, got {}", s.dip));
+            let max = if vertical_allowed { "90]" } else { "90)" };
+            let ok =
+                if vertical_allowed { (0.0..=90.0).contains(&s.dip) } else { (0.0..90.0).contains(&s.dip) };
+            if self.finite(&at("dip"), &[s.dip]) && !ok {
+                self.report(&at("dip"), format!("must be in [0, {max} degrees, got {}", s.dip));
             }
             if surfaces[..i].iter().any(|o| o.name == s.name) {
                 self.report(&at("name"), format!("\"{}\" is used twice", s.name));
+            }
+        }
+    }
+
+    fn fractures(&mut self, scene: &Scene) {
+        for (i, f) in scene.geology.fractures.iter().enumerate() {
+            let at = |field: &str| format!("geology.fractures[{i}].{field}");
+            self.finite(&at("azimuth"), &[f.azimuth]);
+            self.non_negative(&at("weight"), f.weight);
+            if self.finite(&at("dip"), &[f.dip]) && !(0.0..=90.0).contains(&f.dip) {
+                self.report(&at("dip"), format!("must be in [0, 90] degrees, got {}", f.dip));
+            }
+            if self.finite(&at("tolerance"), &[f.tolerance]) && !(f.tolerance > 0.0 && f.tolerance <= 90.0) {
+                self.report(&at("tolerance"), format!("must be in (0, 90] degrees, got {}", f.tolerance));
+            }
+            if scene.geology.fractures[..i].iter().any(|o| o.name == f.name) {
+                self.report(&at("name"), format!("\"{}\" is used twice", f.name));
             }
         }
     }
@@ -179,7 +205,10 @@ impl Checks<'_> {
         }
         let ground = scene.terrain.height(x, y);
         if z > ground {
-            self.report(&field, format!("\"{}\" at z = {z} is above the terrain (ground at {ground:.3})", k.name));
+            self.report(
+                &field,
+                format!("\"{}\" at z = {z} is above the terrain (ground at {ground:.3})", k.name),
+            );
         }
     }
 
@@ -203,119 +232,6 @@ impl Checks<'_> {
             }
         }
     }
-
-    fn params(&mut self, scene: &Scene) {
-        self.positive("sampling.radius", scene.sampling.radius);
-        if scene.sampling.attempts == 0 {
-            self.report("sampling.attempts", "must be ≥ 1".into());
-        }
-        let c = &scene.costgraph;
-        if c.k == 0 {
-            self.report("costgraph.k", "must be ≥ 1".into());
-        }
-        if let Some(l) = c.max_edge_length {
-            self.positive("costgraph.max_edge_length", l);
-        }
-        self.non_negative("costgraph.horizon_weight", c.horizon_weight);
-        self.positive("costgraph.horizon_distance", c.horizon_distance);
-        self.non_negative("costgraph.phreatic_weight", c.phreatic_weight);
-        self.positive("costgraph.phreatic_distance", c.phreatic_distance);
-        let [lo, hi] = scene.skeleton.radius;
-        self.positive("skeleton.radius", lo);
-        if lo.is_finite() && hi.is_finite() && hi < lo {
-            self.report("skeleton.radius", format!("[{lo}, {hi}] is not a range (max < min)"));
-        }
-        self.positive("sdf.radius_scale", scene.sdf.radius_scale);
-        self.positive("mesher.cell_size", scene.mesher.cell_size);
-    }
-}
-
-/// 1-based line of byte `offset`.
-fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].bytes().filter(|b| *b == b'\n').count() + 1
-}
-
-/// Line where the field at `path` (`keypoints[2].position`) is written, if it is written.
-fn line_of_path(text: &str, path: &str) -> Option<usize> {
-    let root = DeTable::parse(text).ok()?;
-    let mut span = root.span();
-    let mut value: Option<&DeValue> = None;
-    let mut table = Some(root.get_ref());
-    for segment in parse_path(path) {
-        let next: &Spanned<DeValue> = match segment {
-            Segment::Key(key) => table?.iter().find(|(k, _)| k.get_ref() == key).map(|(_, v)| v)?,
-            Segment::Index(i) => match value? {
-                DeValue::Array(items) => items.get(i)?,
-                _ => return None,
-            },
-        };
-        span = next.span();
-        value = Some(next.get_ref());
-        table = match next.get_ref() {
-            DeValue::Table(t) => Some(t),
-            _ => None,
-        };
-    }
-    Some(line_of(text, span.start))
-}
-
-/// Path of the innermost field whose key or value contains byte `offset`. Header tables
-/// (`[costgraph]`, `[[keypoints]]`) do not span their contents, so every child is searched.
-fn path_at(text: &str, offset: usize) -> String {
-    let Ok(root) = DeTable::parse(text) else { return String::new() };
-    search_table(root.get_ref(), offset).unwrap_or_default()
-}
-
-fn search_table(table: &DeTable, offset: usize) -> Option<String> {
-    table.iter().find_map(|(key, value)| {
-        let name = key.get_ref().to_string();
-        match search_value(value, offset) {
-            Some(rest) if rest.is_empty() => Some(name),
-            Some(rest) if rest.starts_with('[') => Some(format!("{name}{rest}")),
-            Some(rest) => Some(format!("{name}.{rest}")),
-            None if contains(&key.span(), offset) => Some(name),
-            None => None,
-        }
-    })
-}
-
-/// Some(path below this value) when `offset` is inside it ("" for the value itself).
-fn search_value(value: &Spanned<DeValue>, offset: usize) -> Option<String> {
-    match value.get_ref() {
-        DeValue::Table(t) => search_table(t, offset),
-        DeValue::Array(items) => items.iter().enumerate().find_map(|(i, item)| {
-            search_value(item, offset).map(|rest| match rest.as_str() {
-                "" => format!("[{i}]"),
-                r if r.starts_with('[') => format!("[{i}]{r}"),
-                r => format!("[{i}].{r}"),
-            })
-        }),
-        _ => contains(&value.span(), offset).then(String::new),
-    }
-    .or_else(|| contains(&value.span(), offset).then(String::new))
-}
-
-fn contains(span: &Range<usize>, offset: usize) -> bool {
-    span.start <= offset && offset < span.end.max(span.start + 1)
-}
-
-enum Segment<'a> {
-    Key(&'a str),
-    Index(usize),
-}
-
-fn parse_path(path: &str) -> Vec<Segment<'_>> {
-    let mut segments = Vec::new();
-    for part in path.split('.') {
-        let (key, rest) = part.split_once('[').unwrap_or((part, ""));
-        segments.push(Segment::Key(key));
-        for index in rest.split('[') {
-            if let Ok(i) = index.trim_end_matches(']').parse() {
-                segments.push(Segment::Index(i));
-            }
-        }
-    }
-    segments
 }
 
 #[cfg(test)]
@@ -355,7 +271,9 @@ water_table = "wt"
     fn problems(text: &str) -> Vec<String> {
         match Scene::parse(text, Path::new("scene.toml")) {
             Ok(_) => vec![],
-            Err(SceneError::Invalid { problems, .. }) => problems.iter().map(|p| format!("scene.toml{p}")).collect(),
+            Err(SceneError::Invalid { problems, .. }) => {
+                problems.iter().map(|p| format!("scene.toml{p}")).collect()
+            }
             Err(e) => panic!("{e}"),
         }
     }
@@ -413,7 +331,8 @@ water_table = "wt"
     fn section_hash_ignores_other_sections_and_formatting() {
         let a = Scene::parse(GOOD, Path::new("a")).unwrap();
         let b = Scene::parse(&format!("{GOOD}\n[sdf]\nradius_scale = 2\n"), Path::new("b")).unwrap();
-        let c = Scene::parse(&format!("# comment\n{GOOD}\n[sdf]\nradius_scale = 1.0\n"), Path::new("c")).unwrap();
+        let c =
+            Scene::parse(&format!("# comment\n{GOOD}\n[sdf]\nradius_scale = 1.0\n"), Path::new("c")).unwrap();
         assert_eq!(a.sections_hash(&["domain", "sampling"]), b.sections_hash(&["domain", "sampling"]));
         assert_ne!(a.sections_hash(&["sdf"]), b.sections_hash(&["sdf"]));
         assert_eq!(a.sections_hash(&["sdf"]), c.sections_hash(&["sdf"]));

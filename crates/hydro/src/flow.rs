@@ -108,7 +108,11 @@ mod tests {
     fn imbalance(s: &Skeleton, h: &Hydro) -> Vec<f64> {
         let mut balance = vec![0.0; s.nodes.len()];
         for (c, f) in s.conduits.iter().zip(&h.conduits) {
-            let (from, to) = if f.downstream { (c.nodes[0], *c.nodes.last().unwrap()) } else { (*c.nodes.last().unwrap(), c.nodes[0]) };
+            let (from, to) = if f.downstream {
+                (c.nodes[0], *c.nodes.last().unwrap())
+            } else {
+                (*c.nodes.last().unwrap(), c.nodes[0])
+            };
             balance[from as usize] -= f.flow;
             balance[to as usize] += f.flow;
         }

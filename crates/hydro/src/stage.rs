@@ -35,7 +35,11 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     let (header, hydro) = read_artifact::<Hydro>(&args.file)?;
     let max = hydro.conduits.iter().map(|c| c.flow).fold(0.0, f64::max);
     println!("{}: hydro, schema {}, by {}", args.file.display(), header.schema, header.producer);
-    println!("  conduits  {} ({} dry), largest flow {max}", hydro.conduits.len(), hydro.conduits.iter().filter(|c| c.dry).count());
+    println!(
+        "  conduits  {} ({} dry), largest flow {max}",
+        hydro.conduits.len(),
+        hydro.conduits.iter().filter(|c| c.dry).count()
+    );
     for s in &hydro.sinks {
         println!("  sink      {}: {}", s.name, s.flow);
     }

@@ -48,7 +48,12 @@ impl Mesh {
     /// Writes the mesh as Wavefront OBJ (1-based faces), atomically.
     pub fn write_obj(&self, path: &Path) -> std::io::Result<()> {
         atomic::write_with(path, |w| {
-            writeln!(w, "# karstgen mesh: {} vertices, {} triangles", self.vertices.len(), self.triangles.len())?;
+            writeln!(
+                w,
+                "# karstgen mesh: {} vertices, {} triangles",
+                self.vertices.len(),
+                self.triangles.len()
+            )?;
             for [x, y, z] in &self.vertices {
                 writeln!(w, "v {x} {y} {z}")?;
             }

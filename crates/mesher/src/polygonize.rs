@@ -7,10 +7,10 @@ use rayon::prelude::*;
 
 use karst_sdf::CarvedTerrain;
 
+use crate::Mesh;
 use crate::lattice::Lattice;
 use crate::octree::{self, BRICK};
 use crate::tetra::{self, TETRAHEDRA};
-use crate::Mesh;
 
 /// A mesh vertex is identified by the lattice edge it lies on: (lower id, higher id).
 type EdgeKey = (u64, u64);

@@ -44,6 +44,10 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     println!("  cell size    {} m", mesh.cell_size);
     println!("  area         {:.1} m²", mesh.area());
     println!("  volume       {:.1} m³ of rock", mesh.enclosed_volume());
-    println!("  evaluations  {} ({:.1} per vertex)", mesh.field_evaluations, mesh.field_evaluations as f64 / mesh.vertices.len().max(1) as f64);
+    println!(
+        "  evaluations  {} ({:.1} per vertex)",
+        mesh.field_evaluations,
+        mesh.field_evaluations as f64 / mesh.vertices.len().max(1) as f64
+    );
     Ok(())
 }

@@ -52,7 +52,8 @@ pub fn triangles(tet: &([usize; 4], i8), values: &[f64; 8], out: &mut Vec<[Cross
 fn positive(corners: &[usize; 4], sign: i8, mut order: [usize; 4]) -> [usize; 4] {
     let position = |c: usize| corners.iter().position(|&x| x == c).expect("a corner of the tetrahedron");
     let p = order.map(position);
-    let inversions = (0..4).flat_map(|i| (i + 1..4).map(move |j| (i, j))).filter(|&(i, j)| p[i] > p[j]).count();
+    let inversions =
+        (0..4).flat_map(|i| (i + 1..4).map(move |j| (i, j))).filter(|&(i, j)| p[i] > p[j]).count();
     let parity: i8 = if inversions % 2 == 0 { 1 } else { -1 };
     if parity * sign < 0 {
         order.swap(2, 3);
@@ -91,7 +92,8 @@ mod tests {
                 let mut tris = Vec::new();
                 triangles(&(t, sign), &values, &mut tris);
                 let centroid = |rock: bool| {
-                    let cs: Vec<DVec3> = t.iter().filter(|&&c| (values[c] < 0.0) == rock).map(|&c| corner(c)).collect();
+                    let cs: Vec<DVec3> =
+                        t.iter().filter(|&&c| (values[c] < 0.0) == rock).map(|&c| corner(c)).collect();
                     cs.iter().sum::<DVec3>() / cs.len() as f64
                 };
                 let outward = centroid(false) - centroid(true);

@@ -3,16 +3,15 @@
 
 use std::collections::HashMap;
 
-use karst_geology::{Domain, Terrain};
+use karst_geology::Domain;
 use karst_mesher::Mesh;
 use karst_mesher::polygonize::polygonize;
-use karst_sdf::{Capsule, CarvedTerrain, SdfModel};
+use karst_sdf::{Capsule, CarvedTerrain, SdfModel, TerrainField};
 
 fn model() -> SdfModel {
     SdfModel {
         domain: Domain { min: [0.0, 0.0, 0.0], max: [60.0, 40.0, 30.0] },
-        terrain: Terrain::Plane { elevation: 25.0, origin: [0.0, 0.0], gradient: [0.05, 0.02] },
-        terrain_lipschitz: 0.05f64.hypot(0.02),
+        terrain: TerrainField::Plane { elevation: 25.0, origin: [0.0, 0.0], gradient: [0.05, 0.02] },
         capsules: vec![
             Capsule { a: [10.0, 20.0, 28.0], b: [15.0, 20.0, 12.0], radius: 2.5 },
             Capsule { a: [15.0, 20.0, 12.0], b: [50.0, 22.0, 10.0], radius: 3.0 },

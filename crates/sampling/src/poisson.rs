@@ -90,7 +90,14 @@ impl Grid {
         let cell = radius / 3f64.sqrt();
         let n = ((hi - lo) / cell).ceil().max(DVec3::ONE);
         let dims = [n.x as usize + 1, n.y as usize + 1, n.z as usize + 1];
-        Grid { lo, cell, dims, cells: vec![EMPTY; dims[0] * dims[1] * dims[2]], overflow: Vec::new(), radius2: radius * radius }
+        Grid {
+            lo,
+            cell,
+            dims,
+            cells: vec![EMPTY; dims[0] * dims[1] * dims[2]],
+            overflow: Vec::new(),
+            radius2: radius * radius,
+        }
     }
 
     fn coords(&self, p: DVec3) -> [usize; 3] {

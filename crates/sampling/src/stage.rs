@@ -20,7 +20,8 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     let below_ground = |p: DVec3| p.z < terrain.height(p.x, p.y);
     let params = &scene.sampling;
     let d = &scene.domain;
-    let points = poisson::sample(d.min(), d.max(), params.radius, params.attempts, &fixed, below_ground, &mut rng);
+    let points =
+        poisson::sample(d.min(), d.max(), params.radius, params.attempts, &fixed, below_ground, &mut rng);
     if points.len() == fixed.len() {
         return Err(StageError::input(format!(
             "no sample fits in the bedrock: the domain below the terrain is empty or thinner than sampling.radius = {}",
@@ -41,7 +42,11 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let samples = sample_scene(&scene)?;
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Sampling)), &samples)?;
     let (_, keypoints) = samples.tag_counts();
-    Ok(format!("{} samples ({keypoints} key points) in {:.2} s", samples.len(), start.elapsed().as_secs_f64()))
+    Ok(format!(
+        "{} samples ({keypoints} key points) in {:.2} s",
+        samples.len(),
+        start.elapsed().as_secs_f64()
+    ))
 }
 
 /// `karst-sampling inspect`.
@@ -57,9 +62,16 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     println!("  key points  {keypoints}");
     println!("  radius      {} m", samples.radius);
     if let Some((lo, hi)) = bounds(&samples.positions) {
-        println!("  bounds      [{:.2}, {:.2}, {:.2}] – [{:.2}, {:.2}, {:.2}]", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+        println!(
+            "  bounds      [{:.2}, {:.2}, {:.2}] – [{:.2}, {:.2}, {:.2}]",
+            lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+        );
     }
-    println!("  bytes       {} payload ({:.1} per sample)", header.payload_len, header.payload_len as f64 / samples.len().max(1) as f64);
+    println!(
+        "  bytes       {} payload ({:.1} per sample)",
+        header.payload_len,
+        header.payload_len as f64 / samples.len().max(1) as f64
+    );
     Ok(())
 }
 

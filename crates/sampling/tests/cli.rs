@@ -49,14 +49,19 @@ fn run_then_inspect_json() {
     let result = sampling(&["run", scene.to_str().unwrap()], &out);
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let file = out.join("samples.bin");
-    let json = Command::new(env!("CARGO_BIN_EXE_karst-sampling")).args(["inspect", "--json"]).arg(&file).output().unwrap();
+    let json = Command::new(env!("CARGO_BIN_EXE_karst-sampling"))
+        .args(["inspect", "--json"])
+        .arg(&file)
+        .output()
+        .unwrap();
     let value: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
     assert_eq!(value["header"]["kind"], "samples");
     let n = value["payload"]["positions"].as_array().unwrap().len();
     assert!(n > 100, "{n} samples");
     let garbage = out.join("garbage.bin");
     std::fs::write(&garbage, b"not an artifact").unwrap();
-    let bad = Command::new(env!("CARGO_BIN_EXE_karst-sampling")).arg("inspect").arg(&garbage).output().unwrap();
+    let bad =
+        Command::new(env!("CARGO_BIN_EXE_karst-sampling")).arg("inspect").arg(&garbage).output().unwrap();
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("garbage.bin: not a karstgen artifact"));
 }

@@ -2,23 +2,20 @@
 
 use glam::DVec3;
 
-use crate::bvh::Bvh;
 use crate::SdfModel;
+use crate::bvh::Bvh;
 
 /// The carved terrain's signed-distance bound, ready to evaluate.
 #[derive(Debug, Clone)]
 pub struct CarvedTerrain {
     model: SdfModel,
     bvh: Bvh,
-    /// 1/√(1 + λ²).
-    terrain_scale: f64,
 }
 
 impl CarvedTerrain {
     pub fn new(model: SdfModel) -> Self {
         let bvh = Bvh::build(&model.capsules);
-        let terrain_scale = 1.0 / (1.0 + model.terrain_lipschitz * model.terrain_lipschitz).sqrt();
-        CarvedTerrain { model, bvh, terrain_scale }
+        CarvedTerrain { model, bvh }
     }
 
     pub fn model(&self) -> &SdfModel {
@@ -27,8 +24,7 @@ impl CarvedTerrain {
 
     /// Rock before the caves: below the terrain and inside the domain (negative inside).
     fn uncarved(&self, p: DVec3) -> f64 {
-        let terrain = (p.z - self.model.terrain.height(p.x, p.y)) * self.terrain_scale;
-        terrain.max(self.model.domain.signed_distance(p))
+        self.model.terrain.distance(p).max(self.model.domain.signed_distance(p))
     }
 
     /// f(p): negative in rock, positive in air; 1-Lipschitz.
@@ -50,13 +46,13 @@ impl CarvedTerrain {
 mod tests {
     use super::*;
     use crate::Capsule;
-    use karst_geology::{Domain, Terrain};
+    use crate::terrain::TerrainField;
+    use karst_geology::Domain;
 
     fn field() -> CarvedTerrain {
         CarvedTerrain::new(SdfModel {
             domain: Domain { min: [0.0, 0.0, 0.0], max: [100.0, 100.0, 50.0] },
-            terrain: Terrain::Plane { elevation: 40.0, origin: [0.0, 0.0], gradient: [0.1, 0.0] },
-            terrain_lipschitz: 0.1,
+            terrain: TerrainField::Plane { elevation: 40.0, origin: [0.0, 0.0], gradient: [0.1, 0.0] },
             capsules: vec![Capsule { a: [20.0, 50.0, 20.0], b: [80.0, 50.0, 20.0], radius: 3.0 }],
         })
     }

@@ -14,7 +14,9 @@ pub mod capsule;
 pub mod field;
 pub mod model;
 pub mod stage;
+pub mod terrain;
 
 pub use capsule::Capsule;
 pub use field::CarvedTerrain;
 pub use model::SdfModel;
+pub use terrain::TerrainField;

@@ -3,17 +3,16 @@
 use serde::{Deserialize, Serialize};
 
 use karst_artifact::{Kind, Payload};
-use karst_geology::{Domain, Terrain};
+use karst_geology::Domain;
 
 use crate::Capsule;
+use crate::terrain::TerrainField;
 
 /// What the field is made of.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SdfModel {
     pub domain: Domain,
-    pub terrain: Terrain,
-    /// Lipschitz bound λ of the terrain's height function.
-    pub terrain_lipschitz: f64,
+    pub terrain: TerrainField,
     /// The conduits, as capsules along their segments.
     pub capsules: Vec<Capsule>,
 }

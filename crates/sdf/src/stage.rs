@@ -29,7 +29,7 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     }
     let (header, model) = read_artifact::<SdfModel>(&args.file)?;
     println!("{}: sdf, schema {}, by {}", args.file.display(), header.schema, header.producer);
-    println!("  terrain     λ = {:.4}", model.terrain_lipschitz);
+    println!("  terrain     λ = {:.4}", model.terrain.lipschitz());
     println!("  capsules    {}", model.capsules.len());
     println!(
         "  bytes       {} payload ({:.1} per primitive)",

@@ -8,9 +8,9 @@
 use std::collections::{HashMap, HashSet};
 
 use karst_artifact::StageError;
+use karst_costgraph::CostGraph;
 use karst_geology::rng::Random;
 use karst_geology::{KeyPointKind, Link, Scene};
-use karst_costgraph::CostGraph;
 use karst_sampling::Samples;
 
 use crate::dijkstra::ShortestPaths;
@@ -30,7 +30,8 @@ pub fn build(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Skel
     for route in &routes {
         network.add_path(&route.1);
     }
-    let routes: Vec<Route> = routes.into_iter().map(|(r, path)| Route { nodes: network.ids(&path), ..r }).collect();
+    let routes: Vec<Route> =
+        routes.into_iter().map(|(r, path)| Route { nodes: network.ids(&path), ..r }).collect();
     let chains = network.conduit_chains(scene, samples);
     let mut rng = Random::stream(scene.seed, "skeleton", "radius");
     let [lo, hi] = scene.skeleton.radius;
@@ -49,7 +50,8 @@ fn node(scene: &Scene, samples: &Samples, sample: u32) -> Node {
     let position = samples.positions[sample as usize];
     let p = karst_geology::Point::from_array(position);
     let phreatic = scene.geology.water_tables.iter().any(|w| w.height_above(p) < 0.0);
-    let keypoint = scene.keypoints.get(sample as usize).filter(|_| samples.keypoint_sample(sample as usize).is_some());
+    let keypoint =
+        scene.keypoints.get(sample as usize).filter(|_| samples.keypoint_sample(sample as usize).is_some());
     Node {
         position,
         sample,
@@ -59,9 +61,17 @@ fn node(scene: &Scene, samples: &Samples, sample: u32) -> Node {
 }
 
 /// Routes of every sink, with the sample path of each.
-fn route_sinks(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Vec<(Route, Vec<usize>)>, StageError> {
+fn route_sinks(
+    scene: &Scene,
+    samples: &Samples,
+    graph: &CostGraph,
+) -> Result<Vec<(Route, Vec<usize>)>, StageError> {
     let ends = |kind| -> Vec<End> {
-        scene.keypoints_of(kind).enumerate().map(|(row, (keypoint, k))| End { row, keypoint, name: &k.name }).collect()
+        scene
+            .keypoints_of(kind)
+            .enumerate()
+            .map(|(row, (keypoint, k))| End { row, keypoint, name: &k.name })
+            .collect()
     };
     let mut sinks = ends(KeyPointKind::Sink);
     let springs = ends(KeyPointKind::Spring);
@@ -69,8 +79,11 @@ fn route_sinks(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Ve
     let mut routes = Vec::new();
     for sink in &sinks {
         let source = sample_of(samples, sink)?;
-        let candidates: Vec<(&End, Link)> =
-            springs.iter().map(|t| (t, scene.link(sink.row, t.row))).filter(|(_, l)| *l != Link::None).collect();
+        let candidates: Vec<(&End, Link)> = springs
+            .iter()
+            .map(|t| (t, scene.link(sink.row, t.row)))
+            .filter(|(_, l)| *l != Link::None)
+            .collect();
         let targets = candidates.iter().map(|(t, _)| sample_of(samples, t)).collect::<Result<Vec<_>, _>>()?;
         let paths = ShortestPaths::from(graph, source, &targets);
         let unreachable = |t: &End| {
@@ -157,7 +170,8 @@ impl NetworkBuilder {
         let is_end: Vec<bool> = (0..self.samples.len())
             .map(|i| {
                 let s = self.samples[i] as usize;
-                self.adjacency[i].len() != 2 || (s < scene.keypoints.len() && samples.keypoint_sample(s).is_some())
+                self.adjacency[i].len() != 2
+                    || (s < scene.keypoints.len() && samples.keypoint_sample(s).is_some())
             })
             .collect();
         let mut used = HashSet::new();
@@ -184,7 +198,8 @@ impl NetworkBuilder {
             if is_end[at as usize] || at == start {
                 return chain;
             }
-            let next = self.adjacency[at as usize].iter().copied().find(|&n| n != prev).expect("degree-2 node");
+            let next =
+                self.adjacency[at as usize].iter().copied().find(|&n| n != prev).expect("degree-2 node");
             (prev, at) = (at, next);
         }
     }

@@ -30,8 +30,9 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let start = Instant::now();
     let skeleton = routing::build(&scene, &samples, &graph)?;
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Skeleton)), &skeleton)?;
-    karstnet::write(&skeleton, &args.out.join(KARSTNET_BASE))
-        .map_err(|e| StageError::failure(format!("{}: cannot write the karstnet export: {e}", args.out.display())))?;
+    karstnet::write(&skeleton, &args.out.join(KARSTNET_BASE)).map_err(|e| {
+        StageError::failure(format!("{}: cannot write the karstnet export: {e}", args.out.display()))
+    })?;
     Ok(format!(
         "{} nodes, {} conduits, {:.0} m in {:.2} s",
         skeleton.nodes.len(),
@@ -49,11 +50,21 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     let (header, skeleton) = read_artifact::<Skeleton>(&args.file)?;
     let phreatic = skeleton.nodes.iter().filter(|n| n.zone == Zone::Phreatic).count();
     println!("{}: skeleton, schema {}, by {}", args.file.display(), header.schema, header.producer);
-    println!("  nodes     {} ({} vadose, {phreatic} phreatic)", skeleton.nodes.len(), skeleton.nodes.len() - phreatic);
+    println!(
+        "  nodes     {} ({} vadose, {phreatic} phreatic)",
+        skeleton.nodes.len(),
+        skeleton.nodes.len() - phreatic
+    );
     println!("  conduits  {}", skeleton.conduits.len());
     println!("  length    {:.1} m", skeleton.total_length());
     for route in &skeleton.routes {
-        println!("  route     {} → {}: {} nodes, cost {:.1}", route.sink, route.spring, route.nodes.len(), route.cost);
+        println!(
+            "  route     {} → {}: {} nodes, cost {:.1}",
+            route.sink,
+            route.spring,
+            route.nodes.len(),
+            route.cost
+        );
     }
     Ok(())
 }

@@ -1,0 +1,24 @@
+//! `[mesher]`: polygonization.
+
+use serde::{Deserialize, Serialize};
+
+use crate::validate::Checks;
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MesherParams {
+    /// Edge of the finest cell, metres.
+    pub cell_size: f64,
+}
+
+impl Default for MesherParams {
+    fn default() -> Self {
+        MesherParams { cell_size: 2.0 }
+    }
+}
+
+impl MesherParams {
+    pub(crate) fn check(&self, c: &mut Checks) {
+        c.positive("mesher.cell_size", self.cell_size);
+    }
+}

@@ -1,0 +1,19 @@
+//! One section of parameters per stage, one file per section. Every field has a default, so a
+//! scene only states what it changes; the hash of a section (defaults applied) is part of that
+//! stage's artifact key. Each section checks its own values.
+
+mod costgraph;
+mod hydro;
+mod mesher;
+mod metrics;
+mod sampling;
+mod sdf;
+mod skeleton;
+
+pub use costgraph::CostgraphParams;
+pub use hydro::HydroParams;
+pub use mesher::MesherParams;
+pub use metrics::MetricsParams;
+pub use sampling::SamplingParams;
+pub use sdf::SdfParams;
+pub use skeleton::SkeletonParams;

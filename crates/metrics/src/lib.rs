@@ -1,0 +1,30 @@
+//! Karst network statistics, identical to karstnet 1.2.5.
+//!
+//! [`characterize`] computes every metric of `karstnet.KGraph.characterize_graph()` plus the
+//! counts printed by `basic_analysis()`, Howard's parameters, the connectivity degree DC, the
+//! Sturges entropy variants and karstnet's length-weighted average shortest path length. The
+//! definitions follow `shared/reference/karstnet-metrics.md` (the "spec" cited by section in the
+//! module docs); values match karstnet to ~1e-14 relative.
+//!
+//! Pipeline (one module per step):
+//! [`Network`] (validated) → `graph` (simple undirected graph in karstnet's node order) →
+//! `branches` (spec §1) → `reduced` (spec §2) → `geometry` / `topology` (spec §3), with the
+//! all-pairs traversals of the reduced graph in `shortest_paths`.
+//!
+//! [`readers`] load karstnet `_nodes.dat`/`_links.dat` pairs, GOCAD PLines and CSV tables.
+
+mod branches;
+mod geometry;
+mod graph;
+mod metrics;
+mod network;
+mod nullable;
+pub mod readers;
+mod reduced;
+mod shortest_paths;
+pub mod stage;
+mod topology;
+
+pub use metrics::{Metrics, characterize};
+pub use network::{MetricsError, Network};
+pub use readers::ReadError;

@@ -1,0 +1,97 @@
+//! Oracle test: random caves (chains, loops, parallel conduits, looping branches, coincident
+//! branch ends, grid coordinates, duplicate links, unused nodes, extra components) are written in
+//! karstnet's format and characterised by real karstnet 1.2.5 through `karstnet_oracle.py`;
+//! every key must agree within 1e-9 relative.
+//!
+//! The Python interpreter comes from `KARSTNET_PYTHON` (set by `cargo xtask test`); without it the
+//! test fails rather than passing silently.
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use common::{CaveSpec, as_map, assert_same, json_map, random_cave, temp_dir, write_karstnet};
+use karst_metrics::{Network, characterize};
+
+fn python() -> String {
+    std::env::var("KARSTNET_PYTHON").unwrap_or_else(|_| {
+        panic!("set KARSTNET_PYTHON to a python with karstnet==1.2.5 (cargo xtask test does this)")
+    })
+}
+
+fn karstnet_metrics(python: &str, base: &Path) -> serde_json::Value {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/karstnet_oracle.py");
+    let out = Command::new(python).arg(&script).arg(base).output().expect("run the karstnet oracle");
+    assert!(
+        out.status.success(),
+        "karstnet oracle failed on {}:\n{}",
+        base.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("oracle prints JSON")
+}
+
+fn check(python: &str, name: &str, net: &Network) {
+    let dir = temp_dir(name);
+    let base = dir.join(name);
+    write_karstnet(net, &base);
+    let theirs = json_map(&karstnet_metrics(python, &base));
+    let ours = as_map(&characterize(net).expect("generated networks are valid"));
+    eprintln!(
+        "{name}: {} nodes, {} branches ({} looping), {} reduced nodes, {} components, tortuosity {}, aspl length weighted {}",
+        ours["n_nodes_full"],
+        ours["n_branches"],
+        ours["n_looping_branches"],
+        ours["n_nodes_simpl"],
+        ours["n_components_full"],
+        ours["tortuosity"],
+        ours["aspl length weighted"]
+    );
+    assert_same(&ours, &theirs, 1e-9, &[], name);
+    std::fs::remove_dir_all(dir).expect("remove temp dir");
+}
+
+fn spec(tree_nodes: usize) -> CaveSpec {
+    CaveSpec {
+        tree_nodes,
+        chain_bias: 0.7,
+        loops: tree_nodes / 30,
+        parallel_pairs: 4,
+        looping_branches: 3,
+        grid: false,
+        extra_components: true,
+    }
+}
+
+#[test]
+fn random_caves_match_karstnet() {
+    let python = python();
+    let cases = [
+        ("small", 11, spec(300)),
+        ("grid", 12, CaveSpec { grid: true, loops: 30, parallel_pairs: 8, ..spec(800) }),
+        ("long-chains", 13, CaveSpec { chain_bias: 0.9, extra_components: false, ..spec(2000) }),
+        (
+            "braided",
+            14,
+            CaveSpec { chain_bias: 0.4, grid: true, loops: 80, looping_branches: 6, ..spec(1200) },
+        ),
+    ];
+    for (name, seed, spec) in cases {
+        check(&python, name, &random_cave(seed, spec));
+    }
+}
+
+#[test]
+fn all_loop_network_matches_karstnet() {
+    // A single isolated cycle: one looping branch, tortuosity NaN (null in JSON).
+    let m = 7;
+    let nodes = (0..m)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / m as f64;
+            [10.0 * a.cos(), 10.0 * a.sin(), k as f64]
+        })
+        .collect();
+    let links = (0..m).map(|k| [k, (k + 1) % m]).collect();
+    check(&python(), "cycle", &Network { nodes, links });
+}

@@ -1,0 +1,64 @@
+//! The terrain leaf of the field: f_H(p) = (p_z − h(p_xy))/√(1 + λ²), 1-Lipschitz for a height
+//! function h of Lipschitz bound λ (Paris et al. 2021, appendix A).
+//!
+//! The scene's terrain is copied into the artifact in this codec-friendly form (externally
+//! tagged, so the binary codec can read it back), with its Lipschitz bound.
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use karst_geology::Terrain;
+
+/// The ground surface as the sdf artifact stores it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum TerrainField {
+    /// h(x, y) = elevation + g·(xy − origin).
+    Plane { elevation: f64, origin: [f64; 2], gradient: [f64; 2] },
+}
+
+impl TerrainField {
+    /// The field of the scene's terrain.
+    pub fn of(terrain: &Terrain) -> Self {
+        match terrain {
+            Terrain::Plane { elevation, origin, gradient } => {
+                TerrainField::Plane { elevation: *elevation, origin: *origin, gradient: *gradient }
+            }
+        }
+    }
+
+    /// Ground elevation at (x, y).
+    pub fn height(&self, x: f64, y: f64) -> f64 {
+        match self {
+            TerrainField::Plane { elevation, origin, gradient } => {
+                elevation + gradient[0] * (x - origin[0]) + gradient[1] * (y - origin[1])
+            }
+        }
+    }
+
+    /// Lipschitz bound λ of the height function.
+    pub fn lipschitz(&self) -> f64 {
+        match self {
+            TerrainField::Plane { gradient, .. } => gradient[0].hypot(gradient[1]),
+        }
+    }
+
+    /// The 1-Lipschitz signed distance bound: positive above the ground.
+    pub fn distance(&self, p: DVec3) -> f64 {
+        let lambda = self.lipschitz();
+        (p.z - self.height(p.x, p.y)) / (1.0 + lambda * lambda).sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn agrees_with_the_scene_terrain() {
+        let terrain = Terrain::Plane { elevation: 10.0, origin: [1.0, 2.0], gradient: [0.3, -0.4] };
+        let field = TerrainField::of(&terrain);
+        assert_eq!(field.height(7.0, -3.0), terrain.height(7.0, -3.0));
+        assert_eq!(field.lipschitz(), terrain.lipschitz());
+        assert!((field.distance(DVec3::new(1.0, 2.0, 15.0)) - 5.0 / 1.25f64.sqrt()).abs() < 1e-12);
+    }
+}
