@@ -147,7 +147,7 @@ fn bless() -> Result<(), StageError> {
         match diff::diff(&old, &new, 1e-9) {
             Ok(report) if !report.differs() => println!("{}: unchanged", stage.file_name()),
             Ok(report) => println!("{}: changed\n{}", stage.file_name(), report.summary()),
-            Err(_) => println!("{}: new", stage.file_name()),
+            Err(e) => println!("{}: replaced ({e})", stage.file_name()),
         }
         std::fs::copy(&new, &old).map_err(|e| StageError::failure(format!("{}: {e}", old.display())))?;
     }
@@ -176,16 +176,18 @@ fn karstnet_python() -> Result<PathBuf, String> {
     let python = PathBuf::from(".venv/bin/python");
     let has_karstnet = |p: &Path| {
         Command::new(p)
-            .args(["-c", "import importlib.metadata as m; assert m.version('karstnet') == '1.2.5'"])
+            .args(["-c", "import karstnet, importlib.metadata as m; assert m.version('karstnet') == '1.2.5'"])
             .output()
             .is_ok_and(|o| o.status.success())
     };
     if has_karstnet(&python) {
         return Ok(python.canonicalize().unwrap_or(python));
     }
-    eprintln!("installing karstnet==1.2.5 into .venv (the metrics oracle)...");
-    let steps: [&[&str]; 2] =
-        [&["python3", "-m", "venv", ".venv"], &[".venv/bin/pip", "install", "--quiet", "karstnet==1.2.5"]];
+    eprintln!("installing karstnet==1.2.5 and its dependencies into .venv (the metrics oracle)...");
+    let steps: [&[&str]; 2] = [
+        &["python3", "-m", "venv", ".venv"],
+        &[".venv/bin/pip", "install", "--quiet", "-r", "xtask/karstnet-requirements.txt"],
+    ];
     for step in steps {
         let status = Command::new(step[0])
             .args(&step[1..])

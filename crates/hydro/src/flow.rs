@@ -94,7 +94,7 @@ fn totals<'a>(items: impl Iterator<Item = (&'a String, f64)>) -> Vec<Outlet> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use karst_skeleton::{Conduit, Node, Route, Zone};
+    use karst_skeleton::{Conduit, ConduitType, Node, Route, Zone};
 
     fn node(x: f64) -> Node {
         Node { position: [x, 0.0, 0.0], sample: x as u32, keypoint: None, zone: Zone::Vadose }
@@ -129,10 +129,10 @@ mod tests {
         let skeleton = Skeleton {
             nodes: (0..5).map(|i| node(i as f64)).collect(),
             conduits: vec![
-                Conduit { nodes: vec![0, 2], radius: vec![1.0; 2] },
-                Conduit { nodes: vec![2, 1], radius: vec![1.0; 2] },
-                Conduit { nodes: vec![2, 3], radius: vec![1.0; 2] },
-                Conduit { nodes: vec![2, 4], radius: vec![1.0; 2] },
+                Conduit { nodes: vec![0, 2], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
+                Conduit { nodes: vec![2, 1], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
+                Conduit { nodes: vec![2, 3], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
+                Conduit { nodes: vec![2, 4], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
             ],
             routes: vec![route("a", 1.5, &[0, 2, 3]), route("b", 2.0, &[1, 2, 3])],
         };

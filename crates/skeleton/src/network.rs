@@ -4,6 +4,8 @@ use serde::{Deserialize, Serialize};
 
 use karst_artifact::{Kind, Payload};
 
+use crate::ConduitType;
+
 /// Whether a node lies above (vadose) or below (phreatic) the water table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -25,12 +27,15 @@ pub struct Node {
 }
 
 /// A conduit: a chain of nodes between two ends (junctions, dead ends or key points), with the
-/// radius of the passage at each node. A conduit whose ends coincide is a loop.
+/// radius of the passage at each node and the type of each segment. A conduit whose ends
+/// coincide is a loop.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Conduit {
     pub nodes: Vec<u32>,
     /// Radius at each node, metres.
     pub radius: Vec<f64>,
+    /// Type of each segment (nodes[i] → nodes[i + 1]).
+    pub types: Vec<ConduitType>,
 }
 
 /// The route water takes from one sink to one spring.
@@ -56,7 +61,7 @@ pub struct Skeleton {
 
 impl Payload for Skeleton {
     const KIND: Kind = Kind::Skeleton;
-    const SCHEMA: u32 = 1;
+    const SCHEMA: u32 = 2;
 }
 
 impl Skeleton {
@@ -75,13 +80,21 @@ impl Skeleton {
 
     /// Length of one conduit, metres.
     pub fn conduit_length(&self, conduit: &Conduit) -> f64 {
-        conduit
-            .nodes
-            .windows(2)
-            .map(|w| {
-                let [a, b] = [w[0], w[1]].map(|i| self.nodes[i as usize].position);
-                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-            })
+        conduit.nodes.windows(2).map(|w| self.segment_length(w[0], w[1])).sum()
+    }
+
+    /// Total length of the segments of type `kind`, metres.
+    pub fn length_of_type(&self, kind: ConduitType) -> f64 {
+        self.conduits
+            .iter()
+            .flat_map(|c| c.nodes.windows(2).zip(&c.types))
+            .filter(|(_, t)| **t == kind)
+            .map(|(w, _)| self.segment_length(w[0], w[1]))
             .sum()
+    }
+
+    fn segment_length(&self, a: u32, b: u32) -> f64 {
+        let [a, b] = [a, b].map(|i| glam::DVec3::from_array(self.nodes[i as usize].position));
+        a.distance(b)
     }
 }

@@ -13,6 +13,7 @@ use karst_geology::rng::Random;
 use karst_geology::{KeyPointKind, Link, Scene};
 use karst_sampling::Samples;
 
+use crate::classify::classify;
 use crate::dijkstra::ShortestPaths;
 use crate::{Conduit, Node, Route, Skeleton, Zone};
 
@@ -35,14 +36,16 @@ pub fn build(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Skel
     let chains = network.conduit_chains(scene, samples);
     let mut rng = Random::stream(scene.seed, "skeleton", "radius");
     let [lo, hi] = scene.skeleton.radius;
+    let nodes: Vec<Node> = network.samples.iter().map(|&s| node(scene, samples, s)).collect();
+    let at = |i: u32| karst_geology::Point::from_array(nodes[i as usize].position);
     let conduits = chains
         .into_iter()
-        .map(|nodes| {
+        .map(|chain| {
             let r = rng.range(lo, hi);
-            Conduit { radius: vec![r; nodes.len()], nodes }
+            let types = chain.windows(2).map(|w| classify(scene, at(w[0]), at(w[1]))).collect();
+            Conduit { radius: vec![r; chain.len()], nodes: chain, types }
         })
         .collect();
-    let nodes = network.samples.iter().map(|&s| node(scene, samples, s)).collect();
     Ok(Skeleton { nodes, conduits, routes })
 }
 

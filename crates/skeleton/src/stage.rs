@@ -9,7 +9,7 @@ use karst_costgraph::CostGraph;
 use karst_geology::Scene;
 use karst_sampling::Samples;
 
-use crate::{Skeleton, Zone, karstnet, routing};
+use crate::{ConduitType, Skeleton, Zone, karstnet, routing};
 
 /// Base name of the karstnet export inside the output folder.
 pub const KARSTNET_BASE: &str = "network";
@@ -57,6 +57,12 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     );
     println!("  conduits  {}", skeleton.conduits.len());
     println!("  length    {:.1} m", skeleton.total_length());
+    for kind in ConduitType::ALL {
+        let length = skeleton.length_of_type(kind);
+        if length > 0.0 {
+            println!("  {:<9} {length:.1} m", kind.name());
+        }
+    }
     for route in &skeleton.routes {
         println!(
             "  route     {} → {}: {} nodes, cost {:.1}",
