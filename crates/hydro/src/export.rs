@@ -28,7 +28,13 @@ pub fn tables(skeleton: &Skeleton, hydro: &Hydro) -> (String, String) {
             for (n, r) in [(w[0], radii[i]), (w[1], radii[i + 1])] {
                 diameter[n as usize] = diameter[n as usize].max(2.0 * r);
             }
-            let (from, to) = if s.downstream { (w[0], w[1]) } else if s.flow > 0.0 { (w[1], w[0]) } else { (w[0], w[1]) };
+            let (from, to) = if s.downstream {
+                (w[0], w[1])
+            } else if s.flow > 0.0 {
+                (w[1], w[0])
+            } else {
+                (w[0], w[1])
+            };
             let [a, b] = [from, to].map(|n| DVec3::from_array(skeleton.nodes[n as usize].position));
             let d = radii[i] + radii[i + 1];
             let _ = writeln!(links, "{id},{from},{to},{},{d},{}", a.distance(b), s.discharge);

@@ -67,7 +67,8 @@ pub fn propagate(
         for &l in &graph.at_node[node as usize] {
             match directions[l] {
                 Some((from, to)) if to == node => inflows.push(Inflow {
-                    direction: (graph.positions[to as usize] - graph.positions[from as usize]).normalize_or_zero(),
+                    direction: (graph.positions[to as usize] - graph.positions[from as usize])
+                        .normalize_or_zero(),
                     shares: flows.shares[l * s..(l + 1) * s].to_vec(),
                 }),
                 Some((from, to)) if from == node => outgoing.push((l, to)),
@@ -90,7 +91,9 @@ pub fn propagate(
         }
         let out: Vec<DVec3> = outgoing
             .iter()
-            .map(|&(_, to)| (graph.positions[to as usize] - graph.positions[node as usize]).normalize_or_zero())
+            .map(|&(_, to)| {
+                (graph.positions[to as usize] - graph.positions[node as usize]).normalize_or_zero()
+            })
             .collect();
         for f in &inflows {
             let weights = split(f.direction, &out, pool(node));
@@ -102,7 +105,8 @@ pub fn propagate(
 
 /// Normalized weights of one inflow over the outgoing directions `out`.
 fn split(u: DVec3, out: &[DVec3], equal: bool) -> Vec<f64> {
-    let raw: Vec<f64> = if equal { vec![1.0; out.len()] } else { out.iter().map(|v| 1.0 + u.dot(*v)).collect() };
+    let raw: Vec<f64> =
+        if equal { vec![1.0; out.len()] } else { out.iter().map(|v| 1.0 + u.dot(*v)).collect() };
     let total: f64 = raw.iter().sum();
     if total > 1e-12 {
         raw.iter().map(|w| w / total).collect()
@@ -133,7 +137,7 @@ mod tests {
     #[test]
     fn straight_on_takes_most_and_backwards_takes_nothing() {
         let w = split(DVec3::X, &[DVec3::X, DVec3::Y, DVec3::NEG_X], false);
-        assert_eq!(w, vec![0.5, 0.25, 0.0]);
+        assert_eq!(w, vec![2.0 / 3.0, 1.0 / 3.0, 0.0]);
         assert_eq!(split(DVec3::X, &[DVec3::X, DVec3::Y], true), vec![0.5, 0.5]);
         assert_eq!(split(DVec3::X, &[DVec3::NEG_X], false), vec![1.0]);
     }

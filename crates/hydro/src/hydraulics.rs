@@ -29,9 +29,8 @@ const LEVEL: f64 = 1e-9;
 /// The hydro artifact of `skeleton`.
 pub fn compute(skeleton: &Skeleton, params: &HydroParams, inputs: &Inputs) -> Result<Hydro, HydroError> {
     let graph = Graph::of(skeleton)?;
-    let sinks = graph::sinks(skeleton, |name| {
-        inputs.recharge.iter().find(|(n, _)| n == name).map(|(_, w)| *w)
-    })?;
+    let sinks =
+        graph::sinks(skeleton, |name| inputs.recharge.iter().find(|(n, _)| n == name).map(|(_, w)| *w))?;
     let springs = graph::springs(skeleton, &inputs.spring_names)?;
     let orientation = orient(skeleton, &graph, &springs.iter().map(|t| t.node).collect::<Vec<_>>());
     if let Some(t) = sinks.iter().find(|t| orientation.rank[t.node as usize].is_none()) {
@@ -87,7 +86,9 @@ impl Ponds {
     fn of(skeleton: &Skeleton, graph: &Graph, orientation: &Orientation) -> Ponds {
         let n = graph.positions.len();
         let ponded: Vec<bool> = (0..n)
-            .map(|i| skeleton.nodes[i].zone == Zone::Vadose && orientation.level[i] > graph.positions[i].z + LEVEL)
+            .map(|i| {
+                skeleton.nodes[i].zone == Zone::Vadose && orientation.level[i] > graph.positions[i].z + LEVEL
+            })
             .collect();
         let mut pool = ponded.clone();
         for l in &graph.links {
@@ -157,9 +158,10 @@ impl<'a> Water<'a> {
         }
         if let Some(range) = params.flow_radius {
             let q_max = water.flow.iter().copied().fold(0.0, f64::max);
-            water.radii = water.per_conduit(|l| water.flow[l], |flows| {
-                sizing::conduit_radii(flows, q_max, range, params.radius_exponent)
-            });
+            water.radii = water.per_conduit(
+                |l| water.flow[l],
+                |flows| sizing::conduit_radii(flows, q_max, range, params.radius_exponent),
+            );
         }
         water
     }
@@ -190,7 +192,8 @@ impl<'a> Water<'a> {
     fn ponding(&self, l: usize) -> bool {
         let Some((from, to)) = self.direction(l) else { return false };
         let link = &self.graph.links[l];
-        let chamber = self.skeleton.conduits[link.conduit].types.get(link.segment) == Some(&ConduitType::Chamber);
+        let chamber =
+            self.skeleton.conduits[link.conduit].types.get(link.segment) == Some(&ConduitType::Chamber);
         let rises = self.graph.positions[to as usize].z > self.graph.positions[from as usize].z + LEVEL;
         chamber || rises || self.ponds.ponded[from as usize]
     }
@@ -283,7 +286,8 @@ impl<'a> Water<'a> {
         let p = self.params;
         if water.is_free_fall() {
             let a = arriving.unwrap_or(Arrival { flow: 0.0, speed: 0.0, direction: DVec2::ZERO });
-            let direction = [a.direction, horizontal].into_iter().find(|d| *d != DVec2::ZERO).unwrap_or(DVec2::X);
+            let direction =
+                [a.direction, horizontal].into_iter().find(|d| *d != DVec2::ZERO).unwrap_or(DVec2::X);
             let v0 = if a.speed > 0.0 { a.speed } else { geometry::speed(0.0, p.speed_factor, p.min_slope) };
             let (fall, jet) = geometry::fall(pa, pb, direction, v0, discharge, r);
             seg.speed = (v0 * v0 + geometry::G * fall.drop).sqrt();
@@ -294,7 +298,11 @@ impl<'a> Water<'a> {
         let surface = if water == WaterType::Sump {
             Surface { depth: 2.0 * r, width: 0.0 }
         } else {
-            let v = geometry::speed(if water == WaterType::Pool { 0.0 } else { slope }, p.speed_factor, p.min_slope);
+            let v = geometry::speed(
+                if water == WaterType::Pool { 0.0 } else { slope },
+                p.speed_factor,
+                p.min_slope,
+            );
             geometry::free_surface(discharge / v, r)
         };
         seg.speed = if surface.width == 0.0 && r > 0.0 {
@@ -304,7 +312,11 @@ impl<'a> Water<'a> {
         };
         (seg.depth, seg.width) = (surface.depth, surface.width);
         seg.level = Some(self.levels(l, surface.depth));
-        let direction = if horizontal == DVec2::ZERO { arriving.map_or(DVec2::ZERO, |a| a.direction) } else { horizontal };
+        let direction = if horizontal == DVec2::ZERO {
+            arriving.map_or(DVec2::ZERO, |a| a.direction)
+        } else {
+            horizontal
+        };
         let speed = seg.speed * slope.cos();
         (seg, Arrival { flow: q, speed, direction })
     }
@@ -314,14 +326,18 @@ impl<'a> Water<'a> {
     fn levels(&self, l: usize, depth: f64) -> [f64; 2] {
         let link = &self.graph.links[l];
         let radii = self.end_radii(l);
-        [link.a, link.b].iter().zip(radii).map(|(&n, r)| {
-            let z = self.graph.positions[n as usize].z;
-            let pond = if self.ponds.ponded[n as usize] { self.orientation.level[n as usize] } else { f64::MIN };
-            (z - r + depth).max(pond).min(z + r)
-        })
-        .collect::<Vec<_>>()
-        .try_into()
-        .expect("two ends")
+        [link.a, link.b]
+            .iter()
+            .zip(radii)
+            .map(|(&n, r)| {
+                let z = self.graph.positions[n as usize].z;
+                let pond =
+                    if self.ponds.ponded[n as usize] { self.orientation.level[n as usize] } else { f64::MIN };
+                (z - r + depth).max(pond).min(z + r)
+            })
+            .collect::<Vec<_>>()
+            .try_into()
+            .expect("two ends")
     }
 }
 
@@ -341,7 +357,8 @@ fn conduits(skeleton: &Skeleton, water: &Water, segments: Vec<SegmentWater>) -> 
         .iter()
         .enumerate()
         .map(|(c, conduit)| {
-            let segs: Vec<SegmentWater> = segments.by_ref().take(conduit.nodes.len().saturating_sub(1)).collect();
+            let segs: Vec<SegmentWater> =
+                segments.by_ref().take(conduit.nodes.len().saturating_sub(1)).collect();
             ConduitWater {
                 flow: segs.iter().map(|s| s.flow).fold(0.0, f64::max),
                 downstream: segs.first().is_some_and(|s| s.downstream),

@@ -1,7 +1,7 @@
 //! `karst-hydro render`: the network seen from above (x, y) and from the south (x, z), each
 //! segment coloured by its water type, dry conduits in light grey, with a legend.
 
-use karst_raster::{Canvas, Rgb, Scale, WHITE, BLACK};
+use karst_raster::{BLACK, Canvas, Rgb, Scale, WHITE};
 use karst_skeleton::Skeleton;
 
 use crate::artifact::Hydro;
@@ -39,7 +39,10 @@ pub fn picture(skeleton: &Skeleton, hydro: &Hydro) -> Canvas {
     };
     let (x, y, z) = (axis(0), axis(1), axis(2));
     let span = (x.1 - x.0).max(y.1 - y.0).max(z.1 - z.0).max(1.0);
-    let px = |lo: f64, left: f64| Scale { from: (lo, lo + span), to: (left + MARGIN, left + VIEW as f64 - MARGIN) };
+    let px = |lo: f64, left: f64| Scale {
+        from: (lo, lo + span),
+        to: (left + MARGIN, left + VIEW as f64 - MARGIN),
+    };
     let py = |lo: f64| Scale { from: (lo, lo + span), to: (VIEW as f64 - MARGIN, MARGIN) };
     let views = [(px(x.0, 0.0), py(y.0), 1usize), (px(x.0, VIEW as f64), py(z.0), 2usize)];
     // Dry first, so that water is drawn over it.
@@ -52,7 +55,12 @@ pub fn picture(skeleton: &Skeleton, hydro: &Hydro) -> Canvas {
                 let [a, b] = [w[0], w[1]].map(|n| skeleton.nodes[n as usize].position);
                 let thickness = if dry_pass { 1.0 } else { 1.5 + s.flow_units.max(1.0) * 0.5 };
                 for (sx, sy, v) in &views {
-                    canvas.line((sx.map(a[0]), sy.map(a[*v])), (sx.map(b[0]), sy.map(b[*v])), thickness, colour(s.water));
+                    canvas.line(
+                        (sx.map(a[0]), sy.map(a[*v])),
+                        (sx.map(b[0]), sy.map(b[*v])),
+                        thickness,
+                        colour(s.water),
+                    );
                 }
             }
         }

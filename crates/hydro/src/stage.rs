@@ -33,8 +33,9 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let hydro = compute(&skeleton, &scene.hydro, &inputs)
         .map_err(|e| StageError::input(format!("{}: {e}", run.path_of(Stage::Skeleton).display())))?;
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Hydro)), &hydro)?;
-    export::write(&args.out, &skeleton, &hydro)
-        .map_err(|e| StageError::failure(format!("cannot write the CSV tables in {}: {e}", args.out.display())))?;
+    export::write(&args.out, &skeleton, &hydro).map_err(|e| {
+        StageError::failure(format!("cannot write the CSV tables in {}: {e}", args.out.display()))
+    })?;
     let total: f64 = hydro.springs.iter().map(|s| s.flow).sum();
     let dry = hydro.conduits.iter().filter(|c| c.dry).count();
     Ok(format!(

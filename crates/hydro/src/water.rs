@@ -127,11 +127,13 @@ pub fn classify(slope: f64, units: f64) -> WaterType {
         ds * ds + dq * dq
     };
     // The first seed wins ties: the table order is fixed.
-    TABLE_1.iter().fold((WaterType::Dry, f64::INFINITY), |best, s| {
-        let d = distance(s);
-        if d < best.1 { (s.water, d) } else { best }
-    })
-    .0
+    TABLE_1
+        .iter()
+        .fold((WaterType::Dry, f64::INFINITY), |best, s| {
+            let d = distance(s);
+            if d < best.1 { (s.water, d) } else { best }
+        })
+        .0
 }
 
 /// Log mapping of network flows in [min, max] onto flow units [1, 8].
