@@ -149,13 +149,11 @@ impl<'a> Water<'a> {
         };
         let running: Vec<f64> =
             (0..graph.links.len()).filter(|&l| water.is_running(l)).map(|l| water.flow[l]).collect();
+        let min = running.iter().copied().fold(f64::INFINITY, f64::min);
         water.scale = FlowScale {
-            min: running.iter().copied().fold(f64::INFINITY, f64::min).min(f64::MAX),
+            min: if min.is_finite() { min } else { 0.0 },
             max: running.iter().copied().fold(0.0, f64::max),
         };
-        if running.is_empty() {
-            water.scale.min = 0.0;
-        }
         if let Some(range) = params.flow_radius {
             let q_max = water.flow.iter().copied().fold(0.0, f64::max);
             water.radii = water.per_conduit(

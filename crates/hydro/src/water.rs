@@ -147,7 +147,7 @@ impl FlowScale {
     /// Flow units of flow `q` > 0.
     pub fn units(&self, q: f64) -> f64 {
         let span = (self.max / self.min).ln();
-        if !(span > 0.0) {
+        if span.is_nan() || span <= 0.0 {
             return UNITS[1];
         }
         let t = ((q / self.min).ln() / span).clamp(0.0, 1.0);
