@@ -293,21 +293,16 @@ impl<'a> Water<'a> {
             seg.fall = Some(fall);
             return (seg, Arrival { flow: q, speed: v0, direction });
         }
+        // Running water moves at δ = k·s; a full conduit or a sump carries it under pressure.
+        let running =
+            geometry::speed(if water == WaterType::Pool { 0.0 } else { slope }, p.speed_factor, p.min_slope);
+        let full = discharge / (std::f64::consts::PI * r * r).max(f64::MIN_POSITIVE);
         let surface = if water == WaterType::Sump {
             Surface { depth: 2.0 * r, width: 0.0 }
         } else {
-            let v = geometry::speed(
-                if water == WaterType::Pool { 0.0 } else { slope },
-                p.speed_factor,
-                p.min_slope,
-            );
-            geometry::free_surface(discharge / v, r)
+            geometry::free_surface(discharge / running, r)
         };
-        seg.speed = if surface.width == 0.0 && r > 0.0 {
-            discharge / (std::f64::consts::PI * r * r)
-        } else {
-            geometry::speed(if water == WaterType::Pool { 0.0 } else { slope }, p.speed_factor, p.min_slope)
-        };
+        seg.speed = if surface.width == 0.0 { full } else { running };
         (seg.depth, seg.width) = (surface.depth, surface.width);
         seg.level = Some(self.levels(l, surface.depth));
         let direction = if horizontal == DVec2::ZERO {
