@@ -38,8 +38,11 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     })?;
     let total: f64 = hydro.springs.iter().map(|s| s.flow).sum();
     let dry = hydro.conduits.iter().filter(|c| c.dry).count();
+    let segments = || hydro.conduits.iter().flat_map(|c| &c.segments);
+    let falls = segments().filter(|s| s.water.is_free_fall()).count();
+    let sumps = segments().filter(|s| s.water == WaterType::Sump).count();
     Ok(format!(
-        "{} conduits ({dry} dry), {total} flow units to {} spring(s) in {:.2} s",
+        "{} conduits ({dry} dry), {falls} free-fall and {sumps} sump segments, recharge {total} to {} spring(s) in {:.2} s",
         hydro.conduits.len(),
         hydro.springs.len(),
         start.elapsed().as_secs_f64()

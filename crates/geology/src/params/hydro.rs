@@ -64,3 +64,33 @@ impl HydroParams {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use crate::{Scene, SceneError};
+
+    const SCENE: &str = "name = \"t\"\nseed = 1\n[domain]\nmin = [0, 0, 0]\nmax = [100, 100, 50]\n\
+        [terrain]\nkind = \"plane\"\nelevation = 40\n[[geology.water_tables]]\nname = \"wt\"\nelevation = 10\n\
+        [[keypoints]]\nname = \"a\"\nkind = \"sink\"\nposition = [10, 10, 40]\n\
+        [[keypoints]]\nname = \"s\"\nkind = \"spring\"\nposition = [90, 90, 10]\nwater_table = \"wt\"\n";
+
+    fn problems(hydro: &str) -> Vec<String> {
+        match Scene::parse(&format!("{SCENE}[hydro]\n{hydro}\n"), Path::new("s.toml")) {
+            Ok(_) => vec![],
+            Err(SceneError::Invalid { problems, .. }) => problems.iter().map(|p| p.to_string()).collect(),
+            Err(e) => vec![e.to_string()],
+        }
+    }
+
+    #[test]
+    fn hydro_fields_are_checked() {
+        assert!(problems("recharge = \"catchment\"\nflow_radius = [0.5, 3]").is_empty());
+        let p = problems("catchment_cell = 0\nmin_slope = -1\nflow_radius = [2, 1]");
+        assert_eq!(p.len(), 3, "{p:?}");
+        assert!(p[0].contains("hydro.catchment_cell: must be > 0, got 0"), "{p:?}");
+        assert!(p[2].contains("hydro.flow_radius: [2, 1] is not a range"), "{p:?}");
+        assert!(problems("recharge = \"rain\"")[0].contains("unknown variant `rain`"));
+    }
+}
