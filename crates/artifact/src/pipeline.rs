@@ -113,7 +113,7 @@ impl Stage {
             Stage::Skeleton => {
                 &["seed", "domain", "terrain", "geology", "keypoints", "connectivity", "skeleton"]
             }
-            Stage::Hydro => &["keypoints", "hydro"],
+            Stage::Hydro => &["domain", "terrain", "keypoints", "hydro"],
             Stage::Sdf => &["seed", "domain", "terrain", "sdf"],
             Stage::Mesher => &["domain", "mesher"],
             Stage::Metrics => &["metrics"],

@@ -55,6 +55,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     scene.sampling.check(&mut found);
     scene.costgraph.check(&mut found);
     scene.skeleton.check(&mut found);
+    scene.hydro.check(&mut found);
     scene.sdf.check(&mut found);
     scene.mesher.check(&mut found);
     found.problems

@@ -1,146 +1,144 @@
-//! Flows along the conduits, from the sinks' routes.
+//! Flow propagation (Emilien et al. 2015 §4.2.1): nodes are solved one by one in dependency
+//! order, from the sources to the wells. At a branch node each incoming flow γ_j (a link, or
+//! the recharge of a sink, which arrives from above) is split over the outgoing links with
+//! the normalized weights w̄_jk of w_jk = 1 + u_j · v_k, u_j the incoming and v_k the outgoing
+//! direction, so that water mostly keeps its course; at a pool the inflow is split equally.
+//! A spring takes all the water reaching it. The last outgoing link receives what the others
+//! left, so each node gives out exactly what it receives (up to the rounding of one
+//! subtraction). Flows are carried per sink, so every spring knows which sinks feed it.
 
-use std::collections::HashMap;
+use glam::DVec3;
 
-use serde::{Deserialize, Serialize};
+use crate::graph::{Graph, Terminal};
+use crate::orient::Orientation;
 
-use karst_artifact::{Kind, Payload};
-use karst_skeleton::Skeleton;
-
-/// Flow through one conduit (same index as in the skeleton).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ConduitFlow {
-    /// Flow, in the sinks' weight units; ≥ 0.
-    pub flow: f64,
-    /// True when water runs from the conduit's first node to its last, false when it runs
-    /// the other way (meaningless for a dry conduit).
-    pub downstream: bool,
-    /// No route uses the conduit.
-    pub dry: bool,
+/// Flows of every link, per sink.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Flows {
+    /// Number of sinks.
+    pub sinks: usize,
+    /// `shares[link * sinks + s]`: the water of sink s in the link.
+    pub shares: Vec<f64>,
+    /// Water reaching each node (recharge included).
+    pub inflow: Vec<f64>,
+    /// `discharge[spring * sinks + s]`: the water of sink s leaving at each spring.
+    pub discharge: Vec<f64>,
 }
 
-/// Water entering at a sink or leaving at a spring.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Outlet {
-    pub name: String,
-    pub flow: f64,
+impl Flows {
+    /// Total flow of `link`.
+    pub fn link(&self, link: usize) -> f64 {
+        self.shares[link * self.sinks..(link + 1) * self.sinks].iter().sum()
+    }
+
+    /// The water of sink `sink` leaving at spring `spring`.
+    pub fn share(&self, spring: usize, sink: usize) -> f64 {
+        self.discharge[spring * self.sinks + sink]
+    }
 }
 
-/// The hydro artifact.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Hydro {
-    pub conduits: Vec<ConduitFlow>,
-    /// Recharge of each sink, in routing order.
-    pub sinks: Vec<Outlet>,
-    /// Discharge of each spring.
-    pub springs: Vec<Outlet>,
+/// One incoming flow at a node: its direction and its water per sink.
+struct Inflow {
+    direction: DVec3,
+    shares: Vec<f64>,
 }
 
-impl Payload for Hydro {
-    const KIND: Kind = Kind::Hydro;
-    const SCHEMA: u32 = 1;
-}
-
-/// Flows of every conduit of `skeleton`.
-///
-/// A route enters a conduit at one end and runs through it (its interior nodes have degree
-/// 2), so it crosses the conduit's first link exactly once: that link's crossings, signed by
-/// direction and weighted, give the conduit's net flow.
-pub fn compute(skeleton: &Skeleton) -> Hydro {
-    let first_links: HashMap<(u32, u32), usize> = skeleton
-        .conduits
-        .iter()
-        .enumerate()
-        .filter(|(_, c)| c.nodes.len() >= 2)
-        .map(|(i, c)| ((c.nodes[0], c.nodes[1]), i))
-        .collect();
-    let mut net = vec![0.0f64; skeleton.conduits.len()];
-    let mut used = vec![false; skeleton.conduits.len()];
-    for route in &skeleton.routes {
-        for w in route.nodes.windows(2) {
-            if let Some(&c) = first_links.get(&(w[0], w[1])) {
-                net[c] += route.weight;
-                used[c] = true;
-            } else if let Some(&c) = first_links.get(&(w[1], w[0])) {
-                net[c] -= route.weight;
-                used[c] = true;
+/// Propagates the sinks' recharge through the oriented graph. `pool(node)` says where water
+/// is split equally.
+pub fn propagate(
+    graph: &Graph,
+    orientation: &Orientation,
+    sinks: &[Terminal],
+    springs: &[Terminal],
+    pool: impl Fn(u32) -> bool,
+) -> Flows {
+    let s = sinks.len();
+    let mut flows = Flows {
+        sinks: s,
+        shares: vec![0.0; graph.links.len() * s],
+        inflow: vec![0.0; graph.positions.len()],
+        discharge: vec![0.0; springs.len() * s],
+    };
+    let directions: Vec<Option<(u32, u32)>> =
+        (0..graph.links.len()).map(|l| orientation.direction(graph, l)).collect();
+    for &node in &orientation.upstream_first {
+        let mut inflows = Vec::new();
+        let mut outgoing = Vec::new();
+        for &l in &graph.at_node[node as usize] {
+            match directions[l] {
+                Some((from, to)) if to == node => inflows.push(Inflow {
+                    direction: (graph.positions[to as usize] - graph.positions[from as usize])
+                        .normalize_or_zero(),
+                    shares: flows.shares[l * s..(l + 1) * s].to_vec(),
+                }),
+                Some((from, to)) if from == node => outgoing.push((l, to)),
+                _ => {}
             }
         }
+        for (i, sink) in sinks.iter().enumerate().filter(|(_, t)| t.node == node) {
+            let mut shares = vec![0.0; s];
+            shares[i] = sink.weight;
+            inflows.push(Inflow { direction: DVec3::NEG_Z, shares });
+        }
+        flows.inflow[node as usize] = inflows.iter().flat_map(|f| &f.shares).sum();
+        if let Some(w) = springs.iter().position(|t| t.node == node) {
+            for f in &inflows {
+                for (d, x) in flows.discharge[w * s..(w + 1) * s].iter_mut().zip(&f.shares) {
+                    *d += x;
+                }
+            }
+            continue;
+        }
+        let out: Vec<DVec3> = outgoing
+            .iter()
+            .map(|&(_, to)| {
+                (graph.positions[to as usize] - graph.positions[node as usize]).normalize_or_zero()
+            })
+            .collect();
+        for f in &inflows {
+            let weights = split(f.direction, &out, pool(node));
+            distribute(&mut flows.shares, s, &outgoing, &weights, &f.shares);
+        }
     }
-    let conduits = net
-        .iter()
-        .zip(&used)
-        .map(|(&f, &u)| ConduitFlow { flow: f.abs(), downstream: f >= 0.0, dry: !u })
-        .collect();
-    Hydro {
-        conduits,
-        sinks: totals(skeleton.routes.iter().map(|r| (&r.sink, r.weight))),
-        springs: totals(skeleton.routes.iter().map(|r| (&r.spring, r.weight))),
+    flows
+}
+
+/// Normalized weights of one inflow over the outgoing directions `out`.
+fn split(u: DVec3, out: &[DVec3], equal: bool) -> Vec<f64> {
+    let raw: Vec<f64> =
+        if equal { vec![1.0; out.len()] } else { out.iter().map(|v| 1.0 + u.dot(*v)).collect() };
+    let total: f64 = raw.iter().sum();
+    if total > 1e-12 {
+        raw.iter().map(|w| w / total).collect()
+    } else {
+        vec![1.0 / out.len() as f64; out.len()]
     }
 }
 
-/// Sums of weights per name, in order of first appearance.
-fn totals<'a>(items: impl Iterator<Item = (&'a String, f64)>) -> Vec<Outlet> {
-    let mut out: Vec<Outlet> = Vec::new();
-    for (name, w) in items {
-        match out.iter_mut().find(|o| &o.name == name) {
-            Some(o) => o.flow += w,
-            None => out.push(Outlet { name: name.clone(), flow: w }),
+/// Adds `shares` times `weights` to the outgoing links; the last link takes the remainder.
+fn distribute(links: &mut [f64], s: usize, outgoing: &[(usize, u32)], weights: &[f64], shares: &[f64]) {
+    for (k, &(l, _)) in outgoing.iter().enumerate() {
+        for (i, &x) in shares.iter().enumerate() {
+            let given = if k + 1 == outgoing.len() {
+                let others: f64 = weights[..k].iter().map(|w| x * w).sum();
+                (x - others).max(0.0)
+            } else {
+                x * weights[k]
+            };
+            links[l * s + i] += given;
         }
     }
-    out
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use karst_skeleton::{Conduit, ConduitType, Node, Route, Zone};
-
-    fn node(x: f64) -> Node {
-        Node { position: [x, 0.0, 0.0], sample: x as u32, keypoint: None, zone: Zone::Vadose }
-    }
-
-    fn route(sink: &str, weight: f64, nodes: &[u32]) -> Route {
-        Route { sink: sink.into(), spring: "S".into(), weight, nodes: nodes.to_vec(), cost: 0.0 }
-    }
-
-    /// Net inflow minus outflow at every node, sources and springs included.
-    fn imbalance(s: &Skeleton, h: &Hydro) -> Vec<f64> {
-        let mut balance = vec![0.0; s.nodes.len()];
-        for (c, f) in s.conduits.iter().zip(&h.conduits) {
-            let (from, to) = if f.downstream {
-                (c.nodes[0], *c.nodes.last().unwrap())
-            } else {
-                (*c.nodes.last().unwrap(), c.nodes[0])
-            };
-            balance[from as usize] -= f.flow;
-            balance[to as usize] += f.flow;
-        }
-        for r in &s.routes {
-            balance[r.nodes[0] as usize] += r.weight;
-            balance[*r.nodes.last().unwrap() as usize] -= r.weight;
-        }
-        balance
-    }
 
     #[test]
-    fn confluence_adds_flows_and_conserves_them() {
-        // Sinks at 0 and 1 join at 2 and drain to 3; conduit 3 (2–4) is a dry dead end.
-        let skeleton = Skeleton {
-            nodes: (0..5).map(|i| node(i as f64)).collect(),
-            conduits: vec![
-                Conduit { nodes: vec![0, 2], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
-                Conduit { nodes: vec![2, 1], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
-                Conduit { nodes: vec![2, 3], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
-                Conduit { nodes: vec![2, 4], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
-            ],
-            routes: vec![route("a", 1.5, &[0, 2, 3]), route("b", 2.0, &[1, 2, 3])],
-        };
-        let h = compute(&skeleton);
-        assert_eq!(h.conduits[2], ConduitFlow { flow: 3.5, downstream: true, dry: false });
-        assert_eq!(h.conduits[1], ConduitFlow { flow: 2.0, downstream: false, dry: false });
-        assert!(h.conduits[3].dry);
-        assert_eq!(h.springs, vec![Outlet { name: "S".into(), flow: 3.5 }]);
-        assert!(imbalance(&skeleton, &h).iter().all(|b| b.abs() < 1e-12));
+    fn straight_on_takes_most_and_backwards_takes_nothing() {
+        let w = split(DVec3::X, &[DVec3::X, DVec3::Y, DVec3::NEG_X], false);
+        assert_eq!(w, vec![2.0 / 3.0, 1.0 / 3.0, 0.0]);
+        assert_eq!(split(DVec3::X, &[DVec3::X, DVec3::Y], true), vec![0.5, 0.5]);
+        assert_eq!(split(DVec3::X, &[DVec3::NEG_X], false), vec![1.0]);
     }
 }

@@ -1,5 +1,6 @@
-//! `karst-hydro`: stage 4 of karstgen. `run SCENE --out DIR` writes DIR/hydro.json;
-//! `inspect FILE [--json]` prints a summary or the whole artifact.
+//! `karst-hydro`: stage 4 of karstgen. `run SCENE --out DIR` writes DIR/hydro.json and the CSV
+//! tables; `render DIR` draws the water types; `inspect FILE [--json]` prints a summary or the
+//! whole artifact.
 
 use std::process::ExitCode;
 
@@ -7,12 +8,14 @@ use clap::Parser;
 use karst_artifact::cli::{InspectArgs, RunArgs, finish};
 use karst_hydro::stage;
 
-/// Poisson-disk sampling of the bedrock (karstgen stage 4).
+/// Underground hydrology: flows, water types and water geometry (karstgen stage 4).
 #[derive(Parser)]
 #[command(name = "karst-hydro", version)]
 enum Cli {
-    /// Compute the flows of DIR/skeleton.json into DIR/hydro.json.
+    /// Compute the water of DIR/skeleton.json into DIR/hydro.json and DIR/hydro_*.csv.
     Run(RunArgs),
+    /// Draw DIR's network coloured by water type (top and side views) into a PNG.
+    Render(stage::RenderArgs),
     /// Summarize a hydro artifact (or print it whole with --json).
     Inspect(InspectArgs),
 }
@@ -20,6 +23,7 @@ enum Cli {
 fn main() -> ExitCode {
     finish(match Cli::parse() {
         Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
+        Cli::Render(args) => stage::render(&args),
         Cli::Inspect(args) => stage::inspect(&args),
     })
 }

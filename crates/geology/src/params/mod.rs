@@ -11,7 +11,7 @@ mod sdf;
 mod skeleton;
 
 pub use costgraph::CostgraphParams;
-pub use hydro::HydroParams;
+pub use hydro::{HydroParams, Recharge};
 pub use mesher::MesherParams;
 pub use metrics::MetricsParams;
 pub use sampling::SamplingParams;

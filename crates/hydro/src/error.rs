@@ -1,0 +1,19 @@
+//! What can be wrong with the network handed to the hydro stage.
+
+use thiserror::Error;
+
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum HydroError {
+    #[error("the network has no spring: no route ends at a spring and no node is a spring key point")]
+    NoSpring,
+    #[error("sink \"{sink}\" (node {node}) has no downstream path: no conduit leads from it to a spring")]
+    NoDownstreamPath { sink: String, node: u32 },
+    #[error("sink \"{sink}\" has weight {weight}: recharge must be a finite number ≥ 0")]
+    BadWeight { sink: String, weight: f64 },
+    #[error("{what} names node {node}, but the network has {count} nodes")]
+    MissingNode { what: String, node: u32, count: usize },
+    #[error("conduit {conduit} has {nodes} nodes and {radii} radii")]
+    Radii { conduit: usize, nodes: usize, radii: usize },
+    #[error("node {node} has a non-finite position")]
+    Position { node: usize },
+}

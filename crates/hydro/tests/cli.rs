@@ -1,0 +1,91 @@
+//! The command-line contract of `karst-hydro`: a bad [hydro] section and a bad skeleton exit
+//! with code 2 and a message naming the file and the culprit; `render` writes a PNG.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use karst_artifact::cli::{RunArgs, StageRun};
+use karst_artifact::{Stage, read_artifact, write_artifact};
+use karst_skeleton::Skeleton;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn hydro(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_karst-hydro")).args(args).output().unwrap()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("karst-hydro-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs the tiny scene up to the skeleton in `out`.
+fn tiny_skeleton(out: &Path) -> PathBuf {
+    let scene = root().join("fixtures/scenes/tiny.toml");
+    let args = RunArgs { scene: scene.clone(), out: out.to_path_buf() };
+    karst_sampling::stage::run(&args).unwrap();
+    karst_costgraph::stage::run(&args).unwrap();
+    karst_skeleton::stage::run(&args).unwrap();
+    scene
+}
+
+#[test]
+fn bad_hydro_section_exits_2_naming_line_and_field() {
+    let out = scratch("bad-scene");
+    let scene = root().join("fixtures/bad/hydro_flow_radius.toml");
+    let result = hydro(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("hydro_flow_radius.toml:57: hydro.flow_radius: [3, 1] is not a range"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn bad_skeletons_exit_2_naming_the_file_and_the_sink() {
+    let out = scratch("bad-skeleton");
+    let scene = tiny_skeleton(&out);
+    let path = out.join("skeleton.json");
+    let (_, good) = read_artifact::<Skeleton>(&path).unwrap();
+    let provenance = StageRun::new(Stage::Skeleton, &out).provenance("test");
+    let run = |skeleton: &Skeleton| {
+        write_artifact(&path, &provenance, skeleton).unwrap();
+        let result = hydro(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+        assert_eq!(result.status.code(), Some(2));
+        String::from_utf8_lossy(&result.stderr).into_owned()
+    };
+    let mut negative = good.clone();
+    negative.routes[1].weight = -3.0;
+    let e = run(&negative);
+    assert!(e.contains("skeleton.json") && e.contains("sink \"sink-b\" has weight -3"), "{e}");
+
+    let mut no_spring = good.clone();
+    no_spring.routes.clear();
+    no_spring.nodes.iter_mut().for_each(|n| n.keypoint = None);
+    assert!(run(&no_spring).contains("the network has no spring"));
+
+    // Cut every conduit at the spring: the sinks are left with no way down.
+    let mut cut = good.clone();
+    let spring = *good.routes[0].nodes.last().unwrap();
+    cut.conduits.retain(|c| !c.nodes.contains(&spring));
+    let e = run(&cut);
+    assert!(e.contains("sink \"sink-a\"") && e.contains("has no downstream path"), "{e}");
+}
+
+#[test]
+fn run_render_and_inspect() {
+    let out = scratch("ok");
+    let scene = tiny_skeleton(&out);
+    let dir = out.to_str().unwrap();
+    assert!(hydro(&["run", scene.to_str().unwrap(), "--out", dir]).status.success());
+    let png = out.join("water.png");
+    let result = hydro(&["render", dir, "--png", png.to_str().unwrap()]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    assert_eq!(&std::fs::read(&png).unwrap()[1..4], b"PNG");
+    let summary = hydro(&["inspect", out.join("hydro.json").to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&summary.stdout).contains("spring    spring: 4"));
+}
