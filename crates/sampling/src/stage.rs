@@ -38,7 +38,7 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     let region =
         |p: DVec3| d.contains(p) && p.z < scene.terrain.height(p.x, p.y) && !scene.geology.in_no_karst(p);
     let attempts = scene.sampling.attempts;
-    let frame = (d.centre(), 0.5 * d.size().length(), cell);
+    let frame = (d.min(), d.max(), cell);
     let g = &scene.geology;
     let lists: [SurfaceList; 3] = [
         (&g.water_tables, Tag::WaterTable, "water tables"),

@@ -3,7 +3,8 @@
 //!
 //! A surface is cut into patches that map the unit square onto it: a plane into square cells
 //! of the background grid's size in its own (strike, dip) frame, centred on the point of the
-//! plane nearest the domain's centre and covering the domain's diagonal; a TIN into
+//! plane nearest the domain's centre and covering the domain's diagonal (patches that miss the
+//! domain are dropped); a TIN into
 //! ⌈area/h²⌉ slots per triangle, mapped uniformly onto it. Every patch gets one dart per pass
 //! and retires after `attempts` consecutive failures, as in the volume. A dart lies on the
 //! surface (up to rounding), so surface samples are exactly on their horizon or water table.
@@ -32,6 +33,16 @@ impl Patch {
             }
         }
     }
+}
+
+/// True when the patch may meet the box lo–hi (its bounding box overlaps it).
+fn meets(patch: &Patch, lo: DVec3, hi: DVec3) -> bool {
+    let corners = match patch {
+        Patch::Square { corner, u, v } => [*corner, *corner + *u, *corner + *v, *corner + *u + *v],
+        Patch::Triangle { a, b, c } => [*a, *b, *c, *c],
+    };
+    let (l, h) = corners.iter().fold((corners[0], corners[0]), |(l, h), p| (l.min(*p), h.max(*p)));
+    l.cmple(hi).all() && h.cmpge(lo).all()
 }
 
 fn patches(surface: &Surface, centre: DVec3, half_diagonal: f64, cell: f64) -> Vec<Patch> {
@@ -65,16 +76,18 @@ fn patches(surface: &Surface, centre: DVec3, half_diagonal: f64, cell: f64) -> V
     }
 }
 
-/// Adds samples on `surface` inside `region`.
+/// Adds samples on `surface` inside `region` ⊂ the box lo–hi; `cell` is the patch size.
 pub fn fill_surface(
     sampler: &mut Sampler,
     surface: &Surface,
-    (centre, half_diagonal, cell): (DVec3, f64, f64),
+    (lo, hi, cell): (DVec3, DVec3, f64),
     attempts: u32,
     rng: &mut Random,
     region: impl Fn(DVec3) -> bool,
 ) {
-    let patches = patches(surface, centre, half_diagonal, cell);
+    let (centre, half_diagonal) = ((lo + hi) * 0.5, 0.5 * (hi - lo).length());
+    let mut patches = patches(surface, centre, half_diagonal, cell);
+    patches.retain(|p| meets(p, lo, hi));
     let mut misses = vec![0u32; patches.len()];
     let mut live: Vec<u32> = (0..patches.len() as u32).collect();
     while !live.is_empty() {
