@@ -22,11 +22,16 @@ use crate::radius::RadiusField;
 
 const NONE: u32 = u32::MAX;
 
+/// The state of a cell that takes no more darts.
+const RETIRED: u8 = u8::MAX;
+
 /// The growing sample set and its background grid.
 pub struct Sampler<'a> {
     field: &'a RadiusField,
     /// The field's smallest radius.
     r_min: f64,
+    /// The radius when the field is constant (no interpolation needed).
+    constant: Option<f64>,
     lo: DVec3,
     cell: f64,
     dims: [usize; 3],
@@ -61,6 +66,7 @@ impl<'a> Sampler<'a> {
         Sampler {
             field,
             r_min: field.min(),
+            constant: (field.min() == field.max()).then(|| field.min()),
             lo,
             cell,
             dims,
@@ -86,8 +92,12 @@ impl<'a> Sampler<'a> {
     }
 
     /// Inserts `p` whatever its neighbours (key points).
+    fn radius_at(&self, p: DVec3) -> f64 {
+        self.constant.unwrap_or_else(|| self.field.at(p))
+    }
+
     pub fn force(&mut self, p: DVec3) {
-        let r = self.field.at(p) as f32;
+        let r = self.radius_at(p) as f32;
         let [x, y, z] = self.coords(p);
         let c = (z * self.dims[1] + y) * self.dims[0] + x;
         self.next.push(self.head[c]);
@@ -98,7 +108,7 @@ impl<'a> Sampler<'a> {
 
     /// Inserts `p` when no sample lies closer than min(r(p), r(q)); returns whether it did.
     pub fn try_insert(&mut self, p: DVec3) -> bool {
-        let r = self.field.at(p);
+        let r = self.radius_at(p);
         if self.blocker(p, r).is_none() {
             self.force(p);
             return true;
@@ -141,43 +151,51 @@ impl<'a> Sampler<'a> {
         region: impl Fn(DVec3) -> bool,
         retired: impl Fn(u64),
     ) {
+        // misses[c]: consecutive failed darts of cell c; RETIRED once it is done. One byte per
+        // cell is all the state: each pass walks the cells in parity order.
         let mut misses = vec![0u8; self.head.len()];
-        let limit = attempts.min(255) as u8;
+        let limit = attempts.min(254) as u8;
         let [nx, ny, nz] = self.dims;
-        let mut live: Vec<u32> = Vec::with_capacity(self.head.len());
-        for parity in 0..8usize {
-            for z in (parity >> 2 & 1..nz).step_by(2) {
-                for y in (parity >> 1 & 1..ny).step_by(2) {
-                    for x in (parity & 1..nx).step_by(2) {
-                        live.push(((z * ny + y) * nx + x) as u32);
+        let mut remaining = self.head.len();
+        while remaining > 0 {
+            for parity in 0..8usize {
+                for z in (parity >> 2 & 1..nz).step_by(2) {
+                    for y in (parity >> 1 & 1..ny).step_by(2) {
+                        for x in (parity & 1..nx).step_by(2) {
+                            let c = (z * ny + y) * nx + x;
+                            if misses[c] == RETIRED {
+                                continue;
+                            }
+                            let corner = self.lo + DVec3::new(x as f64, y as f64, z as f64) * self.cell;
+                            if !self.dart(corner, rng, &region) {
+                                misses[c] += 1;
+                                if misses[c] < limit {
+                                    continue;
+                                }
+                            }
+                            misses[c] = RETIRED;
+                            remaining -= 1;
+                        }
                     }
                 }
             }
+            retired((self.head.len() - remaining) as u64);
         }
-        while !live.is_empty() {
-            live.retain(|&c| {
-                let c = c as usize;
-                let (x, y, z) = (c % nx, (c / nx) % ny, c / (nx * ny));
-                let corner = self.lo + DVec3::new(x as f64, y as f64, z as f64) * self.cell;
-                let p = corner + DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * self.cell;
-                if !region(p) {
-                    misses[c] += 1;
-                    return misses[c] < limit;
-                }
-                let r = self.field.at(p);
-                match self.blocker(p, r) {
-                    None => {
-                        self.force(p);
-                        false
-                    }
-                    Some(q) if self.covers(q, corner) => false,
-                    Some(_) => {
-                        misses[c] += 1;
-                        misses[c] < limit
-                    }
-                }
-            });
-            retired((self.head.len() - live.len()) as u64);
+    }
+
+    /// Throws one dart in the cell at `corner`; false when it failed and the cell may still
+    /// take a sample, true when the cell is done (a sample went in, or it is covered).
+    fn dart(&mut self, corner: DVec3, rng: &mut Random, region: &impl Fn(DVec3) -> bool) -> bool {
+        let p = corner + DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * self.cell;
+        if !region(p) {
+            return false;
+        }
+        match self.blocker(p, self.radius_at(p)) {
+            None => {
+                self.force(p);
+                true
+            }
+            Some(q) => self.covers(q, corner),
         }
     }
 

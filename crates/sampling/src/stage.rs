@@ -64,7 +64,11 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
             scene.sampling.radius
         )));
     }
-    let positions = sampler.points.iter().map(|p| p.to_array()).collect();
+    // Free the background grid first, and convert the positions in place: peak memory stays
+    // near the samples themselves.
+    let points = std::mem::take(&mut sampler.points);
+    drop(sampler);
+    let positions = points.into_iter().map(|p| p.to_array()).collect();
     Ok(Samples { positions, tags, radius: field.min(), radius_field: field })
 }
 
