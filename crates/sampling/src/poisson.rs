@@ -7,9 +7,10 @@
 //! Bridson's algorithm grows one front sample at a time and is hard to make fast; here every
 //! grid cell (edge r_min/√3, so that it holds at most one sample) gets one uniform dart per
 //! pass, cells visited in eight interleaved parity classes so that no scan direction is
-//! favoured (Wei 2008's phase groups). A cell retires when it holds a sample, when the sample
-//! that rejected its dart covers it entirely, or after `attempts` consecutive failed darts (it
-//! is then covered up to a vanishing fraction). Darts
+//! favoured (Wei 2008's phase groups). Darts go into the cell's child octants not yet known to
+//! be covered: each rejecting sample removes the octants its disk covers entirely. A cell
+//! retires when it takes a sample, when all its octants are covered, or after `attempts`
+//! consecutive failed darts (it is then covered up to a vanishing fraction). Darts
 //! come from one seeded stream in a fixed order: the result is deterministic. Key points are
 //! inserted first as they are, even when closer than r to each other; surface samples are darts
 //! on the surfaces themselves (see `surfaces.rs`) and go in before the volume's.
@@ -21,6 +22,11 @@ use karst_geology::rng::Random;
 use crate::radius::RadiusField;
 
 const NONE: u32 = u32::MAX;
+
+/// Offset (0 or 1 per axis) of child octant `k`.
+fn octant(k: u32) -> DVec3 {
+    DVec3::new((k & 1) as f64, (k >> 1 & 1) as f64, (k >> 2 & 1) as f64)
+}
 
 /// The state of a cell that takes no more darts.
 const RETIRED: u8 = u8::MAX;
@@ -154,6 +160,7 @@ impl<'a> Sampler<'a> {
         // misses[c]: consecutive failed darts of cell c; RETIRED once it is done. One byte per
         // cell is all the state: each pass walks the cells in parity order.
         let mut misses = vec![0u8; self.head.len()];
+        let mut children = vec![u8::MAX; self.head.len()];
         let limit = attempts.min(254) as u8;
         let [nx, ny, nz] = self.dims;
         let mut remaining = self.head.len();
@@ -167,7 +174,7 @@ impl<'a> Sampler<'a> {
                                 continue;
                             }
                             let corner = self.lo + DVec3::new(x as f64, y as f64, z as f64) * self.cell;
-                            if !self.dart(corner, rng, &region) {
+                            if !self.dart(corner, &mut children[c], rng, &region) {
                                 misses[c] += 1;
                                 if misses[c] < limit {
                                     continue;
@@ -183,10 +190,22 @@ impl<'a> Sampler<'a> {
         }
     }
 
-    /// Throws one dart in the cell at `corner`; false when it failed and the cell may still
-    /// take a sample, true when the cell is done (a sample went in, or it is covered).
-    fn dart(&mut self, corner: DVec3, rng: &mut Random, region: &impl Fn(DVec3) -> bool) -> bool {
-        let p = corner + DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * self.cell;
+    /// Throws one dart in a live child octant of the cell at `corner`; false when it failed
+    /// and the cell may still take a sample, true when the cell is done (a sample went in, or
+    /// every child is covered). The sample that rejects a dart removes the children its disk
+    /// covers entirely (a one-level version of Ebeida et al. 2011's refinement that uses no
+    /// search beyond the dart's own).
+    fn dart(
+        &mut self,
+        corner: DVec3,
+        children: &mut u8,
+        rng: &mut Random,
+        region: &impl Fn(DVec3) -> bool,
+    ) -> bool {
+        let half = 0.5 * self.cell;
+        let nth = rng.index(children.count_ones() as usize);
+        let child = (0..8u32).filter(|k| *children >> k & 1 == 1).nth(nth).unwrap_or(0);
+        let p = corner + (octant(child) + DVec3::new(rng.uniform(), rng.uniform(), rng.uniform())) * half;
         if !region(p) {
             return false;
         }
@@ -195,18 +214,33 @@ impl<'a> Sampler<'a> {
                 self.force(p);
                 true
             }
-            Some(q) => self.covers(q, corner),
+            Some(q) => {
+                *children &= !self.covered_children(q, corner);
+                *children == 0
+            }
         }
     }
 
-    /// True when sample `q` makes the whole cell at `corner` unusable: every point p of the cell
-    /// is closer to q than min(r(p), r(q)), r(p) bounded below by the field's smallest node
-    /// value around the cell.
-    fn covers(&self, q: u32, corner: DVec3) -> bool {
+    /// Bit k set when sample `q` covers child octant k of the cell at `corner` entirely: every
+    /// point p of it is closer to q than min(r(p), r(q)), r(p) bounded below by the field's
+    /// smallest radius (or its smallest node value around the cell).
+    fn covered_children(&self, q: u32, corner: DVec3) -> u8 {
+        let half = 0.5 * self.cell;
         let qp = self.points[q as usize];
-        let far = (qp - corner).abs().max((qp - corner - DVec3::splat(self.cell)).abs()).length();
         let rq = self.radii[q as usize] as f64;
-        far < rq.min(self.r_min) || (far < rq && far < self.field.min_in(corner, corner + self.cell))
+        let mut reach = rq.min(self.r_min);
+        let mut mask = 0u8;
+        for k in 0..8u32 {
+            let lo = corner + octant(k) * half;
+            let far = (qp - lo).abs().max((qp - lo - DVec3::splat(half)).abs()).length();
+            if far >= reach && far < rq && reach < rq {
+                reach = rq.min(self.field.min_in(corner, corner + self.cell));
+            }
+            if far < reach {
+                mask |= 1 << k;
+            }
+        }
+        mask
     }
 }
 
