@@ -1,5 +1,5 @@
-//! Heightfields: the terrain as a regular grid of elevations read from a 16-bit grayscale PNG,
-//! interpolated bilinearly.
+//! Heightfields: the terrain as a regular grid of elevations read from a 16-bit grayscale PNG
+//! or an OpenEXR image (`.exr`, float elevations), interpolated bilinearly.
 //!
 //! Georeferencing: pixel (column c, row r) of a W × H image stands at
 //! x = origin.x + c·cell_size, y = origin.y + (H − 1 − r)·cell_size (row 0 is the north edge, as
@@ -98,6 +98,44 @@ impl HeightGrid {
             }
         }
         Ok(HeightGrid::new(geo.origin, geo.cell_size, w as u32, h as u32, heights))
+    }
+
+    /// Reads the first layer of an OpenEXR image: its `Y` channel, else `Z`, else `R`, else its
+    /// first channel (values as f32, then elevation = offset + vertical_scale·value).
+    pub fn read_exr(path: &Path, geo: &Georeference) -> Result<HeightGrid, HeightfieldError> {
+        let file = path.display().to_string();
+        let image = exr::prelude::read_first_flat_layer_from_file(path)
+            .map_err(|e| HeightfieldError::Read { file: file.clone(), message: e.to_string() })?;
+        let layer = &image.layer_data;
+        let channels = &layer.channel_data.list;
+        let pick = ["Y", "Z", "R"]
+            .iter()
+            .find_map(|name| channels.iter().find(|c| c.name.to_string() == *name))
+            .or(channels.first())
+            .ok_or_else(|| HeightfieldError::Content {
+                file: file.clone(),
+                message: "has no channel".into(),
+            })?;
+        let (w, h) = (layer.size.width(), layer.size.height());
+        let values: Vec<f32> = pick.sample_data.values_as_f32().collect();
+        let mut heights = Vec::with_capacity(w * h);
+        for row in (0..h).rev() {
+            for col in 0..w {
+                let v = values[row * w + col] as f64;
+                let missing = !v.is_finite() || geo.nodata == Some(v);
+                heights.push(if missing { f64::NAN } else { geo.offset + geo.vertical_scale * v });
+            }
+        }
+        Ok(HeightGrid::new(geo.origin, geo.cell_size, w as u32, h as u32, heights))
+    }
+
+    /// Reads a PNG or, for `.exr` files, an OpenEXR image.
+    pub fn read(path: &Path, geo: &Georeference) -> Result<HeightGrid, HeightfieldError> {
+        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
+            HeightGrid::read_exr(path, geo)
+        } else {
+            HeightGrid::read_png(path, geo)
+        }
     }
 
     /// A grid from its samples (x fastest, south row first); computes the Lipschitz bound.
@@ -227,6 +265,28 @@ mod tests {
         let holes = Georeference { nodata: Some(5000.0), ..geo };
         let with_hole = HeightGrid::read_png(&path, &holes).unwrap();
         assert_eq!(with_hole.first_hole([0.0, 30.0], [0.0, 20.0]), Some((0, 0)));
+        std::fs::remove_file(&path).unwrap();
+    }
+
+    #[test]
+    fn exr_heights_are_read_from_the_r_channel_north_row_first() {
+        let path = std::env::temp_dir().join(format!("karst-hf-{}.exr", std::process::id()));
+        // 3 × 2 pixels: h = 10·column + 100·(1 − row), so the south row (row 1) is lower.
+        exr::prelude::write_rgba_file(&path, 3, 2, |x, y| {
+            (10.0 * x as f32 + 100.0 * (1 - y as i32) as f32, 0.0, 0.0, 1.0)
+        })
+        .unwrap();
+        let geo = Georeference {
+            origin: [0.0, 0.0],
+            cell_size: 5.0,
+            vertical_scale: 1.0,
+            offset: 2.0,
+            nodata: None,
+        };
+        let g = HeightGrid::read(&path, &geo).unwrap();
+        assert_eq!((g.nx, g.ny), (3, 2));
+        assert!((g.height(0.0, 0.0) - 2.0).abs() < 1e-9);
+        assert!((g.height(10.0, 5.0) - 122.0).abs() < 1e-9);
         std::fs::remove_file(&path).unwrap();
     }
 }

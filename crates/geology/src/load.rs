@@ -32,7 +32,7 @@ pub(crate) fn attach_files(scene: &mut Scene, folder: &Path, text: &str) -> Vec<
         let usable = *cell_size > 0.0 && origin.iter().all(|v| v.is_finite()) && vertical_scale.is_finite();
         let path = folder.join(&*file);
         if usable {
-            match HeightGrid::read_png(&path, &geo) {
+            match HeightGrid::read(&path, &geo) {
                 Ok(g) => {
                     *content = hash_file(&path);
                     *grid = Arc::new(g);

@@ -1,6 +1,7 @@
 //! The terrain: the ground surface z = h(x, y) that bounds the bedrock from above.
 //!
-//! Three kinds: a (tilted) plane, a heightfield read from a 16-bit grayscale PNG with its
+//! Three kinds: a (tilted) plane, a heightfield read from a 16-bit grayscale PNG or an OpenEXR
+//! image with its
 //! georeferencing ([`crate::heightfield`]), and analytic value noise (rolling karst plateau).
 //! The SDF stage needs h's Lipschitz bound λ (its steepest slope) to build the 1-Lipschitz
 //! terrain distance (z − h)/√(1 + λ²) of Paris et al. 2021, appendix A.
@@ -29,7 +30,8 @@ pub enum Terrain {
     },
     /// A heightfield image: elevation = offset + vertical_scale · pixel value.
     Heightfield {
-        /// 16-bit (or 8-bit) grayscale PNG, relative to the scene file's folder.
+        /// 16-bit (or 8-bit) grayscale PNG, or OpenEXR (`.exr`), relative to the scene file's
+        /// folder.
         file: String,
         /// `[x, y]` of the south-west pixel (bottom-left of the image).
         origin: [f64; 2],
