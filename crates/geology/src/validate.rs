@@ -492,6 +492,52 @@ water_table = "wt"
     }
 
     #[test]
+    fn geology_model_fields_are_validated_and_evaluated() {
+        let model = r#"
+[[geology.layers]]
+name = "marl"
+top = "bed"
+potential = 0.25
+
+[[geology.potential]]
+name = "lens"
+kind = "sphere"
+centre = [50, 50, 30]
+radius = 5
+outside = 0.5
+
+[[geology.no_karst]]
+name = "dyke"
+kind = "box"
+min = [0, 0, 0]
+max = [5, 100, 50]
+"#;
+        let text = format!("{}\n[[geology.horizons]]\nname = \"bed\"\nelevation = 20\n{model}", GOOD);
+        let scene = Scene::parse(&text, Path::new("s.toml")).unwrap();
+        let g = &scene.geology;
+        assert_eq!(g.potential(crate::Point::new(50.0, 50.0, 30.0)), 1.0);
+        assert_eq!(g.potential(crate::Point::new(80.0, 50.0, 30.0)), 0.5);
+        assert_eq!(g.potential(crate::Point::new(80.0, 50.0, 10.0)), 0.25 * 0.5);
+        assert!(g.in_no_karst(crate::Point::new(2.0, 50.0, 10.0)));
+        assert!(!g.in_no_karst(crate::Point::new(6.0, 50.0, 10.0)));
+        let bad = text
+            .replace("top = \"bed\"", "top = \"nope\"")
+            .replace("radius = 5", "radius = -5")
+            .replace("potential = 0.25", "potential = 1.5")
+            .replace("position = [10, 10, 40]", "position = [2, 10, 40]");
+        let p = problems(&bad);
+        assert!(p.iter().any(|m| m.contains("geology.layers[0].top: \"nope\" is not a horizon")), "{p:?}");
+        assert!(
+            p.iter().any(|m| m.contains("geology.layers[0].potential: must be in [0, 1], got 1.5")),
+            "{p:?}"
+        );
+        assert!(p.iter().any(|m| m.contains("geology.potential[0].radius: must be > 0, got -5")), "{p:?}");
+        assert!(p.iter().any(|m| m.contains("inside no-karst volume \"dyke\"")), "{p:?}");
+        let tree = text.replace("[[geology.no_karst]]", "[[geology.potential]]\nname = \"top\"\nkind = \"max\"\nof = [\"lens\", \"ghost\"]\n\n[[geology.no_karst]]");
+        assert!(problems(&tree).iter().any(|m| m.contains("\"ghost\" is not an earlier node")));
+    }
+
+    #[test]
     fn section_hash_ignores_other_sections_and_formatting() {
         let a = Scene::parse(GOOD, Path::new("a")).unwrap();
         let b = Scene::parse(&format!("{GOOD}\n[sdf]\nradius_scale = 2\n"), Path::new("b")).unwrap();
