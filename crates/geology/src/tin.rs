@@ -55,6 +55,8 @@ struct Buckets {
     dims: [usize; 2],
     start: Vec<u32>,
     items: Vec<u32>,
+    /// Elevation range [min, max] of the triangles of each bucket.
+    z: Vec<[f64; 2]>,
 }
 
 impl Tin {
@@ -121,11 +123,17 @@ impl Tin {
         }
         let mut start = vec![0u32];
         let mut items = Vec::new();
+        let mut z = Vec::with_capacity(lists.len());
         for list in lists {
+            let range = list
+                .iter()
+                .flat_map(|&t| self.corners(t as usize))
+                .fold([f64::INFINITY, f64::NEG_INFINITY], |[l, h], c| [l.min(c.z), h.max(c.z)]);
+            z.push(range);
             items.extend(list);
             start.push(items.len() as u32);
         }
-        Buckets { lo, size, dims, start, items }
+        Buckets { lo, size, dims, start, items, z }
     }
 
     fn bucket(&self, i: usize, j: usize) -> &[u32] {
@@ -135,8 +143,10 @@ impl Tin {
     }
 
     /// Visits buckets ring by ring around (x, y); `visit` gets each triangle and returns the
-    /// current search radius (xy), the search stops when the next ring is beyond it.
-    fn search(&self, p: DVec2, limit: f64, mut visit: impl FnMut(usize) -> f64) {
+    /// current search radius, the search stops when the next ring is beyond it. With
+    /// `z = Some(elevation)` a bucket is skipped when the 3D distance from (x, y, elevation) to
+    /// its box (xy rectangle × elevation range of its triangles) is beyond the radius.
+    fn search(&self, p: DVec2, z: Option<f64>, limit: f64, mut visit: impl FnMut(usize) -> f64) {
         let b = &self.buckets;
         let c = ((p - b.lo) / b.size).floor();
         let (ci, cj) = (c.x as i64, c.y as i64);
@@ -152,6 +162,16 @@ impl Tin {
                     let on_ring = (i - ci).abs() == ring || (j - cj).abs() == ring;
                     if !on_ring || i < 0 || j < 0 || i >= b.dims[0] as i64 || j >= b.dims[1] as i64 {
                         continue;
+                    }
+                    if let Some(z) = z {
+                        let k = j as usize * b.dims[0] + i as usize;
+                        let lo = b.lo + DVec2::new(i as f64, j as f64) * b.size;
+                        let dxy = (lo - p).max(p - lo - DVec2::splat(b.size)).max(DVec2::ZERO);
+                        let [zl, zh] = b.z[k];
+                        let dz = (zl - z).max(z - zh).max(0.0);
+                        if dxy.length_squared() + dz * dz >= reach * reach {
+                            continue;
+                        }
                     }
                     for &t in self.bucket(i as usize, j as usize) {
                         reach = reach.min(visit(t as usize));
@@ -171,7 +191,7 @@ impl Tin {
     /// than the unbounded search far from the surface).
     pub fn closest_within(&self, p: DVec3, limit: f64) -> Option<(DVec3, DVec3)> {
         let mut best = (limit, DVec3::ZERO, usize::MAX);
-        self.search(p.truncate(), limit, |t| {
+        self.search(p.truncate(), Some(p.z), limit, |t| {
             let [a, b, c] = self.corners(t);
             let gap = (a.min(b).min(c) - p).max(p - a.max(b).max(c)).max(DVec3::ZERO).length();
             if gap >= best.0 {
@@ -209,7 +229,7 @@ impl Tin {
     pub fn elevation_at(&self, x: f64, y: f64) -> f64 {
         let p = DVec2::new(x, y);
         let mut best = (f64::INFINITY, f64::NAN);
-        self.search(p, f64::INFINITY, |t| {
+        self.search(p, None, f64::INFINITY, |t| {
             let [a, b, c] = self.corners(t);
             let (d, z) = xy_distance_and_plane_z(p, a, b, c);
             if d < best.0 {
