@@ -23,6 +23,24 @@ pub fn time_scene(scene: &Path, runs: usize) -> Result<Vec<(Stage, f64)>, StageE
     Ok(Stage::ALL.into_iter().zip(times.into_iter().map(median)).collect())
 }
 
+/// Median seconds of `stage` alone on `scene` over `runs` runs (the earlier stages run once
+/// first), and the headline of its last run.
+pub fn time_stage(scene: &Path, stage: Stage, runs: usize) -> Result<(f64, String), StageError> {
+    let out = scratch_dir(scene);
+    for earlier in Stage::ALL.into_iter().take_while(|s| *s != stage) {
+        InProcess.run(earlier, scene, &out)?;
+    }
+    let mut times = Vec::new();
+    let mut headline = String::new();
+    for _ in 0..runs.max(1) {
+        let start = Instant::now();
+        headline = InProcess.run(stage, scene, &out)?;
+        times.push(start.elapsed().as_secs_f64());
+    }
+    let _ = std::fs::remove_dir_all(&out);
+    Ok((median(times), headline))
+}
+
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
     values[values.len() / 2]

@@ -13,11 +13,19 @@ use xtask::{bench, diff};
 
 /// The embedded default scene, run when `cargo xtask run` is given no scene.
 const DEFAULT_SCENE: &str = include_str!("../../fixtures/scenes/default.toml");
+/// The data files the default scene names, written beside it (paths relative to the scene).
+const DEFAULT_DATA: &[(&str, &[u8])] = &[
+    ("data/plateau.png", include_bytes!("../../fixtures/scenes/data/plateau.png")),
+    ("data/marl-parting.ts", include_bytes!("../../fixtures/scenes/data/marl-parting.ts")),
+];
 /// The scene whose artifacts are pinned in `fixtures/golden/tiny`.
 const GOLDEN_SCENE: &str = "fixtures/scenes/tiny.toml";
 const GOLDEN_DIR: &str = "fixtures/golden/tiny";
 /// Scenes timed by `cargo xtask bench`.
 const BENCH_SCENES: &[&str] = &["fixtures/scenes/tiny.toml", "fixtures/scenes/default.toml"];
+/// Scenes whose sampling alone `cargo xtask bench` times (issue 3's budgets).
+const SAMPLING_BENCH_SCENES: &[&str] =
+    &["fixtures/bench/sampling-100k.toml", "fixtures/bench/sampling-1m.toml"];
 
 #[derive(Parser)]
 #[command(name = "cargo xtask", about = "karstgen's task runner")]
@@ -106,7 +114,10 @@ fn run(scene: Option<PathBuf>, out: Option<PathBuf>, selection: Selection) -> Re
         None => {
             let out = out.unwrap_or_else(|| PathBuf::from("out/default"));
             let path = out.join("scene.toml");
-            write_if_changed(&path, DEFAULT_SCENE)?;
+            for (file, bytes) in DEFAULT_DATA {
+                write_if_changed(&out.join(file), bytes)?;
+            }
+            write_if_changed(&path, DEFAULT_SCENE.as_bytes())?;
             (path, out)
         }
     };
@@ -116,11 +127,15 @@ fn run(scene: Option<PathBuf>, out: Option<PathBuf>, selection: Selection) -> Re
     Ok(())
 }
 
-fn write_if_changed(path: &Path, text: &str) -> Result<(), StageError> {
-    if std::fs::read_to_string(path).ok().as_deref() == Some(text) {
+fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), StageError> {
+    if std::fs::read(path).ok().as_deref() == Some(bytes) {
         return Ok(());
     }
-    karst_artifact::atomic::write_bytes(path, text.as_bytes())
+    if let Some(folder) = path.parent() {
+        std::fs::create_dir_all(folder)
+            .map_err(|e| StageError::failure(format!("{}: cannot create: {e}", folder.display())))?;
+    }
+    karst_artifact::atomic::write_bytes(path, bytes)
         .map_err(|e| StageError::failure(format!("{}: cannot write: {e}", path.display())))
 }
 
@@ -163,6 +178,10 @@ fn bench_command(runs: usize) -> Result<(), StageError> {
         for (stage, seconds) in bench::time_scene(Path::new(scene), runs)? {
             println!("{:<10} {seconds:>10.4}", stage.name());
         }
+    }
+    for scene in SAMPLING_BENCH_SCENES {
+        let (seconds, headline) = bench::time_stage(Path::new(scene), Stage::Sampling, runs)?;
+        println!("\n{scene}\nsampling {seconds:>10.4} s: {headline}");
     }
     Ok(())
 }

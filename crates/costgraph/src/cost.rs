@@ -65,13 +65,7 @@ mod tests {
     use super::*;
 
     fn model() -> CostModel {
-        let plane = |name: &str, z: f64| Surface {
-            name: name.into(),
-            elevation: z,
-            origin: [0.0; 2],
-            dip: 0.0,
-            dip_direction: 0.0,
-        };
+        let plane = |name: &str, z: f64| Surface::plane(name, z, [0.0; 2], 0.0, 0.0);
         CostModel {
             horizons: vec![plane("h", 50.0)],
             water_tables: vec![plane("w", 20.0)],

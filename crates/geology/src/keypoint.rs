@@ -12,6 +12,8 @@ pub enum KeyPointKind {
     Sink,
     Spring,
     Waypoint,
+    /// A known blind passage: the network reaches it, nothing flows on from it.
+    DeadEnd,
 }
 
 /// One key point of the scene (`[[keypoints]]`).

@@ -11,21 +11,25 @@
 //! Conventions: metres, z up, right-handed; azimuths in degrees clockwise from north (+y).
 
 pub mod domain;
+pub mod field;
 pub mod fracture;
+pub mod heightfield;
 pub mod keypoint;
+mod load;
 pub mod params;
 pub mod rng;
 pub mod scene;
 mod spans;
 pub mod surface;
 pub mod terrain;
+pub mod tin;
 mod validate;
 
 pub use domain::Domain;
 pub use fracture::FractureFamily;
 pub use keypoint::{KeyPoint, KeyPointKind};
 pub use scene::{Connectivity, Geology, Link, Scene, SceneError};
-pub use surface::Surface;
+pub use surface::{Geometry, Surface};
 pub use terrain::Terrain;
 pub use validate::Problem;
 

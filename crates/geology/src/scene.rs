@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use crate::field::{self, FieldNode, GridSpec, Layer, NoKarst};
 use crate::params::{
     CostgraphParams, HydroParams, MesherParams, MetricsParams, SamplingParams, SdfParams, SkeletonParams,
 };
@@ -55,19 +56,46 @@ pub struct Geology {
     pub faults: Vec<Surface>,
     /// Fracture families: directions conduits tend to follow.
     pub fractures: Vec<FractureFamily>,
+    /// Layers of rock with their own potential and sampling radius (first match wins).
+    pub layers: Vec<Layer>,
+    /// The potential's construction tree; the last node is the root.
+    pub potential: Vec<FieldNode>,
+    /// Volumes where no sample (no conduit) may lie.
+    pub no_karst: Vec<NoKarst>,
+    /// Background grid of potentials read from a file.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grid: Option<GridSpec>,
 }
 
 impl Geology {
     /// Intrinsic karstification potential P(p) in [0, 1] (KarstNSim §1.3: 1 = the most
-    /// karstifiable rock, Paris et al.'s relative resistance to flow is 1 − P). Every rock of
-    /// this version's scene is equally karstifiable.
-    pub fn potential(&self, _p: crate::Point) -> f64 {
-        1.0
+    /// karstifiable rock, Paris et al.'s relative resistance to flow is 1 − P): the product of
+    /// the layer's potential, the potential tree and the background grid ([`crate::field`]).
+    pub fn potential(&self, p: crate::Point) -> f64 {
+        let layer = self.layer_at(p).map_or(1.0, |l| l.potential);
+        let grid = self.grid.as_ref().map_or(1.0, |g| g.values.at(p));
+        (layer * field::tree_value(&self.potential, p, self) * grid).clamp(0.0, 1.0)
+    }
+
+    /// The first layer (scene order) containing `p`.
+    pub fn layer_at(&self, p: crate::Point) -> Option<&Layer> {
+        self.layers.iter().find(|l| l.contains(p, self))
+    }
+
+    /// True when `p` lies in a no-karst volume.
+    pub fn in_no_karst(&self, p: crate::Point) -> bool {
+        self.no_karst.iter().any(|v| v.shape().is_some_and(|s| s.signed_distance(p, self) <= 0.0))
     }
 
     /// Inception surfaces: horizons and faults.
     pub fn inception_surfaces(&self) -> impl Iterator<Item = &Surface> {
         self.horizons.iter().chain(&self.faults)
+    }
+}
+
+impl field::Surfaces for Geology {
+    fn surface(&self, name: &str) -> Option<&Surface> {
+        self.horizons.iter().chain(&self.faults).chain(&self.water_tables).find(|s| s.name == name)
     }
 }
 
@@ -80,6 +108,9 @@ pub struct Connectivity {
     /// Absent: every entry is 2.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub matrix: Option<Vec<Vec<u8>>>,
+    /// Pairs of key point names that must be directly linked by a conduit.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub forced: Vec<[String; 2]>,
 }
 
 /// How sink `s` relates to spring `t` in the connectivity matrix.
@@ -128,11 +159,15 @@ impl Scene {
         Scene::parse(&text, path)
     }
 
-    /// Parses and validates scene text; `path` names it in messages.
+    /// Parses and validates scene text; `path` names it in messages, and the data files it
+    /// names (heightfield, TIN surfaces, potential grid) are read relative to its folder.
     pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
         let invalid = |problems| SceneError::Invalid { path: path.to_path_buf(), problems };
-        let scene: Scene = toml::from_str(text).map_err(|e| invalid(vec![validate::from_toml(text, &e)]))?;
-        let problems = validate::check(&scene, text);
+        let mut scene: Scene =
+            toml::from_str(text).map_err(|e| invalid(vec![validate::from_toml(text, &e)]))?;
+        let folder = path.parent().unwrap_or(Path::new(""));
+        let mut problems = crate::load::attach_files(&mut scene, folder, text);
+        problems.extend(validate::check(&scene, text));
         if problems.is_empty() { Ok(scene) } else { Err(invalid(problems)) }
     }
 

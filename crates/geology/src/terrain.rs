@@ -1,11 +1,18 @@
 //! The terrain: the ground surface z = h(x, y) that bounds the bedrock from above.
 //!
+//! Three kinds: a (tilted) plane, a heightfield read from a 16-bit grayscale PNG or an OpenEXR
+//! image with its
+//! georeferencing ([`crate::heightfield`]), and analytic value noise (rolling karst plateau).
 //! The SDF stage needs h's Lipschitz bound λ (its steepest slope) to build the 1-Lipschitz
 //! terrain distance (z − h)/√(1 + λ²) of Paris et al. 2021, appendix A.
 
+use std::sync::Arc;
+
 use serde::{Deserialize, Serialize};
 
-/// An analytic terrain.
+use crate::heightfield::HeightGrid;
+
+/// The ground surface (`[terrain]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Terrain {
@@ -21,6 +28,56 @@ pub enum Terrain {
         #[serde(default)]
         gradient: [f64; 2],
     },
+    /// A heightfield image: elevation = offset + vertical_scale · pixel value.
+    Heightfield {
+        /// 16-bit (or 8-bit) grayscale PNG, or OpenEXR (`.exr`), relative to the scene file's
+        /// folder.
+        file: String,
+        /// `[x, y]` of the south-west pixel (bottom-left of the image).
+        origin: [f64; 2],
+        /// Ground distance between pixels, metres.
+        cell_size: f64,
+        /// Metres per pixel unit; default 1.
+        #[serde(default = "one")]
+        vertical_scale: f64,
+        /// Elevation of pixel value 0; default 0.
+        #[serde(default)]
+        offset: f64,
+        /// Pixel value meaning "no data"; default none.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        nodata: Option<f64>,
+        /// BLAKE3 of the file's bytes, filled when the scene is loaded (so that editing the
+        /// image reruns the stages).
+        #[serde(default, skip_deserializing)]
+        content: String,
+        /// The elevations, filled when the scene is loaded.
+        #[serde(skip)]
+        grid: Arc<HeightGrid>,
+    },
+    /// Value noise: elevation + Σ_o amplitude·2^−o · n(2^o·(x, y)/wavelength), n a smooth
+    /// (cubic Hermite) interpolation of pseudo-random lattice values in [−1, 1].
+    Noise {
+        /// Mean elevation, metres.
+        elevation: f64,
+        /// Amplitude of the first octave, metres.
+        amplitude: f64,
+        /// Wavelength of the first octave, metres.
+        wavelength: f64,
+        /// Number of octaves; default 3.
+        #[serde(default = "three")]
+        octaves: u32,
+        /// Slope added to the noise, as for a plane; default flat.
+        #[serde(default)]
+        gradient: [f64; 2],
+    },
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn three() -> u32 {
+    3
 }
 
 impl Terrain {
@@ -30,6 +87,13 @@ impl Terrain {
             Terrain::Plane { elevation, origin, gradient } => {
                 elevation + gradient[0] * (x - origin[0]) + gradient[1] * (y - origin[1])
             }
+            Terrain::Heightfield { grid, .. } => grid.height(x, y),
+            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient } => {
+                elevation
+                    + gradient[0] * x
+                    + gradient[1] * y
+                    + noise_sum(x, y, *amplitude, *wavelength, *octaves)
+            }
         }
     }
 
@@ -37,8 +101,50 @@ impl Terrain {
     pub fn lipschitz(&self) -> f64 {
         match self {
             Terrain::Plane { gradient, .. } => gradient[0].hypot(gradient[1]),
+            Terrain::Heightfield { grid, .. } => grid.lipschitz,
+            // Each octave's partial derivatives are at most 1.5 · 2 · amplitude_o / wavelength_o
+            // (Hermite slope 1.5 times the largest lattice difference), and amplitude_o /
+            // wavelength_o is the same for every octave.
+            Terrain::Noise { amplitude, wavelength, octaves, gradient, .. } => {
+                gradient[0].hypot(gradient[1])
+                    + *octaves as f64 * 3.0 * std::f64::consts::SQRT_2 * amplitude.abs() / wavelength
+            }
         }
     }
+}
+
+fn noise_sum(x: f64, y: f64, amplitude: f64, wavelength: f64, octaves: u32) -> f64 {
+    (0..octaves)
+        .map(|o| {
+            let f = (1u64 << o) as f64 / wavelength;
+            amplitude / (1u64 << o) as f64 * value_noise(x * f, y * f, o)
+        })
+        .sum()
+}
+
+/// Smoothly interpolated lattice noise in [−1, 1].
+fn value_noise(x: f64, y: f64, octave: u32) -> f64 {
+    let (i, j) = (x.floor(), y.floor());
+    let (fx, fy) = (hermite(x - i), hermite(y - j));
+    let v = |di: f64, dj: f64| lattice((i + di) as i64, (j + dj) as i64, octave);
+    let south = v(0.0, 0.0) + (v(1.0, 0.0) - v(0.0, 0.0)) * fx;
+    let north = v(0.0, 1.0) + (v(1.0, 1.0) - v(0.0, 1.0)) * fx;
+    south + (north - south) * fy
+}
+
+fn hermite(t: f64) -> f64 {
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// A pseudo-random value in [−1, 1] per lattice node (integer hash, portable).
+fn lattice(i: i64, j: i64, octave: u32) -> f64 {
+    let mut h = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ (j as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
+        ^ (octave as u64).wrapping_mul(0x1656_67B1_9E37_79F9);
+    h ^= h >> 29;
+    h = h.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    h ^= h >> 32;
+    (h >> 11) as f64 / (1u64 << 52) as f64 - 1.0
 }
 
 #[cfg(test)]
@@ -50,5 +156,26 @@ mod tests {
         let t = Terrain::Plane { elevation: 100.0, origin: [10.0, 0.0], gradient: [0.03, -0.04] };
         assert!((t.height(110.0, 100.0) - (100.0 + 3.0 - 4.0)).abs() < 1e-12);
         assert!((t.lipschitz() - 0.05).abs() < 1e-15);
+    }
+
+    #[test]
+    fn noise_respects_its_lipschitz_bound() {
+        let t = Terrain::Noise {
+            elevation: 50.0,
+            amplitude: 8.0,
+            wavelength: 100.0,
+            octaves: 3,
+            gradient: [0.01, 0.0],
+        };
+        let lambda = t.lipschitz();
+        let mut steepest = 0.0f64;
+        for k in 0..2000 {
+            let (x, y) = (k as f64 * 1.37, (k * 7 % 300) as f64 * 0.91);
+            let d = 0.05;
+            let slope = (t.height(x + d, y) - t.height(x, y)).abs() / d;
+            steepest = steepest.max(slope);
+            assert!((t.height(x, y) - 50.0 - 0.01 * x).abs() <= 8.0 * 1.75 + 1e-9);
+        }
+        assert!(steepest <= lambda && steepest > 0.02, "{steepest} vs {lambda}");
     }
 }

@@ -8,7 +8,8 @@
 use crate::spans::{line_of, line_of_path, path_at};
 use std::fmt;
 
-use crate::{KeyPointKind, Scene, Surface};
+use crate::field::{Bound, FieldKind, FieldNode, Surfaces};
+use crate::{Geometry, KeyPointKind, Scene, Surface, Terrain};
 
 /// One problem in a scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,6 +51,10 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     found.surfaces("geology.horizons", &scene.geology.horizons, false);
     found.surfaces("geology.faults", &scene.geology.faults, true);
     found.fractures(scene);
+    found.layers(scene);
+    found.field_nodes(scene, "geology.potential", &scene.geology.potential, false);
+    found.field_nodes(scene, "geology.no_karst", &scene.geology.no_karst, true);
+    found.forced_links(scene);
     found.keypoints(scene);
     found.connectivity(scene);
     scene.sampling.check(&mut found);
@@ -111,39 +116,187 @@ impl Checks<'_> {
     }
 
     fn terrain(&mut self, scene: &Scene) {
-        let crate::Terrain::Plane { elevation, origin, gradient } = &scene.terrain;
-        let ok = self.finite("terrain.elevation", &[*elevation])
-            & self.finite("terrain.origin", origin)
-            & self.finite("terrain.gradient", gradient);
+        let ok = match &scene.terrain {
+            Terrain::Plane { elevation, origin, gradient } => {
+                self.finite("terrain.elevation", &[*elevation])
+                    & self.finite("terrain.origin", origin)
+                    & self.finite("terrain.gradient", gradient)
+            }
+            Terrain::Heightfield { origin, cell_size, vertical_scale, offset, grid, .. } => {
+                let ok = self.finite("terrain.origin", origin)
+                    & self.finite("terrain.vertical_scale", &[*vertical_scale])
+                    & self.finite("terrain.offset", &[*offset]);
+                self.positive("terrain.cell_size", *cell_size);
+                ok && *cell_size > 0.0 && grid.nx > 0 && self.heightfield_covers(scene, grid)
+            }
+            Terrain::Noise { elevation, amplitude, wavelength, gradient, .. } => {
+                let ok = self.finite("terrain.elevation", &[*elevation])
+                    & self.finite("terrain.amplitude", &[*amplitude])
+                    & self.finite("terrain.gradient", gradient);
+                self.positive("terrain.wavelength", *wavelength);
+                ok && *wavelength > 0.0
+            }
+        };
         if ok && self.problems.is_empty() {
             let d = &scene.domain;
             let highest = [d.min[0], d.max[0]]
                 .iter()
                 .flat_map(|&x| [d.min[1], d.max[1]].map(|y| scene.terrain.height(x, y)))
-                .fold(f64::NEG_INFINITY, f64::max);
+                .fold(f64::NEG_INFINITY, f64::max)
+                .max(scene.terrain.height(d.centre().x, d.centre().y));
             if highest <= d.min[2] {
                 self.report(
-                    "terrain.elevation",
+                    "terrain",
                     format!("the terrain (at most {highest} m) lies below the domain (min z = {}): no bedrock to sample", d.min[2]),
                 );
             }
         }
     }
 
+    fn heightfield_covers(&mut self, scene: &Scene, grid: &crate::heightfield::HeightGrid) -> bool {
+        let d = &scene.domain;
+        let [ex, ey] = grid.extent();
+        if ex[0] > d.min[0] || ex[1] < d.max[0] || ey[0] > d.min[1] || ey[1] < d.max[1] {
+            self.report(
+                "terrain.file",
+                format!(
+                    "the heightfield covers x [{}, {}], y [{}, {}], not the domain's x [{}, {}], y [{}, {}]",
+                    ex[0], ex[1], ey[0], ey[1], d.min[0], d.max[0], d.min[1], d.max[1]
+                ),
+            );
+            return false;
+        }
+        if let Some((i, j)) = grid.first_hole([d.min[0], d.max[0]], [d.min[1], d.max[1]]) {
+            self.report(
+                "terrain.nodata",
+                format!("pixel (column {i}, row {}) inside the domain has no data", grid.ny as usize - 1 - j),
+            );
+            return false;
+        }
+        true
+    }
+
     fn surfaces(&mut self, list: &str, surfaces: &[Surface], vertical_allowed: bool) {
         for (i, s) in surfaces.iter().enumerate() {
             let at = |f: &str| format!("{list}[{i}].{f}");
-            self.finite(&at("elevation"), &[s.elevation]);
-            self.finite(&at("origin"), &s.origin);
-            self.finite(&at("dip_direction"), &[s.dip_direction]);
-            let max = if vertical_allowed { "90]" } else { "90)" };
-            let ok =
-                if vertical_allowed { (0.0..=90.0).contains(&s.dip) } else { (0.0..90.0).contains(&s.dip) };
-            if self.finite(&at("dip"), &[s.dip]) && !ok {
-                self.report(&at("dip"), format!("must be in [0, {max} degrees, got {}", s.dip));
+            if let Geometry::Plane { elevation, origin, dip, dip_direction } = &s.geometry {
+                self.finite(&at("elevation"), &[*elevation]);
+                self.finite(&at("origin"), origin);
+                self.finite(&at("dip_direction"), &[*dip_direction]);
+                let max = if vertical_allowed { "90]" } else { "90)" };
+                let ok =
+                    if vertical_allowed { (0.0..=90.0).contains(dip) } else { (0.0..90.0).contains(dip) };
+                if self.finite(&at("dip"), &[*dip]) && !ok {
+                    self.report(&at("dip"), format!("must be in [0, {max} degrees, got {dip}"));
+                }
             }
             if surfaces[..i].iter().any(|o| o.name == s.name) {
                 self.report(&at("name"), format!("\"{}\" is used twice", s.name));
+            }
+        }
+    }
+
+    fn bound(&mut self, scene: &Scene, field: &str, bound: &Bound) {
+        match bound {
+            Bound::Elevation(z) => {
+                self.finite(field, &[*z]);
+            }
+            Bound::Surface(name) => {
+                if scene.geology.surface(name).is_none() {
+                    self.report(
+                        field,
+                        format!("\"{name}\" is not a horizon, fault or water table of [geology]"),
+                    );
+                }
+            }
+        }
+    }
+
+    fn layers(&mut self, scene: &Scene) {
+        for (i, l) in scene.geology.layers.iter().enumerate() {
+            let at = |f: &str| format!("geology.layers[{i}].{f}");
+            for (f, b) in [("top", &l.top), ("bottom", &l.bottom)] {
+                if let Some(b) = b {
+                    self.bound(scene, &at(f), b);
+                }
+            }
+            self.unit_interval(&at("potential"), l.potential);
+            if let Some(r) = l.radius {
+                self.positive(&at("radius"), r);
+            }
+            if scene.geology.layers[..i].iter().any(|o| o.name == l.name) {
+                self.report(&at("name"), format!("\"{}\" is used twice", l.name));
+            }
+        }
+    }
+
+    fn unit_interval(&mut self, field: &str, v: f64) {
+        if self.finite(field, &[v]) && !(0.0..=1.0).contains(&v) {
+            self.report(field, format!("must be in [0, 1], got {v}"));
+        }
+    }
+
+    fn field_nodes(&mut self, scene: &Scene, list: &str, nodes: &[FieldNode], primitives_only: bool) {
+        for (i, n) in nodes.iter().enumerate() {
+            let at = |f: &str| format!("{list}[{i}].{f}");
+            if nodes[..i].iter().any(|o| o.name == n.name) {
+                self.report(&at("name"), format!("\"{}\" is used twice", n.name));
+            }
+            if primitives_only && n.shape().is_none() && n.missing().is_empty() {
+                self.report(&at("kind"), format!("{:?} is not a volume: use sphere, box or stratum", n.kind));
+                continue;
+            }
+            for f in n.missing() {
+                self.report(&at(f), format!("{:?} \"{}\" needs `{f}`", n.kind, n.name));
+            }
+            for (f, v) in [("centre", n.centre), ("min", n.min), ("max", n.max)] {
+                if let Some(v) = v {
+                    self.finite(&at(f), &v);
+                }
+            }
+            if let Some(r) = n.radius {
+                self.positive(&at("radius"), r);
+            }
+            for (f, b) in [("top", &n.top), ("bottom", &n.bottom)] {
+                if let Some(b) = b {
+                    self.bound(scene, &at(f), b);
+                }
+            }
+            if !primitives_only {
+                self.unit_interval(&at("inside"), n.inside);
+                self.unit_interval(&at("outside"), n.outside);
+                self.non_negative(&at("falloff"), n.falloff);
+            }
+            for child in &n.of {
+                if !nodes[..i].iter().any(|o| &o.name == child) {
+                    self.report(&at("of"), format!("\"{child}\" is not an earlier node of {list}"));
+                }
+            }
+            if n.kind == FieldKind::Blend && !n.weights.is_empty() {
+                if n.weights.len() != n.of.len() {
+                    self.report(
+                        &at("weights"),
+                        format!("has {} weights for {} children", n.weights.len(), n.of.len()),
+                    );
+                } else if self.finite(&at("weights"), &n.weights)
+                    && (n.weights.iter().any(|w| *w < 0.0) || n.weights.iter().sum::<f64>() <= 0.0)
+                {
+                    self.report(&at("weights"), format!("{:?} must be ≥ 0 and not all 0", n.weights));
+                }
+            }
+        }
+    }
+
+    fn forced_links(&mut self, scene: &Scene) {
+        for (i, pair) in scene.connectivity.forced.iter().enumerate() {
+            let field = format!("connectivity.forced[{i}]");
+            for name in pair {
+                if !scene.keypoints.iter().any(|k| &k.name == name) {
+                    self.report(&field, format!("\"{name}\" is not a key point"));
+                }
+            }
+            if pair[0] == pair[1] {
+                self.report(&field, format!("links \"{}\" to itself", pair[0]));
             }
         }
     }
@@ -183,7 +336,7 @@ impl Checks<'_> {
                     &at("water_table"),
                     format!("spring \"{}\" names water table \"{w}\", which [geology.water_tables] does not define", k.name),
                 ),
-                (KeyPointKind::Sink | KeyPointKind::Waypoint, Some(_)) => {
+                (KeyPointKind::Sink | KeyPointKind::Waypoint | KeyPointKind::DeadEnd, Some(_)) => {
                     self.report(&at("water_table"), "only springs have a water table".into())
                 }
                 _ => {}
@@ -203,6 +356,17 @@ impl Checks<'_> {
         if !scene.domain.contains(k.point()) {
             self.report(&field, format!("\"{}\" at [{x}, {y}, {z}] is outside the domain", k.name));
             return;
+        }
+        if let Some(v) = scene
+            .geology
+            .no_karst
+            .iter()
+            .find(|v| v.shape().is_some_and(|s| s.signed_distance(k.point(), &scene.geology) <= 0.0))
+        {
+            self.report(
+                &field,
+                format!("\"{}\" at [{x}, {y}, {z}] is inside no-karst volume \"{}\"", k.name, v.name),
+            );
         }
         let ground = scene.terrain.height(x, y);
         if z > ground {
@@ -326,6 +490,52 @@ water_table = "wt"
         assert!(problems(&text)[0].contains("2 columns, the scene has 1 springs"));
         let text = format!("{GOOD}\n[connectivity]\nmatrix = [[0]]\n");
         assert!(problems(&text)[0].contains("may drain to no spring"));
+    }
+
+    #[test]
+    fn geology_model_fields_are_validated_and_evaluated() {
+        let model = r#"
+[[geology.layers]]
+name = "marl"
+top = "bed"
+potential = 0.25
+
+[[geology.potential]]
+name = "lens"
+kind = "sphere"
+centre = [50, 50, 30]
+radius = 5
+outside = 0.5
+
+[[geology.no_karst]]
+name = "dyke"
+kind = "box"
+min = [0, 0, 0]
+max = [5, 100, 50]
+"#;
+        let text = format!("{}\n[[geology.horizons]]\nname = \"bed\"\nelevation = 20\n{model}", GOOD);
+        let scene = Scene::parse(&text, Path::new("s.toml")).unwrap();
+        let g = &scene.geology;
+        assert_eq!(g.potential(crate::Point::new(50.0, 50.0, 30.0)), 1.0);
+        assert_eq!(g.potential(crate::Point::new(80.0, 50.0, 30.0)), 0.5);
+        assert_eq!(g.potential(crate::Point::new(80.0, 50.0, 10.0)), 0.25 * 0.5);
+        assert!(g.in_no_karst(crate::Point::new(2.0, 50.0, 10.0)));
+        assert!(!g.in_no_karst(crate::Point::new(6.0, 50.0, 10.0)));
+        let bad = text
+            .replace("top = \"bed\"", "top = \"nope\"")
+            .replace("radius = 5", "radius = -5")
+            .replace("potential = 0.25", "potential = 1.5")
+            .replace("position = [10, 10, 40]", "position = [2, 10, 40]");
+        let p = problems(&bad);
+        assert!(p.iter().any(|m| m.contains("geology.layers[0].top: \"nope\" is not a horizon")), "{p:?}");
+        assert!(
+            p.iter().any(|m| m.contains("geology.layers[0].potential: must be in [0, 1], got 1.5")),
+            "{p:?}"
+        );
+        assert!(p.iter().any(|m| m.contains("geology.potential[0].radius: must be > 0, got -5")), "{p:?}");
+        assert!(p.iter().any(|m| m.contains("inside no-karst volume \"dyke\"")), "{p:?}");
+        let tree = text.replace("[[geology.no_karst]]", "[[geology.potential]]\nname = \"top\"\nkind = \"max\"\nof = [\"lens\", \"ghost\"]\n\n[[geology.no_karst]]");
+        assert!(problems(&tree).iter().any(|m| m.contains("\"ghost\" is not an earlier node")));
     }
 
     #[test]

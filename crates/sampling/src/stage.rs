@@ -9,29 +9,67 @@ use karst_artifact::{Stage, StageError, read_artifact, write_artifact};
 use karst_geology::Scene;
 use karst_geology::rng::Random;
 
-use crate::{Samples, Tag, poisson};
+use karst_artifact::progress;
+use karst_geology::Surface;
 
-/// Samples the bedrock of `scene`: key points first, then Poisson-disk samples below the
-/// terrain.
+use crate::poisson::Sampler;
+use crate::radius::RadiusField;
+use crate::surfaces::fill_surface;
+use crate::{Samples, Tag};
+
+/// Surfaces of one kind, the tag of their samples and their random stream's name.
+type SurfaceList<'a> = (&'a [Surface], fn(u32) -> Tag, &'static str);
+
+/// Samples the bedrock of `scene`: key points first, then samples on the water tables,
+/// horizons and faults, then the volume, all outside no-karst volumes and below the terrain.
 pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
-    let fixed: Vec<DVec3> = scene.keypoints.iter().map(|k| k.point()).collect();
-    let mut rng = Random::stream(scene.seed, "sampling", "poisson");
-    let terrain = &scene.terrain;
-    let below_ground = |p: DVec3| p.z < terrain.height(p.x, p.y);
-    let params = &scene.sampling;
+    let field = RadiusField::of_scene(scene);
     let d = &scene.domain;
-    let points =
-        poisson::sample(d.min(), d.max(), params.radius, params.attempts, &fixed, below_ground, &mut rng);
-    if points.len() == fixed.len() {
+    // Cells of r/√3 for the volume's base radius: where r is smaller a cell may hold several
+    // samples (linked lists), where r is at least the base radius one sample covers its cell.
+    let base = scene.sampling.radius * crate::radius::unit_scale(scene);
+    let cell = field.min().max(base) / 3f64.sqrt();
+    let mut sampler = Sampler::new(&field, d.min(), d.max(), cell);
+    let mut tags: Vec<Tag> = Vec::new();
+    for (i, k) in scene.keypoints.iter().enumerate() {
+        sampler.force(k.point());
+        tags.push(Tag::KeyPoint(i as u32));
+    }
+    let region =
+        |p: DVec3| d.contains(p) && p.z < scene.terrain.height(p.x, p.y) && !scene.geology.in_no_karst(p);
+    let attempts = scene.sampling.attempts;
+    let frame = (d.min(), d.max(), cell);
+    let g = &scene.geology;
+    let lists: [SurfaceList; 3] = [
+        (&g.water_tables, Tag::WaterTable, "water tables"),
+        (&g.horizons, Tag::Horizon, "horizons"),
+        (&g.faults, Tag::Fault, "faults"),
+    ];
+    for (surfaces, tag, purpose) in lists {
+        for (i, s) in surfaces.iter().enumerate() {
+            let mut rng = Random::stream(scene.seed, "sampling", &format!("{purpose} {i}"));
+            fill_surface(&mut sampler, s, frame, attempts, &mut rng, region);
+            tags.resize(sampler.points.len(), tag(i as u32));
+        }
+    }
+    let mut rng = Random::stream(scene.seed, "sampling", "volume");
+    let bar = progress::bar(sampler.cells() as u64, "sampling");
+    sampler.fill_volume(attempts, &mut rng, region, |n| bar.set_position(n));
+    bar.finish_and_clear();
+    tags.resize(sampler.points.len(), Tag::Volume);
+    if sampler.points.len() == scene.keypoints.len() {
         return Err(StageError::input(format!(
-            "no sample fits in the bedrock: the domain below the terrain is empty or thinner than sampling.radius = {}",
-            params.radius
+            "sampling.radius: no sample fits in the bedrock: the domain below the terrain and outside the no-karst volumes is empty or thinner than the radius ({} m at the smallest, sampling.radius = {})",
+            field.min(),
+            scene.sampling.radius
         )));
     }
-    let tags = (0..points.len())
-        .map(|i| if i < fixed.len() { Tag::KeyPoint(i as u32) } else { Tag::Volume })
-        .collect();
-    Ok(Samples { positions: points.iter().map(|p| p.to_array()).collect(), tags, radius: params.radius })
+    // Free the background grid first, and convert the positions in place: peak memory stays
+    // near the samples themselves.
+    let points = std::mem::take(&mut sampler.points);
+    drop(sampler);
+    let positions = points.into_iter().map(|p| p.to_array()).collect();
+    Ok(Samples { positions, tags, radius: field.min(), radius_field: field })
 }
 
 /// `karst-sampling run`.
@@ -39,12 +77,17 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let scene = Scene::load(&args.scene)?;
     let run = StageRun::new(Stage::Sampling, &args.out);
     let start = Instant::now();
-    let samples = sample_scene(&scene)?;
+    let samples =
+        sample_scene(&scene).map_err(|e| StageError::input(format!("{}: {e}", args.scene.display())))?;
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Sampling)), &samples)?;
-    let (_, keypoints) = samples.tag_counts();
+    let c = samples.tag_counts();
     Ok(format!(
-        "{} samples ({keypoints} key points) in {:.2} s",
+        "{} samples ({} key points, {} on water tables, {} on horizons, {} on faults) in {:.2} s",
         samples.len(),
+        c.keypoint,
+        c.water_table,
+        c.horizon,
+        c.fault,
         start.elapsed().as_secs_f64()
     ))
 }
@@ -55,12 +98,19 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
         return print_json::<Samples>(&args.file);
     }
     let (header, samples) = read_artifact::<Samples>(&args.file)?;
-    let (volume, keypoints) = samples.tag_counts();
+    let c = samples.tag_counts();
     println!("{}: samples, schema {}, by {}", args.file.display(), header.schema, header.producer);
     println!("  samples     {}", samples.len());
-    println!("  volume      {volume}");
-    println!("  key points  {keypoints}");
-    println!("  radius      {} m", samples.radius);
+    println!("  volume      {}", c.volume);
+    println!("  key points  {}", c.keypoint);
+    println!("  water table {}", c.water_table);
+    println!("  horizons    {}", c.horizon);
+    println!("  faults      {}", c.fault);
+    let f = &samples.radius_field;
+    println!(
+        "  radius      {} m at the smallest, field of {:?} nodes every {} m",
+        samples.radius, f.size, f.cell
+    );
     if let Some((lo, hi)) = bounds(&samples.positions) {
         println!(
             "  bounds      [{:.2}, {:.2}, {:.2}] – [{:.2}, {:.2}, {:.2}]",

@@ -27,6 +27,20 @@ fn bad_scenes_exit_2_naming_file_line_and_field() {
         ("syntax.toml", ":6: unclosed table, expected `]`"),
         ("wrong_type.toml", "costgraph.k: invalid type: string \"sixteen\""),
         ("sink_above_terrain.toml", "keypoints[0].position: \"sink-a\" at z = 59 is above the terrain"),
+        ("heightfield_not_covering.toml", ":11: terrain.file: the heightfield covers x [100, 1100]"),
+        ("tsurf_bad_index.toml", "bad_index.ts:10: TRGL uses vertex id 4, which no VRTX defines"),
+        ("tsurf_degenerate.toml", "degenerate.ts: triangle 1 [0, 2, 3] is degenerate"),
+        (
+            "spring_without_water_table.toml",
+            "keypoints[2].water_table: spring \"spring\" names no water table",
+        ),
+        (
+            "keypoint_outside_domain.toml",
+            "keypoints[1].position: \"sink-b\" at [40, 180, 54] is outside the domain",
+        ),
+        ("surface_radius_zero.toml", "sampling.surface_radius: must be > 0, got 0"),
+        ("nan_in_horizon.toml", "geology.horizons[0].elevation: NaN is not a finite number"),
+        ("nothing_to_sample.toml", "sampling.radius: no sample fits in the bedrock"),
     ];
     let out = scratch("bad");
     for (file, expected) in cases {

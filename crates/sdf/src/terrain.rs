@@ -2,18 +2,24 @@
 //! function h of Lipschitz bound λ (Paris et al. 2021, appendix A).
 //!
 //! The scene's terrain is copied into the artifact in this codec-friendly form (externally
-//! tagged, so the binary codec can read it back), with its Lipschitz bound.
+//! tagged, so the binary codec can read it back), with its Lipschitz bound: planes and noise
+//! by their parameters, heightfields by their whole grid of elevations.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use karst_geology::Terrain;
+use karst_geology::heightfield::HeightGrid;
 
 /// The ground surface as the sdf artifact stores it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum TerrainField {
     /// h(x, y) = elevation + g·(xy − origin).
     Plane { elevation: f64, origin: [f64; 2], gradient: [f64; 2] },
+    /// A heightfield, bilinear (its grid carries its Lipschitz bound).
+    Grid(HeightGrid),
+    /// Value noise plus a slope (see `karst_geology::terrain`).
+    Noise { elevation: f64, amplitude: f64, wavelength: f64, octaves: u32, gradient: [f64; 2] },
 }
 
 impl TerrainField {
@@ -23,6 +29,30 @@ impl TerrainField {
             Terrain::Plane { elevation, origin, gradient } => {
                 TerrainField::Plane { elevation: *elevation, origin: *origin, gradient: *gradient }
             }
+            Terrain::Heightfield { grid, .. } => TerrainField::Grid(HeightGrid::clone(grid)),
+            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient } => TerrainField::Noise {
+                elevation: *elevation,
+                amplitude: *amplitude,
+                wavelength: *wavelength,
+                octaves: *octaves,
+                gradient: *gradient,
+            },
+        }
+    }
+
+    /// The scene terrain this field stands for (the geology crate evaluates it).
+    fn terrain(&self) -> Option<Terrain> {
+        match self {
+            TerrainField::Noise { elevation, amplitude, wavelength, octaves, gradient } => {
+                Some(Terrain::Noise {
+                    elevation: *elevation,
+                    amplitude: *amplitude,
+                    wavelength: *wavelength,
+                    octaves: *octaves,
+                    gradient: *gradient,
+                })
+            }
+            _ => None,
         }
     }
 
@@ -32,6 +62,8 @@ impl TerrainField {
             TerrainField::Plane { elevation, origin, gradient } => {
                 elevation + gradient[0] * (x - origin[0]) + gradient[1] * (y - origin[1])
             }
+            TerrainField::Grid(grid) => grid.height(x, y),
+            TerrainField::Noise { .. } => self.terrain().map_or(f64::NAN, |t| t.height(x, y)),
         }
     }
 
@@ -39,6 +71,8 @@ impl TerrainField {
     pub fn lipschitz(&self) -> f64 {
         match self {
             TerrainField::Plane { gradient, .. } => gradient[0].hypot(gradient[1]),
+            TerrainField::Grid(grid) => grid.lipschitz,
+            TerrainField::Noise { .. } => self.terrain().map_or(f64::NAN, |t| t.lipschitz()),
         }
     }
 
@@ -60,5 +94,23 @@ mod tests {
         assert_eq!(field.height(7.0, -3.0), terrain.height(7.0, -3.0));
         assert_eq!(field.lipschitz(), terrain.lipschitz());
         assert!((field.distance(DVec3::new(1.0, 2.0, 15.0)) - 5.0 / 1.25f64.sqrt()).abs() < 1e-12);
+        let noise = Terrain::Noise {
+            elevation: 5.0,
+            amplitude: 2.0,
+            wavelength: 30.0,
+            octaves: 2,
+            gradient: [0.1, 0.0],
+        };
+        let field = TerrainField::of(&noise);
+        assert_eq!(field.height(7.0, -3.0), noise.height(7.0, -3.0));
+        assert_eq!(field.lipschitz(), noise.lipschitz());
+    }
+
+    #[test]
+    fn heightfield_is_bilinear_with_its_bound() {
+        let grid = HeightGrid::new([0.0, 0.0], 10.0, 2, 2, vec![1.0, 2.0, 3.0, 5.0]);
+        let back = TerrainField::Grid(grid);
+        assert!((back.height(5.0, 5.0) - 2.75).abs() < 1e-12);
+        assert!((back.lipschitz() - 0.2f64.hypot(0.3)).abs() < 1e-12);
     }
 }

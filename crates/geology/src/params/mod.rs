@@ -14,6 +14,6 @@ pub use costgraph::CostgraphParams;
 pub use hydro::{HydroParams, Recharge};
 pub use mesher::MesherParams;
 pub use metrics::MetricsParams;
-pub use sampling::SamplingParams;
+pub use sampling::{RadiusUnit, SamplingParams};
 pub use sdf::SdfParams;
 pub use skeleton::SkeletonParams;

@@ -1,0 +1,105 @@
+//! Sampling on the surfaces themselves (Paris et al. 2021 §4.1: samples on the inception
+//! horizons let paths run exactly along them; KarstNSim §1.1 does the same on water tables).
+//!
+//! A surface is cut into patches that map the unit square onto it: a plane into square cells
+//! of the background grid's size in its own (strike, dip) frame, centred on the point of the
+//! plane nearest the domain's centre and covering the domain's diagonal (patches that miss the
+//! domain are dropped); a TIN into
+//! ⌈area/h²⌉ slots per triangle, mapped uniformly onto it. Every patch gets one dart per pass
+//! and retires after `attempts` consecutive failures, as in the volume. A dart lies on the
+//! surface (up to rounding), so surface samples are exactly on their horizon or water table.
+
+use glam::DVec3;
+
+use karst_geology::rng::Random;
+use karst_geology::{Geometry, Surface};
+
+use crate::poisson::Sampler;
+
+/// A map from [0, 1)² onto part of a surface.
+enum Patch {
+    Square { corner: DVec3, u: DVec3, v: DVec3 },
+    Triangle { a: DVec3, b: DVec3, c: DVec3 },
+}
+
+impl Patch {
+    fn point(&self, s: f64, t: f64) -> DVec3 {
+        match self {
+            Patch::Square { corner, u, v } => *corner + *u * s + *v * t,
+            Patch::Triangle { a, b, c } => {
+                // Uniform on the triangle (Osada et al. 2002).
+                let r = s.sqrt();
+                *a * (1.0 - r) + *b * (r * (1.0 - t)) + *c * (r * t)
+            }
+        }
+    }
+}
+
+/// True when the patch may meet the box lo–hi (its bounding box overlaps it).
+fn meets(patch: &Patch, lo: DVec3, hi: DVec3) -> bool {
+    let corners = match patch {
+        Patch::Square { corner, u, v } => [*corner, *corner + *u, *corner + *v, *corner + *u + *v],
+        Patch::Triangle { a, b, c } => [*a, *b, *c, *c],
+    };
+    let (l, h) = corners.iter().fold((corners[0], corners[0]), |(l, h), p| (l.min(*p), h.max(*p)));
+    l.cmple(hi).all() && h.cmpge(lo).all()
+}
+
+fn patches(surface: &Surface, centre: DVec3, half_diagonal: f64, cell: f64) -> Vec<Patch> {
+    match &surface.geometry {
+        Geometry::Plane { .. } => {
+            let n = surface.normal();
+            let strike =
+                if n.truncate().length() < 1e-12 { DVec3::X } else { DVec3::new(-n.y, n.x, 0.0).normalize() };
+            let dip = n.cross(strike);
+            let origin = surface.closest_point(centre);
+            let count = (2.0 * half_diagonal / cell).ceil() as i64;
+            let (u, v) = (strike * cell, dip * cell);
+            let mut out = Vec::with_capacity((count * count) as usize);
+            for j in 0..count {
+                for i in 0..count {
+                    let corner = origin + u * (i - count / 2) as f64 + v * (j - count / 2) as f64;
+                    out.push(Patch::Square { corner, u, v });
+                }
+            }
+            out
+        }
+        Geometry::Tin { mesh, .. } => {
+            let mut out = Vec::new();
+            for t in 0..mesh.triangles.len() {
+                let [a, b, c] = mesh.triangle(t);
+                let slots = (0.5 * (b - a).cross(c - a).length() / (cell * cell)).ceil().max(1.0) as usize;
+                out.extend((0..slots).map(|_| Patch::Triangle { a, b, c }));
+            }
+            out
+        }
+    }
+}
+
+/// Adds samples on `surface` inside `region` ⊂ the box lo–hi; `cell` is the patch size.
+pub fn fill_surface(
+    sampler: &mut Sampler,
+    surface: &Surface,
+    (lo, hi, cell): (DVec3, DVec3, f64),
+    attempts: u32,
+    rng: &mut Random,
+    region: impl Fn(DVec3) -> bool,
+) {
+    let (centre, half_diagonal) = ((lo + hi) * 0.5, 0.5 * (hi - lo).length());
+    let mut patches = patches(surface, centre, half_diagonal, cell);
+    patches.retain(|p| meets(p, lo, hi));
+    let mut misses = vec![0u32; patches.len()];
+    let mut live: Vec<u32> = (0..patches.len() as u32).collect();
+    while !live.is_empty() {
+        live.retain(|&i| {
+            let i = i as usize;
+            let p = patches[i].point(rng.uniform(), rng.uniform());
+            if region(p) && sampler.try_insert(p) {
+                misses[i] = 0;
+            } else {
+                misses[i] += 1;
+            }
+            misses[i] < attempts
+        });
+    }
+}

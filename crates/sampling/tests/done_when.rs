@@ -1,0 +1,115 @@
+//! Issue 3's acceptance tests: surface samples lie on their surface, the spacing honours the
+//! recorded radius field everywhere, and no sample lies in a no-karst volume or above the
+//! terrain.
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use karst_geology::Scene;
+use karst_sampling::stage::sample_scene;
+use karst_sampling::{Samples, Tag};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn scene(file: &str) -> Scene {
+    Scene::load(&root().join(file)).unwrap()
+}
+
+/// Every pair of samples (not both key points) closer than min(r(p), r(q)), found with a
+/// uniform grid of cell max r.
+fn spacing_violations(s: &Samples) -> Vec<(usize, usize, f64, f64)> {
+    let f = &s.radius_field;
+    let points: Vec<DVec3> = s.positions.iter().map(|p| DVec3::from_array(*p)).collect();
+    let cell = f.max();
+    let key = |p: DVec3| ((p / cell).floor()).as_ivec3();
+    let mut grid: std::collections::BTreeMap<[i32; 3], Vec<usize>> = Default::default();
+    for (i, p) in points.iter().enumerate() {
+        grid.entry(key(*p).to_array()).or_default().push(i);
+    }
+    let mut bad = Vec::new();
+    for (i, p) in points.iter().enumerate() {
+        let c = key(*p);
+        for dz in -1..=1 {
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let Some(list) = grid.get(&(c + glam::IVec3::new(dx, dy, dz)).to_array()) else {
+                        continue;
+                    };
+                    for &j in list.iter().filter(|&&j| j < i) {
+                        let both_key =
+                            matches!(s.tags[i], Tag::KeyPoint(_)) && matches!(s.tags[j], Tag::KeyPoint(_));
+                        let m = f.at(*p).min(f.at(points[j]));
+                        let d = p.distance(points[j]);
+                        if !both_key && d < m * (1.0 - 1e-9) {
+                            bad.push((i, j, d, m));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    bad
+}
+
+#[test]
+fn default_scene_horizon_samples_lie_on_the_tsurf_horizon() {
+    let scene = scene("fixtures/scenes/default.toml");
+    assert!(matches!(scene.terrain, karst_geology::Terrain::Heightfield { .. }));
+    let horizon = &scene.geology.horizons[0];
+    assert!(horizon.mesh().is_some(), "the default horizon is a TSurf");
+    let s = sample_scene(&scene).unwrap();
+    let on: Vec<DVec3> = s
+        .positions
+        .iter()
+        .zip(&s.tags)
+        .filter(|(_, t)| **t == Tag::Horizon(0))
+        .map(|(p, _)| DVec3::from_array(*p))
+        .collect();
+    assert!(on.len() > 1000, "{} horizon samples", on.len());
+    let close = on.iter().filter(|p| horizon.distance(**p) <= 0.01).count();
+    assert!(close * 100 >= 95 * on.len(), "{close} of {} within 1 cm", on.len());
+    let wt = &scene.geology.water_tables[0];
+    let mut tagged = s.positions.iter().zip(&s.tags).filter(|(_, t)| **t == Tag::WaterTable(0));
+    assert!(tagged.clone().count() > 1000);
+    assert!(tagged.all(|(p, _)| wt.distance(DVec3::from_array(*p)) <= 0.01));
+    assert!(spacing_violations(&s).is_empty());
+}
+
+#[test]
+fn spacing_honours_the_variable_radius_field_everywhere() {
+    let scene = scene("fixtures/scenes/layered.toml");
+    let s = sample_scene(&scene).unwrap();
+    let f = &s.radius_field;
+    assert!(f.max() > 1.5 * f.min(), "the field varies: {} to {}", f.min(), f.max());
+    let bad = spacing_violations(&s);
+    assert!(bad.is_empty(), "{} pairs too close, first {:?}", bad.len(), bad.first());
+    // Key points come first, exactly.
+    for (i, k) in scene.keypoints.iter().enumerate() {
+        assert_eq!(s.positions[s.keypoint_sample(i).unwrap()], k.position);
+    }
+    let again = sample_scene(&scene).unwrap();
+    assert_eq!(s, again, "deterministic");
+}
+
+#[test]
+fn no_sample_in_a_no_karst_volume_or_above_the_terrain() {
+    let scene = scene("fixtures/scenes/layered.toml");
+    assert!(!scene.geology.no_karst.is_empty());
+    let s = sample_scene(&scene).unwrap();
+    let c = s.tag_counts();
+    assert!(c.volume > 1000 && c.horizon > 50 && c.fault > 20, "{c:?}");
+    for p in &s.positions {
+        let p = DVec3::from_array(*p);
+        assert!(!scene.geology.in_no_karst(p), "{p} in a no-karst volume");
+        assert!(p.z <= scene.terrain.height(p.x, p.y), "{p} above the terrain");
+        assert!(scene.domain.contains(p));
+    }
+    // The no-karst volumes are not simply outside the sampled region: samples surround them.
+    let near = s.positions.iter().filter(|p| {
+        let q = DVec3::from_array(**p);
+        scene.geology.no_karst.iter().any(|v| v.shape().unwrap().signed_distance(q, &scene.geology) < 15.0)
+    });
+    assert!(near.count() > 10);
+}
