@@ -21,22 +21,27 @@ pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, CostGraphErr
     if k >= samples.len() {
         return Err(CostGraphError::TooFewSamples { k, samples: samples.len() });
     }
-    let rows = edges(scene, &samples.positions);
+    let chunks = samples.len().div_ceil(CHUNK) as u64;
+    let bar = karst_artifact::progress::bar(2 * chunks, "costgraph");
+    let done = || bar.inc(1);
+    let rows = edges(scene, &samples.positions, &done);
     checks::isolated_keypoints(scene, samples, &rows)?;
     checks::sinks_reach_their_springs(scene, samples, &rows)?;
-    costed(&CostModel::from_scene(scene), &samples.positions, rows)
+    let graph = costed(&CostModel::from_scene(scene), &samples.positions, rows, &done);
+    bar.finish_and_clear();
+    graph
 }
 
 /// The cost graph of bare `points` (no key-point checks): what `cargo xtask bench` times.
 pub fn build_points(scene: &Scene, points: &[[f64; 3]]) -> Result<CostGraph, CostGraphError> {
-    let rows = edges(scene, points);
-    costed(&CostModel::from_scene(scene), points, rows)
+    let rows = edges(scene, points, &|| ());
+    costed(&CostModel::from_scene(scene), points, rows, &|| ())
 }
 
 /// The edges: k nearest neighbours within the maximum length, symmetrised when asked.
-fn edges(scene: &Scene, points: &[[f64; 3]]) -> Rows {
+fn edges(scene: &Scene, points: &[[f64; 3]], done: &(dyn Fn() + Sync)) -> Rows {
     let p = &scene.costgraph;
-    let rows = knn::neighbours(points, p.k, p.max_edge_length);
+    let rows = knn::neighbours(points, p.k, p.max_edge_length, done);
     if p.symmetrise { rows.symmetrised() } else { rows }
 }
 
@@ -53,12 +58,23 @@ struct ChunkCosts {
 }
 
 /// Costs every edge of `rows` under `model`, in chunks of nodes in spatial order.
-fn costed(model: &CostModel, points: &[[f64; 3]], rows: Rows) -> Result<CostGraph, CostGraphError> {
+fn costed(
+    model: &CostModel,
+    points: &[[f64; 3]],
+    rows: Rows,
+    done: &(dyn Fn() + Sync),
+) -> Result<CostGraph, CostGraphError> {
     let fields = model.node_fields(points);
     let order = knn::spatial_order(points);
     let empty = empty_sets(model);
-    let chunks: Vec<Result<ChunkCosts, CostGraphError>> =
-        order.par_chunks(CHUNK).map(|chunk| cost_chunk(model, &fields, &rows, chunk, &empty)).collect();
+    let chunks: Vec<Result<ChunkCosts, CostGraphError>> = order
+        .par_chunks(CHUNK)
+        .map(|chunk| {
+            let costs = cost_chunk(model, &fields, &rows, chunk, &empty);
+            done();
+            costs
+        })
+        .collect();
     let chunks: Vec<ChunkCosts> = chunks.into_iter().collect::<Result<_, _>>()?;
     let longest = chunks.iter().flat_map(|c| &c.lengths).copied().fold(0.0, f64::max);
     let mut summary =

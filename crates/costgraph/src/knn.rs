@@ -150,8 +150,9 @@ fn morton(x: u64) -> u64 {
 }
 
 /// For every point, its `k` nearest other points, nearest first (ties by index), leaving out
-/// those farther than `max_length`. Results do not depend on the number of threads.
-pub fn neighbours(points: &[[f64; 3]], k: usize, max_length: Option<f64>) -> Rows {
+/// those farther than `max_length`. Results do not depend on the number of threads. `done` is
+/// called after each chunk of [`CHUNK`] points (progress).
+pub fn neighbours(points: &[[f64; 3]], k: usize, max_length: Option<f64>, done: &(dyn Fn() + Sync)) -> Rows {
     if points.len() < 2 || k == 0 {
         return Rows { offsets: vec![0; points.len() + 1], targets: Vec::new() };
     }
@@ -188,6 +189,7 @@ pub fn neighbours(points: &[[f64; 3]], k: usize, max_length: Option<f64>) -> Row
                 lengths.push(row.len() as u32);
                 list.extend(row.iter().map(|&(_, j)| j));
             }
+            done();
             (lengths, list)
         })
         .collect();
@@ -216,7 +218,7 @@ mod tests {
     #[test]
     fn matches_brute_force() {
         let points = cloud(300);
-        let got = neighbours(&points, 7, Some(30.0));
+        let got = neighbours(&points, 7, Some(30.0), &|| ());
         for i in 0..points.len() {
             let mut all: Vec<(u32, f64)> = (0..points.len())
                 .filter(|&j| j != i)
@@ -230,7 +232,7 @@ mod tests {
 
     #[test]
     fn symmetrised_graph_has_every_reverse_edge_once() {
-        let rows = neighbours(&cloud(500), 5, None);
+        let rows = neighbours(&cloud(500), 5, None, &|| ());
         let sym = rows.symmetrised();
         assert!(sym.targets.len() > rows.targets.len());
         for i in 0..sym.node_count() {

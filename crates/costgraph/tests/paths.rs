@@ -103,6 +103,7 @@ fn homogeneous_paths_are_nearly_straight() {
         let graph = build_points(&scene, &points).unwrap();
         let straight = at(&points, 0).distance(at(&points, 1));
         let ratio = length(&points, &path(&graph, 0)) / straight;
+        eprintln!("seed {seed}: path / straight line = {ratio:.4}");
         assert!(ratio < 1.02, "seed {seed}: path is {ratio:.4} × the straight line");
     }
 }
@@ -148,6 +149,7 @@ tolerance = 8.0
         let graph = build_points(&scene(size, &params), &points).unwrap();
         let nodes = path(&graph, 0);
         let within = fraction_along(&points, &nodes, &[20.0, 110.0], 8.0);
+        eprintln!("{model}: {:.1} % of the horizontal length within the families", within * 100.0);
         // Uniform directions would put 2 × 16 / 180 = 18 % of the length there.
         assert!(within > 0.8, "{model}: {:.0} % of the length within the families", within * 100.0);
     }
