@@ -24,24 +24,26 @@ pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, CostGraphErr
     let chunks = samples.len().div_ceil(CHUNK) as u64;
     let bar = karst_artifact::progress::bar(2 * chunks, "costgraph");
     let done = || bar.inc(1);
-    let rows = edges(scene, &samples.positions, &done);
+    let order = knn::spatial_order(&samples.positions);
+    let rows = edges(scene, &samples.positions, &order, &done);
     checks::isolated_keypoints(scene, samples, &rows)?;
     checks::sinks_reach_their_springs(scene, samples, &rows)?;
-    let graph = costed(&CostModel::from_scene(scene), &samples.positions, rows, &done);
+    let graph = costed(&CostModel::from_scene(scene), &samples.positions, (rows, &order), &done);
     bar.finish_and_clear();
     graph
 }
 
 /// The cost graph of bare `points` (no key-point checks): what `cargo xtask bench` times.
 pub fn build_points(scene: &Scene, points: &[[f64; 3]]) -> Result<CostGraph, CostGraphError> {
-    let rows = edges(scene, points, &|| ());
-    costed(&CostModel::from_scene(scene), points, rows, &|| ())
+    let order = knn::spatial_order(points);
+    let rows = edges(scene, points, &order, &|| ());
+    costed(&CostModel::from_scene(scene), points, (rows, &order), &|| ())
 }
 
 /// The edges: k nearest neighbours within the maximum length, symmetrised when asked.
-fn edges(scene: &Scene, points: &[[f64; 3]], done: &(dyn Fn() + Sync)) -> Rows {
+fn edges(scene: &Scene, points: &[[f64; 3]], order: &[u32], done: &(dyn Fn() + Sync)) -> Rows {
     let p = &scene.costgraph;
-    let rows = knn::neighbours(points, p.k, p.max_edge_length, done);
+    let rows = knn::neighbours(points, order, (p.k, p.max_edge_length), done);
     if p.symmetrise { rows.symmetrised() } else { rows }
 }
 
@@ -61,11 +63,10 @@ struct ChunkCosts {
 fn costed(
     model: &CostModel,
     points: &[[f64; 3]],
-    rows: Rows,
+    (rows, order): (Rows, &[u32]),
     done: &(dyn Fn() + Sync),
 ) -> Result<CostGraph, CostGraphError> {
     let fields = model.node_fields(points);
-    let order = knn::spatial_order(points);
     let empty = empty_sets(model);
     let chunks: Vec<Result<ChunkCosts, CostGraphError>> = order
         .par_chunks(CHUNK)
@@ -85,7 +86,7 @@ fn costed(
         .enumerate()
         .map(|(s, water_table)| {
             let mut costs = vec![0f32; rows.targets.len()];
-            knn::scatter(&order, &rows.offsets, chunks.iter().map(|c| c.costs[s].as_slice()), &mut costs);
+            knn::scatter(order, &rows.offsets, chunks.iter().map(|c| c.costs[s].as_slice()), &mut costs);
             CostSet { water_table, costs }
         })
         .collect();

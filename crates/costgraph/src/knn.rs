@@ -150,9 +150,15 @@ fn morton(x: u64) -> u64 {
 }
 
 /// For every point, its `k` nearest other points, nearest first (ties by index), leaving out
-/// those farther than `max_length`. Results do not depend on the number of threads. `done` is
-/// called after each chunk of [`CHUNK`] points (progress).
-pub fn neighbours(points: &[[f64; 3]], k: usize, max_length: Option<f64>, done: &(dyn Fn() + Sync)) -> Rows {
+/// those farther than `max_length`, queried in chunks of `order` (a permutation of the points,
+/// [`spatial_order`] for speed). Results depend on neither the order nor the number of
+/// threads. `done` is called after each chunk of [`CHUNK`] points (progress).
+pub fn neighbours(
+    points: &[[f64; 3]],
+    order: &[u32],
+    (k, max_length): (usize, Option<f64>),
+    done: &(dyn Fn() + Sync),
+) -> Rows {
     if points.len() < 2 || k == 0 {
         return Rows { offsets: vec![0; points.len() + 1], targets: Vec::new() };
     }
@@ -165,7 +171,6 @@ pub fn neighbours(points: &[[f64; 3]], k: usize, max_length: Option<f64>, done: 
     let tree = ImmutableKdTree::new_from_slice(&local).expect("a non-empty point set builds a tree");
     let wanted = NonZero::new((k + 1).min(points.len())).expect("k + 1 > 0");
     let max2 = max_length.map(|l| l * l).unwrap_or(f64::INFINITY);
-    let order = spatial_order(points);
     let chunks: Vec<(Vec<u32>, Vec<u32>)> = order
         .par_chunks(CHUNK)
         .map(|nodes| {
@@ -193,7 +198,7 @@ pub fn neighbours(points: &[[f64; 3]], k: usize, max_length: Option<f64>, done: 
             (lengths, list)
         })
         .collect();
-    Rows::from_chunks(&order, chunks)
+    Rows::from_chunks(order, chunks)
 }
 
 fn distance2(a: &[f64; 3], b: &[f64; 3]) -> f64 {
@@ -218,7 +223,7 @@ mod tests {
     #[test]
     fn matches_brute_force() {
         let points = cloud(300);
-        let got = neighbours(&points, 7, Some(30.0), &|| ());
+        let got = neighbours(&points, &spatial_order(&points), (7, Some(30.0)), &|| ());
         for i in 0..points.len() {
             let mut all: Vec<(u32, f64)> = (0..points.len())
                 .filter(|&j| j != i)
@@ -232,7 +237,8 @@ mod tests {
 
     #[test]
     fn symmetrised_graph_has_every_reverse_edge_once() {
-        let rows = neighbours(&cloud(500), 5, None, &|| ());
+        let points = cloud(500);
+        let rows = neighbours(&points, &spatial_order(&points), (5, None), &|| ());
         let sym = rows.symmetrised();
         assert!(sym.targets.len() > rows.targets.len());
         for i in 0..sym.node_count() {
