@@ -27,6 +27,10 @@ const BENCH_SCENES: &[&str] = &["fixtures/scenes/tiny.toml", "fixtures/scenes/de
 const SAMPLING_BENCH_SCENES: &[&str] =
     &["fixtures/bench/sampling-100k.toml", "fixtures/bench/sampling-1m.toml"];
 
+/// Cost-graph budget cases (issue 4), on random points in the default scene's domain.
+const COSTGRAPH_CASES: &[bench::CostgraphCase] =
+    &[bench::CostgraphCase { samples: 100_000, k: 50 }, bench::CostgraphCase { samples: 1_000_000, k: 30 }];
+
 #[derive(Parser)]
 #[command(name = "cargo xtask", about = "karstgen's task runner")]
 struct Cli {
@@ -67,6 +71,9 @@ enum Task {
     Bench {
         #[arg(long, default_value_t = 5)]
         runs: usize,
+        /// Only the cost-graph budget cases (100k samples at k = 50, 1M at k = 30).
+        #[arg(long)]
+        costgraph: bool,
     },
     /// Run the test suite (`cargo test --release --workspace`), after installing the karstnet
     /// oracle in .venv when it is missing.
@@ -94,7 +101,7 @@ fn main() -> ExitCode {
         Task::Run { scene, out, from, only, force } => run(scene, out, Selection { from, only, force }),
         Task::Diff { a, b, tol } => return diff_command(&a, &b, tol),
         Task::Bless => bless(),
-        Task::Bench { runs } => bench_command(runs),
+        Task::Bench { runs, costgraph } => bench_command(runs, costgraph),
         Task::Test { args } => return test(&args),
     };
     karst_artifact::cli::finish(result)
@@ -170,9 +177,10 @@ fn bless() -> Result<(), StageError> {
     Ok(())
 }
 
-fn bench_command(runs: usize) -> Result<(), StageError> {
+fn bench_command(runs: usize, costgraph_only: bool) -> Result<(), StageError> {
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
-    for scene in BENCH_SCENES {
+    let scenes = if costgraph_only { &[][..] } else { BENCH_SCENES };
+    for scene in scenes {
         println!("\n{scene}");
         println!("{:<10} {:>10}", "stage", "seconds");
         for (stage, seconds) in bench::time_scene(Path::new(scene), runs)? {
@@ -182,6 +190,21 @@ fn bench_command(runs: usize) -> Result<(), StageError> {
     for scene in SAMPLING_BENCH_SCENES {
         let (seconds, headline) = bench::time_stage(Path::new(scene), Stage::Sampling, runs)?;
         println!("\n{scene}\nsampling {seconds:>10.4} s: {headline}");
+    }
+
+    println!("\ncostgraph build on uniform random points in the default scene's domain");
+    println!(
+        "{:>9} {:>4} {:>10} {:>10} {:>11} {:>8} {:>10}",
+        "samples", "k", "seconds", "CPU s", "edges", "B/edge", "peak MB"
+    );
+    for case in COSTGRAPH_CASES {
+        let t = bench::time_costgraph(Path::new("fixtures/scenes/default.toml"), case, runs)?;
+        let peak = t.peak_bytes.map_or("-".into(), |b| format!("{:.0}", b as f64 / 1e6));
+        let cpu = t.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}"));
+        println!(
+            "{:>9} {:>4} {:>10.4} {cpu:>10} {:>11} {:>8.1} {peak:>10}",
+            case.samples, case.k, t.seconds, t.edges, t.bytes_per_edge
+        );
     }
     Ok(())
 }

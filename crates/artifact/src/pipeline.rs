@@ -109,7 +109,7 @@ impl Stage {
     pub fn scene_sections(self) -> &'static [&'static str] {
         match self {
             Stage::Sampling => &["seed", "domain", "terrain", "geology", "keypoints", "sampling"],
-            Stage::Costgraph => &["domain", "terrain", "geology", "keypoints", "costgraph"],
+            Stage::Costgraph => &["domain", "terrain", "geology", "keypoints", "connectivity", "costgraph"],
             Stage::Skeleton => {
                 &["seed", "domain", "terrain", "geology", "keypoints", "connectivity", "skeleton"]
             }

@@ -1,16 +1,166 @@
-//! k-nearest-neighbour search over the samples, in parallel, with a deterministic result.
+//! The k-nearest-neighbour graph in compressed rows, built in parallel with a deterministic
+//! result, and its symmetrisation and transpose.
 
 use std::num::NonZero;
 
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
 
-/// For every point, its `k` nearest other points as (index, distance), nearest first, ties broken
-/// by index; neighbours farther than `max_length` are left out. Results do not depend on the
-/// number of threads.
-pub fn neighbours(points: &[[f64; 3]], k: usize, max_length: Option<f64>) -> Vec<Vec<(u32, f64)>> {
+/// Nodes per parallel work item. Fixed, so that results never depend on the thread count.
+pub const CHUNK: usize = 2048;
+
+/// Directed edges in compressed rows: the out-edges of node `i` are
+/// `targets[offsets[i]..offsets[i + 1]]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rows {
+    pub offsets: Vec<u32>,
+    pub targets: Vec<u32>,
+}
+
+impl Rows {
+    pub fn node_count(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    pub fn row(&self, i: usize) -> &[u32] {
+        &self.targets[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+
+    /// Assembles rows computed in chunks of `order` (chunk c holds the rows of
+    /// `order[c * CHUNK..]`, as row lengths and concatenated targets) into node order.
+    fn from_chunks(order: &[u32], chunks: Vec<(Vec<u32>, Vec<u32>)>) -> Rows {
+        let mut lengths = vec![0u32; order.len()];
+        for (c, (chunk_lengths, _)) in chunks.iter().enumerate() {
+            for (&node, &len) in order[c * CHUNK..].iter().zip(chunk_lengths) {
+                lengths[node as usize] = len;
+            }
+        }
+        let mut offsets = Vec::with_capacity(order.len() + 1);
+        offsets.push(0u32);
+        for len in lengths {
+            offsets.push(offsets[offsets.len() - 1] + len);
+        }
+        let mut targets = vec![0u32; offsets[order.len()] as usize];
+        scatter(order, &offsets, chunks.iter().map(|c| c.1.as_slice()), &mut targets);
+        Rows { offsets, targets }
+    }
+
+    /// The graph with every edge reversed.
+    pub fn transpose(&self) -> Rows {
+        let n = self.node_count();
+        let mut counts = vec![0u32; n + 1];
+        for &t in &self.targets {
+            counts[t as usize + 1] += 1;
+        }
+        for i in 0..n {
+            counts[i + 1] += counts[i];
+        }
+        let offsets = counts.clone();
+        let mut next = counts;
+        let mut sources = vec![0u32; self.targets.len()];
+        for i in 0..n {
+            for &t in self.row(i) {
+                sources[next[t as usize] as usize] = i as u32;
+                next[t as usize] += 1;
+            }
+        }
+        Rows { offsets, targets: sources }
+    }
+
+    /// Adds the reverse j → i of every edge i → j that is missing. Each row keeps its
+    /// neighbours first, then the added sources in increasing order.
+    pub fn symmetrised(&self) -> Rows {
+        let n = self.node_count();
+        let sorted: Vec<Vec<u32>> = (0..n)
+            .into_par_iter()
+            .map(|i| {
+                let mut row = self.row(i).to_vec();
+                row.sort_unstable();
+                row
+            })
+            .collect();
+        // Missing reverse edges, as (row j, source i): for each j the sources come in
+        // increasing i because the transpose lists them so.
+        let reverse = self.transpose();
+        let identity: Vec<u32> = (0..n as u32).collect();
+        let chunks: Vec<(Vec<u32>, Vec<u32>)> = identity
+            .par_chunks(CHUNK)
+            .map(|nodes| {
+                let mut lengths = Vec::with_capacity(nodes.len());
+                let mut list = Vec::new();
+                for &j in nodes {
+                    let j = j as usize;
+                    let start = list.len();
+                    list.extend_from_slice(self.row(j));
+                    list.extend(reverse.row(j).iter().filter(|&&i| sorted[j].binary_search(&i).is_err()));
+                    lengths.push((list.len() - start) as u32);
+                }
+                (lengths, list)
+            })
+            .collect();
+        Rows::from_chunks(&identity, chunks)
+    }
+}
+
+/// Copies per-chunk values, listed row by row for the nodes of `order`'s chunks, to the rows'
+/// places (`offsets`) in `all`.
+pub fn scatter<'a, T: Copy + 'a>(
+    order: &[u32],
+    offsets: &[u32],
+    chunks: impl Iterator<Item = &'a [T]>,
+    all: &mut [T],
+) {
+    for (c, values) in chunks.enumerate() {
+        let mut at = 0;
+        for &node in order[c * CHUNK..].iter().take(CHUNK) {
+            let (start, end) = (offsets[node as usize] as usize, offsets[node as usize + 1] as usize);
+            all[start..end].copy_from_slice(&values[at..at + end - start]);
+            at += end - start;
+        }
+    }
+}
+
+/// The nodes in Morton (Z-curve) order of their position: consecutive nodes are close in
+/// space, so a chunk of them shares its neighbours and their data stays in cache.
+pub fn spatial_order(points: &[[f64; 3]]) -> Vec<u32> {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for axis in 0..3 {
+            lo[axis] = lo[axis].min(p[axis]);
+            hi[axis] = hi[axis].max(p[axis]);
+        }
+    }
+    let cell = |p: &[f64; 3], axis: usize| {
+        let span = (hi[axis] - lo[axis]).max(f64::MIN_POSITIVE);
+        (((p[axis] - lo[axis]) / span) * 1023.0) as u64
+    };
+    let mut keyed: Vec<(u64, u32)> = points
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| (morton(cell(p, 0)) | morton(cell(p, 1)) << 1 | morton(cell(p, 2)) << 2, i as u32))
+        .collect();
+    keyed.par_sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// Spreads the 10 low bits of `x` to every third bit.
+fn morton(x: u64) -> u64 {
+    (0..10).map(|bit| ((x >> bit) & 1) << (3 * bit)).fold(0, |a, b| a | b)
+}
+
+/// For every point, its `k` nearest other points, nearest first (ties by index), leaving out
+/// those farther than `max_length`, queried in chunks of `order` (a permutation of the points,
+/// [`spatial_order`] for speed). Results depend on neither the order nor the number of
+/// threads. `done` is called after each chunk of [`CHUNK`] points (progress).
+pub fn neighbours(
+    points: &[[f64; 3]],
+    order: &[u32],
+    (k, max_length): (usize, Option<f64>),
+    done: &(dyn Fn() + Sync),
+) -> Rows {
     if points.len() < 2 || k == 0 {
-        return vec![Vec::new(); points.len()];
+        return Rows { offsets: vec![0; points.len() + 1], targets: Vec::new() };
     }
     // f32 coordinates relative to the first point keep millimetre precision over kilometres.
     let origin = points[0];
@@ -21,22 +171,34 @@ pub fn neighbours(points: &[[f64; 3]], k: usize, max_length: Option<f64>) -> Vec
     let tree = ImmutableKdTree::new_from_slice(&local).expect("a non-empty point set builds a tree");
     let wanted = NonZero::new((k + 1).min(points.len())).expect("k + 1 > 0");
     let max2 = max_length.map(|l| l * l).unwrap_or(f64::INFINITY);
-    (0..points.len())
-        .into_par_iter()
-        .map(|i| {
-            let found = tree.query(&local[i]).nearest_n::<SquaredEuclidean<f32>>(wanted).execute();
-            let mut list: Vec<(u32, f64)> = found
-                .iter()
-                .map(|n| n.item as usize)
-                .filter(|&j| j != i)
-                .map(|j| (j as u32, distance2(&points[i], &points[j])))
-                .filter(|&(_, d2)| d2 <= max2)
-                .collect();
-            list.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
-            list.truncate(k);
-            list.into_iter().map(|(j, d2)| (j, d2.sqrt())).collect()
+    let chunks: Vec<(Vec<u32>, Vec<u32>)> = order
+        .par_chunks(CHUNK)
+        .map(|nodes| {
+            let mut lengths = Vec::with_capacity(nodes.len());
+            let mut list = Vec::with_capacity(nodes.len() * k);
+            let mut row: Vec<(f64, u32)> = Vec::with_capacity(k + 1);
+            for &i in nodes {
+                let i = i as usize;
+                let found = tree.query(&local[i]).nearest_n::<SquaredEuclidean<f32>>(wanted).execute();
+                row.clear();
+                row.extend(
+                    found
+                        .iter()
+                        .map(|n| n.item as usize)
+                        .filter(|&j| j != i)
+                        .map(|j| (distance2(&points[i], &points[j]), j as u32))
+                        .filter(|&(d2, _)| d2 <= max2),
+                );
+                row.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                row.truncate(k);
+                lengths.push(row.len() as u32);
+                list.extend(row.iter().map(|&(_, j)| j));
+            }
+            done();
+            (lengths, list)
         })
-        .collect()
+        .collect();
+    Rows::from_chunks(order, chunks)
 }
 
 fn distance2(a: &[f64; 3], b: &[f64; 3]) -> f64 {
@@ -47,8 +209,7 @@ fn distance2(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 mod tests {
     use super::*;
 
-    #[test]
-    fn matches_brute_force() {
+    fn cloud(n: usize) -> Vec<[f64; 3]> {
         let mut state = 12345u64;
         let mut next = || {
             state ^= state << 13;
@@ -56,17 +217,40 @@ mod tests {
             state ^= state << 17;
             (state >> 11) as f64 / (1u64 << 53) as f64 * 100.0
         };
-        let points: Vec<[f64; 3]> = (0..300).map(|_| [next(), next(), next()]).collect();
-        let got = neighbours(&points, 7, Some(30.0));
-        for (i, list) in got.iter().enumerate() {
+        (0..n).map(|_| [next(), next(), next()]).collect()
+    }
+
+    #[test]
+    fn matches_brute_force() {
+        let points = cloud(300);
+        let got = neighbours(&points, &spatial_order(&points), (7, Some(30.0)), &|| ());
+        for i in 0..points.len() {
             let mut all: Vec<(u32, f64)> = (0..points.len())
                 .filter(|&j| j != i)
                 .map(|j| (j as u32, distance2(&points[i], &points[j]).sqrt()))
                 .collect();
             all.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
             let expected: Vec<u32> = all.iter().take(7).filter(|n| n.1 <= 30.0).map(|n| n.0).collect();
-            let ids: Vec<u32> = list.iter().map(|n| n.0).collect();
-            assert_eq!(ids, expected, "node {i}");
+            assert_eq!(got.row(i), expected.as_slice(), "node {i}");
         }
+    }
+
+    #[test]
+    fn symmetrised_graph_has_every_reverse_edge_once() {
+        let points = cloud(500);
+        let rows = neighbours(&points, &spatial_order(&points), (5, None), &|| ());
+        let sym = rows.symmetrised();
+        assert!(sym.targets.len() > rows.targets.len());
+        for i in 0..sym.node_count() {
+            assert_eq!(&sym.row(i)[..rows.row(i).len()], rows.row(i));
+            let mut row = sym.row(i).to_vec();
+            row.sort_unstable();
+            row.dedup();
+            assert_eq!(row.len(), sym.row(i).len(), "duplicate edge out of {i}");
+            for &j in sym.row(i) {
+                assert!(sym.row(j as usize).contains(&(i as u32)), "{j} → {i} missing");
+            }
+        }
+        assert_eq!(sym.symmetrised(), sym);
     }
 }

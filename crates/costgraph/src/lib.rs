@@ -1,15 +1,24 @@
-//! Stage 2: the cost graph, the discrete medium in which conduits are least-cost paths.
+//! Stage 2: the cost graph, the discrete medium in which conduits are least-cost paths
+//! (Paris et al. 2021 §4, KarstNSim §1.2–1.3).
 //!
-//! Every sample is joined to its k nearest neighbours (directed edges, built in parallel with a
-//! k-d tree); each edge carries a cost: its length times the mean cost per metre of the rock it
-//! crosses, integrated along the whole edge (Simpson's rule), never at one endpoint only. The
-//! cost per metre is ≥ 1, so every edge costs at least its length and no cost is ever zero.
-//! Output: `costgraph.bin` ([`CostGraph`], compressed sparse rows).
+//! Every sample is joined to its k nearest neighbours within the maximum edge length (directed
+//! edges, found in parallel with a k-d tree; optionally symmetrised). Each edge carries a cost
+//! per cost set: its length times the mean along the edge of the chosen model's cost per metre
+//! ([`cost`]), never at one endpoint only, and never ≤ 0. Output: `costgraph.bin`
+//! ([`CostGraph`], compressed sparse rows, u32 targets and f32 costs), with the distributions
+//! of every cost term for `karst-costgraph inspect`. docs/costgraph.md explains the models.
 
+pub mod builder;
+pub mod checks;
 pub mod cost;
+mod error;
+pub mod falloff;
 pub mod graph;
 pub mod knn;
 pub mod stage;
+pub mod stats;
 
+pub use builder::{build, build_points};
 pub use cost::CostModel;
-pub use graph::CostGraph;
+pub use error::CostGraphError;
+pub use graph::{CostGraph, CostSet};

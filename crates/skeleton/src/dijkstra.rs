@@ -18,9 +18,9 @@ pub struct ShortestPaths {
 }
 
 impl ShortestPaths {
-    /// Runs Dijkstra from `source` until every node of `targets` is settled (or everything
-    /// reachable is).
-    pub fn from(graph: &CostGraph, source: usize, targets: &[usize]) -> Self {
+    /// Runs Dijkstra from `source` in cost set `set` until every node of `targets` is settled
+    /// (or everything reachable is).
+    pub fn from(graph: &CostGraph, set: usize, source: usize, targets: &[usize]) -> Self {
         let n = graph.node_count();
         let mut cost = vec![f64::INFINITY; n];
         let mut predecessor = vec![NONE; n];
@@ -41,7 +41,7 @@ impl ShortestPaths {
                     break;
                 }
             }
-            for (v, c) in graph.out_edges(u) {
+            for (v, c) in graph.out_edges_in(set, u) {
                 let through = cost[u] + f64::from(c);
                 if through < cost[v] {
                     cost[v] = through;
@@ -87,10 +87,10 @@ mod tests {
             vec![(3, 2.0)],
             vec![],
         ]);
-        let sp = ShortestPaths::from(&graph, 0, &[3]);
+        let sp = ShortestPaths::from(&graph, 0, 0, &[3]);
         assert_eq!(sp.path(3), Some(vec![0, 1, 3]));
         assert_eq!(sp.cost(3), 2.0);
-        let back = ShortestPaths::from(&graph, 3, &[0]);
+        let back = ShortestPaths::from(&graph, 0, 3, &[0]);
         assert_eq!(back.path(0), None);
     }
 }

@@ -88,7 +88,15 @@ fn route_sinks(
             .filter(|(_, l)| *l != Link::None)
             .collect();
         let targets = candidates.iter().map(|(t, _)| sample_of(samples, t)).collect::<Result<Vec<_>, _>>()?;
-        let paths = ShortestPaths::from(graph, source, &targets);
+        // One search per spring, in the cost set of its water table (KarstNSim §1.3).
+        let set = |t: &End| {
+            scene.keypoints[t.keypoint].water_table.as_deref().and_then(|w| graph.cost_set_of_water_table(w))
+        };
+        let paths: Vec<ShortestPaths> = candidates
+            .iter()
+            .zip(&targets)
+            .map(|((t, _), &target)| ShortestPaths::from(graph, set(t).unwrap_or(0), source, &[target]))
+            .collect();
         let unreachable = |t: &End| {
             StageError::input(format!(
                 "sink \"{}\" cannot reach spring \"{}\" through the cost graph (raise costgraph.k or max_edge_length)",
@@ -100,13 +108,17 @@ fn route_sinks(
         } else {
             let cheapest = candidates
                 .iter()
-                .zip(&targets)
-                .min_by(|a, b| paths.cost(*a.1).total_cmp(&paths.cost(*b.1)))
+                .zip(targets.iter().zip(&paths))
+                .min_by(|a, b| a.1.1.cost(*a.1.0).total_cmp(&b.1.1.cost(*b.1.0)))
                 .map(|((t, _), _)| *t);
             cheapest.into_iter().collect()
         };
         for spring in chosen {
             let target = sample_of(samples, spring)?;
+            let paths = &paths[candidates
+                .iter()
+                .position(|(t, _)| std::ptr::eq(*t, spring))
+                .expect("a chosen spring is a candidate")];
             let path = paths.path(target).ok_or_else(|| unreachable(spring))?;
             let k = &scene.keypoints[sink.keypoint];
             let route = Route {

@@ -10,7 +10,7 @@ mod sampling;
 mod sdf;
 mod skeleton;
 
-pub use costgraph::CostgraphParams;
+pub use costgraph::{CostModelKind, CostgraphParams};
 pub use hydro::{HydroParams, Recharge};
 pub use mesher::MesherParams;
 pub use metrics::MetricsParams;

@@ -1,0 +1,26 @@
+//! Why a cost graph cannot be built from a scene and its samples.
+
+/// A cost graph that cannot be built; every case is bad input (exit 2).
+#[derive(Debug, thiserror::Error)]
+pub enum CostGraphError {
+    #[error(
+        "costgraph.k = {k} needs more than {k} samples, samples.bin has {samples}: lower costgraph.k or sampling.radius"
+    )]
+    TooFewSamples { k: usize, samples: usize },
+    #[error(
+        "key point \"{name}\" has no neighbour within costgraph.max_edge_length = {max_edge_length} m: raise max_edge_length or move the key point"
+    )]
+    IsolatedKeyPoint { name: String, max_edge_length: f64 },
+    #[error(
+        "sink \"{sink}\" cannot reach spring {springs} through the cost graph (costgraph.k = {k}, max_edge_length = {max_edge_length} m): raise k or max_edge_length, or set costgraph.symmetrise = true"
+    )]
+    Unreachable { sink: String, springs: String, k: usize, max_edge_length: f64 },
+    #[error("samples {a} and {b} coincide at {position:?}: an edge between them has no direction")]
+    CoincidentSamples { a: usize, b: usize, position: [f64; 3] },
+}
+
+impl From<CostGraphError> for karst_artifact::StageError {
+    fn from(e: CostGraphError) -> Self {
+        karst_artifact::StageError::BadInput(e.into())
+    }
+}

@@ -1,0 +1,194 @@
+//! The "Done when" of the cost graph: least-cost paths through graphs built on seeded random
+//! point clouds behave as the geology says.
+
+use std::collections::BinaryHeap;
+use std::path::Path;
+
+use glam::DVec3;
+use karst_costgraph::{CostGraph, build_points};
+use karst_geology::Scene;
+use karst_geology::rng::Random;
+
+/// A scene over `[0, size]` with `extra` appended (geology, [costgraph]).
+fn scene(size: [f64; 3], extra: &str) -> Scene {
+    let text = format!(
+        r#"
+name = "t"
+[domain]
+min = [0, 0, 0]
+max = [{}, {}, {}]
+[terrain]
+kind = "plane"
+elevation = {}
+[[geology.water_tables]]
+name = "wt"
+elevation = -1000
+[[keypoints]]
+name = "a"
+kind = "sink"
+position = [1, 1, 1]
+[[keypoints]]
+name = "s"
+kind = "spring"
+position = [2, 2, 1]
+water_table = "wt"
+{extra}
+"#,
+        size[0], size[1], size[2], size[2]
+    );
+    Scene::parse(&text, Path::new("t.toml")).unwrap()
+}
+
+/// `n` uniform random points in the box `[0, size]`, the first two given.
+fn cloud(n: usize, size: [f64; 3], first: [[f64; 3]; 2], seed: u64) -> Vec<[f64; 3]> {
+    let mut rng = Random::stream(seed, "costgraph-test", "cloud");
+    let mut points = first.to_vec();
+    points
+        .extend((2..n).map(|_| [rng.range(0.0, size[0]), rng.range(0.0, size[1]), rng.range(0.0, size[2])]));
+    points
+}
+
+/// Least-cost path 0 → 1 in cost set `set`, as node indices.
+fn path(graph: &CostGraph, set: usize) -> Vec<usize> {
+    let n = graph.node_count();
+    let mut cost = vec![f64::INFINITY; n];
+    let mut previous = vec![usize::MAX; n];
+    let mut heap = BinaryHeap::new();
+    cost[0] = 0.0;
+    heap.push(std::cmp::Reverse((0f64.to_bits(), 0usize)));
+    while let Some(std::cmp::Reverse((bits, u))) = heap.pop() {
+        if f64::from_bits(bits) > cost[u] {
+            continue;
+        }
+        if u == 1 {
+            break;
+        }
+        for (v, c) in graph.out_edges_in(set, u) {
+            let through = cost[u] + f64::from(c);
+            if through < cost[v] {
+                cost[v] = through;
+                previous[v] = u;
+                heap.push(std::cmp::Reverse((through.to_bits(), v)));
+            }
+        }
+    }
+    assert!(cost[1].is_finite(), "no path");
+    let mut nodes = vec![1];
+    while *nodes.last().unwrap() != 0 {
+        nodes.push(previous[*nodes.last().unwrap()]);
+    }
+    nodes.reverse();
+    nodes
+}
+
+fn at(points: &[[f64; 3]], i: usize) -> DVec3 {
+    DVec3::from_array(points[i])
+}
+
+fn length(points: &[[f64; 3]], nodes: &[usize]) -> f64 {
+    nodes.windows(2).map(|w| at(points, w[0]).distance(at(points, w[1]))).sum()
+}
+
+#[test]
+fn homogeneous_paths_are_nearly_straight() {
+    let size = [100.0, 100.0, 100.0];
+    let scene = scene(
+        size,
+        "[costgraph]\nk = 100\nalpha_inception = 0.0\nalpha_fracture = 0.0\nalpha_water_table = 0.0\nalpha_potential = 0.0",
+    );
+    for (seed, ends) in
+        [(1, [[5.0, 5.0, 5.0], [95.0, 95.0, 95.0]]), (2, [[5.0, 50.0, 90.0], [95.0, 50.0, 10.0]])]
+    {
+        let points = cloud(20_000, size, ends, seed);
+        let graph = build_points(&scene, &points).unwrap();
+        let straight = at(&points, 0).distance(at(&points, 1));
+        let ratio = length(&points, &path(&graph, 0)) / straight;
+        eprintln!("seed {seed}: path / straight line = {ratio:.4}");
+        assert!(ratio < 1.02, "seed {seed}: path is {ratio:.4} × the straight line");
+    }
+}
+
+/// Fraction of the horizontal length of the path within `tolerance` degrees of one of `azimuths`.
+fn fraction_along(points: &[[f64; 3]], nodes: &[usize], azimuths: &[f64], tolerance: f64) -> f64 {
+    let (mut along, mut total) = (0.0, 0.0);
+    for w in nodes.windows(2) {
+        let d = at(points, w[1]) - at(points, w[0]);
+        let horizontal = d.x.hypot(d.y);
+        let azimuth = d.x.atan2(d.y).to_degrees();
+        let off = |a: f64| {
+            let x = (azimuth - a).rem_euclid(180.0);
+            x.min(180.0 - x)
+        };
+        if azimuths.iter().any(|&a| off(a) <= tolerance) {
+            along += horizontal;
+        }
+        total += horizontal;
+    }
+    along / total
+}
+
+#[test]
+fn paths_follow_two_fracture_families() {
+    let size = [200.0, 200.0, 10.0];
+    let families = r#"
+[[geology.fractures]]
+name = "n020"
+azimuth = 20.0
+tolerance = 8.0
+[[geology.fractures]]
+name = "n110"
+azimuth = 110.0
+tolerance = 8.0
+"#;
+    let ends = [[10.0, 100.0, 5.0], [190.0, 110.0, 5.0]];
+    let points = cloud(30_000, size, ends, 3);
+    for model in ["karstnsim2024", "paris2021"] {
+        let params = format!(
+            "{families}[costgraph]\nmodel = \"{model}\"\nk = 60\nalpha_inception = 0.0\nalpha_water_table = 0.0\nalpha_potential = 0.0\nw_horizon = 0.0\nw_permeability = 0.0\nw_distance = 0.0\nw_fracture = 4.0\nalpha_fracture = 4.0"
+        );
+        let graph = build_points(&scene(size, &params), &points).unwrap();
+        let nodes = path(&graph, 0);
+        let within = fraction_along(&points, &nodes, &[20.0, 110.0], 8.0);
+        eprintln!("{model}: {:.1} % of the horizontal length within the families", within * 100.0);
+        // Uniform directions would put 2 × 16 / 180 = 18 % of the length there.
+        assert!(within > 0.8, "{model}: {:.0} % of the length within the families", within * 100.0);
+    }
+}
+
+#[test]
+fn vadose_paths_descend() {
+    let size = [100.0, 100.0, 100.0];
+    let params = "[costgraph]\nk = 40\nalpha_inception = 0.0\nalpha_fracture = 0.0\nalpha_potential = 0.0";
+    let scene = scene(size, params);
+    let points = cloud(20_000, size, [[10.0, 50.0, 95.0], [90.0, 50.0, 5.0]], 4);
+    let graph = build_points(&scene, &points).unwrap();
+    let nodes = path(&graph, graph.cost_set_of_water_table("wt").unwrap());
+    let climbs: f64 = nodes.windows(2).map(|w| (points[w[1]][2] - points[w[0]][2]).max(0.0)).sum();
+    assert_eq!(climbs, 0.0, "the vadose path climbs {climbs:.2} m");
+}
+
+#[test]
+fn costs_do_not_depend_on_the_thread_count() {
+    let size = [100.0, 100.0, 50.0];
+    let extra = r#"
+[[geology.horizons]]
+name = "bed"
+elevation = 25.0
+dip = 3.0
+[[geology.fractures]]
+name = "n045"
+azimuth = 45.0
+[costgraph]
+k = 30
+symmetrise = true
+"#;
+    let scene = scene(size, extra);
+    let points = cloud(12_000, size, [[1.0, 1.0, 1.0], [99.0, 99.0, 49.0]], 5);
+    let with = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| build_points(&scene, &points).unwrap())
+    };
+    let (one, two) = (with(1), with(2));
+    assert!(one == two, "the graphs differ between 1 and 2 threads");
+    assert!(one.cost_sets[0].costs.iter().all(|&c| c > 0.0));
+}
