@@ -52,6 +52,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     found.fractures(scene);
     found.keypoints(scene);
     found.connectivity(scene);
+    found.forced_links(scene);
     scene.sampling.check(&mut found);
     scene.costgraph.check(&mut found);
     scene.skeleton.check(&mut found);
@@ -209,6 +210,23 @@ impl Checks<'_> {
                 &field,
                 format!("\"{}\" at z = {z} is above the terrain (ground at {ground:.3})", k.name),
             );
+        }
+    }
+
+    fn forced_links(&mut self, scene: &Scene) {
+        for (i, pair) in scene.skeleton.forced_links.iter().enumerate() {
+            let field = format!("skeleton.forced_links[{i}]");
+            for name in pair {
+                if !scene.keypoints.iter().any(|k| &k.name == name) {
+                    self.report(
+                        &field,
+                        format!("names key point \"{name}\", which [[keypoints]] does not define"),
+                    );
+                }
+            }
+            if pair[0] == pair[1] {
+                self.report(&field, format!("links \"{}\" to itself", pair[0]));
+            }
         }
     }
 

@@ -1,4 +1,5 @@
-//! `[skeleton]`: the conduit network.
+//! `[skeleton]`: the conduit network, by Paris et al. 2021's γ-skeleton (`mode = "gamma"`) or
+//! KarstNSim's vadose-then-phreatic routing (`mode = "karstnsim"`, the default).
 
 use serde::{Deserialize, Serialize};
 
@@ -7,6 +8,17 @@ use crate::validate::Checks;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SkeletonParams {
+    /// How the network is synthesized.
+    pub mode: Mode,
+    /// γ of the γ-skeleton rule (gamma mode): a–b is kept unless some key point k has
+    /// d(a,k)^γ + d(k,b)^γ < d(a,b)^γ. 2: Gabriel-like, large: relative neighbourhood graph.
+    pub gamma: f64,
+    /// Key-point pairs always joined by a conduit (gamma mode), by name.
+    pub forced_links: Vec<[String; 2]>,
+    /// KarstNSim's P_red in the vadose zone: edges already used cost this fraction (0, 1].
+    pub cohesion_vadose: f64,
+    /// P_red in the phreatic zone.
+    pub cohesion_phreatic: f64,
     /// Range `[min, max]` of conduit radii, metres; each conduit draws its radius uniformly.
     pub radius: [f64; 2],
     /// Segments steeper than this (degrees from horizontal) are shafts: epikarst or tube.
@@ -20,6 +32,11 @@ pub struct SkeletonParams {
 impl Default for SkeletonParams {
     fn default() -> Self {
         SkeletonParams {
+            mode: Mode::Karstnsim,
+            gamma: 2.0,
+            forced_links: Vec::new(),
+            cohesion_vadose: 1.0,
+            cohesion_phreatic: 1.0,
             radius: [0.5, 4.0],
             vertical_angle: 60.0,
             epikarst_depth: 15.0,
@@ -28,8 +45,30 @@ impl Default for SkeletonParams {
     }
 }
 
+/// How the network is synthesized.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Mode {
+    /// Paris et al. 2021 §5.1: the γ-skeleton of the key points, each kept pair joined by its
+    /// least-cost path.
+    Gamma,
+    /// KarstNSim §1.4: every sink routed to its spring's water table, then to the spring.
+    Karstnsim,
+}
+
 impl SkeletonParams {
     pub(crate) fn check(&self, c: &mut Checks) {
+        if c.finite("skeleton.gamma", &[self.gamma]) && self.gamma <= 0.0 {
+            c.report("skeleton.gamma", format!("must be > 0, got {}", self.gamma));
+        }
+        for (field, p) in [
+            ("skeleton.cohesion_vadose", self.cohesion_vadose),
+            ("skeleton.cohesion_phreatic", self.cohesion_phreatic),
+        ] {
+            if c.finite(field, &[p]) && !(p > 0.0 && p <= 1.0) {
+                c.report(field, format!("P_red must be in (0, 1], got {p}"));
+            }
+        }
         let [lo, hi] = self.radius;
         c.positive("skeleton.radius", lo);
         if lo.is_finite() && hi.is_finite() && hi < lo {

@@ -1,0 +1,171 @@
+//! Both synthesis modes on a small two-spring scene: reachability under the connectivity
+//! matrix, order independence without cohesion, the effect of cohesion, forced links.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+use karst_costgraph::CostGraph;
+use karst_geology::Scene;
+use karst_sampling::Samples;
+use karst_skeleton::routing::{self, End};
+use karst_skeleton::search::EdgeCosts;
+use karst_skeleton::{Skeleton, karstnsim};
+
+const SCENE: &str = r#"
+name = "two-springs"
+seed = 11
+[domain]
+min = [0, 0, 0]
+max = [300, 200, 80]
+[terrain]
+kind = "plane"
+elevation = 78
+[[geology.water_tables]]
+name = "east"
+elevation = 30
+origin = [295, 100]
+dip = 1.0
+dip_direction = 90
+[[geology.water_tables]]
+name = "west"
+elevation = 20
+[[keypoints]]
+name = "s1"
+kind = "sink"
+position = [60, 40, 75]
+[[keypoints]]
+name = "s2"
+kind = "sink"
+position = [150, 160, 75]
+[[keypoints]]
+name = "s3"
+kind = "sink"
+position = [200, 60, 75]
+[[keypoints]]
+name = "s4"
+kind = "sink"
+position = [120, 100, 75]
+[[keypoints]]
+name = "east"
+kind = "spring"
+position = [295, 100, 30]
+water_table = "east"
+[[keypoints]]
+name = "west"
+kind = "spring"
+position = [5, 100, 20]
+water_table = "west"
+[connectivity]
+matrix = [[0, 1], [2, 2], [1, 1], [1, 0]]
+[sampling]
+radius = 9.0
+[costgraph]
+k = 16
+"#;
+
+fn scene(extra: &str) -> Scene {
+    Scene::parse(&format!("{SCENE}\n{extra}"), Path::new("two-springs.toml")).unwrap()
+}
+
+fn inputs(scene: &Scene) -> (Samples, CostGraph) {
+    let samples = karst_sampling::stage::sample_scene(scene).unwrap();
+    let graph = karst_costgraph::stage::build(scene, &samples).unwrap();
+    (samples, graph)
+}
+
+fn route(
+    scene: &Scene,
+    samples: &Samples,
+    graph: &CostGraph,
+    sinks: &[End],
+) -> BTreeMap<(String, String), Vec<usize>> {
+    let cost_set = |_: &str| -> &dyn EdgeCosts { graph };
+    karstnsim::route(scene, samples, graph, &cost_set, sinks)
+        .unwrap()
+        .into_iter()
+        .map(|(r, path)| ((r.sink, r.spring), path))
+        .collect()
+}
+
+#[test]
+fn every_sink_reaches_the_springs_it_may_reach() {
+    let scene = scene("");
+    let (samples, graph) = inputs(&scene);
+    let skeleton = routing::build(&scene, &samples, &graph).unwrap();
+    let pairs: BTreeSet<(&str, &str)> =
+        skeleton.routes.iter().map(|r| (r.sink.as_str(), r.spring.as_str())).collect();
+    let expected_fixed = [("s1", "west"), ("s3", "east"), ("s3", "west"), ("s4", "east")];
+    for p in expected_fixed {
+        assert!(pairs.contains(&p), "{p:?} missing from {pairs:?}");
+    }
+    assert!(!pairs.contains(&("s1", "east")) && !pairs.contains(&("s4", "west")));
+    assert_eq!(skeleton.routes.iter().filter(|r| r.sink == "s2").count(), 1, "uncertain: one spring");
+    for r in &skeleton.routes {
+        let name = |i: &u32| skeleton.nodes[*i as usize].keypoint.clone();
+        assert_eq!(name(r.nodes.first().unwrap()).as_deref(), Some(r.sink.as_str()));
+        assert_eq!(name(r.nodes.last().unwrap()).as_deref(), Some(r.spring.as_str()));
+        assert!(r.nodes.windows(2).all(|w| linked(&skeleton, w[0], w[1])), "route follows the links");
+    }
+}
+
+fn linked(s: &Skeleton, a: u32, b: u32) -> bool {
+    s.links().contains(&[a.min(b), a.max(b)])
+}
+
+#[test]
+fn without_cohesion_routes_do_not_depend_on_sink_order() {
+    let scene = scene("[skeleton]\ncohesion_vadose = 1.0\ncohesion_phreatic = 1.0\n");
+    let (samples, graph) = inputs(&scene);
+    let order = routing::sinks_in_order(&scene);
+    let reversed: Vec<End> = order.iter().rev().copied().collect();
+    assert_eq!(route(&scene, &samples, &graph, &order), route(&scene, &samples, &graph, &reversed));
+}
+
+fn distinct_links(routes: &BTreeMap<(String, String), Vec<usize>>) -> usize {
+    let links: BTreeSet<(usize, usize)> =
+        routes.values().flat_map(|p| p.windows(2).map(|w| (w[0].min(w[1]), w[0].max(w[1])))).collect();
+    links.len()
+}
+
+#[test]
+fn cohesion_gathers_conduits_and_depends_on_order() {
+    let loose = scene("");
+    let tight = scene("[skeleton]\ncohesion_vadose = 0.2\ncohesion_phreatic = 0.2\n");
+    let (samples, graph) = inputs(&loose);
+    let order = routing::sinks_in_order(&tight);
+    let a = route(&tight, &samples, &graph, &order);
+    let free = route(&loose, &samples, &graph, &order);
+    assert!(
+        distinct_links(&a) < distinct_links(&free),
+        "{} vs {}",
+        distinct_links(&a),
+        distinct_links(&free)
+    );
+}
+
+#[test]
+fn gamma_mode_joins_every_key_point_and_honours_forced_links() {
+    let scene_rng = scene("[skeleton]\nmode = \"gamma\"\ngamma = 60.0\n");
+    let (samples, graph) = inputs(&scene_rng);
+    let rng = routing::build(&scene_rng, &samples, &graph).unwrap();
+    let on_network: BTreeSet<&str> = rng.nodes.iter().filter_map(|n| n.keypoint.as_deref()).collect();
+    assert_eq!(on_network.len(), scene_rng.keypoints.len());
+    let dense =
+        routing::build(&scene("[skeleton]\nmode = \"gamma\"\ngamma = 0.5\n"), &samples, &graph).unwrap();
+    assert!(dense.total_length() > rng.total_length());
+    let forced = scene("[skeleton]\nmode = \"gamma\"\ngamma = 60.0\nforced_links = [[\"s1\", \"east\"]]\n");
+    let with_link = routing::build(&forced, &samples, &graph).unwrap();
+    assert!(with_link.total_length() > rng.total_length());
+    assert!(!with_link.routes.is_empty());
+}
+
+#[test]
+fn bad_skeleton_parameters_are_refused() {
+    let bad = |extra: &str| {
+        Scene::parse(&format!("{SCENE}\n{extra}"), Path::new("x.toml")).unwrap_err().to_string()
+    };
+    assert!(bad("[skeleton]\ngamma = 0.0\n").contains("skeleton.gamma"));
+    assert!(bad("[skeleton]\ncohesion_vadose = 1.5\n").contains("skeleton.cohesion_vadose"));
+    let e = bad("[skeleton]\nforced_links = [[\"s1\", \"nowhere\"]]\n");
+    assert!(e.contains("skeleton.forced_links[0]") && e.contains("nowhere"), "{e}");
+}
