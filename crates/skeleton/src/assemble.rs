@@ -9,6 +9,7 @@ use karst_geology::{Point, Scene};
 use karst_sampling::Samples;
 
 use crate::classify::classify;
+use crate::tortuosity;
 use crate::{Conduit, Node, Route, Skeleton, Zone};
 
 /// The network as it grows: nodes in order of first appearance, undirected links.
@@ -56,12 +57,15 @@ impl NetworkBuilder {
     /// The skeleton: nodes, conduits with types and radii, and `routes` (sample paths turned
     /// into node paths).
     pub fn finish(mut self, scene: &Scene, samples: &Samples, routes: Vec<(Route, Vec<usize>)>) -> Skeleton {
-        let routes: Vec<Route> =
+        let mut routes: Vec<Route> =
             routes.into_iter().map(|(r, path)| Route { nodes: self.ids(&path), ..r }).collect();
-        let chains = self.conduit_chains(samples);
+        let mut chains = self.conduit_chains(samples);
+        let mut nodes: Vec<Node> = self.samples.iter().map(|&s| node(scene, samples, s)).collect();
+        if let Some(theta) = scene.skeleton.tortuosity {
+            tortuosity::refine(scene, theta, &mut nodes, &mut chains, &mut routes);
+        }
         let mut rng = Random::stream(scene.seed, "skeleton", "radius");
         let [lo, hi] = scene.skeleton.radius;
-        let nodes: Vec<Node> = self.samples.iter().map(|&s| node(scene, samples, s)).collect();
         let at = |i: u32| Point::from_array(nodes[i as usize].position);
         let conduits = chains
             .into_iter()
@@ -120,14 +124,13 @@ fn is_keypoint(samples: &Samples, sample: u32) -> bool {
 }
 
 fn node(scene: &Scene, samples: &Samples, sample: u32) -> Node {
-    let position = samples.positions[sample as usize];
+    let keypoint = scene.keypoints.get(sample as usize).filter(|_| is_keypoint(samples, sample));
+    node_at(scene, samples.positions[sample as usize], sample, keypoint.map(|k| k.name.clone()))
+}
+
+/// A node at `position`, in the zone of the water tables there.
+pub fn node_at(scene: &Scene, position: [f64; 3], sample: u32, keypoint: Option<String>) -> Node {
     let p = Point::from_array(position);
     let phreatic = scene.geology.water_tables.iter().any(|w| w.height_above(p) < 0.0);
-    let keypoint = scene.keypoints.get(sample as usize).filter(|_| is_keypoint(samples, sample));
-    Node {
-        position,
-        sample,
-        keypoint: keypoint.map(|k| k.name.clone()),
-        zone: if phreatic { Zone::Phreatic } else { Zone::Vadose },
-    }
+    Node { position, sample, keypoint, zone: if phreatic { Zone::Phreatic } else { Zone::Vadose } }
 }

@@ -7,6 +7,7 @@
 //! type ([`classify`]). Output: `skeleton.json` ([`Skeleton`]), plus karstnet's
 //! `network_nodes.dat` / `network_links.dat` written by the stage.
 
+pub mod amplify;
 pub mod assemble;
 pub mod classify;
 pub mod gamma;
@@ -16,6 +17,7 @@ pub mod network;
 pub mod routing;
 pub mod search;
 pub mod stage;
+pub mod tortuosity;
 
 pub use classify::ConduitType;
 pub use network::{Conduit, Node, Route, Skeleton, Zone};

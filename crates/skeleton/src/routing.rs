@@ -16,7 +16,7 @@ use karst_sampling::Samples;
 
 use crate::assemble::NetworkBuilder;
 use crate::search::EdgeCosts;
-use crate::{Skeleton, gamma, karstnsim};
+use crate::{Skeleton, amplify, gamma, karstnsim};
 
 /// A sink or a spring: its row (column) in the connectivity matrix, its scene key point.
 #[derive(Debug, Clone, Copy)]
@@ -41,6 +41,7 @@ pub fn build(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Skel
         }
         SkeletonMode::Gamma => gamma::network(scene, samples, graph, &mut network)?,
     };
+    amplify::amplify(scene, samples, graph, &mut network);
     Ok(network.finish(scene, samples, routes))
 }
 

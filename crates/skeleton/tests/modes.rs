@@ -166,6 +166,73 @@ fn bad_skeleton_parameters_are_refused() {
     };
     assert!(bad("[skeleton]\ngamma = 0.0\n").contains("skeleton.gamma"));
     assert!(bad("[skeleton]\ncohesion_vadose = 1.5\n").contains("skeleton.cohesion_vadose"));
+    assert!(bad("[skeleton]\ntortuosity = 1.2\n").contains("skeleton.tortuosity"));
+    assert!(bad("[skeleton]\ndead_end_fraction = -0.1\n").contains("skeleton.dead_end_fraction"));
     let e = bad("[skeleton]\nforced_links = [[\"s1\", \"nowhere\"]]\n");
     assert!(e.contains("skeleton.forced_links[0]") && e.contains("nowhere"), "{e}");
+}
+
+fn cycles(s: &Skeleton) -> i64 {
+    let mut links = s.links();
+    links.sort_unstable();
+    links.dedup();
+    links.len() as i64 - s.nodes.len() as i64 + 1
+}
+
+fn route_positions(s: &Skeleton) -> Vec<Vec<[f64; 3]>> {
+    s.routes.iter().map(|r| r.nodes.iter().map(|&i| s.nodes[i as usize].position).collect()).collect()
+}
+
+#[test]
+fn amplification_adds_dry_branches_dead_ends_and_loops() {
+    let base = scene("");
+    let (samples, graph) = inputs(&base);
+    let plain = routing::build(&base, &samples, &graph).unwrap();
+    let amplify = |fraction: f64| {
+        let extra = format!(
+            "[skeleton]\namplification_steps = 2\namplification_points = 4\ndead_end_fraction = {fraction}\n"
+        );
+        routing::build(&scene(&extra), &samples, &graph).unwrap()
+    };
+    let dead = amplify(1.0);
+    let looped = amplify(0.0);
+    for s in [&dead, &looped] {
+        assert!(s.total_length() > plain.total_length());
+        assert_eq!(route_positions(s), route_positions(&plain), "amplification leaves the routes alone");
+    }
+    let degree_one = |s: &Skeleton| {
+        let mut degree = vec![0; s.nodes.len()];
+        for [a, b] in s.links() {
+            degree[a as usize] += 1;
+            degree[b as usize] += 1;
+        }
+        degree.iter().filter(|d| **d == 1).count()
+    };
+    assert!(degree_one(&dead) > degree_one(&plain));
+    assert_eq!(cycles(&dead), cycles(&plain), "dead ends close no loop");
+    assert!(cycles(&looped) > cycles(&plain), "interior points close loops");
+}
+
+#[test]
+fn tortuosity_grows_with_theta_and_stays_in_the_bedrock() {
+    let base = scene("");
+    let (samples, graph) = inputs(&base);
+    let straight = routing::build(&base, &samples, &graph).unwrap();
+    let wiggle = |theta: f64| {
+        routing::build(&scene(&format!("[skeleton]\ntortuosity = {theta}\n")), &samples, &graph).unwrap()
+    };
+    let (calm, wild) = (wiggle(0.0), wiggle(1.0));
+    for s in [&calm, &wild] {
+        assert_eq!(s.links().len(), 4 * straight.links().len(), "two levels: four segments per link");
+        for n in &s.nodes {
+            let p = glam::DVec3::from_array(n.position);
+            assert!(karst_skeleton::amplify::in_bedrock(&base, p), "{p}");
+        }
+        for r in &s.routes {
+            assert!(r.nodes.windows(2).all(|w| linked(s, w[0], w[1])), "routes follow the refined links");
+        }
+    }
+    let excess = |s: &Skeleton| s.total_length() / straight.total_length() - 1.0;
+    assert!(excess(&calm) < 1e-3, "{}", excess(&calm));
+    assert!(excess(&wild) > 10.0 * excess(&calm).max(1e-4), "{} vs {}", excess(&wild), excess(&calm));
 }

@@ -19,6 +19,20 @@ pub struct SkeletonParams {
     pub cohesion_vadose: f64,
     /// P_red in the phreatic zone.
     pub cohesion_phreatic: f64,
+    /// Amplification (Paris et al. 2021 §5.2): steps of new key points drawn in the bedrock of
+    /// the network's bounding box and joined to it.
+    pub amplification_steps: usize,
+    /// New key points per amplification step.
+    pub amplification_points: usize,
+    /// Fraction of the new key points that are dead ends (joined once); the others are interior
+    /// points (joined at two places, closing loops).
+    pub dead_end_fraction: f64,
+    /// θ in [0, 1]: amplitude of the tortuosity added by midpoint displacement, from a few
+    /// centimetres (0) to 4 m (1). Absent: conduits keep the straight links of the graph.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tortuosity: Option<f64>,
+    /// Midpoint-displacement levels (each doubles the segments of a conduit).
+    pub tortuosity_levels: u32,
     /// Range `[min, max]` of conduit radii, metres; each conduit draws its radius uniformly.
     pub radius: [f64; 2],
     /// Segments steeper than this (degrees from horizontal) are shafts: epikarst or tube.
@@ -37,6 +51,11 @@ impl Default for SkeletonParams {
             forced_links: Vec::new(),
             cohesion_vadose: 1.0,
             cohesion_phreatic: 1.0,
+            amplification_steps: 0,
+            amplification_points: 5,
+            dead_end_fraction: 0.5,
+            tortuosity: None,
+            tortuosity_levels: 2,
             radius: [0.5, 4.0],
             vertical_angle: 60.0,
             epikarst_depth: 15.0,
@@ -68,6 +87,26 @@ impl SkeletonParams {
             if c.finite(field, &[p]) && !(p > 0.0 && p <= 1.0) {
                 c.report(field, format!("P_red must be in (0, 1], got {p}"));
             }
+        }
+        if c.finite("skeleton.dead_end_fraction", &[self.dead_end_fraction])
+            && !(0.0..=1.0).contains(&self.dead_end_fraction)
+        {
+            c.report(
+                "skeleton.dead_end_fraction",
+                format!("must be in [0, 1], got {}", self.dead_end_fraction),
+            );
+        }
+        if let Some(theta) = self.tortuosity
+            && c.finite("skeleton.tortuosity", &[theta])
+            && !(0.0..=1.0).contains(&theta)
+        {
+            c.report("skeleton.tortuosity", format!("θ must be in [0, 1], got {theta}"));
+        }
+        if self.tortuosity_levels > 6 {
+            c.report(
+                "skeleton.tortuosity_levels",
+                format!("must be at most 6, got {}", self.tortuosity_levels),
+            );
         }
         let [lo, hi] = self.radius;
         c.positive("skeleton.radius", lo);
