@@ -129,10 +129,34 @@ mod tests {
         let skeleton = Skeleton {
             nodes: (0..5).map(|i| node(i as f64)).collect(),
             conduits: vec![
-                Conduit { nodes: vec![0, 2], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
-                Conduit { nodes: vec![2, 1], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
-                Conduit { nodes: vec![2, 3], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
-                Conduit { nodes: vec![2, 4], radius: vec![1.0; 2], types: vec![ConduitType::Canyon] },
+                Conduit {
+                    nodes: vec![0, 2],
+                    radius: vec![1.0; 2],
+                    types: vec![ConduitType::Canyon],
+                    phase: 0,
+                    keypoints: vec![],
+                },
+                Conduit {
+                    nodes: vec![2, 1],
+                    radius: vec![1.0; 2],
+                    types: vec![ConduitType::Canyon],
+                    phase: 0,
+                    keypoints: vec![],
+                },
+                Conduit {
+                    nodes: vec![2, 3],
+                    radius: vec![1.0; 2],
+                    types: vec![ConduitType::Canyon],
+                    phase: 0,
+                    keypoints: vec![],
+                },
+                Conduit {
+                    nodes: vec![2, 4],
+                    radius: vec![1.0; 2],
+                    types: vec![ConduitType::Canyon],
+                    phase: 0,
+                    keypoints: vec![],
+                },
             ],
             routes: vec![route("a", 1.5, &[0, 2, 3]), route("b", 2.0, &[1, 2, 3])],
         };

@@ -4,11 +4,11 @@
 
 use std::collections::{HashMap, HashSet};
 
-use karst_geology::rng::Random;
 use karst_geology::{Point, Scene};
 use karst_sampling::Samples;
 
 use crate::classify::classify;
+use crate::radius::RadiusField;
 use crate::tortuosity;
 use crate::{Conduit, Node, Route, Skeleton, Zone};
 
@@ -20,6 +20,10 @@ pub struct NetworkBuilder {
     id_of: HashMap<u32, u32>,
     /// Neighbours of each node, in insertion order.
     pub adjacency: Vec<Vec<u32>>,
+    /// The phase paths are added in.
+    pub phase: u32,
+    /// The phase that made each link (a < b).
+    link_phase: HashMap<(u32, u32), u32>,
 }
 
 impl NetworkBuilder {
@@ -50,6 +54,7 @@ impl NetworkBuilder {
             if a != b && !self.adjacency[a as usize].contains(&b) {
                 self.adjacency[a as usize].push(b);
                 self.adjacency[b as usize].push(a);
+                self.link_phase.insert((a.min(b), a.max(b)), self.phase);
             }
         }
     }
@@ -60,32 +65,49 @@ impl NetworkBuilder {
         let mut routes: Vec<Route> =
             routes.into_iter().map(|(r, path)| Route { nodes: self.ids(&path), ..r }).collect();
         let mut chains = self.conduit_chains(samples);
+        let phases: Vec<u32> = chains.iter().map(|c| self.phase_of(c[0], c[1])).collect();
         let mut nodes: Vec<Node> = self.samples.iter().map(|&s| node(scene, samples, s)).collect();
         if let Some(theta) = scene.skeleton.tortuosity {
             tortuosity::refine(scene, theta, &mut nodes, &mut chains, &mut routes);
         }
-        let mut rng = Random::stream(scene.seed, "skeleton", "radius");
-        let [lo, hi] = scene.skeleton.radius;
+        let mut radii = RadiusField::new(scene, nodes.len());
         let at = |i: u32| Point::from_array(nodes[i as usize].position);
         let conduits = chains
             .into_iter()
-            .map(|chain| {
-                let r = rng.range(lo, hi);
-                let types = chain.windows(2).map(|w| classify(scene, at(w[0]), at(w[1]))).collect();
-                Conduit { radius: vec![r; chain.len()], nodes: chain, types }
+            .zip(phases)
+            .map(|(chain, phase)| {
+                let types: Vec<_> = chain.windows(2).map(|w| classify(scene, at(w[0]), at(w[1]))).collect();
+                let ends = [chain[0], chain[chain.len() - 1]];
+                let keypoints = ends.iter().filter_map(|&i| nodes[i as usize].keypoint.clone()).collect();
+                Conduit {
+                    radius: radii.conduit(&nodes, &chain, &types),
+                    nodes: chain,
+                    types,
+                    phase,
+                    keypoints,
+                }
             })
             .collect();
         Skeleton { nodes, conduits, routes }
     }
 
-    /// Cuts the network into chains between ends: nodes of degree ≠ 2 and key points.
-    /// Isolated cycles become one closed chain each.
+    fn phase_of(&self, a: u32, b: u32) -> u32 {
+        self.link_phase[&(a.min(b), a.max(b))]
+    }
+
+    /// Cuts the network into chains between ends: nodes of degree ≠ 2, key points and nodes
+    /// where the phase changes. Isolated cycles become one closed chain each.
     fn conduit_chains(&mut self, samples: &Samples) -> Vec<Vec<u32>> {
         for list in &mut self.adjacency {
             list.sort_unstable();
         }
         let is_end: Vec<bool> = (0..self.samples.len())
-            .map(|i| self.adjacency[i].len() != 2 || is_keypoint(samples, self.samples[i]))
+            .map(|i| {
+                let next = &self.adjacency[i];
+                let phase_changes =
+                    next.len() == 2 && self.phase_of(i as u32, next[0]) != self.phase_of(i as u32, next[1]);
+                next.len() != 2 || phase_changes || is_keypoint(samples, self.samples[i])
+            })
             .collect();
         let mut used = HashSet::new();
         let mut chains = Vec::new();

@@ -14,6 +14,7 @@ pub mod gamma;
 pub mod karstnet;
 pub mod karstnsim;
 pub mod network;
+pub mod radius;
 pub mod routing;
 pub mod search;
 pub mod stage;

@@ -33,8 +33,18 @@ pub struct SkeletonParams {
     pub tortuosity: Option<f64>,
     /// Midpoint-displacement levels (each doubles the segments of a conduit).
     pub tortuosity_levels: u32,
-    /// Range `[min, max]` of conduit radii, metres; each conduit draws its radius uniformly.
+    /// Range `[min, max]` of conduit radii, metres, outside the epikarst: a Gaussian process
+    /// along each conduit, with uniform marginals over the range.
     pub radius: [f64; 2],
+    /// Range `[min, max]` of the correlation length of the radius process, metres; each
+    /// conduit draws its own.
+    pub radius_correlation: [f64; 2],
+    /// Radius of epikarst segments, metres.
+    pub epikarst_radius: f64,
+    /// Segments whose midpoint has a karstification potential at or above this are chambers
+    /// (ghost rock: Paris et al.'s resistance ≈ 0). Absent: no chambers.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ghost_rock_potential: Option<f64>,
     /// Segments steeper than this (degrees from horizontal) are shafts: epikarst or tube.
     pub vertical_angle: f64,
     /// Shafts starting within this depth below the ground are epikarst, metres.
@@ -57,6 +67,9 @@ impl Default for SkeletonParams {
             tortuosity: None,
             tortuosity_levels: 2,
             radius: [0.5, 4.0],
+            radius_correlation: [50.0, 200.0],
+            epikarst_radius: 0.5,
+            ghost_rock_potential: None,
             vertical_angle: 60.0,
             epikarst_depth: 15.0,
             keyhole_height: 10.0,
@@ -120,6 +133,18 @@ impl SkeletonParams {
                 "skeleton.vertical_angle",
                 format!("must be in (0, 90] degrees, got {}", self.vertical_angle),
             );
+        }
+        let [c0, c1] = self.radius_correlation;
+        c.positive("skeleton.radius_correlation", c0);
+        if c0.is_finite() && c1.is_finite() && c1 < c0 {
+            c.report("skeleton.radius_correlation", format!("[{c0}, {c1}] is not a range (max < min)"));
+        }
+        c.positive("skeleton.epikarst_radius", self.epikarst_radius);
+        if let Some(g) = self.ghost_rock_potential
+            && c.finite("skeleton.ghost_rock_potential", &[g])
+            && !(0.0..=1.0).contains(&g)
+        {
+            c.report("skeleton.ghost_rock_potential", format!("must be in [0, 1], got {g}"));
         }
         c.non_negative("skeleton.epikarst_depth", self.epikarst_depth);
         c.non_negative("skeleton.keyhole_height", self.keyhole_height);
