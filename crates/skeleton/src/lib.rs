@@ -15,6 +15,7 @@ pub mod karstnet;
 pub mod karstnsim;
 pub mod network;
 pub mod radius;
+pub mod render;
 pub mod routing;
 pub mod search;
 pub mod stage;
