@@ -8,7 +8,8 @@ use karst_skeleton::{ConduitType, Skeleton};
 use karstgen_tests::{root, run, scratch};
 use xtask::pipeline::Selection;
 
-const PRESETS: [&str; 5] = ["branchwork", "looping", "rectilinear", "superimposed", "karstnsim"];
+const PRESETS: [&str; 6] =
+    ["branchwork", "looping", "rectilinear", "superimposed", "karstnsim", "karstnsim-2phase"];
 
 fn summary(s: &Skeleton) -> serde_json::Value {
     let round = |v: f64| (v * 1000.0).round() / 1000.0;

@@ -164,6 +164,10 @@ fn bench_command(runs: usize) -> Result<(), StageError> {
             println!("{:<10} {seconds:>10.4}", stage.name());
         }
     }
+    println!("\nskeleton budgets (paths only, sampling and cost graph excluded)");
+    for (case, samples, seconds) in bench::time_skeleton_budgets(runs)? {
+        println!("{case:<45} {samples:>7} samples {seconds:>8.4} s");
+    }
     Ok(())
 }
 

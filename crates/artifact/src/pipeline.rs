@@ -111,7 +111,7 @@ impl Stage {
             Stage::Sampling => &["seed", "domain", "terrain", "geology", "keypoints", "sampling"],
             Stage::Costgraph => &["domain", "terrain", "geology", "keypoints", "costgraph"],
             Stage::Skeleton => {
-                &["seed", "domain", "terrain", "geology", "keypoints", "connectivity", "skeleton"]
+                &["seed", "domain", "terrain", "geology", "keypoints", "connectivity", "phases", "skeleton"]
             }
             Stage::Hydro => &["keypoints", "hydro"],
             Stage::Sdf => &["seed", "domain", "terrain", "sdf"],

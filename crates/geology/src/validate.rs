@@ -53,6 +53,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     found.keypoints(scene);
     found.connectivity(scene);
     found.forced_links(scene);
+    found.phases(scene);
     scene.sampling.check(&mut found);
     scene.costgraph.check(&mut found);
     scene.skeleton.check(&mut found);
@@ -210,6 +211,42 @@ impl Checks<'_> {
                 &field,
                 format!("\"{}\" at z = {z} is above the terrain (ground at {ground:.3})", k.name),
             );
+        }
+    }
+
+    fn phases(&mut self, scene: &Scene) {
+        if !scene.phases.is_empty() && scene.skeleton.mode != crate::params::SkeletonMode::Karstnsim {
+            self.report("phases", "phases need skeleton.mode = \"karstnsim\"".into());
+        }
+        let is = |name: &str, kind| scene.keypoints.iter().any(|k| k.name == name && k.kind == kind);
+        for (i, phase) in scene.phases.iter().enumerate() {
+            let at = |f: &str| format!("phases[{i}].{f}");
+            if scene.phases[..i].iter().any(|o| o.name == phase.name) {
+                self.report(&at("name"), format!("\"{}\" is used twice", phase.name));
+            }
+            if phase.springs.is_empty() {
+                self.report(&at("springs"), format!("phase \"{}\" lists no spring", phase.name));
+            }
+            for spring in phase.springs.iter().filter(|s| !is(s, KeyPointKind::Spring)) {
+                self.report(
+                    &at("springs"),
+                    format!("names spring \"{spring}\", which [[keypoints]] does not define"),
+                );
+            }
+            let f = phase.inherited_cost;
+            if self.finite(&at("inherited_cost"), &[f]) && !(f > 0.0 && f <= 1.0) {
+                self.report(&at("inherited_cost"), format!("must be in (0, 1], got {f}"));
+            }
+            for (sink, w) in &phase.weights {
+                if !is(sink, KeyPointKind::Sink) {
+                    self.report(
+                        &at("weights"),
+                        format!("names sink \"{sink}\", which [[keypoints]] does not define"),
+                    );
+                } else if !(w.is_finite() && *w >= 0.0) {
+                    self.report(&at("weights"), format!("weight of \"{sink}\" must be ≥ 0, got {w}"));
+                }
+            }
         }
     }
 

@@ -14,6 +14,13 @@
 //! attracted by earlier ones (Figure 6). With P_red = 1 every route is independent of the
 //! order of the sinks. The legs towards the several springs of one sink are all computed on
 //! the network as it stood before that sink.
+//!
+//! Polygenic karsts (§2.6): a scene may list `[[phases]]`, oldest first. Each phase routes every
+//! sink to the springs active then (its connectivity restricted to them; a sink with none
+//! sits the phase out), on costs where the edges of the earlier phases' conduits are multiplied
+//! by the phase's `inherited_cost`, so the new network reuses the old where it helps. The
+//! routes of the last phase are the network's present drainage; conduits only earlier phases
+//! used are relict (dry).
 
 use std::collections::BTreeMap;
 
@@ -30,6 +37,30 @@ use crate::search::{Cohesive, EdgeCosts, astar, dijkstra_to_set, min_cost_per_me
 /// The cost set of a water table, by name.
 pub type CostSets<'g> = dyn Fn(&str) -> &'g (dyn EdgeCosts + 'g) + 'g;
 
+/// What one phase routes to, and on which inherited network.
+pub struct PhaseSetup<'a> {
+    /// The springs active in the phase.
+    pub springs: Vec<End<'a>>,
+    /// Edges used by the conduits of the earlier phases.
+    pub inherited: Vec<bool>,
+    /// Cost factor of those edges.
+    pub inherited_cost: f64,
+    /// Sink weights during the phase, by name (others keep their own).
+    pub weights: BTreeMap<String, f64>,
+}
+
+impl<'a> PhaseSetup<'a> {
+    /// The only phase of a scene without `[[phases]]`: every spring, nothing inherited.
+    pub fn single(scene: &'a Scene, graph: &CostGraph) -> Self {
+        PhaseSetup {
+            springs: ends(scene, KeyPointKind::Spring),
+            inherited: vec![false; graph.edge_count()],
+            inherited_cost: 1.0,
+            weights: BTreeMap::new(),
+        }
+    }
+}
+
 /// One sink-to-spring path: its samples, edge ids and cost.
 struct Leg {
     path: Vec<usize>,
@@ -37,28 +68,36 @@ struct Leg {
     cost: f64,
 }
 
-/// Routes `sinks` (in this order) to their springs; returns each route with its sample path.
-/// `graph` gives the edge ids shared by every cost set.
+/// The routes of one phase and the edges its conduits use.
+pub struct PhaseRoutes {
+    pub routes: Vec<(Route, Vec<usize>)>,
+    pub used: Vec<bool>,
+}
+
+/// Routes `sinks` (in this order) to their springs in `phase`; returns each route with its
+/// sample path. `graph` gives the edge ids shared by every cost set.
 pub fn route<'g>(
     scene: &Scene,
     samples: &Samples,
     graph: &CostGraph,
     cost_set: &CostSets<'g>,
     sinks: &[End],
-) -> Result<Vec<(Route, Vec<usize>)>, StageError> {
-    let springs = ends(scene, KeyPointKind::Spring);
+    phase: &PhaseSetup,
+) -> Result<PhaseRoutes, StageError> {
+    let springs = &phase.springs;
     let mut used = vec![false; graph.edge_count()];
     let mut per_metre: BTreeMap<String, f64> = BTreeMap::new();
     let mut routes = Vec::new();
     for sink in sinks {
         let source = sample_of(samples, sink)?;
         let mut legs: BTreeMap<usize, Leg> = BTreeMap::new();
-        let chosen = chosen_springs(scene, sink, &springs, &mut |spring| {
+        let chosen = chosen_springs(scene, sink, springs, &mut |spring| {
             let table = water_table_of(scene, spring);
-            let costs = cost_set(&table.name);
+            let base = cost_set(&table.name);
+            let costs = &Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
             let m = *per_metre
                 .entry(table.name.clone())
-                .or_insert_with(|| min_cost_per_metre(costs, &samples.positions));
+                .or_insert_with(|| min_cost_per_metre(base, &samples.positions) * phase.inherited_cost);
             let target = sample_of(samples, spring)?;
             let leg = leg(scene, samples, costs, &used, m, table, source, target);
             let cost = leg.as_ref().map_or(f64::INFINITY, |l| l.cost);
@@ -73,14 +112,18 @@ pub fn route<'g>(
             let route = Route {
                 sink: sink.name.to_string(),
                 spring: spring.name.to_string(),
-                weight: scene.keypoints[sink.keypoint].weight,
+                weight: phase
+                    .weights
+                    .get(sink.name)
+                    .copied()
+                    .unwrap_or(scene.keypoints[sink.keypoint].weight),
                 nodes: Vec::new(),
                 cost: leg.cost,
             };
             routes.push((route, leg.path.clone()));
         }
     }
-    Ok(routes)
+    Ok(PhaseRoutes { routes, used })
 }
 
 fn water_table_of<'s>(scene: &'s Scene, spring: &End) -> &'s Surface {

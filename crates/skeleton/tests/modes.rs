@@ -80,8 +80,10 @@ fn route(
     sinks: &[End],
 ) -> BTreeMap<(String, String), Vec<usize>> {
     let cost_set = |_: &str| -> &dyn EdgeCosts { graph };
-    karstnsim::route(scene, samples, graph, &cost_set, sinks)
+    let phase = karstnsim::PhaseSetup::single(scene, graph);
+    karstnsim::route(scene, samples, graph, &cost_set, sinks, &phase)
         .unwrap()
+        .routes
         .into_iter()
         .map(|(r, path)| ((r.sink, r.spring), path))
         .collect()
@@ -235,4 +237,55 @@ fn tortuosity_grows_with_theta_and_stays_in_the_bedrock() {
     let excess = |s: &Skeleton| s.total_length() / straight.total_length() - 1.0;
     assert!(excess(&calm) < 1e-3, "{}", excess(&calm));
     assert!(excess(&wild) > 10.0 * excess(&calm).max(1e-4), "{} vs {}", excess(&wild), excess(&calm));
+}
+
+const TWO_PHASES: &str = r#"
+[[phases]]
+name = "high"
+springs = ["east"]
+[[phases]]
+name = "low"
+springs = ["west"]
+inherited_cost = 0.2
+weights = { s2 = 5.0 }
+"#;
+
+#[test]
+fn a_later_phase_keeps_the_relict_conduits_and_reuses_them() {
+    let scene = scene(TWO_PHASES);
+    let (samples, graph) = inputs(&scene);
+    let s = routing::build(&scene, &samples, &graph).unwrap();
+    let phases: BTreeSet<u32> = s.conduits.iter().map(|c| c.phase).collect();
+    assert_eq!(phases, BTreeSet::from([0, 1]));
+    assert!(s.routes.iter().all(|r| r.spring == "west"), "routes are the last phase's drainage");
+    assert_eq!(s.routes.iter().find(|r| r.sink == "s2").unwrap().weight, 5.0);
+    assert!(s.routes.iter().all(|r| r.sink != "s4"), "s4 may only drain east: it sits the low phase out");
+    // The east spring, active only in the first phase, is still on the (relict) network.
+    assert!(s.nodes.iter().any(|n| n.keypoint.as_deref() == Some("east")));
+    let relict: BTreeSet<[u32; 2]> = s
+        .conduits
+        .iter()
+        .filter(|c| c.phase == 0)
+        .flat_map(|c| c.nodes.windows(2).map(|w| [w[0].min(w[1]), w[0].max(w[1])]))
+        .collect();
+    let reused = s
+        .routes
+        .iter()
+        .flat_map(|r| r.nodes.windows(2))
+        .filter(|w| relict.contains(&[w[0].min(w[1]), w[0].max(w[1])]))
+        .count();
+    assert!(reused > 0, "the low phase reuses conduits of the high phase");
+}
+
+#[test]
+fn bad_phases_are_refused() {
+    let bad = |extra: &str| {
+        Scene::parse(&format!("{SCENE}\n{extra}"), Path::new("x.toml")).unwrap_err().to_string()
+    };
+    let e = bad("[[phases]]\nname = \"p\"\nsprings = [\"nowhere\"]\n");
+    assert!(e.contains("phases[0].springs") && e.contains("nowhere"), "{e}");
+    let e = bad("[[phases]]\nname = \"p\"\nsprings = [\"east\"]\ninherited_cost = 0\n");
+    assert!(e.contains("phases[0].inherited_cost"), "{e}");
+    let e = bad("[skeleton]\nmode = \"gamma\"\n[[phases]]\nname = \"p\"\nsprings = [\"east\"]\n");
+    assert!(e.contains("phases") && e.contains("karstnsim"), "{e}");
 }
