@@ -10,11 +10,14 @@
 //!
 //! The graph is read through [`EdgeCosts`], so that a stage can route on another cost set over
 //! the same edges (KarstNSim's per-water-table costs C_WT) or scale the costs of the edges the
-//! network already uses (cohesion, [`Cohesive`]). Ties are broken by node index: results are
+//! network already uses (cohesion, [`Cohesive`]).
+//!
+//! The priority queue is a radix heap over the bits of the (non-negative) f64 keys, which order
+//! like the floats: Dijkstra's keys never decrease, so a push only ever lands in the bucket of
+//! its highest bit differing from the last key popped, and a pop redistributes one bucket.
+//! That is about twice as fast as a binary heap here. Keys a rounding error below the last one
+//! (A*'s heuristic) are raised to it. Equal keys pop in a fixed order: results are
 //! deterministic.
-
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 use glam::DVec3;
 use karst_costgraph::CostGraph;
@@ -194,11 +197,11 @@ fn grow(
     let n = graph.node_count();
     let mut tree = Tree { cost: vec![f64::INFINITY; n], predecessor: vec![NONE; n], via: vec![NONE; n] };
     let mut settled = vec![false; n];
-    let mut heap = BinaryHeap::new();
+    let mut heap = RadixHeap::new();
     let csr = graph.as_cost_graph();
     tree.cost[source] = 0.0;
-    heap.push(Reverse((heuristic(source).to_bits(), source as u32)));
-    while let Some(Reverse((_, node))) = heap.pop() {
+    heap.push(heuristic(source).to_bits(), source as u32);
+    while let Some(node) = heap.pop() {
         let u = node as usize;
         if settled[u] {
             continue;
@@ -214,7 +217,7 @@ fn grow(
                 tree.cost[v] = through;
                 tree.predecessor[v] = node;
                 tree.via[v] = edge as u32;
-                heap.push(Reverse(((through + heuristic(v)).to_bits(), v as u32)));
+                heap.push((through + heuristic(v)).to_bits(), v as u32);
             }
         };
         match csr {
@@ -228,6 +231,50 @@ fn grow(
         }
     }
     tree
+}
+
+/// A monotone radix heap of (key, node): pops never return a key below the last one popped.
+struct RadixHeap {
+    last: u64,
+    len: usize,
+    buckets: [Vec<(u64, u32)>; 65],
+}
+
+impl RadixHeap {
+    fn new() -> Self {
+        RadixHeap { last: 0, len: 0, buckets: std::array::from_fn(|_| Vec::new()) }
+    }
+
+    fn bucket(&self, key: u64) -> usize {
+        (64 - (key ^ self.last).leading_zeros()) as usize
+    }
+
+    fn push(&mut self, key: u64, node: u32) {
+        let key = key.max(self.last);
+        let b = self.bucket(key);
+        self.buckets[b].push((key, node));
+        self.len += 1;
+    }
+
+    fn pop(&mut self) -> Option<u32> {
+        if self.len == 0 {
+            return None;
+        }
+        if self.buckets[0].is_empty() {
+            let i = (1..65).find(|&i| !self.buckets[i].is_empty()).expect("len > 0");
+            let mut items = std::mem::take(&mut self.buckets[i]);
+            self.last = items.iter().map(|(k, _)| *k).min().expect("non-empty bucket");
+            for &(key, node) in &items {
+                let b = self.bucket(key);
+                self.buckets[b].push((key, node));
+            }
+            // Every item moved to a lower bucket: give the emptied one its allocation back.
+            items.clear();
+            self.buckets[i] = items;
+        }
+        self.len -= 1;
+        self.buckets[0].pop().map(|(_, node)| node)
+    }
 }
 
 #[cfg(test)]
@@ -244,6 +291,22 @@ mod tests {
         ]);
         let positions = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]];
         (graph, positions)
+    }
+
+    #[test]
+    fn the_radix_heap_pops_in_key_order() {
+        let mut rng = karst_geology::rng::Random::stream(2, "test", "radix");
+        let mut heap = RadixHeap::new();
+        let mut keys: Vec<f64> = (0..500).map(|_| rng.range(0.0, 1e4)).collect();
+        for (i, k) in keys.iter().enumerate() {
+            heap.push(k.to_bits(), i as u32);
+        }
+        let mut popped = Vec::new();
+        while let Some(i) = heap.pop() {
+            popped.push(keys[i as usize]);
+        }
+        keys.sort_by(f64::total_cmp);
+        assert_eq!(popped, keys);
     }
 
     #[test]
