@@ -5,7 +5,7 @@
 //! ([`karstnsim`]), both on the least-cost paths of the cost graph ([`search`]). The paths are
 //! merged into one network and cut into conduits ([`assemble`]); every segment gets a tunnel
 //! type ([`classify`]). Output: `skeleton.json` ([`Skeleton`]), plus karstnet's
-//! `network_nodes.dat` / `network_links.dat` written by the stage.
+//! `network_nodes.dat` / `network_links.dat` and the per-node `network_nodes.csv` written by the stage.
 
 pub mod amplify;
 pub mod assemble;

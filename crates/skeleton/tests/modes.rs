@@ -289,3 +289,26 @@ fn bad_phases_are_refused() {
     let e = bad("[skeleton]\nmode = \"gamma\"\n[[phases]]\nname = \"p\"\nsprings = [\"east\"]\n");
     assert!(e.contains("phases") && e.contains("karstnsim"), "{e}");
 }
+
+/// The cost graph without the edges that cross the plane x = 150: two halves.
+fn cut_in_two(samples: &Samples, graph: &CostGraph) -> CostGraph {
+    let side = |v: usize| samples.positions[v][0] < 150.0;
+    let lists = (0..graph.node_count())
+        .map(|u| {
+            graph.out_edges(u).filter(|(v, _)| side(*v) == side(u)).map(|(v, c)| (v as u32, c)).collect()
+        })
+        .collect();
+    CostGraph::from_lists(lists)
+}
+
+#[test]
+fn unreachable_key_points_are_named() {
+    let gamma = scene("[skeleton]\nmode = \"gamma\"\n");
+    let (samples, graph) = inputs(&gamma);
+    let cut = cut_in_two(&samples, &graph);
+    let e = routing::build(&gamma, &samples, &cut).unwrap_err().to_string();
+    assert!(e.contains("key points \"s1\" and \"s2\" cannot reach each other"), "{e}");
+    let e = routing::build(&scene(""), &samples, &cut).unwrap_err().to_string();
+    let named = ["sink \"s3\" cannot reach spring \"west\"", "sink \"s4\" cannot reach spring \"east\""];
+    assert!(named.iter().any(|n| e.contains(n)), "{e}");
+}
