@@ -1,5 +1,6 @@
 //! Key points: the field data the network must honour. Sinks (inlets) are where water enters,
-//! springs (outlets) where it leaves, waypoints are known passages the network must visit.
+//! springs (outlets) where it leaves, waypoints are known passages the network must visit,
+//! dead ends are known blind passages (a breakout chamber, a choke) joined to it once.
 
 use serde::{Deserialize, Serialize};
 
@@ -12,6 +13,7 @@ pub enum KeyPointKind {
     Sink,
     Spring,
     Waypoint,
+    DeadEnd,
 }
 
 /// One key point of the scene (`[[keypoints]]`).

@@ -184,7 +184,7 @@ impl Checks<'_> {
                     &at("water_table"),
                     format!("spring \"{}\" names water table \"{w}\", which [geology.water_tables] does not define", k.name),
                 ),
-                (KeyPointKind::Sink | KeyPointKind::Waypoint, Some(_)) => {
+                (KeyPointKind::Sink | KeyPointKind::Waypoint | KeyPointKind::DeadEnd, Some(_)) => {
                     self.report(&at("water_table"), "only springs have a water table".into())
                 }
                 _ => {}

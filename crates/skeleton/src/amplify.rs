@@ -15,16 +15,47 @@
 //! flow stage.
 
 use glam::DVec3;
+use karst_artifact::StageError;
 use karst_costgraph::CostGraph;
-use karst_geology::Scene;
+use karst_geology::params::SkeletonMode;
 use karst_geology::rng::Random;
+use karst_geology::{KeyPointKind, Scene};
 use karst_sampling::Samples;
 
 use crate::assemble::NetworkBuilder;
+use crate::routing::{End, sample_of};
 use crate::search::dijkstra_to_set;
 
 /// Tries to draw one point inside the bedrock before giving up on it.
 const TRIES: usize = 64;
+
+/// Joins the key points the mode did not route: dead ends once (both modes) and, in karstnsim
+/// mode, waypoints twice, like amplification's dead ends and interior points. Errors name a
+/// key point that cannot reach the network.
+pub fn join_keypoints(
+    scene: &Scene,
+    samples: &Samples,
+    graph: &CostGraph,
+    network: &mut NetworkBuilder,
+) -> Result<(), StageError> {
+    let waypoints_routed = scene.skeleton.mode == SkeletonMode::Gamma;
+    for (index, k) in scene.keypoints.iter().enumerate() {
+        let dead_end = match k.kind {
+            KeyPointKind::DeadEnd => true,
+            KeyPointKind::Waypoint if !waypoints_routed => false,
+            _ => continue,
+        };
+        let end = End { row: index, keypoint: index, name: &k.name };
+        let start = sample_of(samples, &end)?;
+        if !join(samples, graph, network, start, dead_end) {
+            return Err(StageError::input(format!(
+                "key point \"{}\" cannot reach the network through the cost graph (raise costgraph.k or max_edge_length)",
+                k.name
+            )));
+        }
+    }
+    Ok(())
+}
 
 /// Adds the amplification branches to `network`.
 pub fn amplify(scene: &Scene, samples: &Samples, graph: &CostGraph, network: &mut NetworkBuilder) {
@@ -41,14 +72,21 @@ pub fn amplify(scene: &Scene, samples: &Samples, graph: &CostGraph, network: &mu
     }
 }
 
-/// Joins sample `start` to the network once (dead end) or twice (interior point).
-fn join(samples: &Samples, graph: &CostGraph, network: &mut NetworkBuilder, start: usize, dead_end: bool) {
+/// Joins sample `start` to the network once (dead end) or twice (interior point); false when
+/// it cannot reach the network.
+fn join(
+    samples: &Samples,
+    graph: &CostGraph,
+    network: &mut NetworkBuilder,
+    start: usize,
+    dead_end: bool,
+) -> bool {
     let on_network = network_mask(samples, network);
     if on_network[start] {
-        return;
+        return true;
     }
     let (tree, reached) = dijkstra_to_set(graph, start, |v| on_network[v]);
-    let Some(first) = reached else { return };
+    let Some(first) = reached else { return false };
     let path = tree.path(first).expect("reached");
     if !dead_end {
         let at = |v: usize| DVec3::from_array(samples.positions[v]);
@@ -60,6 +98,7 @@ fn join(samples: &Samples, graph: &CostGraph, network: &mut NetworkBuilder, star
         }
     }
     network.add_path(&path);
+    true
 }
 
 fn network_mask(samples: &Samples, network: &NetworkBuilder) -> Vec<bool> {

@@ -11,6 +11,7 @@
 //! 3. Pairs of `skeleton.forced_links` are always kept; every kept pair contributes the
 //!    least-cost path from its first to its second key point (scene order).
 //!
+//! Dead-end key points are not vertices of the γ-skeleton: they join the finished network once.
 //! The routes (sink → spring) that hydrology needs are then drawn inside the network: the
 //! least-cost path along its links, springs chosen by the connectivity matrix.
 
@@ -54,8 +55,13 @@ pub fn network(
     graph: &CostGraph,
     network: &mut NetworkBuilder,
 ) -> Result<Vec<(Route, Vec<usize>)>, StageError> {
-    let keypoints: Vec<End> =
-        scene.keypoints.iter().enumerate().map(|(i, k)| End { row: i, keypoint: i, name: &k.name }).collect();
+    let keypoints: Vec<End> = scene
+        .keypoints
+        .iter()
+        .enumerate()
+        .filter(|(_, k)| k.kind != KeyPointKind::DeadEnd)
+        .map(|(i, k)| End { row: i, keypoint: i, name: &k.name })
+        .collect();
     let sources = keypoints.iter().map(|k| sample_of(samples, k)).collect::<Result<Vec<_>, _>>()?;
     let trees: Vec<Tree> = sources.par_iter().map(|&s| dijkstra(graph, s, &sources)).collect();
     let n = keypoints.len();

@@ -27,10 +27,13 @@ pub struct End<'a> {
     pub name: &'a str,
 }
 
-/// Builds the network of `scene` on the cost graph. Every water table uses `graph`'s costs
-/// until the cost graph stage provides one cost set per water table.
-pub fn build(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Skeleton, StageError> {
+/// Builds the network of `scene` on the cost graph. Every water table uses the graph's costs
+/// until the cost graph stage provides one cost set per water table. Dead-end key points are
+/// closed to the mode's paths and to amplification, then joined once.
+pub fn build(scene: &Scene, samples: &Samples, full: &CostGraph) -> Result<Skeleton, StageError> {
     let mut network = NetworkBuilder::default();
+    let closed = without_dead_ends(scene, samples, full);
+    let graph = closed.as_ref().unwrap_or(full);
     let routes = match scene.skeleton.mode {
         SkeletonMode::Karstnsim => {
             let cost_set = |_: &str| -> &dyn EdgeCosts { graph };
@@ -53,8 +56,32 @@ pub fn build(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Skel
         }
         SkeletonMode::Gamma => gamma::network(scene, samples, graph, &mut network)?,
     };
+    amplify::join_keypoints(scene, samples, full, &mut network)?;
     amplify::amplify(scene, samples, graph, &mut network);
     Ok(network.finish(scene, samples, routes))
+}
+
+/// The cost graph without the edges into or out of dead-end key points, so that no path but
+/// their own passes through them; None when the scene has none.
+fn without_dead_ends(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Option<CostGraph> {
+    let mut closed = vec![false; graph.node_count()];
+    for (i, _) in scene.keypoints_of(KeyPointKind::DeadEnd) {
+        if let Some(s) = samples.keypoint_sample(i) {
+            closed[s] = true;
+        }
+    }
+    closed.iter().any(|c| *c).then(|| {
+        let lists = (0..graph.node_count())
+            .map(|u| {
+                graph
+                    .out_edges(u)
+                    .filter(|(v, _)| !closed[u] && !closed[*v])
+                    .map(|(v, c)| (v as u32, c))
+                    .collect()
+            })
+            .collect();
+        CostGraph::from_lists(lists)
+    })
 }
 
 /// The phases of the scene, oldest first (one with every spring when it lists none); their

@@ -312,3 +312,29 @@ fn unreachable_key_points_are_named() {
     let named = ["sink \"s3\" cannot reach spring \"west\"", "sink \"s4\" cannot reach spring \"east\""];
     assert!(named.iter().any(|n| e.contains(n)), "{e}");
 }
+
+const WAYPOINT_AND_DEAD_END: &str = r#"
+[[keypoints]]
+name = "passage"
+kind = "waypoint"
+position = [100, 170, 50]
+[[keypoints]]
+name = "chamber"
+kind = "dead_end"
+position = [250, 180, 45]
+"#;
+
+#[test]
+fn waypoints_and_dead_ends_join_the_network() {
+    for mode in ["karstnsim", "gamma"] {
+        let scene = scene(&format!("{WAYPOINT_AND_DEAD_END}\n[skeleton]\nmode = \"{mode}\"\n"));
+        let (samples, graph) = inputs(&scene);
+        let s = routing::build(&scene, &samples, &graph).unwrap();
+        let node_of = |name: &str| s.nodes.iter().position(|n| n.keypoint.as_deref() == Some(name));
+        let degree = |i: usize| s.links().iter().filter(|l| l.contains(&(i as u32))).count();
+        let chamber = node_of("chamber").unwrap_or_else(|| panic!("{mode}: dead end missing"));
+        assert_eq!(degree(chamber), 1, "{mode}: a dead end is joined once");
+        let passage = node_of("passage").unwrap_or_else(|| panic!("{mode}: waypoint missing"));
+        assert!(degree(passage) >= 2, "{mode}: a waypoint is passed through");
+    }
+}
