@@ -206,6 +206,11 @@ fn bench_command(runs: usize, costgraph_only: bool) -> Result<(), StageError> {
             case.samples, case.k, t.seconds, t.edges, t.bytes_per_edge
         );
     }
+
+    println!("\nskeleton budgets (paths only, sampling and cost graph excluded)");
+    for (case, samples, seconds) in bench::time_skeleton_budgets(runs)? {
+        println!("{case:<45} {samples:>7} samples {seconds:>8.4} s");
+    }
     Ok(())
 }
 

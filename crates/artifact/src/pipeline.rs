@@ -111,7 +111,7 @@ impl Stage {
             Stage::Sampling => &["seed", "domain", "terrain", "geology", "keypoints", "sampling"],
             Stage::Costgraph => &["domain", "terrain", "geology", "keypoints", "connectivity", "costgraph"],
             Stage::Skeleton => {
-                &["seed", "domain", "terrain", "geology", "keypoints", "connectivity", "skeleton"]
+                &["seed", "domain", "terrain", "geology", "keypoints", "connectivity", "phases", "skeleton"]
             }
             Stage::Hydro => &["domain", "terrain", "keypoints", "hydro"],
             Stage::Sdf => &["seed", "domain", "terrain", "sdf"],

@@ -1,5 +1,6 @@
 //! Key points: the field data the network must honour. Sinks (inlets) are where water enters,
-//! springs (outlets) where it leaves, waypoints are known passages the network must visit.
+//! springs (outlets) where it leaves, waypoints are known passages the network must visit,
+//! dead ends are known blind passages (a breakout chamber, a choke) joined to it once.
 
 use serde::{Deserialize, Serialize};
 
@@ -13,6 +14,7 @@ pub enum KeyPointKind {
     Spring,
     Waypoint,
     /// A known blind passage: the network reaches it, nothing flows on from it.
+
     DeadEnd,
 }
 

@@ -28,7 +28,7 @@ mod validate;
 pub use domain::Domain;
 pub use fracture::FractureFamily;
 pub use keypoint::{KeyPoint, KeyPointKind};
-pub use scene::{Connectivity, Geology, Link, Scene, SceneError};
+pub use scene::{Connectivity, Geology, Link, Phase, Scene, SceneError};
 pub use surface::{Geometry, Surface};
 pub use terrain::Terrain;
 pub use validate::Problem;

@@ -28,6 +28,9 @@ pub struct Scene {
     pub keypoints: Vec<KeyPoint>,
     #[serde(default)]
     pub connectivity: Connectivity,
+    /// Speleogenetic phases, oldest first (`[[phases]]`); none: one phase with every spring.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub phases: Vec<Phase>,
     #[serde(default)]
     pub sampling: SamplingParams,
     #[serde(default)]
@@ -108,9 +111,27 @@ pub struct Connectivity {
     /// Absent: every entry is 2.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub matrix: Option<Vec<Vec<u8>>>,
-    /// Pairs of key point names that must be directly linked by a conduit.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub forced: Vec<[String; 2]>,
+}
+
+/// One speleogenetic phase (`[[phases]]`, KarstNSim §2.6): the springs active during it (each
+/// with its water table), the sinks' weights then, and how much cheaper the conduits of the
+/// earlier phases are to reuse.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Phase {
+    pub name: String,
+    /// Names of the springs that drain the network during the phase.
+    pub springs: Vec<String>,
+    /// Factor in (0, 1] on the cost of the edges the earlier phases' conduits use (default 1).
+    #[serde(default = "one")]
+    pub inherited_cost: f64,
+    /// Sink weights during the phase, by sink name; sinks not listed keep their own weight.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub weights: std::collections::BTreeMap<String, f64>,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 /// How sink `s` relates to spring `t` in the connectivity matrix.

@@ -54,9 +54,10 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     found.layers(scene);
     found.field_nodes(scene, "geology.potential", &scene.geology.potential, false);
     found.field_nodes(scene, "geology.no_karst", &scene.geology.no_karst, true);
-    found.forced_links(scene);
     found.keypoints(scene);
     found.connectivity(scene);
+    found.forced_links(scene);
+    found.phases(scene);
     scene.sampling.check(&mut found);
     scene.costgraph.check(&mut found);
     scene.skeleton.check(&mut found);
@@ -287,20 +288,6 @@ impl Checks<'_> {
         }
     }
 
-    fn forced_links(&mut self, scene: &Scene) {
-        for (i, pair) in scene.connectivity.forced.iter().enumerate() {
-            let field = format!("connectivity.forced[{i}]");
-            for name in pair {
-                if !scene.keypoints.iter().any(|k| &k.name == name) {
-                    self.report(&field, format!("\"{name}\" is not a key point"));
-                }
-            }
-            if pair[0] == pair[1] {
-                self.report(&field, format!("links \"{}\" to itself", pair[0]));
-            }
-        }
-    }
-
     fn fractures(&mut self, scene: &Scene) {
         for (i, f) in scene.geology.fractures.iter().enumerate() {
             let at = |field: &str| format!("geology.fractures[{i}].{field}");
@@ -374,6 +361,59 @@ impl Checks<'_> {
                 &field,
                 format!("\"{}\" at z = {z} is above the terrain (ground at {ground:.3})", k.name),
             );
+        }
+    }
+
+    fn phases(&mut self, scene: &Scene) {
+        if !scene.phases.is_empty() && scene.skeleton.mode != crate::params::SkeletonMode::Karstnsim {
+            self.report("phases", "phases need skeleton.mode = \"karstnsim\"".into());
+        }
+        let is = |name: &str, kind| scene.keypoints.iter().any(|k| k.name == name && k.kind == kind);
+        for (i, phase) in scene.phases.iter().enumerate() {
+            let at = |f: &str| format!("phases[{i}].{f}");
+            if scene.phases[..i].iter().any(|o| o.name == phase.name) {
+                self.report(&at("name"), format!("\"{}\" is used twice", phase.name));
+            }
+            if phase.springs.is_empty() {
+                self.report(&at("springs"), format!("phase \"{}\" lists no spring", phase.name));
+            }
+            for spring in phase.springs.iter().filter(|s| !is(s, KeyPointKind::Spring)) {
+                self.report(
+                    &at("springs"),
+                    format!("names spring \"{spring}\", which [[keypoints]] does not define"),
+                );
+            }
+            let f = phase.inherited_cost;
+            if self.finite(&at("inherited_cost"), &[f]) && !(f > 0.0 && f <= 1.0) {
+                self.report(&at("inherited_cost"), format!("must be in (0, 1], got {f}"));
+            }
+            for (sink, w) in &phase.weights {
+                if !is(sink, KeyPointKind::Sink) {
+                    self.report(
+                        &at("weights"),
+                        format!("names sink \"{sink}\", which [[keypoints]] does not define"),
+                    );
+                } else if !(w.is_finite() && *w >= 0.0) {
+                    self.report(&at("weights"), format!("weight of \"{sink}\" must be ≥ 0, got {w}"));
+                }
+            }
+        }
+    }
+
+    fn forced_links(&mut self, scene: &Scene) {
+        for (i, pair) in scene.skeleton.forced_links.iter().enumerate() {
+            let field = format!("skeleton.forced_links[{i}]");
+            for name in pair {
+                if !scene.keypoints.iter().any(|k| &k.name == name) {
+                    self.report(
+                        &field,
+                        format!("names key point \"{name}\", which [[keypoints]] does not define"),
+                    );
+                }
+            }
+            if pair[0] == pair[1] {
+                self.report(&field, format!("links \"{}\" to itself", pair[0]));
+            }
         }
     }
 

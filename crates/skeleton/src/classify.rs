@@ -9,8 +9,9 @@
 //!   (a vadose canyon cut into a phreatic tube);
 //! - gently sloping higher up: `canyon`.
 //!
-//! `chamber` (where a tunnel crosses ghost rock, karstification potential ≈ 1) is part of the
-//! vocabulary but only assigned once the scene describes such rock.
+//! Before all of these, a segment whose midpoint lies in ghost rock is a `chamber`: the
+//! karstification potential there reaches `skeleton.ghost_rock_potential` (Paris et al.'s
+//! resistance π ≈ 0, KarstNSim's potential ≈ 1). Without that threshold there are no chambers.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -64,6 +65,9 @@ pub fn classify(scene: &Scene, a: DVec3, b: DVec3) -> ConduitType {
     let dip = if length > 0.0 { (d.z.abs() / length).asin().to_degrees() } else { 0.0 };
     let top = if a.z >= b.z { a } else { b };
     let mid = (a + b) * 0.5;
+    if p.ghost_rock_potential.is_some_and(|g| scene.geology.potential(mid) >= g) {
+        return ConduitType::Chamber;
+    }
     let above_water = scene.geology.water_tables.iter().map(|w| w.height_above(mid)).reduce(f64::min);
     if dip >= p.vertical_angle {
         let depth = scene.terrain.height(top.x, top.y) - top.z;
@@ -117,5 +121,13 @@ water_table = "w"
         assert_eq!(classify(&s, v(10.0, 10.0, 35.0), v(30.0, 10.0, 34.0)), ConduitType::Keyhole);
         assert_eq!(classify(&s, v(10.0, 10.0, 60.0), v(20.0, 10.0, 52.0)), ConduitType::Passage);
         assert_eq!(classify(&s, v(10.0, 10.0, 25.0), v(30.0, 10.0, 24.0)), ConduitType::Bed);
+    }
+
+    #[test]
+    fn ghost_rock_makes_chambers() {
+        let mut s = scene();
+        let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+        s.skeleton.ghost_rock_potential = Some(1.0);
+        assert_eq!(classify(&s, v(10.0, 10.0, 60.0), v(30.0, 10.0, 58.0)), ConduitType::Chamber);
     }
 }

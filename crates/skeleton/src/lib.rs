@@ -1,18 +1,25 @@
 //! Stage 3: the skeleton, i.e. the conduit network.
 //!
-//! This first version routes every sink to its spring along the least-cost path of the cost
-//! graph (Dijkstra with predecessors; a path's cost is the cost at its target) and merges the
-//! routes into one network: routes that reach the same sample share its node. The network is
-//! cut into conduits (branches between junctions, ends and key points); every conduit gets a
-//! radius and every segment a tunnel type ([`classify`]). Output: `skeleton.json` ([`Skeleton`]), plus karstnet's `network_nodes.dat` /
-//! `network_links.dat` written by the stage.
+//! Two published methods, chosen by `skeleton.mode`: Paris et al. 2021's γ-skeleton of the key
+//! points ([`gamma`]) and KarstNSim's vadose-then-phreatic routing of every sink with cohesion
+//! ([`karstnsim`]), both on the least-cost paths of the cost graph ([`search`]). The paths are
+//! merged into one network and cut into conduits ([`assemble`]); every segment gets a tunnel
+//! type ([`classify`]). Output: `skeleton.json` ([`Skeleton`]), plus karstnet's
+//! `network_nodes.dat` / `network_links.dat` and the per-node `network_nodes.csv` written by the stage.
 
+pub mod amplify;
+pub mod assemble;
 pub mod classify;
-pub mod dijkstra;
+pub mod gamma;
 pub mod karstnet;
+pub mod karstnsim;
 pub mod network;
+pub mod radius;
+pub mod render;
 pub mod routing;
+pub mod search;
 pub mod stage;
+pub mod tortuosity;
 
 pub use classify::ConduitType;
 pub use network::{Conduit, Node, Route, Skeleton, Zone};

@@ -7,7 +7,7 @@ use clap::Parser;
 use karst_artifact::cli::{InspectArgs, RunArgs, finish};
 use karst_skeleton::stage;
 
-/// Poisson-disk sampling of the bedrock (karstgen stage 3).
+/// The conduit network (karstgen stage 3).
 #[derive(Parser)]
 #[command(name = "karst-skeleton", version)]
 enum Cli {
@@ -15,11 +15,14 @@ enum Cli {
     Run(RunArgs),
     /// Summarize a skeleton artifact (or print it whole with --json).
     Inspect(InspectArgs),
+    /// Draw a skeleton artifact: top and side views, conduits coloured by type, into a PNG.
+    Render(stage::RenderArgs),
 }
 
 fn main() -> ExitCode {
     finish(match Cli::parse() {
         Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
         Cli::Inspect(args) => stage::inspect(&args),
+        Cli::Render(args) => stage::render(&args),
     })
 }

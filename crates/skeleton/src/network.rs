@@ -36,6 +36,13 @@ pub struct Conduit {
     pub radius: Vec<f64>,
     /// Type of each segment (nodes[i] → nodes[i + 1]).
     pub types: Vec<ConduitType>,
+    /// The speleogenetic phase that made the conduit (0: the first; later phases keep the
+    /// relict conduits of earlier ones).
+    #[serde(default)]
+    pub phase: u32,
+    /// The key points at the conduit's ends, in end order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub keypoints: Vec<String>,
 }
 
 /// The route water takes from one sink to one spring.
@@ -61,7 +68,7 @@ pub struct Skeleton {
 
 impl Payload for Skeleton {
     const KIND: Kind = Kind::Skeleton;
-    const SCHEMA: u32 = 2;
+    const SCHEMA: u32 = 3;
 }
 
 impl Skeleton {

@@ -1,221 +1,183 @@
-//! Routing every sink to its spring(s) and merging the routes into one network.
+//! The skeleton of a scene: the mode ([`karstnsim`] or [`gamma`]) draws the sample paths, the
+//! [`NetworkBuilder`] turns them into the artifact. Shared here: the sinks in their iteration
+//! order and the choice of the springs a sink drains to.
 //!
-//! Sinks are routed in their `order` (then scene order). A sink drains to every spring its
-//! connectivity row marks 1; when the row has no 1, to the cheapest of the springs marked 2
-//! (KarstNSim §1.4: uncertain connectivity keeps the closest spring in the cost metric).
-//! Routes that pass through the same sample share its node, which is how branches join.
-
-use std::collections::{HashMap, HashSet};
+//! Sinks are taken by increasing `order`; sinks of equal order are shuffled by the scene seed
+//! (KarstNSim §1.4: "by default, the iteration order ... is randomized"). A sink drains to every
+//! spring its connectivity row marks 1; when the row has no 1, to the cheapest of the springs
+//! marked 2 (uncertain connectivity keeps the closest spring in the cost metric).
 
 use karst_artifact::StageError;
 use karst_costgraph::CostGraph;
+use karst_geology::params::SkeletonMode;
 use karst_geology::rng::Random;
 use karst_geology::{KeyPointKind, Link, Scene};
 use karst_sampling::Samples;
 
-use crate::classify::classify;
-use crate::dijkstra::ShortestPaths;
-use crate::{Conduit, Node, Route, Skeleton, Zone};
+use crate::assemble::NetworkBuilder;
+use crate::karstnsim::PhaseSetup;
+use crate::search::{CostSetOf, EdgeCosts};
+use crate::{Skeleton, amplify, gamma, karstnsim};
 
-/// A key point of the routing problem: its index among sinks or springs, its scene key point.
-struct End<'a> {
-    row: usize,
-    keypoint: usize,
-    name: &'a str,
+/// A sink or a spring: its row (column) in the connectivity matrix, its scene key point.
+#[derive(Debug, Clone, Copy)]
+pub struct End<'a> {
+    pub row: usize,
+    pub keypoint: usize,
+    pub name: &'a str,
 }
 
-/// Builds the network of `scene` on the cost graph.
-pub fn build(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Skeleton, StageError> {
-    let routes = route_sinks(scene, samples, graph)?;
+/// Builds the network of `scene` on the cost graph; each spring routes on the cost set of its
+/// water table. Dead-end key points are
+/// closed to the mode's paths and to amplification, then joined once.
+pub fn build(scene: &Scene, samples: &Samples, full: &CostGraph) -> Result<Skeleton, StageError> {
     let mut network = NetworkBuilder::default();
-    for route in &routes {
-        network.add_path(&route.1);
-    }
-    let routes: Vec<Route> =
-        routes.into_iter().map(|(r, path)| Route { nodes: network.ids(&path), ..r }).collect();
-    let chains = network.conduit_chains(scene, samples);
-    let mut rng = Random::stream(scene.seed, "skeleton", "radius");
-    let [lo, hi] = scene.skeleton.radius;
-    let nodes: Vec<Node> = network.samples.iter().map(|&s| node(scene, samples, s)).collect();
-    let at = |i: u32| karst_geology::Point::from_array(nodes[i as usize].position);
-    let conduits = chains
-        .into_iter()
-        .map(|chain| {
-            let r = rng.range(lo, hi);
-            let types = chain.windows(2).map(|w| classify(scene, at(w[0]), at(w[1]))).collect();
-            Conduit { radius: vec![r; chain.len()], nodes: chain, types }
-        })
-        .collect();
-    Ok(Skeleton { nodes, conduits, routes })
-}
-
-fn node(scene: &Scene, samples: &Samples, sample: u32) -> Node {
-    let position = samples.positions[sample as usize];
-    let p = karst_geology::Point::from_array(position);
-    let phreatic = scene.geology.water_tables.iter().any(|w| w.height_above(p) < 0.0);
-    let keypoint =
-        scene.keypoints.get(sample as usize).filter(|_| samples.keypoint_sample(sample as usize).is_some());
-    Node {
-        position,
-        sample,
-        keypoint: keypoint.map(|k| k.name.clone()),
-        zone: if phreatic { Zone::Phreatic } else { Zone::Vadose },
-    }
-}
-
-/// Routes of every sink, with the sample path of each.
-fn route_sinks(
-    scene: &Scene,
-    samples: &Samples,
-    graph: &CostGraph,
-) -> Result<Vec<(Route, Vec<usize>)>, StageError> {
-    let ends = |kind| -> Vec<End> {
-        scene
-            .keypoints_of(kind)
-            .enumerate()
-            .map(|(row, (keypoint, k))| End { row, keypoint, name: &k.name })
-            .collect()
+    let closed = without_dead_ends(scene, samples, full);
+    let graph = closed.as_ref().unwrap_or(full);
+    let routes = match scene.skeleton.mode {
+        SkeletonMode::Karstnsim => {
+            // One cost set per spring's water table (KarstNSim §1.3): C_WT differs between them.
+            let sets: Vec<CostSetOf> = (0..graph.cost_sets.len()).map(|set| CostSetOf { graph, set }).collect();
+            let cost_set =
+                |table: &str| -> &dyn EdgeCosts { &sets[graph.cost_set_of_water_table(table).unwrap_or(0)] };
+            let sinks = sinks_in_order(scene);
+            let mut inherited = vec![false; graph.edge_count()];
+            let mut routes = Vec::new();
+            for (index, mut setup) in phase_setups(scene, graph).into_iter().enumerate() {
+                network.phase = index as u32;
+                setup.inherited.clone_from(&inherited);
+                let done = karstnsim::route(scene, samples, graph, &cost_set, &sinks, &setup)?;
+                for (_, path) in &done.routes {
+                    network.add_path(path);
+                }
+                for (old, new) in inherited.iter_mut().zip(&done.used) {
+                    *old |= *new;
+                }
+                routes = done.routes;
+            }
+            routes
+        }
+        SkeletonMode::Gamma => gamma::network(scene, samples, graph, &mut network)?,
     };
-    let mut sinks = ends(KeyPointKind::Sink);
-    let springs = ends(KeyPointKind::Spring);
-    sinks.sort_by_key(|s| (scene.keypoints[s.keypoint].order, s.row));
-    let mut routes = Vec::new();
-    for sink in &sinks {
-        let source = sample_of(samples, sink)?;
-        let candidates: Vec<(&End, Link)> = springs
-            .iter()
-            .map(|t| (t, scene.link(sink.row, t.row)))
-            .filter(|(_, l)| *l != Link::None)
-            .collect();
-        let targets = candidates.iter().map(|(t, _)| sample_of(samples, t)).collect::<Result<Vec<_>, _>>()?;
-        // One search per spring, in the cost set of its water table (KarstNSim §1.3).
-        let set = |t: &End| {
-            scene.keypoints[t.keypoint].water_table.as_deref().and_then(|w| graph.cost_set_of_water_table(w))
-        };
-        let paths: Vec<ShortestPaths> = candidates
-            .iter()
-            .zip(&targets)
-            .map(|((t, _), &target)| ShortestPaths::from(graph, set(t).unwrap_or(0), source, &[target]))
-            .collect();
-        let unreachable = |t: &End| {
-            StageError::input(format!(
-                "sink \"{}\" cannot reach spring \"{}\" through the cost graph (raise costgraph.k or max_edge_length)",
-                sink.name, t.name
-            ))
-        };
-        let chosen: Vec<&End> = if candidates.iter().any(|(_, l)| *l == Link::Connected) {
-            candidates.iter().filter(|(_, l)| *l == Link::Connected).map(|(t, _)| *t).collect()
-        } else {
-            let cheapest = candidates
-                .iter()
-                .zip(targets.iter().zip(&paths))
-                .min_by(|a, b| a.1.1.cost(*a.1.0).total_cmp(&b.1.1.cost(*b.1.0)))
-                .map(|((t, _), _)| *t);
-            cheapest.into_iter().collect()
-        };
-        for spring in chosen {
-            let target = sample_of(samples, spring)?;
-            let paths = &paths[candidates
-                .iter()
-                .position(|(t, _)| std::ptr::eq(*t, spring))
-                .expect("a chosen spring is a candidate")];
-            let path = paths.path(target).ok_or_else(|| unreachable(spring))?;
-            let k = &scene.keypoints[sink.keypoint];
-            let route = Route {
-                sink: sink.name.to_string(),
-                spring: spring.name.to_string(),
-                weight: k.weight,
-                nodes: Vec::new(),
-                cost: paths.cost(target),
-            };
-            routes.push((route, path));
+    amplify::join_keypoints(scene, samples, full, &mut network)?;
+    amplify::amplify(scene, samples, graph, &mut network);
+    Ok(network.finish(scene, samples, routes))
+}
+
+/// The cost graph with the edges into or out of dead-end key points closed, so that no path but
+/// their own passes through them; None when the scene has none.
+fn without_dead_ends(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Option<CostGraph> {
+    let mut closed = vec![false; graph.node_count()];
+    for (i, _) in scene.keypoints_of(KeyPointKind::DeadEnd) {
+        if let Some(s) = samples.keypoint_sample(i) {
+            closed[s] = true;
         }
     }
-    Ok(routes)
+    closed.iter().any(|c| *c).then(|| {
+        // Closed edges cost +∞ in every cost set: no search relaxes them, and edge ids (shared
+        // with the per-edge cohesion state) stay those of the full graph.
+        let mut open = graph.clone();
+        for u in 0..graph.node_count() {
+            for edge in graph.offsets[u] as usize..graph.offsets[u + 1] as usize {
+                if closed[u] || closed[graph.targets[edge] as usize] {
+                    for set in &mut open.cost_sets {
+                        set.costs[edge] = f32::INFINITY;
+                    }
+                }
+            }
+        }
+        open
+    })
 }
 
-fn sample_of(samples: &Samples, end: &End) -> Result<usize, StageError> {
+/// The phases of the scene, oldest first (one with every spring when it lists none); their
+/// inherited edges are filled in as the phases run.
+fn phase_setups<'a>(scene: &'a Scene, graph: &CostGraph) -> Vec<PhaseSetup<'a>> {
+    if scene.phases.is_empty() {
+        return vec![PhaseSetup::single(scene, graph)];
+    }
+    let springs = ends(scene, KeyPointKind::Spring);
+    scene
+        .phases
+        .iter()
+        .map(|phase| PhaseSetup {
+            springs: springs.iter().filter(|s| phase.springs.iter().any(|n| n == s.name)).copied().collect(),
+            inherited: Vec::new(),
+            inherited_cost: phase.inherited_cost,
+            weights: phase.weights.clone(),
+        })
+        .collect()
+}
+
+/// The ends of `kind`, in scene order.
+pub fn ends(scene: &Scene, kind: KeyPointKind) -> Vec<End<'_>> {
+    scene
+        .keypoints_of(kind)
+        .enumerate()
+        .map(|(row, (keypoint, k))| End { row, keypoint, name: &k.name })
+        .collect()
+}
+
+/// The sinks by increasing `order`, equal orders shuffled by the seed.
+pub fn sinks_in_order(scene: &Scene) -> Vec<End<'_>> {
+    let mut rng = Random::stream(scene.seed, "skeleton", "sink order");
+    let mut keyed: Vec<(i64, u64, End)> = ends(scene, KeyPointKind::Sink)
+        .into_iter()
+        .map(|s| (scene.keypoints[s.keypoint].order, (rng.uniform() * 2f64.powi(53)) as u64, s))
+        .collect();
+    keyed.sort_by_key(|(order, key, s)| (*order, *key, s.row));
+    keyed.into_iter().map(|(_, _, s)| s).collect()
+}
+
+/// The springs `sink` drains to among `springs`, given the cost of reaching each allowed spring
+/// (infinite when unreachable): every spring marked 1, else the cheapest marked 2; none when
+/// no spring of `springs` is allowed. Errors name the sink and the spring it cannot reach.
+pub fn chosen_springs<'a>(
+    scene: &Scene,
+    sink: &End,
+    springs: &[End<'a>],
+    cost_to: &mut dyn FnMut(&End<'a>) -> Result<f64, StageError>,
+) -> Result<Vec<End<'a>>, StageError> {
+    let allowed: Vec<(End, Link)> =
+        springs.iter().map(|t| (*t, scene.link(sink.row, t.row))).filter(|(_, l)| *l != Link::None).collect();
+    let unreachable = |t: &End| {
+        StageError::input(format!(
+            "sink \"{}\" cannot reach spring \"{}\" through the cost graph (raise costgraph.k or max_edge_length)",
+            sink.name, t.name
+        ))
+    };
+    if allowed.is_empty() {
+        return Ok(Vec::new());
+    }
+    let connected: Vec<End> =
+        allowed.iter().filter(|(_, l)| *l == Link::Connected).map(|(t, _)| *t).collect();
+    if !connected.is_empty() {
+        for t in &connected {
+            if !cost_to(t)?.is_finite() {
+                return Err(unreachable(t));
+            }
+        }
+        return Ok(connected);
+    }
+    let mut best: Option<(f64, End)> = None;
+    for (t, _) in &allowed {
+        let cost = cost_to(t)?;
+        if cost.is_finite() && best.is_none_or(|(b, _)| cost < b) {
+            best = Some((cost, *t));
+        }
+    }
+    match best {
+        Some((_, t)) => Ok(vec![t]),
+        None => Err(unreachable(&allowed[0].0)),
+    }
+}
+
+/// The sample of a key point, or an error naming it.
+pub fn sample_of(samples: &Samples, end: &End) -> Result<usize, StageError> {
     samples.keypoint_sample(end.keypoint).ok_or_else(|| {
         StageError::input(format!(
             "key point \"{}\" is not in samples.bin (the scene changed since sampling: rerun `cargo xtask run --from sampling`)",
             end.name
         ))
     })
-}
-
-/// The network as it grows: nodes in order of first appearance, undirected links.
-#[derive(Default)]
-struct NetworkBuilder {
-    samples: Vec<u32>,
-    id_of: HashMap<u32, u32>,
-    adjacency: Vec<Vec<u32>>,
-}
-
-impl NetworkBuilder {
-    fn id(&mut self, sample: usize) -> u32 {
-        let next = self.samples.len() as u32;
-        *self.id_of.entry(sample as u32).or_insert_with(|| {
-            self.samples.push(sample as u32);
-            self.adjacency.push(Vec::new());
-            next
-        })
-    }
-
-    fn ids(&self, path: &[usize]) -> Vec<u32> {
-        path.iter().map(|s| self.id_of[&(*s as u32)]).collect()
-    }
-
-    fn add_path(&mut self, path: &[usize]) {
-        let ids: Vec<u32> = path.iter().map(|&s| self.id(s)).collect();
-        for w in ids.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            if a != b && !self.adjacency[a as usize].contains(&b) {
-                self.adjacency[a as usize].push(b);
-                self.adjacency[b as usize].push(a);
-            }
-        }
-    }
-
-    /// Cuts the network into chains between ends: nodes of degree ≠ 2 and key points.
-    /// Isolated cycles become one closed chain each.
-    fn conduit_chains(&mut self, scene: &Scene, samples: &Samples) -> Vec<Vec<u32>> {
-        for list in &mut self.adjacency {
-            list.sort_unstable();
-        }
-        let is_end: Vec<bool> = (0..self.samples.len())
-            .map(|i| {
-                let s = self.samples[i] as usize;
-                self.adjacency[i].len() != 2
-                    || (s < scene.keypoints.len() && samples.keypoint_sample(s).is_some())
-            })
-            .collect();
-        let mut used = HashSet::new();
-        let mut chains = Vec::new();
-        let starts: Vec<u32> = (0..self.samples.len() as u32).filter(|&i| is_end[i as usize]).collect();
-        let cycle_starts = 0..self.samples.len() as u32;
-        for start in starts.into_iter().chain(cycle_starts) {
-            for &next in &self.adjacency[start as usize].clone() {
-                if used.contains(&(start.min(next), start.max(next))) {
-                    continue;
-                }
-                chains.push(self.walk(start, next, &is_end, &mut used));
-            }
-        }
-        chains
-    }
-
-    fn walk(&self, start: u32, first: u32, is_end: &[bool], used: &mut HashSet<(u32, u32)>) -> Vec<u32> {
-        let mut chain = vec![start];
-        let (mut prev, mut at) = (start, first);
-        loop {
-            used.insert((prev.min(at), prev.max(at)));
-            chain.push(at);
-            if is_end[at as usize] || at == start {
-                return chain;
-            }
-            let next =
-                self.adjacency[at as usize].iter().copied().find(|&n| n != prev).expect("degree-2 node");
-            (prev, at) = (at, next);
-        }
-    }
 }

@@ -42,6 +42,28 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     ))
 }
 
+/// `karst-skeleton render FILE --png PNG`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RenderArgs {
+    /// The skeleton artifact.
+    pub file: std::path::PathBuf,
+    /// The picture to write.
+    #[arg(long)]
+    pub png: std::path::PathBuf,
+    /// Title written on the picture (default: the artifact's file name).
+    #[arg(long)]
+    pub title: Option<String>,
+}
+
+/// `karst-skeleton render`.
+pub fn render(args: &RenderArgs) -> Result<(), StageError> {
+    let (_, skeleton) = read_artifact::<Skeleton>(&args.file)?;
+    let title = args.title.clone().unwrap_or_else(|| args.file.display().to_string());
+    crate::render::render(&skeleton, &title)
+        .write_png(&args.png)
+        .map_err(|e| StageError::failure(format!("{}: cannot write the picture: {e}", args.png.display())))
+}
+
 /// `karst-skeleton inspect`.
 pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     if args.json {

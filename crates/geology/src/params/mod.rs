@@ -16,4 +16,4 @@ pub use mesher::MesherParams;
 pub use metrics::MetricsParams;
 pub use sampling::{RadiusUnit, SamplingParams};
 pub use sdf::SdfParams;
-pub use skeleton::SkeletonParams;
+pub use skeleton::{Mode as SkeletonMode, SkeletonParams};

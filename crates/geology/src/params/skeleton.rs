@@ -1,4 +1,5 @@
-//! `[skeleton]`: the conduit network.
+//! `[skeleton]`: the conduit network, by Paris et al. 2021's γ-skeleton (`mode = "gamma"`) or
+//! KarstNSim's vadose-then-phreatic routing (`mode = "karstnsim"`, the default).
 
 use serde::{Deserialize, Serialize};
 
@@ -7,8 +8,43 @@ use crate::validate::Checks;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SkeletonParams {
-    /// Range `[min, max]` of conduit radii, metres; each conduit draws its radius uniformly.
+    /// How the network is synthesized.
+    pub mode: Mode,
+    /// γ of the γ-skeleton rule (gamma mode): a–b is kept unless some key point k has
+    /// d(a,k)^γ + d(k,b)^γ < d(a,b)^γ. 2: Gabriel-like, large: relative neighbourhood graph.
+    pub gamma: f64,
+    /// Key-point pairs always joined by a conduit (gamma mode), by name.
+    pub forced_links: Vec<[String; 2]>,
+    /// KarstNSim's P_red in the vadose zone: edges already used cost this fraction (0, 1].
+    pub cohesion_vadose: f64,
+    /// P_red in the phreatic zone.
+    pub cohesion_phreatic: f64,
+    /// Amplification (Paris et al. 2021 §5.2): steps of new key points drawn in the bedrock of
+    /// the network's bounding box and joined to it.
+    pub amplification_steps: usize,
+    /// New key points per amplification step.
+    pub amplification_points: usize,
+    /// Fraction of the new key points that are dead ends (joined once); the others are interior
+    /// points (joined at two places, closing loops).
+    pub dead_end_fraction: f64,
+    /// θ in [0, 1]: amplitude of the tortuosity added by midpoint displacement, from a few
+    /// centimetres (0) to 4 m (1). Absent: conduits keep the straight links of the graph.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tortuosity: Option<f64>,
+    /// Midpoint-displacement levels (each doubles the segments of a conduit).
+    pub tortuosity_levels: u32,
+    /// Range `[min, max]` of conduit radii, metres, outside the epikarst: a Gaussian process
+    /// along each conduit, with uniform marginals over the range.
     pub radius: [f64; 2],
+    /// Range `[min, max]` of the correlation length of the radius process, metres; each
+    /// conduit draws its own.
+    pub radius_correlation: [f64; 2],
+    /// Radius of epikarst segments, metres.
+    pub epikarst_radius: f64,
+    /// Segments whose midpoint has a karstification potential at or above this are chambers
+    /// (ghost rock: Paris et al.'s resistance ≈ 0). Absent: no chambers.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ghost_rock_potential: Option<f64>,
     /// Segments steeper than this (degrees from horizontal) are shafts: epikarst or tube.
     pub vertical_angle: f64,
     /// Shafts starting within this depth below the ground are epikarst, metres.
@@ -20,7 +56,20 @@ pub struct SkeletonParams {
 impl Default for SkeletonParams {
     fn default() -> Self {
         SkeletonParams {
+            mode: Mode::Karstnsim,
+            gamma: 2.0,
+            forced_links: Vec::new(),
+            cohesion_vadose: 1.0,
+            cohesion_phreatic: 1.0,
+            amplification_steps: 0,
+            amplification_points: 5,
+            dead_end_fraction: 0.5,
+            tortuosity: None,
+            tortuosity_levels: 2,
             radius: [0.5, 4.0],
+            radius_correlation: [50.0, 200.0],
+            epikarst_radius: 0.5,
+            ghost_rock_potential: None,
             vertical_angle: 60.0,
             epikarst_depth: 15.0,
             keyhole_height: 10.0,
@@ -28,8 +77,50 @@ impl Default for SkeletonParams {
     }
 }
 
+/// How the network is synthesized.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Mode {
+    /// Paris et al. 2021 §5.1: the γ-skeleton of the key points, each kept pair joined by its
+    /// least-cost path.
+    Gamma,
+    /// KarstNSim §1.4: every sink routed to its spring's water table, then to the spring.
+    Karstnsim,
+}
+
 impl SkeletonParams {
     pub(crate) fn check(&self, c: &mut Checks) {
+        if c.finite("skeleton.gamma", &[self.gamma]) && self.gamma <= 0.0 {
+            c.report("skeleton.gamma", format!("must be > 0, got {}", self.gamma));
+        }
+        for (field, p) in [
+            ("skeleton.cohesion_vadose", self.cohesion_vadose),
+            ("skeleton.cohesion_phreatic", self.cohesion_phreatic),
+        ] {
+            if c.finite(field, &[p]) && !(p > 0.0 && p <= 1.0) {
+                c.report(field, format!("P_red must be in (0, 1], got {p}"));
+            }
+        }
+        if c.finite("skeleton.dead_end_fraction", &[self.dead_end_fraction])
+            && !(0.0..=1.0).contains(&self.dead_end_fraction)
+        {
+            c.report(
+                "skeleton.dead_end_fraction",
+                format!("must be in [0, 1], got {}", self.dead_end_fraction),
+            );
+        }
+        if let Some(theta) = self.tortuosity
+            && c.finite("skeleton.tortuosity", &[theta])
+            && !(0.0..=1.0).contains(&theta)
+        {
+            c.report("skeleton.tortuosity", format!("θ must be in [0, 1], got {theta}"));
+        }
+        if self.tortuosity_levels > 6 {
+            c.report(
+                "skeleton.tortuosity_levels",
+                format!("must be at most 6, got {}", self.tortuosity_levels),
+            );
+        }
         let [lo, hi] = self.radius;
         c.positive("skeleton.radius", lo);
         if lo.is_finite() && hi.is_finite() && hi < lo {
@@ -42,6 +133,18 @@ impl SkeletonParams {
                 "skeleton.vertical_angle",
                 format!("must be in (0, 90] degrees, got {}", self.vertical_angle),
             );
+        }
+        let [c0, c1] = self.radius_correlation;
+        c.positive("skeleton.radius_correlation", c0);
+        if c0.is_finite() && c1.is_finite() && c1 < c0 {
+            c.report("skeleton.radius_correlation", format!("[{c0}, {c1}] is not a range (max < min)"));
+        }
+        c.positive("skeleton.epikarst_radius", self.epikarst_radius);
+        if let Some(g) = self.ghost_rock_potential
+            && c.finite("skeleton.ghost_rock_potential", &[g])
+            && !(0.0..=1.0).contains(&g)
+        {
+            c.report("skeleton.ghost_rock_potential", format!("must be in [0, 1], got {g}"));
         }
         c.non_negative("skeleton.epikarst_depth", self.epikarst_depth);
         c.non_negative("skeleton.keyhole_height", self.keyhole_height);

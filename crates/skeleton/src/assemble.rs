@@ -1,0 +1,158 @@
+//! From sample paths to the skeleton artifact: paths that pass through the same sample share
+//! its node (which is how branches join), the network is cut into conduits between ends
+//! (junctions, dead ends and key points), and every segment gets its tunnel type.
+
+use std::collections::{HashMap, HashSet};
+
+use karst_geology::{Point, Scene};
+use karst_sampling::Samples;
+
+use crate::classify::classify;
+use crate::radius::RadiusField;
+use crate::tortuosity;
+use crate::{Conduit, Node, Route, Skeleton, Zone};
+
+/// The network as it grows: nodes in order of first appearance, undirected links.
+#[derive(Default)]
+pub struct NetworkBuilder {
+    /// Sample of each node.
+    pub samples: Vec<u32>,
+    id_of: HashMap<u32, u32>,
+    /// Neighbours of each node, in insertion order.
+    pub adjacency: Vec<Vec<u32>>,
+    /// The phase paths are added in.
+    pub phase: u32,
+    /// The phase that made each link (a < b).
+    link_phase: HashMap<(u32, u32), u32>,
+}
+
+impl NetworkBuilder {
+    fn id(&mut self, sample: usize) -> u32 {
+        let next = self.samples.len() as u32;
+        *self.id_of.entry(sample as u32).or_insert_with(|| {
+            self.samples.push(sample as u32);
+            self.adjacency.push(Vec::new());
+            next
+        })
+    }
+
+    /// Node ids of a path of samples already added.
+    pub fn ids(&self, path: &[usize]) -> Vec<u32> {
+        path.iter().map(|s| self.id_of[&(*s as u32)]).collect()
+    }
+
+    /// Node of `sample`, if the network passes through it.
+    pub fn node_of(&self, sample: usize) -> Option<u32> {
+        self.id_of.get(&(sample as u32)).copied()
+    }
+
+    /// Adds a path of samples (consecutive samples become a link).
+    pub fn add_path(&mut self, path: &[usize]) {
+        let ids: Vec<u32> = path.iter().map(|&s| self.id(s)).collect();
+        for w in ids.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            if a != b && !self.adjacency[a as usize].contains(&b) {
+                self.adjacency[a as usize].push(b);
+                self.adjacency[b as usize].push(a);
+                self.link_phase.insert((a.min(b), a.max(b)), self.phase);
+            }
+        }
+    }
+
+    /// The skeleton: nodes, conduits with types and radii, and `routes` (sample paths turned
+    /// into node paths).
+    pub fn finish(mut self, scene: &Scene, samples: &Samples, routes: Vec<(Route, Vec<usize>)>) -> Skeleton {
+        let mut routes: Vec<Route> =
+            routes.into_iter().map(|(r, path)| Route { nodes: self.ids(&path), ..r }).collect();
+        let mut chains = self.conduit_chains(samples);
+        let phases: Vec<u32> = chains.iter().map(|c| self.phase_of(c[0], c[1])).collect();
+        let mut nodes: Vec<Node> = self.samples.iter().map(|&s| node(scene, samples, s)).collect();
+        if let Some(theta) = scene.skeleton.tortuosity {
+            tortuosity::refine(scene, theta, &mut nodes, &mut chains, &mut routes);
+        }
+        let mut radii = RadiusField::new(scene, nodes.len());
+        let at = |i: u32| Point::from_array(nodes[i as usize].position);
+        let conduits = chains
+            .into_iter()
+            .zip(phases)
+            .map(|(chain, phase)| {
+                let types: Vec<_> = chain.windows(2).map(|w| classify(scene, at(w[0]), at(w[1]))).collect();
+                let ends = [chain[0], chain[chain.len() - 1]];
+                let keypoints = ends.iter().filter_map(|&i| nodes[i as usize].keypoint.clone()).collect();
+                Conduit {
+                    radius: radii.conduit(&nodes, &chain, &types),
+                    nodes: chain,
+                    types,
+                    phase,
+                    keypoints,
+                }
+            })
+            .collect();
+        Skeleton { nodes, conduits, routes }
+    }
+
+    fn phase_of(&self, a: u32, b: u32) -> u32 {
+        self.link_phase[&(a.min(b), a.max(b))]
+    }
+
+    /// Cuts the network into chains between ends: nodes of degree ≠ 2, key points and nodes
+    /// where the phase changes. Isolated cycles become one closed chain each.
+    fn conduit_chains(&mut self, samples: &Samples) -> Vec<Vec<u32>> {
+        for list in &mut self.adjacency {
+            list.sort_unstable();
+        }
+        let is_end: Vec<bool> = (0..self.samples.len())
+            .map(|i| {
+                let next = &self.adjacency[i];
+                let phase_changes =
+                    next.len() == 2 && self.phase_of(i as u32, next[0]) != self.phase_of(i as u32, next[1]);
+                next.len() != 2 || phase_changes || is_keypoint(samples, self.samples[i])
+            })
+            .collect();
+        let mut used = HashSet::new();
+        let mut chains = Vec::new();
+        let starts: Vec<u32> = (0..self.samples.len() as u32).filter(|&i| is_end[i as usize]).collect();
+        let cycle_starts = 0..self.samples.len() as u32;
+        for start in starts.into_iter().chain(cycle_starts) {
+            for &next in &self.adjacency[start as usize].clone() {
+                if used.contains(&(start.min(next), start.max(next))) {
+                    continue;
+                }
+                chains.push(self.walk(start, next, &is_end, &mut used));
+            }
+        }
+        chains
+    }
+
+    fn walk(&self, start: u32, first: u32, is_end: &[bool], used: &mut HashSet<(u32, u32)>) -> Vec<u32> {
+        let mut chain = vec![start];
+        let (mut prev, mut at) = (start, first);
+        loop {
+            used.insert((prev.min(at), prev.max(at)));
+            chain.push(at);
+            if is_end[at as usize] || at == start {
+                return chain;
+            }
+            let next =
+                self.adjacency[at as usize].iter().copied().find(|&n| n != prev).expect("degree-2 node");
+            (prev, at) = (at, next);
+        }
+    }
+}
+
+/// Whether `sample` is the sample of a key point (key point i is sample i when present).
+fn is_keypoint(samples: &Samples, sample: u32) -> bool {
+    samples.keypoint_sample(sample as usize) == Some(sample as usize)
+}
+
+fn node(scene: &Scene, samples: &Samples, sample: u32) -> Node {
+    let keypoint = scene.keypoints.get(sample as usize).filter(|_| is_keypoint(samples, sample));
+    node_at(scene, samples.positions[sample as usize], sample, keypoint.map(|k| k.name.clone()))
+}
+
+/// A node at `position`, in the zone of the water tables there.
+pub fn node_at(scene: &Scene, position: [f64; 3], sample: u32, keypoint: Option<String>) -> Node {
+    let p = Point::from_array(position);
+    let phreatic = scene.geology.water_tables.iter().any(|w| w.height_above(p) < 0.0);
+    Node { position, sample, keypoint, zone: if phreatic { Zone::Phreatic } else { Zone::Vadose } }
+}

@@ -1,0 +1,173 @@
+//! KarstNSim mode (Gouy et al. 2024, §1.4, §2.4–2.6, §4.5): every sink, in its iteration order,
+//! is routed in two legs towards each spring it drains to:
+//!
+//! 1. vadose: the least-cost path from the sink to the spring's water table, i.e. to the
+//!    cheapest sample at or below it (none when the sink is already phreatic);
+//! 2. phreatic: the least-cost path (A*) from that point to the spring.
+//!
+//! Each spring routes on the cost set of its own water table (KarstNSim's C_WT differs per
+//! water table); the caller supplies the cost set by water-table name.
+//!
+//! Cohesion: once a sink's conduits are chosen, their edges (both directions) are marked used;
+//! later searches multiply the cost of used edges by P_red, `skeleton.cohesion_vadose` in the
+//! vadose leg and `skeleton.cohesion_phreatic` in the phreatic leg, so later conduits are
+//! attracted by earlier ones (Figure 6). With P_red = 1 every route is independent of the
+//! order of the sinks. The legs towards the several springs of one sink are all computed on
+//! the network as it stood before that sink.
+//!
+//! Polygenic karsts (§2.6): a scene may list `[[phases]]`, oldest first. Each phase routes every
+//! sink to the springs active then (its connectivity restricted to them; a sink with none
+//! sits the phase out), on costs where the edges of the earlier phases' conduits are multiplied
+//! by the phase's `inherited_cost`, so the new network reuses the old where it helps. The
+//! routes of the last phase are the network's present drainage; conduits only earlier phases
+//! used are relict (dry).
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+use karst_artifact::StageError;
+use karst_costgraph::CostGraph;
+use karst_geology::{KeyPointKind, Scene, Surface};
+use karst_sampling::Samples;
+
+use crate::Route;
+use crate::routing::{End, chosen_springs, ends, sample_of};
+use crate::search::{Cohesive, EdgeCosts, astar, dijkstra_to_set, min_cost_per_metre};
+
+/// The cost set of a water table, by name.
+pub type CostSets<'g> = dyn Fn(&str) -> &'g (dyn EdgeCosts + 'g) + 'g;
+
+/// What one phase routes to, and on which inherited network.
+pub struct PhaseSetup<'a> {
+    /// The springs active in the phase.
+    pub springs: Vec<End<'a>>,
+    /// Edges used by the conduits of the earlier phases.
+    pub inherited: Vec<bool>,
+    /// Cost factor of those edges.
+    pub inherited_cost: f64,
+    /// Sink weights during the phase, by name (others keep their own).
+    pub weights: BTreeMap<String, f64>,
+}
+
+impl<'a> PhaseSetup<'a> {
+    /// The only phase of a scene without `[[phases]]`: every spring, nothing inherited.
+    pub fn single(scene: &'a Scene, graph: &CostGraph) -> Self {
+        PhaseSetup {
+            springs: ends(scene, KeyPointKind::Spring),
+            inherited: vec![false; graph.edge_count()],
+            inherited_cost: 1.0,
+            weights: BTreeMap::new(),
+        }
+    }
+}
+
+/// One sink-to-spring path: its samples, edge ids and cost.
+struct Leg {
+    path: Vec<usize>,
+    edges: Vec<usize>,
+    cost: f64,
+}
+
+/// The routes of one phase and the edges its conduits use.
+pub struct PhaseRoutes {
+    pub routes: Vec<(Route, Vec<usize>)>,
+    pub used: Vec<bool>,
+}
+
+/// Routes `sinks` (in this order) to their springs in `phase`; returns each route with its
+/// sample path. `graph` gives the edge ids shared by every cost set.
+pub fn route<'g>(
+    scene: &Scene,
+    samples: &Samples,
+    graph: &CostGraph,
+    cost_set: &CostSets<'g>,
+    sinks: &[End],
+    phase: &PhaseSetup,
+) -> Result<PhaseRoutes, StageError> {
+    let springs = &phase.springs;
+    let mut used = vec![false; graph.edge_count()];
+    let mut per_metre: BTreeMap<String, f64> = BTreeMap::new();
+    let mut routes = Vec::new();
+    for sink in sinks {
+        let source = sample_of(samples, sink)?;
+        let mut legs: BTreeMap<usize, Leg> = BTreeMap::new();
+        let chosen = chosen_springs(scene, sink, springs, &mut |spring| {
+            let table = water_table_of(scene, spring);
+            let base = cost_set(&table.name);
+            let costs = &Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
+            let m = *per_metre
+                .entry(table.name.clone())
+                .or_insert_with(|| min_cost_per_metre(base, &samples.positions) * phase.inherited_cost);
+            let target = sample_of(samples, spring)?;
+            let leg = leg(scene, samples, costs, &used, m, table, source, target);
+            let cost = leg.as_ref().map_or(f64::INFINITY, |l| l.cost);
+            if let Some(l) = leg {
+                legs.insert(spring.row, l);
+            }
+            Ok(cost)
+        })?;
+        for spring in chosen {
+            let leg = &legs[&spring.row];
+            mark_used(graph, &leg.edges, &mut used);
+            let route = Route {
+                sink: sink.name.to_string(),
+                spring: spring.name.to_string(),
+                weight: phase
+                    .weights
+                    .get(sink.name)
+                    .copied()
+                    .unwrap_or(scene.keypoints[sink.keypoint].weight),
+                nodes: Vec::new(),
+                cost: leg.cost,
+            };
+            routes.push((route, leg.path.clone()));
+        }
+    }
+    Ok(PhaseRoutes { routes, used })
+}
+
+fn water_table_of<'s>(scene: &'s Scene, spring: &End) -> &'s Surface {
+    let name = scene.keypoints[spring.keypoint].water_table.as_deref().unwrap_or_default();
+    scene.water_table(name).expect("validation: every spring names a defined water table")
+}
+
+/// The vadose then phreatic path from `source` to `target`, or None when unreachable.
+#[allow(clippy::too_many_arguments)]
+fn leg(
+    scene: &Scene,
+    samples: &Samples,
+    costs: &dyn EdgeCosts,
+    used: &[bool],
+    per_metre: f64,
+    table: &Surface,
+    source: usize,
+    target: usize,
+) -> Option<Leg> {
+    let p = &scene.skeleton;
+    let at = |v: usize| DVec3::from_array(samples.positions[v]);
+    let phreatic = |v: usize| table.height_above(at(v)) <= 0.0;
+    let vadose_costs = Cohesive { base: costs, used, factor: p.cohesion_vadose };
+    let (vadose, reached) = dijkstra_to_set(&vadose_costs, source, phreatic);
+    let entry = reached?;
+    let phreatic_costs = Cohesive { base: costs, used, factor: p.cohesion_phreatic };
+    let heuristic = per_metre * p.cohesion_phreatic.min(1.0);
+    let phreatic = astar(&phreatic_costs, &samples.positions, heuristic, entry, target);
+    let mut path = vadose.path(entry)?;
+    path.extend(phreatic.path(target)?.into_iter().skip(1));
+    let mut edges = vadose.edges(entry);
+    edges.extend(phreatic.edges(target));
+    Some(Leg { path, edges, cost: vadose.cost(entry) + phreatic.cost(target) })
+}
+
+/// Marks `edges` and their reverse edges used.
+fn mark_used(graph: &CostGraph, edges: &[usize], used: &mut [bool]) {
+    for &e in edges {
+        used[e] = true;
+        let v = graph.targets[e] as usize;
+        let u = graph.offsets.partition_point(|&o| o as usize <= e) - 1;
+        let first = graph.offsets[v] as usize;
+        if let Some(j) = graph.out_edges(v).position(|(t, _)| t == u) {
+            used[first + j] = true;
+        }
+    }
+}

@@ -1,0 +1,63 @@
+//! The preset scenes of fixtures/scenes (Paris et al. 2021 Fig. 15, KarstNSim §2.1) are pinned
+//! by a summary of their skeleton in fixtures/golden/<preset>/skeleton-summary.json: node,
+//! conduit and link counts, total length, length per conduit type and the routes. Rerun with
+//! `KARSTGEN_BLESS_PRESETS=1` to rewrite the summaries, and say why in the commit.
+
+use karst_artifact::{Stage, read_artifact};
+use karst_skeleton::{ConduitType, Skeleton};
+use karstgen_tests::{root, run, scratch};
+use xtask::pipeline::Selection;
+
+const PRESETS: [&str; 6] =
+    ["branchwork", "looping", "rectilinear", "superimposed", "karstnsim", "karstnsim-2phase"];
+
+fn summary(s: &Skeleton) -> serde_json::Value {
+    let round = |v: f64| (v * 1000.0).round() / 1000.0;
+    let mut links = s.links();
+    links.sort_unstable();
+    links.dedup();
+    let types: serde_json::Map<String, serde_json::Value> = ConduitType::ALL
+        .into_iter()
+        .map(|t| (t.name().to_string(), round(s.length_of_type(t)).into()))
+        .collect();
+    let routes: Vec<serde_json::Value> = s
+        .routes
+        .iter()
+        .map(|r| serde_json::json!({"sink": r.sink, "spring": r.spring, "nodes": r.nodes.len(), "cost": round(r.cost)}))
+        .collect();
+    serde_json::json!({
+        "nodes": s.nodes.len(),
+        "conduits": s.conduits.len(),
+        "links": links.len(),
+        "length": round(s.total_length()),
+        "length_by_type": types,
+        "routes": routes,
+    })
+}
+
+#[test]
+fn preset_skeletons_match_their_golden_summaries() {
+    let bless = std::env::var_os("KARSTGEN_BLESS_PRESETS").is_some();
+    let mut failures = Vec::new();
+    for preset in PRESETS {
+        let out = scratch(&format!("preset-{preset}"));
+        let scene = root().join(format!("fixtures/scenes/{preset}.toml"));
+        for stage in [Stage::Sampling, Stage::Costgraph, Stage::Skeleton] {
+            run(&scene, &out, &Selection { only: Some(stage), ..Selection::default() }).unwrap();
+        }
+        let (_, skeleton) = read_artifact::<Skeleton>(&out.join(Stage::Skeleton.file_name())).unwrap();
+        let got = summary(&skeleton);
+        let golden = root().join(format!("fixtures/golden/{preset}/skeleton-summary.json"));
+        if bless {
+            std::fs::create_dir_all(golden.parent().unwrap()).unwrap();
+            std::fs::write(&golden, serde_json::to_string_pretty(&got).unwrap() + "\n").unwrap();
+            continue;
+        }
+        let text = std::fs::read_to_string(&golden).unwrap_or_default();
+        let want: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
+        if want != got {
+            failures.push(format!("{preset}: expected {want}\n got {got}"));
+        }
+    }
+    assert!(failures.is_empty(), "preset skeletons changed:\n{}", failures.join("\n"));
+}
