@@ -155,6 +155,9 @@ fn bless() -> Result<(), StageError> {
     Ok(())
 }
 
+/// Conduits of the synthetic sdf benchmark network (about 30k primitives).
+const SDF_BENCH_CONDUITS: usize = 100;
+
 fn bench_command(runs: usize) -> Result<(), StageError> {
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
     for scene in BENCH_SCENES {
@@ -164,6 +167,32 @@ fn bench_command(runs: usize) -> Result<(), StageError> {
             println!("{:<10} {seconds:>10.4}", stage.name());
         }
     }
+    sdf_bench(runs)
+}
+
+/// The sdf budgets (issue 7) on a synthetic network of about 30k primitives.
+fn sdf_bench(runs: usize) -> Result<(), StageError> {
+    let b = bench::sdf_network(SDF_BENCH_CONDUITS, runs)?;
+    let kinds: Vec<String> = b.by_kind.iter().map(|(k, n)| format!("{n} {k}")).collect();
+    println!(
+        "\nsdf, synthetic network of {SDF_BENCH_CONDUITS} conduits: {} primitives ({})",
+        b.primitives,
+        kinds.join(", ")
+    );
+    println!("build + BVH        {:>10.4} s", b.build_seconds);
+    println!("eval, uniform      {:>10.1} ns per point", b.eval_uniform_ns);
+    println!("eval, near conduits{:>10.1} ns per point", b.eval_near_ns);
+    let per = |bytes: f64| bytes / b.primitives.max(1) as f64;
+    println!(
+        "memory             {:>10} bytes ({:.1} per primitive)",
+        b.memory_bytes,
+        per(b.memory_bytes as f64)
+    );
+    println!(
+        "artifact payload   {:>10} bytes ({:.1} per primitive)",
+        b.artifact_bytes,
+        per(b.artifact_bytes as f64)
+    );
     Ok(())
 }
 

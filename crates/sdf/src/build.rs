@@ -8,9 +8,9 @@
 //! - a more tortuous conduit becomes a union of spheres: cross-sections are placed along it
 //!   every `sdf.sphere_spacing` radii, oriented by the curve's tangent (averaged at the nodes);
 //!   sphere centres are drawn on a jittered lattice of the same spacing in each section plane
-//!   and kept when at least half a spacing inside the section (the paper's R/2 selection); each
-//!   sphere is inscribed (its radius is the centre's depth in the section), and spheres inside
-//!   a bigger kept one are dropped;
+//!   and kept when at least half a spacing (the paper's R/2 selection) and `MIN_DEPTH` times
+//!   the section's deepest candidate inside it; each sphere is inscribed (its radius is the centre's depth in the
+//!   section), and spheres inside a bigger kept one (grown by `COVER` spacings) are dropped;
 //! - `chamber` segments become noise-biased chambers around the segment;
 //! - every wet segment also gets its water piece ([`crate::water`]).
 
@@ -210,6 +210,14 @@ fn dominant(types: &[ConduitType]) -> ConduitType {
         .unwrap_or(ConduitType::Tube)
 }
 
+/// Smallest sphere radius, as a fraction of the deepest candidate of its cross-section: the
+/// spheres hug the section's medial axis, and wall features finer than that are rounded off.
+const MIN_DEPTH: f64 = 0.6;
+
+/// A candidate is dropped when a kept sphere grown by this fraction of the spacing contains it:
+/// the union then differs from the kept spheres' by less than that.
+const COVER: f64 = 0.15;
+
 /// A candidate sphere: centre, radius, station.
 struct Candidate {
     centre: DVec3,
@@ -279,14 +287,23 @@ fn station_spheres(
     out: &mut Vec<Candidate>,
 ) {
     let (right, up) = frame(tangent);
-    let cells = (section.extent() / step).ceil() as i64;
+    let extent = section.extent();
+    let cells = (extent / step).ceil() as i64;
+    let mut lattice = Vec::new();
     for y in -cells..=cells {
         for x in -cells..=cells {
             let q = DVec2::new(x as f64 + jitter.range(-0.4, 0.4), y as f64 + jitter.range(-0.4, 0.4)) * step;
-            let depth = -section.distance(q);
-            if depth >= step * 0.5 {
-                out.push(Candidate { centre: origin + right * q.x + up * q.y, radius: depth, station });
+            // Beyond the extent the point is outside the section.
+            if q.length() < extent {
+                lattice.push((q, -section.distance(q)));
             }
+        }
+    }
+    let deepest = lattice.iter().map(|c| c.1).fold(0.0, f64::max);
+    let min_depth = (step * 0.5).max(MIN_DEPTH * deepest);
+    for (q, depth) in lattice {
+        if depth >= min_depth {
+            out.push(Candidate { centre: origin + right * q.x + up * q.y, radius: depth, station });
         }
     }
 }
@@ -305,7 +322,7 @@ fn prune(mut candidates: Vec<Candidate>, step: f64) -> Vec<[f32; 4]> {
         let hi = (c.station + reach).min(stations - 1);
         let inside = (lo..=hi).flat_map(|s| &kept[s]).any(|&o| {
             let big = &candidates[o];
-            big.centre.distance(c.centre) + c.radius <= big.radius
+            big.centre.distance(c.centre) + c.radius <= big.radius + COVER * step
         });
         if !inside {
             kept[c.station].push(k);
@@ -325,4 +342,60 @@ fn prune(mut candidates: Vec<Candidate>, step: f64) -> Vec<[f32; 4]> {
 
 fn to_f32(p: DVec3) -> [f32; 3] {
     p.as_vec3().to_array()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synthetic;
+
+    fn build_with(edit: impl FnOnce(&mut Scene, &mut Skeleton)) -> Result<SdfModel, StageError> {
+        let mut scene = synthetic::scene();
+        let (mut skeleton, hydro) = synthetic::network(2, 6, 5);
+        edit(&mut scene, &mut skeleton);
+        build(&scene, &skeleton, &hydro)
+    }
+
+    #[test]
+    fn bad_radii_nodes_and_terrains_are_input_errors() {
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let e = build_with(|_, s| s.conduits[2].radius[1] = bad).unwrap_err();
+            assert!((e.exit_code() == 2) && e.to_string().contains("conduits[2].radius[1]"), "{e}");
+        }
+        let e = build_with(|_, s| s.nodes[3].position[1] = f64::NAN).unwrap_err();
+        assert!((e.exit_code() == 2) && e.to_string().contains("nodes[3].position"), "{e}");
+        let e = build_with(|_, s| s.conduits[0].nodes[1] = 9999).unwrap_err();
+        assert!((e.exit_code() == 2) && e.to_string().contains("9999"), "{e}");
+        let e = build_with(|_, s| s.conduits[1].types.pop().map(|_| ()).unwrap_or(())).unwrap_err();
+        assert!((e.exit_code() == 2), "{e}");
+        let e = build_with(|scene, _| {
+            scene.terrain = karst_geology::Terrain::Plane {
+                elevation: 190.0,
+                origin: [0.0, 0.0],
+                gradient: [f64::INFINITY, 0.0],
+            }
+        })
+        .unwrap_err();
+        assert!((e.exit_code() == 2) && e.to_string().contains("Lipschitz"), "{e}");
+    }
+
+    #[test]
+    fn a_straight_conduit_is_swept_and_a_winding_one_is_spheres() {
+        let model = build_with(|_, _| {}).unwrap();
+        assert!(!model.sweeps.is_empty() && !model.spheres.is_empty());
+        let straight = [DVec3::ZERO, DVec3::new(10.0, 0.0, 0.0), DVec3::new(20.0, 0.1, 0.0)];
+        assert!(tortuosity(&straight) < 1e-3);
+        let winding = [
+            DVec3::ZERO,
+            DVec3::new(10.0, 0.0, 0.0),
+            DVec3::new(10.0, 10.0, 0.0),
+            DVec3::new(0.0, 10.0, 0.0),
+        ];
+        assert!((tortuosity(&winding) - (1.0 - 10.0 / 30.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_model_is_deterministic() {
+        assert_eq!(build_with(|_, _| {}).unwrap(), build_with(|_, _| {}).unwrap());
+    }
 }

@@ -10,7 +10,7 @@ use glam::{DVec3, Vec3};
 use crate::primitive::{Context, Primitive, signed_box_distance};
 
 /// Leaves per BVH leaf node.
-const LEAF: usize = 4;
+const LEAF: usize = 8;
 
 #[derive(Debug, Clone)]
 struct Node {

@@ -1,11 +1,12 @@
 //! Evaluating the construction tree of an [`SdfModel`]:
 //!
 //! - rock(p) = max(terrain(p), domain(p)), negative in the bedrock before karstification;
-//! - cave(p) = min over the karst leaves (sweeps, spheres, chambers, capsules), negative in the
-//!   karst volume K;
+//! - cave(p) = min(REACH, min over the karst leaves (sweeps, spheres, chambers, capsules)),
+//!   negative in the karst volume K;
 //! - eval(p) = −smooth_union(−rock(p), cave(p), blend): the terrain minus K, rounded by `blend`
 //!   where conduits open to the surface; negative in rock, positive in air;
-//! - water(p) = max(min over water pieces, cave(p)): negative in the water, which stays inside K.
+//! - water(p) = max(min(REACH, min over water pieces), cave(p)): negative in the water, which
+//!   stays inside K.
 //!
 //! All are 1-Lipschitz (see [`crate::ops`]). The union over leaves runs through the BVH and only
 //! needs the leaves that can go below −rock + blend; everything else cannot change eval.
@@ -18,6 +19,11 @@ use crate::model::detail_factor;
 use crate::primitive::{Context, Primitive};
 use crate::sweep::Sweep;
 use crate::{SdfModel, ops};
+
+/// The karst terms are clamped to at most this many metres: min(cave, REACH) keeps the sign and
+/// the Lipschitz bound (a smaller |f| is still a distance bound), and spares eval every leaf
+/// farther away: a point deep in rock visits only the leaves within REACH.
+pub const REACH: f64 = 8.0;
 
 /// The carved terrain's signed-distance bound, ready to evaluate.
 #[derive(Debug, Clone)]
@@ -52,29 +58,25 @@ impl CarvedTerrain {
         let rock = self.uncarved(p);
         let blend = self.model.blend;
         // The smooth union equals −rock wherever the caves stay above −rock + blend.
-        let caves = self.caves.min_value(p, -rock + blend, &self.context());
+        let caves = self.caves.min_value(p, (-rock + blend).min(REACH), &self.context());
         -ops::smooth_union(-rock, caves, blend)
     }
 
     /// The karst volume alone: negative inside the conduits and chambers; 1-Lipschitz.
     pub fn cave(&self, p: DVec3) -> f64 {
-        self.caves.min_value(p, f64::INFINITY, &self.context())
+        self.caves.min_value(p, REACH, &self.context())
     }
 
     /// [`CarvedTerrain::cave`] by visiting every leaf, without the BVH: the reference the
     /// hierarchy's pruning is tested against.
     pub fn cave_without_bvh(&self, p: DVec3) -> f64 {
         let ctx = self.context();
-        self.caves
-            .primitives
-            .iter()
-            .map(|leaf| leaf.value(p, f64::INFINITY, &ctx))
-            .fold(f64::INFINITY, f64::min)
+        self.caves.primitives.iter().map(|leaf| leaf.value(p, f64::INFINITY, &ctx)).fold(REACH, f64::min)
     }
 
     /// The water volume: negative in the water inside the conduits; 1-Lipschitz.
     pub fn water(&self, p: DVec3) -> f64 {
-        let pieces = self.water.min_value(p, f64::INFINITY, &self.context());
+        let pieces = self.water.min_value(p, REACH, &self.context());
         pieces.max(self.cave(p))
     }
 

@@ -1,6 +1,6 @@
 //! `karst-sdf`: stage 5 of karstgen. `run SCENE --out DIR` writes DIR/sdf.bin;
 //! `inspect FILE [--json]` prints a summary or the whole artifact;
-//! `slice FILE --z Z | --y Y --png PNG [--exr EXR]` writes a cross-section image.
+//! `slice FILE --z Z | --y Y | --x X --png PNG [--exr EXR]` writes a cross-section image.
 
 use std::process::ExitCode;
 
@@ -16,7 +16,7 @@ enum Cli {
     Run(RunArgs),
     /// Summarize an sdf artifact (or print it whole with --json).
     Inspect(InspectArgs),
-    /// Write a horizontal (--z) or vertical (--y) slice of an sdf artifact as PNG and/or EXR.
+    /// Write a horizontal (--z) or vertical (--y, --x) slice of an sdf artifact as PNG and/or EXR.
     Slice(stage::SliceArgs),
 }
 

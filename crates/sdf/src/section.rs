@@ -94,7 +94,11 @@ impl Section {
         let mut d2 = f64::INFINITY;
         let mut winding = 0i32;
         for arc in self.arcs() {
-            d2 = d2.min(arc.distance_squared(q));
+            // The arc lies in the box of its control points: skip the cubic when that box is
+            // already farther than the nearest arc so far.
+            if arc.box_distance_squared(q) < d2 {
+                d2 = d2.min(arc.distance_squared(q));
+            }
             winding += arc.winding(q);
         }
         let d = d2.sqrt();
@@ -220,6 +224,12 @@ impl Arc {
         self.p0 * (s * s) + self.p1 * (2.0 * s * t) + self.p2 * (t * t)
     }
 
+    fn box_distance_squared(&self, q: DVec2) -> f64 {
+        let lo = self.p0.min(self.p1).min(self.p2);
+        let hi = self.p0.max(self.p1).max(self.p2);
+        (lo - q).max(q - hi).max(DVec2::ZERO).length_squared()
+    }
+
     fn min_y(&self) -> f64 {
         let (a, b) = (self.p1.y - self.p0.y, self.p0.y - 2.0 * self.p1.y + self.p2.y);
         let mut y = self.p0.y.min(self.p2.y);
@@ -240,7 +250,7 @@ impl Arc {
         let d = self.p0 - q;
         let mut best = d.length_squared().min((self.p2 - q).length_squared());
         let coefficients = [b.dot(b), 3.0 * a.dot(b), 2.0 * a.dot(a) + d.dot(b), d.dot(a)];
-        for t in cubic_roots(coefficients) {
+        for t in cubic_roots(coefficients).iter() {
             let t = polish(coefficients, t).clamp(0.0, 1.0);
             best = best.min((self.at(t) - q).length_squared());
         }
@@ -253,7 +263,7 @@ impl Arc {
         let b = self.p0.y - 2.0 * self.p1.y + self.p2.y;
         let c = self.p0.y - q.y;
         let mut w = 0;
-        for t in quadratic_roots(b, 2.0 * a, c) {
+        for t in quadratic_roots(b, 2.0 * a, c).iter() {
             // Half-open [0, 1): a crossing at a shared end point counts once.
             if (0.0..1.0).contains(&t) && self.at(t).x > q.x {
                 let dy = 2.0 * a + 2.0 * b * t;
@@ -270,26 +280,46 @@ impl Arc {
     }
 }
 
+/// Up to three real roots, without allocating.
+#[derive(Debug, Clone, Copy, Default)]
+struct Roots {
+    values: [f64; 3],
+    len: usize,
+}
+
+impl Roots {
+    fn of(values: &[f64]) -> Self {
+        let mut r = Roots::default();
+        r.values[..values.len()].copy_from_slice(values);
+        r.len = values.len();
+        r
+    }
+
+    fn iter(&self) -> impl Iterator<Item = f64> + '_ {
+        self.values[..self.len].iter().copied()
+    }
+}
+
 /// Real roots of at² + bt + c.
-fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
+fn quadratic_roots(a: f64, b: f64, c: f64) -> Roots {
     if a.abs() < 1e-12 * (b.abs() + c.abs()).max(1e-300) {
-        return if b != 0.0 { vec![-c / b] } else { Vec::new() };
+        return if b != 0.0 { Roots::of(&[-c / b]) } else { Roots::default() };
     }
     let disc = b * b - 4.0 * a * c;
     if disc < 0.0 {
-        return Vec::new();
+        return Roots::default();
     }
     // Numerically stable pair.
     let s = disc.sqrt();
     let q = -0.5 * (b + b.signum() * s);
     if q == 0.0 {
-        return vec![0.0];
+        return Roots::of(&[0.0]);
     }
-    vec![q / a, c / q]
+    Roots::of(&[q / a, c / q])
 }
 
 /// Real roots of k[0]t³ + k[1]t² + k[2]t + k[3] (approximate; polished by [`polish`]).
-fn cubic_roots(k: [f64; 4]) -> Vec<f64> {
+fn cubic_roots(k: [f64; 4]) -> Roots {
     let scale = k.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     if k[0].abs() <= 1e-9 * scale {
         return quadratic_roots(k[1], k[2], k[3]);
@@ -302,11 +332,12 @@ fn cubic_roots(k: [f64; 4]) -> Vec<f64> {
     let disc = q * q / 4.0 + p * p * p / 27.0;
     if disc > 0.0 {
         let s = disc.sqrt();
-        vec![(-q / 2.0 + s).cbrt() + (-q / 2.0 - s).cbrt() + shift]
+        Roots::of(&[(-q / 2.0 + s).cbrt() + (-q / 2.0 - s).cbrt() + shift])
     } else {
         let r = (-p / 3.0).max(0.0).sqrt();
         let phi = if r > 0.0 { (-q / (2.0 * r * r * r)).clamp(-1.0, 1.0).acos() } else { 0.0 };
-        (0..3).map(|i| 2.0 * r * ((phi + std::f64::consts::TAU * i as f64) / 3.0).cos() + shift).collect()
+        let root = |i: f64| 2.0 * r * ((phi + std::f64::consts::TAU * i) / 3.0).cos() + shift;
+        Roots::of(&[root(0.0), root(1.0), root(2.0)])
     }
 }
 

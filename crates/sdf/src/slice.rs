@@ -1,7 +1,7 @@
 //! Cross-section images of the model: a horizontal slice at height z, or a vertical one at
-//! y = const (which cuts conduits across and shows their section shapes). The PNG shows rock
+//! y or x = const (which cuts conduits across and shows their section shapes). The PNG shows rock
 //! (grey, darker with depth into the rock), cave air (black), water (blue) and air above the
-//! ground (white), with the karst outline; the EXR stores the raw fields (R: f, G: cave,
+//! ground (white), with the karst outline (brown); the EXR stores the raw fields (R: f, G: cave,
 //! B: water) for other tools.
 
 use std::path::Path;
@@ -16,38 +16,45 @@ use crate::CarvedTerrain;
 pub enum Plane {
     /// Horizontal, at this height.
     Z(f64),
-    /// Vertical, at this northing.
+    /// Vertical, at this northing (x across the image).
     Y(f64),
+    /// Vertical, at this easting (y across the image).
+    X(f64),
 }
 
-/// A grid of points over the domain in `plane`, `pixel` metres apart: (width, height, point).
+/// A grid of points over the domain (or a window of it) in `plane`, `pixel` metres apart.
 pub struct Grid {
     pub width: usize,
     pub height: usize,
-    lo: DVec3,
-    hi: DVec3,
+    /// In-plane ranges: (u0, v1) is the top-left corner.
+    u0: f64,
+    v1: f64,
     plane: Plane,
     pixel: f64,
 }
 
 impl Grid {
-    pub fn new(field: &CarvedTerrain, plane: Plane, pixel: f64) -> Self {
+    /// `window` = [u0, u1, v0, v1] in the plane's coordinates (x, y for z slices; x, z for y
+    /// slices; y, z for x slices); the domain's extent when `None`.
+    pub fn new(field: &CarvedTerrain, plane: Plane, pixel: f64, window: Option<[f64; 4]>) -> Self {
         let d = &field.model().domain;
-        let (lo, hi) = (DVec3::from_array(d.min), DVec3::from_array(d.max));
-        let (u, v) = match plane {
-            Plane::Z(_) => (hi.x - lo.x, hi.y - lo.y),
-            Plane::Y(_) => (hi.x - lo.x, hi.z - lo.z),
-        };
-        let size = |s: f64| ((s / pixel).ceil() as usize).clamp(1, 8192);
-        Grid { width: size(u), height: size(v), lo, hi, plane, pixel }
+        let [u0, u1, v0, v1] = window.unwrap_or(match plane {
+            Plane::Z(_) => [d.min[0], d.max[0], d.min[1], d.max[1]],
+            Plane::Y(_) => [d.min[0], d.max[0], d.min[2], d.max[2]],
+            Plane::X(_) => [d.min[1], d.max[1], d.min[2], d.max[2]],
+        });
+        let size = |s: f64| ((s / pixel).ceil().max(1.0) as usize).min(8192);
+        Grid { width: size(u1 - u0), height: size(v1 - v0), u0, v1, plane, pixel }
     }
 
     /// The point of pixel (x, y), y down (north, or up, at the top).
     pub fn point(&self, x: usize, y: usize) -> DVec3 {
-        let u = self.lo.x + (x as f64 + 0.5) * self.pixel;
+        let u = self.u0 + (x as f64 + 0.5) * self.pixel;
+        let v = self.v1 - (y as f64 + 0.5) * self.pixel;
         match self.plane {
-            Plane::Z(z) => DVec3::new(u, self.hi.y - (y as f64 + 0.5) * self.pixel, z),
-            Plane::Y(n) => DVec3::new(u, n, self.hi.z - (y as f64 + 0.5) * self.pixel),
+            Plane::Z(z) => DVec3::new(u, v, z),
+            Plane::Y(n) => DVec3::new(u, n, v),
+            Plane::X(e) => DVec3::new(e, u, v),
         }
     }
 }
@@ -70,30 +77,25 @@ fn colour(field: &CarvedTerrain, p: DVec3, pixel: f64) -> Rgb {
 }
 
 /// Writes the PNG slice.
-pub fn write_png(field: &CarvedTerrain, plane: Plane, pixel: f64, path: &Path) -> std::io::Result<()> {
-    let grid = Grid::new(field, plane, pixel);
+pub fn write_png(field: &CarvedTerrain, grid: &Grid, path: &Path) -> std::io::Result<()> {
+    let pixel = grid.pixel;
     let mut canvas = Canvas::new(grid.width as u32, grid.height as u32, [255, 255, 255]);
     for y in 0..grid.height {
         for x in 0..grid.width {
             canvas.set(x as i64, y as i64, colour(field, grid.point(x, y), pixel));
         }
     }
-    let label = match plane {
+    let label = match grid.plane {
         Plane::Z(z) => format!("z = {z} m"),
         Plane::Y(n) => format!("y = {n} m"),
+        Plane::X(e) => format!("x = {e} m"),
     };
     canvas.text((4, 4), &label, 1, [200, 0, 0]);
     canvas.write_png(path)
 }
 
 /// Writes the EXR slice: R = f, G = cave, B = water.
-pub fn write_exr(
-    field: &CarvedTerrain,
-    plane: Plane,
-    pixel: f64,
-    path: &Path,
-) -> Result<(), exr::error::Error> {
-    let grid = Grid::new(field, plane, pixel);
+pub fn write_exr(field: &CarvedTerrain, grid: &Grid, path: &Path) -> Result<(), exr::error::Error> {
     exr::prelude::write_rgb_file(path, grid.width, grid.height, |x, y| {
         let p = grid.point(x, y);
         (field.eval(p) as f32, field.cave(p) as f32, field.water(p) as f32)

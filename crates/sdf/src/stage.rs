@@ -55,18 +55,25 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
 
 /// Arguments of `karst-sdf slice`.
 #[derive(clap::Args, Debug)]
+#[command(group = clap::ArgGroup::new("plane").required(true))]
 pub struct SliceArgs {
     /// The sdf.bin to slice.
     pub file: PathBuf,
     /// Horizontal slice at this height (metres).
-    #[arg(long, conflicts_with = "y", required_unless_present = "y")]
+    #[arg(long, group = "plane")]
     pub z: Option<f64>,
-    /// Vertical slice at this northing (metres): cuts conduits across.
-    #[arg(long)]
+    /// Vertical slice at this northing (metres): cuts east-west conduits across.
+    #[arg(long, group = "plane")]
     pub y: Option<f64>,
+    /// Vertical slice at this easting (metres): cuts north-south conduits across.
+    #[arg(long, group = "plane")]
+    pub x: Option<f64>,
     /// Pixel size, metres.
     #[arg(long, default_value_t = 0.5)]
     pub pixel: f64,
+    /// Window u0,u1,v0,v1 in the plane's coordinates (default: the domain).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub window: Option<Vec<f64>>,
     #[arg(long)]
     pub png: Option<PathBuf>,
     #[arg(long)]
@@ -75,12 +82,14 @@ pub struct SliceArgs {
 
 /// `karst-sdf slice`.
 pub fn slice(args: &SliceArgs) -> Result<(), StageError> {
-    let plane = match (args.z, args.y) {
-        (Some(z), _) => Plane::Z(z),
-        (None, Some(y)) => Plane::Y(y),
-        (None, None) => return Err(StageError::input("slice: give --z or --y")),
+    let plane = match (args.z, args.y, args.x) {
+        (Some(z), _, _) => Plane::Z(z),
+        (None, Some(y), _) => Plane::Y(y),
+        (None, None, Some(x)) => Plane::X(x),
+        (None, None, None) => return Err(StageError::input("slice: give --z, --y or --x")),
     };
-    if !(args.pixel > 0.0 && args.pixel.is_finite()) || !args.z.or(args.y).is_some_and(f64::is_finite) {
+    let at = args.z.or(args.y).or(args.x);
+    if !(args.pixel > 0.0 && args.pixel.is_finite() && at.is_some_and(f64::is_finite)) {
         return Err(StageError::input(format!(
             "slice: --pixel {} and the plane must be finite, pixel > 0",
             args.pixel
@@ -89,14 +98,24 @@ pub fn slice(args: &SliceArgs) -> Result<(), StageError> {
     if args.png.is_none() && args.exr.is_none() {
         return Err(StageError::input("slice: give --png FILE and/or --exr FILE"));
     }
+    let window = match args.window.as_deref() {
+        None => None,
+        Some(&[u0, u1, v0, v1]) if [u0, u1, v0, v1].iter().all(|v| v.is_finite()) && u0 < u1 && v0 < v1 => {
+            Some([u0, u1, v0, v1])
+        }
+        Some(w) => {
+            return Err(StageError::input(format!("slice: --window {w:?} must be u0 < u1, v0 < v1, finite")));
+        }
+    };
     let (_, model) = read_artifact::<SdfModel>(&args.file)?;
     let field = CarvedTerrain::new(model);
+    let grid = slice::Grid::new(&field, plane, args.pixel, window);
     if let Some(png) = &args.png {
-        slice::write_png(&field, plane, args.pixel, png)
+        slice::write_png(&field, &grid, png)
             .map_err(|e| StageError::failure(format!("{}: {e}", png.display())))?;
     }
     if let Some(exr) = &args.exr {
-        slice::write_exr(&field, plane, args.pixel, exr)
+        slice::write_exr(&field, &grid, exr)
             .map_err(|e| StageError::failure(format!("{}: {e}", exr.display())))?;
     }
     Ok(())

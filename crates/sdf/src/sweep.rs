@@ -14,12 +14,12 @@
 //! Frame: the section's y axis is the world's up projected perpendicular to ab (x for vertical
 //! shafts), its x axis points to the right looking from a to b.
 
-use glam::{DVec2, DVec3};
+use glam::{DVec2, DVec3, Vec2};
 use serde::{Deserialize, Serialize};
 
 use karst_skeleton::ConduitType;
 
-use crate::section::{Section, Shape};
+use crate::section::{CONTROL, Section, Shape};
 
 /// A section as the artifact stores it: the blend, half and half, of two conduit types' shapes
 /// (the types of the segments meeting at a node), with one shape.
@@ -54,8 +54,9 @@ pub struct Sweep {
     length: f64,
     right: DVec3,
     up: DVec3,
-    start: Section,
-    end: Section,
+    /// The end sections' control points, in f32 (the sections are exactly these points).
+    start: [Vec2; CONTROL],
+    end: [Vec2; CONTROL],
     /// 1/√(1 + k²).
     scale: f64,
     /// The largest control-point distance to the axis.
@@ -69,12 +70,18 @@ impl Sweep {
 
     /// The sweep from `start` at a to `end` at b (a ≠ b).
     pub fn between(a: DVec3, b: DVec3, start: Section, end: Section) -> Self {
+        let (start, end) = (start.control.map(|c| c.as_vec2()), end.control.map(|c| c.as_vec2()));
+        let (start, end) = (
+            Section { control: start.map(|c| c.as_dvec2()) },
+            Section { control: end.map(|c| c.as_dvec2()) },
+        );
         let length = a.distance(b);
         let axis = (b - a) / length;
         let (right, up) = frame(axis);
         let k =
             start.control.iter().zip(&end.control).map(|(s, e)| s.distance(*e)).fold(0.0, f64::max) / length;
         let extent = start.extent().max(end.extent());
+        let (start, end) = (start.control.map(|c| c.as_vec2()), end.control.map(|c| c.as_vec2()));
         Sweep { a, axis, length, right, up, start, end, scale: 1.0 / (1.0 + k * k).sqrt(), extent }
     }
 
@@ -88,7 +95,7 @@ impl Sweep {
     pub fn distance(&self, p: DVec3) -> f64 {
         let (l, q) = self.local(p);
         let t = (l / self.length).clamp(0.0, 1.0);
-        let f = self.start.lerp(&self.end, t).distance(q);
+        let f = self.section_at(t).distance(q);
         let s = (-l).max(l - self.length);
         let g = f.max(s).min(0.0) + DVec2::new(f.max(0.0), s.max(0.0)).length();
         g * self.scale
@@ -115,7 +122,13 @@ impl Sweep {
 
     /// Lowest point of the sections (y of the floor, relative to the axis).
     pub fn floor(&self) -> f64 {
-        self.start.floor().min(self.end.floor())
+        self.section_at(0.0).floor().min(self.section_at(1.0).floor())
+    }
+
+    /// The section at fraction t of the way from a to b.
+    fn section_at(&self, t: f64) -> Section {
+        let control = std::array::from_fn(|i| self.start[i].as_dvec2().lerp(self.end[i].as_dvec2(), t));
+        Section { control }
     }
 }
 

@@ -37,7 +37,7 @@ impl Default for SdfParams {
             ratio: 1.0,
             asymmetry: 0.2,
             tortuosity: 0.15,
-            sphere_spacing: 0.35,
+            sphere_spacing: 0.5,
             blend: 1.0,
             detail: 0.15,
             detail_wavelength: 3.0,
