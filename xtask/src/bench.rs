@@ -41,7 +41,8 @@ pub struct SdfBench {
     pub build_seconds: f64,
     pub eval_uniform_ns: f64,
     pub eval_near_ns: f64,
-    pub memory_bytes: usize,
+    /// [karst, water] in-memory bytes.
+    pub memory_bytes: [usize; 2],
     pub artifact_bytes: u64,
 }
 

@@ -183,11 +183,9 @@ fn sdf_bench(runs: usize) -> Result<(), StageError> {
     println!("eval, uniform      {:>10.1} ns per point", b.eval_uniform_ns);
     println!("eval, near conduits{:>10.1} ns per point", b.eval_near_ns);
     let per = |bytes: f64| bytes / b.primitives.max(1) as f64;
-    println!(
-        "memory             {:>10} bytes ({:.1} per primitive)",
-        b.memory_bytes,
-        per(b.memory_bytes as f64)
-    );
+    let [karst, water] = b.memory_bytes;
+    println!("memory, karst      {karst:>10} bytes ({:.1} per primitive)", per(karst as f64));
+    println!("memory, water      {water:>10} bytes ({:.1} per primitive)", per(water as f64));
     println!(
         "artifact payload   {:>10} bytes ({:.1} per primitive)",
         b.artifact_bytes,

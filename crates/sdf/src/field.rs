@@ -86,9 +86,10 @@ impl CarvedTerrain {
         (self.eval(centre).abs() - (hi - lo).length() * 0.5).max(0.0)
     }
 
-    /// Bytes held in memory by the evaluable tree (leaves and hierarchies).
-    pub fn memory(&self) -> usize {
-        self.caves.memory() + self.water.memory()
+    /// Bytes held in memory by the evaluable tree: [karst leaves and their BVH, water pieces and
+    /// theirs].
+    pub fn memory(&self) -> [usize; 2] {
+        [self.caves.memory(), self.water.memory()]
     }
 
     /// Number of karst leaves.

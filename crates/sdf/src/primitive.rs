@@ -1,6 +1,7 @@
 //! The leaves of the karst volume, ready to evaluate, with their detail noise and their boxes.
 //!
-//! Every leaf i contributes v_i(p) = max(detail(f_i(p)), box_i(p)), where f_i is the leaf's
+//! Every leaf i contributes v_i(p) = max(detail(f_i(p)), box_i(p)) (spheres: see
+//! [`sphere_value`]), where f_i is the leaf's
 //! 1-Lipschitz bound, detail adds the per-type fBm of amplitude A_i with its gradient
 //! compensated (see [`crate::ops::detail`]), and box_i is the distance to the leaf's box grown by
 //! A_i (signed: negative inside). The max keeps the bound and changes nothing inside the box
@@ -15,7 +16,7 @@ use crate::Capsule;
 use crate::chamber::Chamber;
 use crate::noise::WaveNoise;
 use crate::ops;
-use crate::sweep::Sweep;
+use crate::sweep::{Sweep, to_dvec};
 
 /// A leaf of the karst volume.
 #[derive(Debug, Clone)]
@@ -75,7 +76,7 @@ impl Primitive {
     pub fn bounds(&self) -> (DVec3, DVec3) {
         let (lo, hi) = match self {
             Primitive::Sphere { centre, radius, .. } => {
-                let c = DVec3::new(centre[0] as f64, centre[1] as f64, centre[2] as f64);
+                let c = to_dvec(*centre);
                 (c - DVec3::splat(*radius as f64), c + DVec3::splat(*radius as f64))
             }
             Primitive::Capsule(c) => c.bounds(),
@@ -89,6 +90,9 @@ impl Primitive {
 
     /// v(p), or any value ≥ `limit` when v(p) ≥ `limit` (the caller takes a minimum).
     pub fn value(&self, p: DVec3, limit: f64, ctx: &Context) -> f64 {
+        if let Primitive::Sphere { centre, radius, amplitude } = self {
+            return sphere_value(p, *centre, *radius as f64, *amplitude as f64, limit, ctx);
+        }
         let (lo, hi) = self.bounds();
         let outside = signed_box_distance(lo, hi, p);
         if outside >= limit {
@@ -96,11 +100,6 @@ impl Primitive {
         }
         let a = self.amplitude();
         let f = match self {
-            Primitive::Sphere { centre, radius, .. } => {
-                let c = DVec3::new(centre[0] as f64, centre[1] as f64, centre[2] as f64);
-                p.distance(c) - *radius as f64
-            }
-            Primitive::Capsule(c) => c.distance(p),
             Primitive::Sweep(s) => {
                 let bound = (s.0.lower_bound(p) - a) / (1.0 + a * ctx.detail_gradient);
                 if bound >= limit {
@@ -110,9 +109,22 @@ impl Primitive {
             }
             Primitive::Chamber(c) => c.distance(p, ctx.chamber, ctx.bias),
             Primitive::Water(w) => w.0.distance(p).max(w.0.height(p) - w.1),
+            Primitive::Capsule(c) => c.distance(p),
+            Primitive::Sphere { centre, radius, .. } => p.distance(to_dvec(*centre)) - *radius as f64,
         };
         ctx.detail(f, p, a).max(outside)
     }
+}
+
+/// A sphere's value, clamped by the sphere grown by its amplitude A rather than by its box:
+/// the grown sphere's distance f − A is at least its box's signed distance (so the BVH's
+/// pruning stays exact), and inside it (f ≤ A) detail(f) ≥ f − A, so the clamp changes nothing.
+fn sphere_value(p: DVec3, centre: [f32; 3], radius: f64, a: f64, limit: f64, ctx: &Context) -> f64 {
+    let f = p.distance(to_dvec(centre)) - radius;
+    if f - a >= limit {
+        return f - a;
+    }
+    ctx.detail(f, p, a).max(f - a)
 }
 
 /// Signed distance to the box: negative inside, at most minus the distance to the surface of

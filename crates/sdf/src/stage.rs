@@ -45,10 +45,11 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
         header.payload_len as f64 / total.max(1) as f64
     );
     let field = CarvedTerrain::new(model);
+    let [karst, water] = field.memory();
+    let leaves = field.leaves().max(1) as f64;
     println!(
-        "  memory      {} bytes evaluable ({:.1} per primitive)",
-        field.memory(),
-        field.memory() as f64 / total.max(1) as f64
+        "  memory      {karst} bytes for the karst ({:.1} per karst leaf), {water} for the water",
+        karst as f64 / leaves
     );
     Ok(())
 }
