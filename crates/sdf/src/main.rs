@@ -1,6 +1,7 @@
 //! `karst-sdf`: stage 5 of karstgen. `run SCENE --out DIR` writes DIR/sdf.bin;
 //! `inspect FILE [--json]` prints a summary or the whole artifact;
-//! `slice FILE --z Z | --y Y | --x X --png PNG [--exr EXR]` writes a cross-section image.
+//! `slice FILE --z Z | --y Y | --x X --png PNG [--exr EXR]` writes a cross-section image;
+//! `sections --png PNG` draws the cross-section library.
 
 use std::process::ExitCode;
 
@@ -18,6 +19,8 @@ enum Cli {
     Inspect(InspectArgs),
     /// Write a horizontal (--z) or vertical (--y, --x) slice of an sdf artifact as PNG and/or EXR.
     Slice(stage::SliceArgs),
+    /// Draw the cross-section library (one section per conduit type) as a PNG.
+    Sections(stage::SectionsArgs),
 }
 
 fn main() -> ExitCode {
@@ -25,5 +28,6 @@ fn main() -> ExitCode {
         Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
         Cli::Inspect(args) => stage::inspect(&args),
         Cli::Slice(args) => stage::slice(&args),
+        Cli::Sections(args) => stage::sections(&args),
     })
 }

@@ -34,7 +34,8 @@ pub struct Shape {
     pub radius: f32,
     /// Height over width.
     pub ratio: f32,
-    /// Horizontal shift of the upper part, in half-widths (−1..1): meanders undercut one wall.
+    /// Horizontal shift of the upper part, in half-widths (−1..1): meanders undercut one wall
+    /// (canyons and keyholes only).
     pub asymmetry: f32,
 }
 
@@ -51,7 +52,11 @@ impl Section {
     /// half-width, x across and y up, scaled by the radius; the height stretches y.
     pub fn of(kind: ConduitType, shape: Shape) -> Section {
         let unit = unit_polygon(kind);
-        let (r, ratio, skew) = (shape.radius as f64, shape.ratio as f64, shape.asymmetry as f64);
+        // Only vadose shapes lean: a free-surface stream undercuts the outside of its bends,
+        // while phreatic tubes and beds dissolve evenly all round.
+        let leans = matches!(kind, ConduitType::Canyon | ConduitType::Keyhole);
+        let (r, ratio) = (shape.radius as f64, shape.ratio as f64);
+        let skew = if leans { shape.asymmetry as f64 } else { 0.0 };
         let control = unit.map(|[x, y]| {
             // Asymmetry shears the upper half sideways (an undercut meander bend).
             let x = x + skew * y.max(0.0) * 0.5;
@@ -408,6 +413,16 @@ mod tests {
             let a = i as f64 * 0.0628;
             let q = DVec2::new(a.cos(), a.sin()) * (i as f64 * 0.07);
             assert!((s.distance(q) - (q.length() - 3.0)).abs() < 3.0 * 4e-4, "{q}: {}", s.distance(q));
+        }
+    }
+
+    #[test]
+    fn only_vadose_sections_lean() {
+        let lean = Shape { radius: 1.0, ratio: 1.0, asymmetry: 0.5 };
+        for kind in ConduitType::ALL {
+            let (straight, leaning) = (Section::of(kind, shape(1.0)), Section::of(kind, lean));
+            let leans = matches!(kind, ConduitType::Canyon | ConduitType::Keyhole);
+            assert_eq!(straight != leaning, leans, "{kind:?}");
         }
     }
 

@@ -101,3 +101,36 @@ pub fn write_exr(field: &CarvedTerrain, grid: &Grid, path: &Path) -> Result<(), 
         (field.eval(p) as f32, field.cave(p) as f32, field.water(p) as f32)
     })
 }
+
+/// The cross-section library: one filled section per conduit type (radius 1, `ratio`,
+/// `asymmetry`), side by side and labelled, `scale` pixels per metre.
+pub fn write_sections_png(ratio: f64, asymmetry: f64, scale: f64, path: &Path) -> std::io::Result<()> {
+    use crate::section::{Section, Shape};
+    use karst_skeleton::ConduitType;
+
+    let cell = (scale * 4.0).ceil() as usize;
+    let kinds = ConduitType::ALL;
+    let mut canvas = Canvas::new((cell * kinds.len()) as u32, (cell + 16) as u32, [250, 250, 250]);
+    let shape = Shape { radius: 1.0, ratio: ratio as f32, asymmetry: asymmetry as f32 };
+    for (k, kind) in kinds.into_iter().enumerate() {
+        let section = Section::of(kind, shape);
+        for y in 0..cell {
+            for x in 0..cell {
+                let q =
+                    glam::DVec2::new(x as f64 + 0.5 - cell as f64 / 2.0, cell as f64 / 2.0 - y as f64 - 0.5)
+                        / scale;
+                let d = section.distance(q);
+                let colour = if d.abs() < 1.0 / scale {
+                    [150, 60, 20]
+                } else if d < 0.0 {
+                    [10, 10, 10]
+                } else {
+                    [170, 170, 160]
+                };
+                canvas.set((k * cell + x) as i64, (y + 16) as i64, colour);
+            }
+        }
+        canvas.text(((k * cell) as i64 + 4, 4), kind.name(), 1, [200, 0, 0]);
+    }
+    canvas.write_png(path)
+}

@@ -121,3 +121,28 @@ pub fn slice(args: &SliceArgs) -> Result<(), StageError> {
     }
     Ok(())
 }
+
+/// Arguments of `karst-sdf sections`.
+#[derive(clap::Args, Debug)]
+pub struct SectionsArgs {
+    /// Height/width factor (as `sdf.ratio`).
+    #[arg(long, default_value_t = 1.0)]
+    pub ratio: f64,
+    /// Shear of the upper half (as `sdf.asymmetry`).
+    #[arg(long, default_value_t = 0.2, allow_negative_numbers = true)]
+    pub asymmetry: f64,
+    #[arg(long)]
+    pub png: PathBuf,
+}
+
+/// `karst-sdf sections`: the cross-section library as a picture.
+pub fn sections(args: &SectionsArgs) -> Result<(), StageError> {
+    if !(args.ratio > 0.0 && args.ratio.is_finite() && args.asymmetry.is_finite()) {
+        return Err(StageError::input(format!(
+            "sections: --ratio {} must be > 0 and --asymmetry {} finite",
+            args.ratio, args.asymmetry
+        )));
+    }
+    slice::write_sections_png(args.ratio, args.asymmetry, 40.0, &args.png)
+        .map_err(|e| StageError::failure(format!("{}: {e}", args.png.display())))
+}
