@@ -177,6 +177,9 @@ fn bless() -> Result<(), StageError> {
     Ok(())
 }
 
+/// Conduits of the synthetic sdf benchmark network (about 30k primitives).
+const SDF_BENCH_CONDUITS: usize = 100;
+
 fn bench_command(runs: usize, costgraph_only: bool) -> Result<(), StageError> {
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
     let scenes = if costgraph_only { &[][..] } else { BENCH_SCENES };
@@ -187,7 +190,8 @@ fn bench_command(runs: usize, costgraph_only: bool) -> Result<(), StageError> {
             println!("{:<10} {seconds:>10.4}", stage.name());
         }
     }
-    for scene in SAMPLING_BENCH_SCENES {
+    let sampling_scenes = if costgraph_only { &[][..] } else { SAMPLING_BENCH_SCENES };
+    for scene in sampling_scenes {
         let (seconds, headline) = bench::time_stage(Path::new(scene), Stage::Sampling, runs)?;
         println!("\n{scene}\nsampling {seconds:>10.4} s: {headline}");
     }
@@ -207,10 +211,38 @@ fn bench_command(runs: usize, costgraph_only: bool) -> Result<(), StageError> {
         );
     }
 
+    if costgraph_only {
+        return Ok(());
+    }
     println!("\nskeleton budgets (paths only, sampling and cost graph excluded)");
     for (case, samples, seconds) in bench::time_skeleton_budgets(runs)? {
         println!("{case:<45} {samples:>7} samples {seconds:>8.4} s");
     }
+
+    sdf_bench(runs)
+}
+
+/// The sdf budgets (issue 7) on a synthetic network of about 30k primitives.
+fn sdf_bench(runs: usize) -> Result<(), StageError> {
+    let b = bench::sdf_network(SDF_BENCH_CONDUITS, runs)?;
+    let kinds: Vec<String> = b.by_kind.iter().map(|(k, n)| format!("{n} {k}")).collect();
+    println!(
+        "\nsdf, synthetic network of {SDF_BENCH_CONDUITS} conduits: {} primitives ({})",
+        b.primitives,
+        kinds.join(", ")
+    );
+    println!("build + BVH        {:>10.4} s", b.build_seconds);
+    println!("eval, uniform      {:>10.1} ns per point", b.eval_uniform_ns);
+    println!("eval, near conduits{:>10.1} ns per point", b.eval_near_ns);
+    let per = |bytes: f64| bytes / b.primitives.max(1) as f64;
+    let [karst, water] = b.memory_bytes;
+    println!("memory, karst      {karst:>10} bytes ({:.1} per primitive)", per(karst as f64));
+    println!("memory, water      {water:>10} bytes ({:.1} per primitive)", per(water as f64));
+    println!(
+        "artifact payload   {:>10} bytes ({:.1} per primitive)",
+        b.artifact_bytes,
+        per(b.artifact_bytes as f64)
+    );
     Ok(())
 }
 

@@ -10,14 +10,16 @@ use karst_sdf::{Capsule, CarvedTerrain, SdfModel, TerrainField};
 
 fn model() -> SdfModel {
     SdfModel {
-        domain: Domain { min: [0.0, 0.0, 0.0], max: [60.0, 40.0, 30.0] },
-        terrain: TerrainField::Plane { elevation: 25.0, origin: [0.0, 0.0], gradient: [0.05, 0.02] },
         capsules: vec![
             Capsule { a: [10.0, 20.0, 28.0], b: [15.0, 20.0, 12.0], radius: 2.5 },
             Capsule { a: [15.0, 20.0, 12.0], b: [50.0, 22.0, 10.0], radius: 3.0 },
             // A sealed pocket, entirely in rock.
             Capsule { a: [40.0, 8.0, 5.0], b: [44.0, 8.0, 5.0], radius: 2.0 },
         ],
+        ..SdfModel::new(
+            Domain { min: [0.0, 0.0, 0.0], max: [60.0, 40.0, 30.0] },
+            TerrainField::Plane { elevation: 25.0, origin: [0.0, 0.0], gradient: [0.05, 0.02] },
+        )
     }
 }
 

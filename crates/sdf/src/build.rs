@@ -1,15 +1,37 @@
-//! Building the SDF model from the skeleton: one capsule per conduit segment.
+//! Building the construction tree from the skeleton and the flows (Paris et al. 2021 §6.2):
+//!
+//! - each node gets a cross-section: the shapes of the types of the segments meeting there,
+//!   half and half, at the node's radius; along a segment the section moves linearly from one
+//!   node's to the next;
+//! - a conduit whose tortuosity (1 − chord/length) is at most `sdf.tortuosity` becomes one sweep
+//!   per segment, plus a sphere inscribed at each inner node to close the bends;
+//! - a more tortuous conduit becomes a union of spheres: cross-sections are placed along it
+//!   every `sdf.sphere_spacing` radii, oriented by the curve's tangent (averaged at the nodes);
+//!   sphere centres are drawn on a jittered lattice of the same spacing in each section plane
+//!   and kept when at least half a spacing (the paper's R/2 selection) and `MIN_DEPTH` times
+//!   the section's deepest candidate inside it; each sphere is inscribed (its radius is the centre's depth in the
+//!   section), and spheres inside a bigger kept one (grown by `COVER` spacings) are dropped;
+//! - `chamber` segments become noise-biased chambers around the segment;
+//! - every wet segment also gets its water piece ([`crate::water`]).
+
+use glam::{DVec2, DVec3};
 
 use karst_artifact::StageError;
 use karst_geology::Scene;
+use karst_geology::rng::Random;
 use karst_hydro::Hydro;
-use karst_skeleton::Skeleton;
+use karst_skeleton::{Conduit, ConduitType, Skeleton};
 
+use crate::SdfModel;
+use crate::chamber::ChamberSpec;
+use crate::model::{SphereGroup, TypedSweep, WaterSpec};
+use crate::noise::WaveNoise;
+use crate::section::{Section, Shape};
+use crate::sweep::{SectionSpec, Sweep, SweepSpec, frame};
 use crate::terrain::TerrainField;
-use crate::{Capsule, SdfModel};
+use crate::water::{self, Water};
 
-/// The model of `scene` carved by the conduits of `skeleton`. Each segment's capsule takes the
-/// mean of its two node radii, times `sdf.radius_scale`.
+/// The model of `scene` carved by the conduits of `skeleton`, with the water of `hydro`.
 pub fn build(scene: &Scene, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfModel, StageError> {
     if hydro.conduits.len() != skeleton.conduits.len() {
         return Err(StageError::input(format!(
@@ -18,30 +40,368 @@ pub fn build(scene: &Scene, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMod
             skeleton.conduits.len()
         )));
     }
-    let mut capsules = Vec::new();
+    let terrain = TerrainField::of(&scene.terrain);
+    let lambda = terrain.lipschitz();
+    if !lambda.is_finite() {
+        return Err(StageError::input(format!("scene terrain: no finite Lipschitz bound (λ = {lambda})")));
+    }
+    let p = &scene.sdf;
+    let mut model = SdfModel::new(scene.domain, terrain);
+    model.blend = p.blend;
+    model.detail = p.detail;
+    model.chamber_bias = p.chamber_bias;
+    model.detail_noise =
+        WaveNoise::draw(&mut Random::stream(scene.seed, "sdf", "detail"), p.detail_wavelength);
+    let mean_radius = mean_radius(skeleton) * p.radius_scale;
+    model.chamber_noise =
+        WaveNoise::draw(&mut Random::stream(scene.seed, "sdf", "chamber"), mean_radius * p.chamber_scale);
+    let mut lean = Random::stream(scene.seed, "sdf", "asymmetry");
+    let mut jitter = Random::stream(scene.seed, "sdf", "spheres");
+    let progress = karst_artifact::progress::bar(skeleton.conduits.len() as u64, "sdf");
     for (c, conduit) in skeleton.conduits.iter().enumerate() {
-        if conduit.radius.len() != conduit.nodes.len() {
+        let points = conduit_points(skeleton, conduit, c)?;
+        let asymmetry = if lean.uniform() < 0.5 { -p.asymmetry } else { p.asymmetry };
+        let sections = node_sections(scene, conduit, c, asymmetry)?;
+        let tortuous = tortuosity(&points) > p.tortuosity && points.len() > 2;
+        for (i, w) in points.windows(2).enumerate() {
+            let kind = conduit.types[i];
+            let sweep =
+                SweepSpec { a: to_f32(w[0]), b: to_f32(w[1]), start: sections[i], end: sections[i + 1] };
+            let radius = sections[i].shape.radius.max(sections[i + 1].shape.radius);
+            if kind == ConduitType::Chamber {
+                model.chambers.push(ChamberSpec {
+                    a: sweep.a,
+                    b: sweep.b,
+                    radius: radius * p.chamber_scale as f32,
+                });
+            } else if !tortuous {
+                model.sweeps.push(TypedSweep { kind, sweep });
+            }
+            let zones = [conduit.nodes[i], conduit.nodes[i + 1]].map(|n| skeleton.nodes[n as usize].zone);
+            let height = Sweep::new(&sweep).floor().abs() * 2.0;
+            let wet = hydro.conduits[c].segments.get(i).ok_or_else(|| segments_mismatch(c))?;
+            let segment = water::Segment { kind, zones, water: wet.water, depth: wet.depth, height };
+            if let Some(spec) = water_piece(&sweep, water::level(&segment)) {
+                model.water.push(spec);
+            }
+        }
+        if tortuous {
+            model.spheres.extend(sphere_groups(conduit, &points, &sections, p.sphere_spacing, &mut jitter));
+        } else {
+            model.spheres.extend(joint_spheres(conduit, &points, &sections));
+        }
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    Ok(model)
+}
+
+fn segments_mismatch(conduit: usize) -> StageError {
+    StageError::input(format!(
+        "hydro.json: conduit {conduit} has fewer water segments than skeleton.json has segments: \
+         rerun `cargo xtask run --from hydro`"
+    ))
+}
+
+fn mean_radius(skeleton: &Skeleton) -> f64 {
+    let radii: Vec<f64> =
+        skeleton.conduits.iter().flat_map(|c| c.radius.iter().copied()).filter(|r| r.is_finite()).collect();
+    if radii.is_empty() { 1.0 } else { radii.iter().sum::<f64>() / radii.len() as f64 }
+}
+
+/// The conduit's node positions, checked: existing nodes, finite, distinct consecutive nodes.
+fn conduit_points(skeleton: &Skeleton, conduit: &Conduit, c: usize) -> Result<Vec<DVec3>, StageError> {
+    if conduit.radius.len() != conduit.nodes.len() || conduit.types.len() + 1 != conduit.nodes.len() {
+        return Err(StageError::input(format!(
+            "skeleton.json: conduits[{c}] has {} nodes, {} radii and {} types (expected n, n and n − 1)",
+            conduit.nodes.len(),
+            conduit.radius.len(),
+            conduit.types.len()
+        )));
+    }
+    let mut points = Vec::with_capacity(conduit.nodes.len());
+    for &n in &conduit.nodes {
+        let Some(node) = skeleton.nodes.get(n as usize) else {
             return Err(StageError::input(format!(
-                "skeleton.json: conduit {c} has {} nodes but {} radii",
-                conduit.nodes.len(),
-                conduit.radius.len()
+                "skeleton.json: conduits[{c}].nodes names node {n}, which does not exist"
+            )));
+        };
+        let p = DVec3::from_array(node.position);
+        if !p.is_finite() {
+            return Err(StageError::input(format!(
+                "skeleton.json: nodes[{n}].position = {:?} is not finite",
+                node.position
             )));
         }
-        for (i, w) in conduit.nodes.windows(2).enumerate() {
-            let [a, b] = [w[0], w[1]].map(|n| skeleton.nodes.get(n as usize).map(|n| n.position));
-            let (Some(a), Some(b)) = (a, b) else {
+        if points.last().is_some_and(|q: &DVec3| q.distance(p) == 0.0) {
+            return Err(StageError::input(format!(
+                "skeleton.json: conduits[{c}] repeats node {n} (a segment of length 0)"
+            )));
+        }
+        points.push(p);
+    }
+    Ok(points)
+}
+
+/// The section of each node of the conduit, checked (radius > 0, no self-intersection).
+fn node_sections(
+    scene: &Scene,
+    conduit: &Conduit,
+    c: usize,
+    asymmetry: f64,
+) -> Result<Vec<SectionSpec>, StageError> {
+    let last = conduit.types.len().saturating_sub(1);
+    (0..conduit.nodes.len())
+        .map(|i| {
+            let radius = conduit.radius[i] * scene.sdf.radius_scale;
+            if !(radius > 0.0 && radius.is_finite()) {
                 return Err(StageError::input(format!(
-                    "skeleton.json: conduit {c} names a node that does not exist"
-                )));
-            };
-            let radius = 0.5 * (conduit.radius[i] + conduit.radius[i + 1]) * scene.sdf.radius_scale;
-            if !(radius > 0.0 && radius.is_finite() && a.iter().chain(&b).all(|v| v.is_finite())) {
-                return Err(StageError::input(format!(
-                    "skeleton.json: conduit {c}, segment {i} has radius {radius} or a non-finite node; radii must be > 0"
+                    "skeleton.json: conduits[{c}].radius[{i}] = {} (radii must be finite and > 0)",
+                    conduit.radius[i]
                 )));
             }
-            capsules.push(Capsule { a, b, radius });
+            let kinds = [conduit.types[i.saturating_sub(1).min(last)], conduit.types[i.min(last)]];
+            let shape = Shape { radius: radius as f32, ratio: scene.sdf.ratio as f32, asymmetry: asymmetry as f32 };
+            let spec = SectionSpec { kinds, shape };
+            spec.section().check().map_err(|e| {
+                StageError::input(format!(
+                    "scene [sdf]: ratio = {} and asymmetry = {} give conduits[{c}] node {i} ({} / {}) a bad section: {e}",
+                    scene.sdf.ratio,
+                    asymmetry,
+                    kinds[0].name(),
+                    kinds[1].name()
+                ))
+            })?;
+            Ok(spec)
+        })
+        .collect()
+}
+
+/// 1 − chord/length: 0 for a straight conduit, 1 for a loop.
+pub fn tortuosity(points: &[DVec3]) -> f64 {
+    let length: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+    let chord = points[0].distance(points[points.len() - 1]);
+    if length > 0.0 { 1.0 - chord / length } else { 0.0 }
+}
+
+fn water_piece(sweep: &SweepSpec, water: Water) -> Option<WaterSpec> {
+    match water {
+        Water::None => None,
+        Water::Flooded => Some(WaterSpec { sweep: *sweep, level: None }),
+        Water::Stream { depth } => {
+            let floor = Sweep::new(sweep).floor();
+            Some(WaterSpec { sweep: *sweep, level: Some((floor + depth) as f32) })
         }
     }
-    Ok(SdfModel { domain: scene.domain, terrain: TerrainField::of(&scene.terrain), capsules })
+}
+
+/// Spheres inscribed at the inner nodes of a swept conduit, closing the wedges that flat-capped
+/// sweeps leave on the outside of bends.
+fn joint_spheres(conduit: &Conduit, points: &[DVec3], sections: &[SectionSpec]) -> Option<SphereGroup> {
+    let spheres: Vec<[f32; 4]> = (1..points.len().saturating_sub(1))
+        .filter_map(|i| {
+            let depth = -sections[i].section().distance(DVec2::ZERO);
+            let p = to_f32(points[i]);
+            (depth > 0.0).then_some([p[0], p[1], p[2], depth as f32])
+        })
+        .collect();
+    (!spheres.is_empty()).then(|| SphereGroup { kind: dominant(&conduit.types), spheres })
+}
+
+/// The most frequent type (ties to the first in [`ConduitType::ALL`]).
+fn dominant(types: &[ConduitType]) -> ConduitType {
+    ConduitType::ALL
+        .into_iter()
+        .max_by_key(|k| (types.iter().filter(|t| *t == k).count(), std::cmp::Reverse(*k)))
+        .unwrap_or(ConduitType::Tube)
+}
+
+/// Smallest sphere radius, as a fraction of the deepest candidate of its cross-section: the
+/// spheres hug the section's medial axis, and wall features finer than that are rounded off.
+const MIN_DEPTH: f64 = 0.6;
+
+/// A candidate is dropped when a kept sphere grown by this fraction of the spacing contains it:
+/// the union then differs from the kept spheres' by less than that.
+const COVER: f64 = 0.15;
+
+/// A candidate sphere: centre, radius, station.
+struct Candidate {
+    centre: DVec3,
+    radius: f64,
+    station: usize,
+}
+
+/// The spheres of a tortuous conduit, one group per segment type run.
+fn sphere_groups(
+    conduit: &Conduit,
+    points: &[DVec3],
+    sections: &[SectionSpec],
+    spacing: f64,
+    jitter: &mut Random,
+) -> Vec<SphereGroup> {
+    let tangents = node_tangents(points);
+    let mut groups: Vec<SphereGroup> = Vec::new();
+    for (i, w) in points.windows(2).enumerate() {
+        let kind = conduit.types[i];
+        if kind == ConduitType::Chamber {
+            continue;
+        }
+        let (s0, s1) = (sections[i].section(), sections[i + 1].section());
+        let step = spacing * sections[i].shape.radius.min(sections[i + 1].shape.radius) as f64;
+        let stations = (w[0].distance(w[1]) / step).ceil().max(1.0) as usize;
+        let mut candidates = Vec::new();
+        // The end station belongs to the next segment, except for the last one.
+        let end = if i + 2 == points.len() { stations } else { stations - 1 };
+        for j in 0..=end {
+            let t = j as f64 / stations as f64;
+            let origin = w[0].lerp(w[1], t);
+            let tangent = tangents[i].lerp(tangents[i + 1], t).normalize();
+            let section = s0.lerp(&s1, t);
+            station_spheres(&section, origin, tangent, step, j, jitter, &mut candidates);
+        }
+        let spheres = prune(candidates, step);
+        match groups.last_mut() {
+            Some(g) if g.kind == kind => g.spheres.extend(spheres),
+            _ => groups.push(SphereGroup { kind, spheres }),
+        }
+    }
+    groups
+}
+
+/// Unit tangents at the nodes: the segment direction at the ends, the mean of the two
+/// adjacent directions inside.
+fn node_tangents(points: &[DVec3]) -> Vec<DVec3> {
+    let dirs: Vec<DVec3> = points.windows(2).map(|w| (w[1] - w[0]).normalize()).collect();
+    (0..points.len())
+        .map(|i| {
+            let before = dirs[i.saturating_sub(1).min(dirs.len() - 1)];
+            let after = dirs[i.min(dirs.len() - 1)];
+            let mean = before + after;
+            if mean.length_squared() > 1e-12 { mean.normalize() } else { after }
+        })
+        .collect()
+}
+
+/// Inscribed-sphere candidates of one cross-section on a jittered lattice of spacing `step`.
+fn station_spheres(
+    section: &Section,
+    origin: DVec3,
+    tangent: DVec3,
+    step: f64,
+    station: usize,
+    jitter: &mut Random,
+    out: &mut Vec<Candidate>,
+) {
+    let (right, up) = frame(tangent);
+    let extent = section.extent();
+    let cells = (extent / step).ceil() as i64;
+    let mut lattice = Vec::new();
+    for y in -cells..=cells {
+        for x in -cells..=cells {
+            let q = DVec2::new(x as f64 + jitter.range(-0.4, 0.4), y as f64 + jitter.range(-0.4, 0.4)) * step;
+            // Beyond the extent the point is outside the section.
+            if q.length() < extent {
+                lattice.push((q, -section.distance(q)));
+            }
+        }
+    }
+    let deepest = lattice.iter().map(|c| c.1).fold(0.0, f64::max);
+    let min_depth = (step * 0.5).max(MIN_DEPTH * deepest);
+    for (q, depth) in lattice {
+        if depth >= min_depth {
+            out.push(Candidate { centre: origin + right * q.x + up * q.y, radius: depth, station });
+        }
+    }
+}
+
+/// Drops the spheres contained in a bigger kept one (checked against nearby stations only:
+/// a sphere can only contain spheres within its radius).
+fn prune(mut candidates: Vec<Candidate>, step: f64) -> Vec<[f32; 4]> {
+    candidates.sort_by(|a, b| b.radius.total_cmp(&a.radius).then(a.station.cmp(&b.station)));
+    let largest = candidates.first().map_or(0.0, |c| c.radius);
+    let reach = (largest / step).ceil() as usize + 1;
+    let stations = candidates.iter().map(|c| c.station).max().map_or(0, |s| s + 1);
+    let mut kept: Vec<Vec<usize>> = vec![Vec::new(); stations];
+    let mut order = Vec::new();
+    for (k, c) in candidates.iter().enumerate() {
+        let lo = c.station.saturating_sub(reach);
+        let hi = (c.station + reach).min(stations - 1);
+        let inside = (lo..=hi).flat_map(|s| &kept[s]).any(|&o| {
+            let big = &candidates[o];
+            big.centre.distance(c.centre) + c.radius <= big.radius + COVER * step
+        });
+        if !inside {
+            kept[c.station].push(k);
+            order.push(k);
+        }
+    }
+    order.sort_unstable();
+    order
+        .into_iter()
+        .map(|k| {
+            let c = &candidates[k];
+            let p = to_f32(c.centre);
+            [p[0], p[1], p[2], c.radius as f32]
+        })
+        .collect()
+}
+
+fn to_f32(p: DVec3) -> [f32; 3] {
+    p.as_vec3().to_array()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synthetic;
+
+    fn build_with(edit: impl FnOnce(&mut Scene, &mut Skeleton)) -> Result<SdfModel, StageError> {
+        let mut scene = synthetic::scene();
+        let (mut skeleton, hydro) = synthetic::network(2, 6, 5);
+        edit(&mut scene, &mut skeleton);
+        build(&scene, &skeleton, &hydro)
+    }
+
+    #[test]
+    fn bad_radii_nodes_and_terrains_are_input_errors() {
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let e = build_with(|_, s| s.conduits[2].radius[1] = bad).unwrap_err();
+            assert!((e.exit_code() == 2) && e.to_string().contains("conduits[2].radius[1]"), "{e}");
+        }
+        let e = build_with(|_, s| s.nodes[3].position[1] = f64::NAN).unwrap_err();
+        assert!((e.exit_code() == 2) && e.to_string().contains("nodes[3].position"), "{e}");
+        let e = build_with(|_, s| s.conduits[0].nodes[1] = 9999).unwrap_err();
+        assert!((e.exit_code() == 2) && e.to_string().contains("9999"), "{e}");
+        let e = build_with(|_, s| s.conduits[1].types.pop().map(|_| ()).unwrap_or(())).unwrap_err();
+        assert!((e.exit_code() == 2), "{e}");
+        let e = build_with(|scene, _| {
+            scene.terrain = karst_geology::Terrain::Plane {
+                elevation: 190.0,
+                origin: [0.0, 0.0],
+                gradient: [f64::INFINITY, 0.0],
+            }
+        })
+        .unwrap_err();
+        assert!((e.exit_code() == 2) && e.to_string().contains("Lipschitz"), "{e}");
+    }
+
+    #[test]
+    fn a_straight_conduit_is_swept_and_a_winding_one_is_spheres() {
+        let model = build_with(|_, _| {}).unwrap();
+        assert!(!model.sweeps.is_empty() && !model.spheres.is_empty());
+        let straight = [DVec3::ZERO, DVec3::new(10.0, 0.0, 0.0), DVec3::new(20.0, 0.1, 0.0)];
+        assert!(tortuosity(&straight) < 1e-3);
+        let winding = [
+            DVec3::ZERO,
+            DVec3::new(10.0, 0.0, 0.0),
+            DVec3::new(10.0, 10.0, 0.0),
+            DVec3::new(0.0, 10.0, 0.0),
+        ];
+        assert!((tortuosity(&winding) - (1.0 - 10.0 / 30.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_model_is_deterministic() {
+        assert_eq!(build_with(|_, _| {}).unwrap(), build_with(|_, _| {}).unwrap());
+    }
 }

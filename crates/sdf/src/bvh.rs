@@ -1,38 +1,46 @@
-//! A bounding-volume hierarchy over the capsules, so that evaluating the field at a point
-//! visits only the capsules that can be the nearest.
+//! A bounding-volume hierarchy over the leaves, so that evaluating the union at a point visits
+//! only the leaves that can be below the current minimum, and so that a whole box of space can
+//! be bounded at once.
+//!
+//! Median split on the longest axis; leaves are reordered into tree order (no index array).
+//! Node boxes are f32, rounded outwards, to keep the tree at 32 bytes per node.
 
-use glam::DVec3;
+use glam::{DVec3, Vec3};
 
-use crate::Capsule;
+use crate::primitive::{Context, Primitive, signed_box_distance};
 
-/// Capsules per leaf.
-const LEAF: usize = 4;
+/// Leaves per BVH leaf node.
+const LEAF: usize = 8;
 
 #[derive(Debug, Clone)]
 struct Node {
-    lo: DVec3,
-    hi: DVec3,
-    /// Leaf: capsule range in `order`; inner: `first` is the right child (left is next).
+    lo: Vec3,
+    hi: Vec3,
+    /// Leaf: first primitive; inner: the right child (the left one is next).
     first: u32,
+    /// Primitives of a leaf node; 0 for an inner node.
     count: u32,
 }
 
-/// A median-split BVH; capsules are reordered in `order`.
+/// The hierarchy and its primitives, in tree order.
 #[derive(Debug, Clone, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
-    order: Vec<u32>,
+    pub primitives: Vec<Primitive>,
 }
 
 impl Bvh {
-    pub fn build(capsules: &[Capsule]) -> Self {
-        let bounds: Vec<(DVec3, DVec3)> = capsules.iter().map(Capsule::bounds).collect();
-        let mut bvh = Bvh { nodes: Vec::new(), order: (0..capsules.len() as u32).collect() };
-        if !capsules.is_empty() {
-            let mut order = std::mem::take(&mut bvh.order);
+    pub fn build(primitives: Vec<Primitive>) -> Self {
+        let bounds: Vec<(DVec3, DVec3)> = primitives.iter().map(Primitive::bounds).collect();
+        let mut order: Vec<u32> = (0..primitives.len() as u32).collect();
+        let mut bvh =
+            Bvh { nodes: Vec::with_capacity(2 * primitives.len() / LEAF + 1), primitives: Vec::new() };
+        if !order.is_empty() {
             bvh.split(&bounds, &mut order, 0);
-            bvh.order = order;
         }
+        let mut slots: Vec<Option<Primitive>> = primitives.into_iter().map(Some).collect();
+        bvh.primitives =
+            order.iter().map(|&i| slots[i as usize].take().expect("each primitive once")).collect();
         bvh
     }
 
@@ -41,14 +49,19 @@ impl Bvh {
             (lo.min(bounds[i as usize].0), hi.max(bounds[i as usize].1))
         });
         let index = self.nodes.len();
-        self.nodes.push(Node { lo, hi, first: offset as u32, count: items.len() as u32 });
+        self.nodes.push(Node {
+            lo: round_down(lo),
+            hi: round_up(hi),
+            first: offset as u32,
+            count: items.len() as u32,
+        });
         if items.len() <= LEAF {
             return index;
         }
         let axis = (hi - lo).max_position();
-        let centre = |i: u32| (bounds[i as usize].0[axis] + bounds[i as usize].1[axis], i);
-        items.sort_unstable_by(|&x, &y| centre(x).0.total_cmp(&centre(y).0).then(x.cmp(&y)));
+        let centre = |i: u32| bounds[i as usize].0[axis] + bounds[i as usize].1[axis];
         let mid = items.len() / 2;
+        items.select_nth_unstable_by(mid, |&x, &y| centre(x).total_cmp(&centre(y)).then(x.cmp(&y)));
         let (left, right) = items.split_at_mut(mid);
         self.split(bounds, left, offset);
         let right_index = self.split(bounds, right, offset + mid);
@@ -57,57 +70,68 @@ impl Bvh {
         index
     }
 
-    /// min(limit, min over capsules of their signed distance at p): capsules that cannot go
-    /// below `limit` are skipped.
-    pub fn min_distance(&self, capsules: &[Capsule], p: DVec3, limit: f64) -> f64 {
+    /// min(limit, min over primitives of their value at p).
+    pub fn min_value(&self, p: DVec3, limit: f64, ctx: &Context) -> f64 {
         let mut best = limit;
         if self.nodes.is_empty() {
             return best;
         }
-        let mut stack = vec![0usize];
-        while let Some(n) = stack.pop() {
+        let mut stack = [0u32; 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let n = stack[top] as usize;
             let node = &self.nodes[n];
-            if box_distance(node.lo, node.hi, p) >= best {
+            // Every leaf's value is at least its box's signed distance, which is at least the
+            // node's (negative inside: a node holding p is skipped once best is deeper).
+            if signed_box_distance(node.lo.as_dvec3(), node.hi.as_dvec3(), p) >= best {
                 continue;
             }
             if node.count > 0 {
                 let range = node.first as usize..(node.first + node.count) as usize;
-                for &i in &self.order[range] {
-                    best = best.min(capsules[i as usize].distance(p));
+                for prim in &self.primitives[range] {
+                    best = best.min(prim.value(p, best, ctx));
                 }
             } else {
-                stack.push(node.first as usize);
-                stack.push(n + 1);
+                // Visit the nearer child first, so the farther one is more often pruned.
+                let (l, r) = (n + 1, node.first as usize);
+                let dl = signed_box_distance(self.nodes[l].lo.as_dvec3(), self.nodes[l].hi.as_dvec3(), p);
+                let dr = signed_box_distance(self.nodes[r].lo.as_dvec3(), self.nodes[r].hi.as_dvec3(), p);
+                let (near, far) = if dl <= dr { (l, r) } else { (r, l) };
+                stack[top] = far as u32;
+                stack[top + 1] = near as u32;
+                top += 2;
             }
         }
         best
     }
-}
 
-/// Distance from p to the box (0 inside); a lower bound of the distance to anything in it.
-fn box_distance(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
-    (lo - p).max(p - hi).max(DVec3::ZERO).length()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn agrees_with_brute_force() {
-        let capsules: Vec<Capsule> = (0..50)
-            .map(|i| {
-                let x = (i * 37 % 50) as f64 * 4.0;
-                let y = (i * 11 % 50) as f64 * 4.0;
-                Capsule { a: [x, y, 0.0], b: [x + 5.0, y - 3.0, 2.0], radius: 1.0 + (i % 3) as f64 }
+    /// Bytes held by the tree and its primitives (the sweeps' and chambers' boxed parts too).
+    pub fn memory(&self) -> usize {
+        use std::mem::size_of;
+        let boxed: usize = self
+            .primitives
+            .iter()
+            .map(|p| match p {
+                Primitive::Sphere { .. } => 0,
+                Primitive::Capsule(_) => size_of::<crate::Capsule>(),
+                Primitive::Sweep(_) | Primitive::Water(_) => size_of::<(crate::sweep::Sweep, f64)>(),
+                Primitive::Chamber(_) => size_of::<crate::chamber::Chamber>(),
             })
-            .collect();
-        let bvh = Bvh::build(&capsules);
-        for k in 0..200 {
-            let p = DVec3::new((k * 13 % 211) as f64, (k * 7 % 199) as f64, (k % 9) as f64 - 4.0);
-            let brute = capsules.iter().map(|c| c.distance(p)).fold(f64::INFINITY, f64::min);
-            assert_eq!(bvh.min_distance(&capsules, p, f64::INFINITY), brute);
-            assert_eq!(bvh.min_distance(&capsules, p, 0.5), brute.min(0.5));
-        }
+            .sum();
+        self.nodes.len() * size_of::<Node>() + self.primitives.len() * size_of::<Primitive>() + boxed
     }
+}
+
+fn round_down(v: DVec3) -> Vec3 {
+    let f = v.as_vec3();
+    Vec3::new(down(f.x, v.x), down(f.y, v.y), down(f.z, v.z))
+}
+
+fn round_up(v: DVec3) -> Vec3 {
+    -round_down(-v)
+}
+
+fn down(f: f32, exact: f64) -> f32 {
+    if f as f64 > exact { f.next_down() } else { f }
 }

@@ -1,5 +1,7 @@
 //! `karst-sdf`: stage 5 of karstgen. `run SCENE --out DIR` writes DIR/sdf.bin;
-//! `inspect FILE [--json]` prints a summary or the whole artifact.
+//! `inspect FILE [--json]` prints a summary or the whole artifact;
+//! `slice FILE --z Z | --y Y | --x X --png PNG [--exr EXR]` writes a cross-section image;
+//! `sections --png PNG` draws the cross-section library.
 
 use std::process::ExitCode;
 
@@ -7,7 +9,7 @@ use clap::Parser;
 use karst_artifact::cli::{InspectArgs, RunArgs, finish};
 use karst_sdf::stage;
 
-/// Poisson-disk sampling of the bedrock (karstgen stage 5).
+/// The signed-distance model of the carved terrain (karstgen stage 5).
 #[derive(Parser)]
 #[command(name = "karst-sdf", version)]
 enum Cli {
@@ -15,11 +17,17 @@ enum Cli {
     Run(RunArgs),
     /// Summarize an sdf artifact (or print it whole with --json).
     Inspect(InspectArgs),
+    /// Write a horizontal (--z) or vertical (--y, --x) slice of an sdf artifact as PNG and/or EXR.
+    Slice(stage::SliceArgs),
+    /// Draw the cross-section library (one section per conduit type) as a PNG.
+    Sections(stage::SectionsArgs),
 }
 
 fn main() -> ExitCode {
     finish(match Cli::parse() {
         Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
         Cli::Inspect(args) => stage::inspect(&args),
+        Cli::Slice(args) => stage::slice(&args),
+        Cli::Sections(args) => stage::sections(&args),
     })
 }

@@ -1,5 +1,6 @@
-//! The sdf stage: skeleton + hydro in, `sdf.bin` out.
+//! The sdf stage: skeleton + hydro in, `sdf.bin` out; `inspect` and `slice` of an sdf.bin.
 
+use std::path::PathBuf;
 use std::time::Instant;
 
 use karst_artifact::cli::{InspectArgs, RunArgs, StageRun, print_json};
@@ -8,7 +9,8 @@ use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_skeleton::Skeleton;
 
-use crate::{SdfModel, build};
+use crate::slice::{self, Plane};
+use crate::{CarvedTerrain, SdfModel, build};
 
 /// `karst-sdf run`.
 pub fn run(args: &RunArgs) -> Result<String, StageError> {
@@ -19,7 +21,9 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let start = Instant::now();
     let model = build::build(&scene, &skeleton, &hydro)?;
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Sdf)), &model)?;
-    Ok(format!("{} capsules in {:.2} s", model.capsules.len(), start.elapsed().as_secs_f64()))
+    let counts: Vec<String> =
+        model.primitive_counts().iter().filter(|(_, n)| *n > 0).map(|(k, n)| format!("{n} {k}")).collect();
+    Ok(format!("{} in {:.2} s", counts.join(", "), start.elapsed().as_secs_f64()))
 }
 
 /// `karst-sdf inspect`.
@@ -30,11 +34,115 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     let (header, model) = read_artifact::<SdfModel>(&args.file)?;
     println!("{}: sdf, schema {}, by {}", args.file.display(), header.schema, header.producer);
     println!("  terrain     λ = {:.4}", model.terrain.lipschitz());
-    println!("  capsules    {}", model.capsules.len());
+    let counts = model.primitive_counts();
+    for (kind, n) in counts {
+        println!("  {kind:<11} {n}");
+    }
+    let total: usize = counts.iter().map(|(_, n)| n).sum();
     println!(
         "  bytes       {} payload ({:.1} per primitive)",
         header.payload_len,
-        header.payload_len as f64 / model.capsules.len().max(1) as f64
+        header.payload_len as f64 / total.max(1) as f64
+    );
+    let field = CarvedTerrain::new(model);
+    let [karst, water] = field.memory();
+    let leaves = field.leaves().max(1) as f64;
+    println!(
+        "  memory      {karst} bytes for the karst ({:.1} per karst leaf), {water} for the water",
+        karst as f64 / leaves
     );
     Ok(())
+}
+
+/// Arguments of `karst-sdf slice`.
+#[derive(clap::Args, Debug)]
+#[command(group = clap::ArgGroup::new("plane").required(true))]
+pub struct SliceArgs {
+    /// The sdf.bin to slice.
+    pub file: PathBuf,
+    /// Horizontal slice at this height (metres).
+    #[arg(long, group = "plane")]
+    pub z: Option<f64>,
+    /// Vertical slice at this northing (metres): cuts east-west conduits across.
+    #[arg(long, group = "plane")]
+    pub y: Option<f64>,
+    /// Vertical slice at this easting (metres): cuts north-south conduits across.
+    #[arg(long, group = "plane")]
+    pub x: Option<f64>,
+    /// Pixel size, metres.
+    #[arg(long, default_value_t = 0.5)]
+    pub pixel: f64,
+    /// Window u0,u1,v0,v1 in the plane's coordinates (default: the domain).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub window: Option<Vec<f64>>,
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+    #[arg(long)]
+    pub exr: Option<PathBuf>,
+}
+
+/// `karst-sdf slice`.
+pub fn slice(args: &SliceArgs) -> Result<(), StageError> {
+    let plane = match (args.z, args.y, args.x) {
+        (Some(z), _, _) => Plane::Z(z),
+        (None, Some(y), _) => Plane::Y(y),
+        (None, None, Some(x)) => Plane::X(x),
+        (None, None, None) => return Err(StageError::input("slice: give --z, --y or --x")),
+    };
+    let at = args.z.or(args.y).or(args.x);
+    if !(args.pixel > 0.0 && args.pixel.is_finite() && at.is_some_and(f64::is_finite)) {
+        return Err(StageError::input(format!(
+            "slice: --pixel {} and the plane must be finite, pixel > 0",
+            args.pixel
+        )));
+    }
+    if args.png.is_none() && args.exr.is_none() {
+        return Err(StageError::input("slice: give --png FILE and/or --exr FILE"));
+    }
+    let window = match args.window.as_deref() {
+        None => None,
+        Some(&[u0, u1, v0, v1]) if [u0, u1, v0, v1].iter().all(|v| v.is_finite()) && u0 < u1 && v0 < v1 => {
+            Some([u0, u1, v0, v1])
+        }
+        Some(w) => {
+            return Err(StageError::input(format!("slice: --window {w:?} must be u0 < u1, v0 < v1, finite")));
+        }
+    };
+    let (_, model) = read_artifact::<SdfModel>(&args.file)?;
+    let field = CarvedTerrain::new(model);
+    let grid = slice::Grid::new(&field, plane, args.pixel, window);
+    if let Some(png) = &args.png {
+        slice::write_png(&field, &grid, png)
+            .map_err(|e| StageError::failure(format!("{}: {e}", png.display())))?;
+    }
+    if let Some(exr) = &args.exr {
+        slice::write_exr(&field, &grid, exr)
+            .map_err(|e| StageError::failure(format!("{}: {e}", exr.display())))?;
+    }
+    Ok(())
+}
+
+/// Arguments of `karst-sdf sections`.
+#[derive(clap::Args, Debug)]
+pub struct SectionsArgs {
+    /// Height/width factor (as `sdf.ratio`).
+    #[arg(long, default_value_t = 1.0)]
+    pub ratio: f64,
+    /// Shear of the upper half (as `sdf.asymmetry`).
+    #[arg(long, default_value_t = 0.2, allow_negative_numbers = true)]
+    pub asymmetry: f64,
+    #[arg(long)]
+    pub png: PathBuf,
+}
+
+/// `karst-sdf sections`: the cross-section library as a picture.
+pub fn sections(args: &SectionsArgs) -> Result<(), StageError> {
+    if !(args.ratio > 0.0 && args.ratio.is_finite() && args.asymmetry.is_finite()) {
+        return Err(StageError::input(format!(
+            "sections: --ratio {} must be > 0 and --asymmetry {} finite",
+            args.ratio, args.asymmetry
+        )));
+    }
+    slice::write_sections_png(args.ratio, args.asymmetry, 40.0, &args.png)
+        .map_err(|e| StageError::failure(format!("{}: {e}", args.png.display())))
 }

@@ -1,4 +1,4 @@
-//! `[sdf]`: the signed-distance model.
+//! `[sdf]`: the signed-distance model (docs/sdf.md).
 
 use serde::{Deserialize, Serialize};
 
@@ -9,16 +9,68 @@ use crate::validate::Checks;
 pub struct SdfParams {
     /// Factor applied to every conduit radius.
     pub radius_scale: f64,
+    /// Height over width of the sections, as a factor on each type's own proportions.
+    pub ratio: f64,
+    /// Sideways shear of the sections' upper half, in half-widths (meander undercuts); each
+    /// conduit leans to a random side.
+    pub asymmetry: f64,
+    /// Conduits whose tortuosity 1 − chord/length exceeds this become unions of spheres.
+    pub tortuosity: f64,
+    /// Spacing of the spheres of tortuous conduits, in conduit radii.
+    pub sphere_spacing: f64,
+    /// Radius of the smooth union where conduits open to the surface, metres.
+    pub blend: f64,
+    /// Amplitude of the wall detail noise, metres (times a per-type factor).
+    pub detail: f64,
+    /// Base wavelength of the detail noise, metres.
+    pub detail_wavelength: f64,
+    /// Chamber foundation radius, in conduit radii.
+    pub chamber_scale: f64,
+    /// Cui et al.'s bias b of the chamber walls, in (0, 0.5]: small hugs the foundation.
+    pub chamber_bias: f64,
 }
 
 impl Default for SdfParams {
     fn default() -> Self {
-        SdfParams { radius_scale: 1.0 }
+        SdfParams {
+            radius_scale: 1.0,
+            ratio: 1.0,
+            asymmetry: 0.2,
+            tortuosity: 0.15,
+            sphere_spacing: 0.5,
+            blend: 1.0,
+            detail: 0.15,
+            detail_wavelength: 3.0,
+            chamber_scale: 2.0,
+            chamber_bias: 0.2,
+        }
     }
 }
 
 impl SdfParams {
     pub(crate) fn check(&self, c: &mut Checks) {
         c.positive("sdf.radius_scale", self.radius_scale);
+        c.positive("sdf.ratio", self.ratio);
+        if c.finite("sdf.asymmetry", &[self.asymmetry]) && self.asymmetry.abs() > 1.0 {
+            c.report("sdf.asymmetry", format!("must be within [−1, 1], got {}", self.asymmetry));
+        }
+        c.non_negative("sdf.tortuosity", self.tortuosity);
+        if c.finite("sdf.sphere_spacing", &[self.sphere_spacing])
+            && !(self.sphere_spacing >= 0.1 && self.sphere_spacing <= 1.0)
+        {
+            c.report(
+                "sdf.sphere_spacing",
+                format!("must be within [0.1, 1] radii, got {}", self.sphere_spacing),
+            );
+        }
+        c.non_negative("sdf.blend", self.blend);
+        c.non_negative("sdf.detail", self.detail);
+        c.positive("sdf.detail_wavelength", self.detail_wavelength);
+        c.positive("sdf.chamber_scale", self.chamber_scale);
+        if c.finite("sdf.chamber_bias", &[self.chamber_bias])
+            && !(self.chamber_bias > 0.0 && self.chamber_bias <= 0.5)
+        {
+            c.report("sdf.chamber_bias", format!("must be within (0, 0.5], got {}", self.chamber_bias));
+        }
     }
 }

@@ -1,0 +1,131 @@
+//! Whole construction trees: the tiny scene's network (its golden skeleton and flows), the
+//! default scene's (run through the upstream stages) and a synthetic network of a few thousand
+//! primitives. On each, the field, the karst volume and the water are 1-Lipschitz on random
+//! pairs; on the synthetic one the BVH's pruning changes nothing and the sign agrees with a
+//! brute-force inside test over every leaf.
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use karst_artifact::cli::RunArgs;
+use karst_artifact::read_artifact;
+use karst_geology::Scene;
+use karst_hydro::Hydro;
+use karst_sdf::{CarvedTerrain, build, synthetic};
+use karst_skeleton::Skeleton;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn field_of(scene: &Path, dir: &Path) -> CarvedTerrain {
+    let scene = Scene::load(scene).unwrap();
+    let (_, skeleton): (_, Skeleton) = read_artifact(&dir.join("skeleton.json")).unwrap();
+    let (_, hydro): (_, Hydro) = read_artifact(&dir.join("hydro.json")).unwrap();
+    CarvedTerrain::new(build::build(&scene, &skeleton, &hydro).unwrap())
+}
+
+fn synthetic_field(conduits: usize) -> CarvedTerrain {
+    let (skeleton, hydro) = synthetic::network(5, conduits, 12);
+    CarvedTerrain::new(build::build(&synthetic::scene(), &skeleton, &hydro).unwrap())
+}
+
+/// A small deterministic generator.
+struct Lcg(u64);
+
+impl Lcg {
+    fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn offset(&mut self, reach: f64) -> DVec3 {
+        DVec3::new(self.unit() - 0.5, self.unit() - 0.5, self.unit() - 0.5) * 2.0 * reach
+    }
+}
+
+/// Points near the leaves (where the field is intricate) and anywhere in the domain.
+fn points(field: &CarvedTerrain, n: usize, seed: u64) -> Vec<DVec3> {
+    let model = field.model();
+    let v = |a: [f32; 3]| DVec3::new(a[0] as f64, a[1] as f64, a[2] as f64);
+    let anchors: Vec<DVec3> = model
+        .sweeps
+        .iter()
+        .map(|s| v(s.sweep.a))
+        .chain(model.spheres.iter().flat_map(|g| g.spheres.iter()).map(|s| v([s[0], s[1], s[2]])))
+        .chain(model.chambers.iter().map(|c| v(c.a)))
+        .collect();
+    let (lo, hi) = (DVec3::from_array(model.domain.min), DVec3::from_array(model.domain.max));
+    let mut rng = Lcg(seed);
+    (0..n)
+        .map(|i| {
+            if i % 4 == 3 || anchors.is_empty() {
+                lo + (hi - lo) * DVec3::new(rng.unit(), rng.unit(), rng.unit())
+            } else {
+                anchors[(rng.unit() * anchors.len() as f64) as usize % anchors.len()] + rng.offset(6.0)
+            }
+        })
+        .collect()
+}
+
+fn assert_lipschitz(name: &str, f: impl Fn(DVec3) -> f64, field: &CarvedTerrain, n: usize) {
+    let mut rng = Lcg(99);
+    for p in points(field, n, 17) {
+        let reach = [0.05, 0.5, 3.0][(rng.unit() * 3.0) as usize % 3];
+        let q = p + rng.offset(reach);
+        let (fp, fq) = (f(p), f(q));
+        assert!((fp - fq).abs() <= p.distance(q) * (1.0 + 1e-5), "{name}: f({p}) = {fp}, f({q}) = {fq}");
+    }
+}
+
+fn check_tree(field: &CarvedTerrain, n: usize) {
+    assert_lipschitz("eval", |p| field.eval(p), field, n);
+    assert_lipschitz("cave", |p| field.cave(p), field, n);
+    assert_lipschitz("water", |p| field.water(p), field, n);
+}
+
+#[test]
+fn tiny_tree_is_one_lipschitz() {
+    let field = field_of(&root().join("fixtures/scenes/tiny.toml"), &root().join("fixtures/golden/tiny"));
+    assert!(!field.model().water.is_empty());
+    check_tree(&field, 20_000);
+}
+
+#[test]
+fn default_tree_is_one_lipschitz() {
+    let scene = root().join("fixtures/scenes/default.toml");
+    let out = std::env::temp_dir().join(format!("karst-sdf-default-{}", std::process::id()));
+    let args = RunArgs { scene: scene.clone(), out: out.clone() };
+    karst_sampling::stage::run(&args).unwrap();
+    karst_costgraph::stage::run(&args).unwrap();
+    karst_skeleton::stage::run(&args).unwrap();
+    karst_hydro::stage::run(&args).unwrap();
+    let field = field_of(&scene, &out);
+    let _ = std::fs::remove_dir_all(&out);
+    check_tree(&field, 10_000);
+}
+
+#[test]
+fn synthetic_tree_is_one_lipschitz() {
+    let field = synthetic_field(160);
+    assert!(field.leaves() > 2000, "{} leaves", field.leaves());
+    assert!(!field.model().chambers.is_empty() && !field.model().sweeps.is_empty());
+    check_tree(&field, 20_000);
+}
+
+/// The BVH changes nothing, and the sign of f agrees with a brute-force inside test.
+#[test]
+fn sign_agrees_with_brute_force() {
+    let field = synthetic_field(40);
+    let model = field.model();
+    for p in points(&field, 5000, 3) {
+        let cave = field.cave_without_bvh(p);
+        assert_eq!(cave, field.cave(p), "the BVH changed the union at {p}");
+        let rock = model.terrain.distance(p).max(model.domain.signed_distance(p));
+        let f = field.eval(p);
+        // The entrance blend only acts where −rock and cave are within `blend` of each other.
+        if (-rock - cave).abs() >= model.blend {
+            assert_eq!(f < 0.0, rock < 0.0 && cave > 0.0, "at {p}: f = {f}, rock {rock}, cave {cave}");
+        }
+    }
+}
