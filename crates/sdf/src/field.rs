@@ -35,6 +35,12 @@ impl CarvedTerrain {
         rock.max(-caves)
     }
 
+    /// The cave alone (the karst volume clipped to the rock under the terrain and inside the
+    /// domain): negative inside the cave, 1-Lipschitz (a max of 1-Lipschitz leaves).
+    pub fn cave(&self, p: DVec3) -> f64 {
+        self.bvh.min_distance(&self.model.capsules, p, f64::INFINITY).max(self.uncarved(p))
+    }
+
     /// A guaranteed lower bound of |f| over the box [lo, hi] (0 when the surface may cross it).
     pub fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
         let centre = (lo + hi) * 0.5;

@@ -1,0 +1,51 @@
+//! The solids the mesher polygonizes: the carved rock (the terrain with its caves) and the cave
+//! alone (the karst volume, what artists want). Both are 1-Lipschitz fields, negative inside
+//! the solid, so the octree's exclusion test |f(centre)| > half diagonal is exact for both.
+
+use glam::DVec3;
+
+use karst_sdf::CarvedTerrain;
+
+/// A solid given by a 1-Lipschitz field, negative inside.
+pub trait Volume: Sync {
+    /// The field at p.
+    fn eval(&self, p: DVec3) -> f64;
+
+    /// A lower bound of |f| over the box [lo, hi] (0 when the surface may cross it).
+    fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
+        (self.eval((lo + hi) * 0.5).abs() - (hi - lo).length() * 0.5).max(0.0)
+    }
+
+    /// The box the solid lies in, `(lo, hi)`.
+    fn extent(&self) -> (DVec3, DVec3);
+}
+
+/// The carved rock: inside is rock, outside is air (sky, caves, beyond the domain).
+impl Volume for CarvedTerrain {
+    fn eval(&self, p: DVec3) -> f64 {
+        CarvedTerrain::eval(self, p)
+    }
+
+    fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
+        CarvedTerrain::bound(self, lo, hi)
+    }
+
+    fn extent(&self) -> (DVec3, DVec3) {
+        let domain = &self.model().domain;
+        (domain.min(), domain.max())
+    }
+}
+
+/// The cave alone: inside is the karst volume below the ground.
+#[derive(Debug, Clone, Copy)]
+pub struct Cave<'a>(pub &'a CarvedTerrain);
+
+impl Volume for Cave<'_> {
+    fn eval(&self, p: DVec3) -> f64 {
+        self.0.cave(p)
+    }
+
+    fn extent(&self) -> (DVec3, DVec3) {
+        self.0.extent()
+    }
+}
