@@ -49,12 +49,16 @@ fn brick<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3]) -> BrickPart {
     let size = [0, 1, 2].map(|a| (BRICK + 1).min(lattice.dims[a] - at[a]) as usize);
     let mut values = vec![1.0f64; n * n * n];
     let local = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
+    // A tetrahedron's edge is at most a cube diagonal, √3 cells, so both values of a rock–air
+    // edge lie within √3 cells of zero (1-Lipschitz): beyond 2 cells only the sign matters,
+    // and the vertices are those of exact values.
+    let reach = lattice.cell * 2.0;
     let mut evaluations = 0;
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
                 let p = [at[0] + i as u64, at[1] + j as u64, at[2] + k as u64];
-                values[local(i, j, k)] = field.eval(lattice.point(p));
+                values[local(i, j, k)] = field.eval_within(lattice.point(p), reach);
                 evaluations += 1;
             }
         }

@@ -11,9 +11,16 @@ pub trait Volume: Sync {
     /// The field at p.
     fn eval(&self, p: DVec3) -> f64;
 
+    /// The field where |f(p)| < `reach`; elsewhere any value of the same sign and magnitude at
+    /// least `reach` (cheaper for fields that search for their nearest primitive).
+    fn eval_within(&self, p: DVec3, _reach: f64) -> f64 {
+        self.eval(p)
+    }
+
     /// A lower bound of |f| over the box [lo, hi] (0 when the surface may cross it).
     fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
-        (self.eval((lo + hi) * 0.5).abs() - (hi - lo).length() * 0.5).max(0.0)
+        let half_diagonal = (hi - lo).length() * 0.5;
+        (self.eval_within((lo + hi) * 0.5, half_diagonal * 1.001).abs() - half_diagonal).max(0.0)
     }
 
     /// The box the solid lies in, `(lo, hi)`.
@@ -42,10 +49,33 @@ pub struct Cave<'a>(pub &'a CarvedTerrain);
 
 impl Volume for Cave<'_> {
     fn eval(&self, p: DVec3) -> f64 {
-        self.0.cave(p)
+        self.0.cave(p, f64::INFINITY)
+    }
+
+    fn eval_within(&self, p: DVec3, reach: f64) -> f64 {
+        self.0.cave(p, reach)
     }
 
     fn extent(&self) -> (DVec3, DVec3) {
         self.0.extent()
+    }
+}
+
+/// A borrowed solid is the same solid.
+impl<V: Volume + ?Sized> Volume for &V {
+    fn eval(&self, p: DVec3) -> f64 {
+        (**self).eval(p)
+    }
+
+    fn eval_within(&self, p: DVec3, reach: f64) -> f64 {
+        (**self).eval_within(p, reach)
+    }
+
+    fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
+        (**self).bound(lo, hi)
+    }
+
+    fn extent(&self) -> (DVec3, DVec3) {
+        (**self).extent()
     }
 }

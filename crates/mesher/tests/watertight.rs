@@ -6,7 +6,7 @@ use glam::DVec3;
 use karst_geology::Domain;
 use karst_mesher::build::build;
 use karst_mesher::polygonize::polygonize;
-use karst_mesher::volume::Cave;
+use karst_mesher::volume::{Cave, Volume};
 use karst_mesher::{Mesh, Surface, export, watertight};
 use karst_sdf::{Capsule, CarvedTerrain, SdfModel, TerrainField};
 
@@ -152,4 +152,26 @@ fn one_or_two_threads_write_the_same_files() {
     for (dir, _) in runs {
         std::fs::remove_dir_all(dir).unwrap();
     }
+}
+
+/// The cave field with every value exact (no reach-limited search).
+struct ExactCave<'a>(Cave<'a>);
+
+impl Volume for ExactCave<'_> {
+    fn eval(&self, p: DVec3) -> f64 {
+        self.0.eval(p)
+    }
+
+    fn extent(&self) -> (DVec3, DVec3) {
+        self.0.extent()
+    }
+}
+
+#[test]
+fn reach_limited_values_give_the_exact_mesh() {
+    let field = CarvedTerrain::new(random_model());
+    let limited = polygonize(&Cave(&field), 0.8);
+    let exact = polygonize(&ExactCave(Cave(&field)), 0.8);
+    assert!(!limited.triangles.is_empty());
+    assert_eq!(limited, exact);
 }

@@ -35,10 +35,16 @@ impl CarvedTerrain {
         rock.max(-caves)
     }
 
-    /// The cave alone (the karst volume clipped to the rock under the terrain and inside the
-    /// domain): negative inside the cave, 1-Lipschitz (a max of 1-Lipschitz leaves).
-    pub fn cave(&self, p: DVec3) -> f64 {
-        self.bvh.min_distance(&self.model.capsules, p, f64::INFINITY).max(self.uncarved(p))
+    /// The cave alone: the karst volume clipped to the rock under the terrain and inside the
+    /// domain, negative inside the cave. Exact where its magnitude is below `reach`; elsewhere
+    /// a value of the same sign and magnitude at least `reach`, so that the search for the
+    /// nearest conduit can stop at `reach` (the mesher asks for a cell or a half diagonal).
+    pub fn cave(&self, p: DVec3, reach: f64) -> f64 {
+        let rock = self.uncarved(p);
+        if rock >= reach {
+            return rock;
+        }
+        self.bvh.min_distance(&self.model.capsules, p, reach).max(rock)
     }
 
     /// A guaranteed lower bound of |f| over the box [lo, hi] (0 when the surface may cross it).
