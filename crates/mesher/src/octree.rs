@@ -8,7 +8,7 @@ use crate::lattice::Lattice;
 use crate::volume::Volume;
 
 /// Cells along a brick's edge.
-pub const BRICK: u64 = 8;
+pub const BRICK: u64 = 4;
 
 /// Lattice cell coordinates of the first cell of every brick the surface may cross, in
 /// (z, y, x) order, and the number of field evaluations spent finding them.
