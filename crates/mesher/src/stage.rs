@@ -18,6 +18,7 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let scene = Scene::load(&args.scene)?;
     let mut run = StageRun::new(Stage::Mesher, &args.out);
     let model: SdfModel = run.read_input(Stage::Sdf)?;
+    check_lattice(&args.scene, &model, scene.mesher.cell_size)?;
     let start = Instant::now();
     let anchors: Vec<_> = scene
         .keypoints
@@ -41,6 +42,22 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
             / (t.vertices.len() + c.vertices.len()).max(1) as f64,
         start.elapsed().as_secs_f64()
     ))
+}
+
+/// Cells per axis the lattice may have: lattice point ids are (k·ny + j)·nx + i in a u64.
+const MAX_CELLS_PER_AXIS: f64 = (1u64 << 21) as f64;
+
+/// Refuses a cell size that would overflow the lattice's point ids.
+fn check_lattice(scene: &std::path::Path, model: &SdfModel, cell_size: f64) -> Result<(), StageError> {
+    let cells = (model.domain.size() / cell_size).max_element() + 2.0;
+    if cells > MAX_CELLS_PER_AXIS {
+        return Err(StageError::input(format!(
+            "{}: mesher.cell_size = {cell_size} gives {cells:.0} cells along the domain's longest axis; \
+             at most {MAX_CELLS_PER_AXIS} are possible",
+            scene.display()
+        )));
+    }
+    Ok(())
 }
 
 /// `karst-mesher inspect`.
