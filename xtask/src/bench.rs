@@ -106,11 +106,13 @@ pub mod synthetic {
         }
     }
 
-    /// One timed case: median seconds, the last surface, and the peak resident memory, MB.
+    /// One timed case: median seconds, the mesh's size and cost, and the peak resident memory
+    /// while meshing, MB.
     pub struct Case {
         pub name: String,
         pub seconds: f64,
-        pub surface: Surface,
+        pub triangles: usize,
+        pub evaluations_per_vertex: f64,
         pub peak_mb: f64,
     }
 
@@ -148,7 +150,8 @@ pub mod synthetic {
         let case = Case {
             name: name.to_string(),
             seconds: super::median(seconds),
-            surface,
+            triangles: surface.triangles.len(),
+            evaluations_per_vertex: surface.evaluations_per_vertex(),
             peak_mb: peak_memory_mb(),
         };
         eprintln!("{name}: {:.3} s", case.seconds);
