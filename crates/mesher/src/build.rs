@@ -7,6 +7,7 @@ use karst_sdf::CarvedTerrain;
 use crate::Mesh;
 use crate::cleanup::{Solid, clean};
 use crate::polygonize::polygonize;
+use crate::simplify::simplify;
 use crate::volume::Cave;
 
 /// Both surfaces of `field` at `cell_size`; `anchors` (sinks and springs) keep the air around
@@ -17,4 +18,20 @@ pub fn build(field: &CarvedTerrain, cell_size: f64, anchors: &[DVec3]) -> Mesh {
     let mut cave = polygonize(&Cave(field), cell_size);
     clean(&mut cave, Solid::Cave, field.model(), anchors, cell_size);
     Mesh { cell_size, terrain, cave }
+}
+
+/// [`build`], then each surface simplified to at most `target_triangles` (0: not simplified).
+pub fn build_simplified(
+    field: &CarvedTerrain,
+    cell_size: f64,
+    anchors: &[DVec3],
+    target_triangles: u64,
+) -> Mesh {
+    let mut mesh = build(field, cell_size, anchors);
+    if target_triangles > 0 {
+        for surface in [&mut mesh.terrain, &mut mesh.cave] {
+            simplify(surface, target_triangles as usize);
+        }
+    }
+    mesh
 }

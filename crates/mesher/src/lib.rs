@@ -23,6 +23,7 @@ pub mod normals;
 pub mod octree;
 pub mod polygonize;
 pub mod render;
+pub mod simplify;
 pub mod stage;
 pub mod tetra;
 pub mod volume;

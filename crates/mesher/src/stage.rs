@@ -26,7 +26,13 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
         .filter(|k| matches!(k.kind, KeyPointKind::Sink | KeyPointKind::Spring))
         .map(|k| k.point())
         .collect();
-    let mesh = build::build(&CarvedTerrain::new(model), scene.mesher.cell_size, &anchors);
+    let params = &scene.mesher;
+    let mesh = build::build_simplified(
+        &CarvedTerrain::new(model),
+        params.cell_size,
+        &anchors,
+        params.target_triangles,
+    );
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Mesher)), &mesh)?;
     export::write_all(&args.out, &mesh)
         .map_err(|e| StageError::failure(format!("{}: cannot write the exports: {e}", args.out.display())))?;

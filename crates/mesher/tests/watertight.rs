@@ -175,3 +175,19 @@ fn reach_limited_values_give_the_exact_mesh() {
     assert!(!limited.triangles.is_empty());
     assert_eq!(limited, exact);
 }
+
+#[test]
+fn simplification_keeps_the_promises() {
+    let mesh = mesh_of(random_model(), 0.7);
+    for (name, surface) in [("terrain", &mesh.terrain), ("cave", &mesh.cave)] {
+        let target = surface.triangles.len() / 4;
+        let mut simple = surface.clone();
+        karst_mesher::simplify::simplify(&mut simple, target);
+        assert!(simple.triangles.len() <= target, "{name}: {} > {target}", simple.triangles.len());
+        assert_watertight(&format!("simplified {name}"), &simple);
+        let (before, after) = (surface.enclosed_volume(), simple.enclosed_volume());
+        assert!((after / before - 1.0).abs() < 0.03, "{name}: volume {before} → {after}");
+        let (before, after) = (surface.area(), simple.area());
+        assert!((after / before - 1.0).abs() < 0.05, "{name}: area {before} → {after}");
+    }
+}
