@@ -5,9 +5,10 @@ use glam::DVec3;
 
 use karst_geology::Domain;
 use karst_mesher::build::build;
+use karst_mesher::cleanup::{Solid, clean};
 use karst_mesher::polygonize::polygonize;
 use karst_mesher::volume::{Cave, Volume};
-use karst_mesher::{Mesh, Surface, export, watertight};
+use karst_mesher::{Mesh, Surface, components, export, watertight};
 use karst_sdf::{Capsule, CarvedTerrain, SdfModel, TerrainField};
 
 const PI: f64 = std::f64::consts::PI;
@@ -189,5 +190,47 @@ fn simplification_keeps_the_promises() {
         assert!((after / before - 1.0).abs() < 0.03, "{name}: volume {before} → {after}");
         let (before, after) = (surface.area(), simple.area());
         assert!((after / before - 1.0).abs() < 0.05, "{name}: area {before} → {after}");
+    }
+}
+
+/// Rock with a hollow shell of air (3 m to 6 m around a centre) opened to the sky by a shaft:
+/// the ball inside the shell is a rock island floating in cave air.
+struct HollowShell {
+    model: SdfModel,
+    cave: bool,
+}
+
+impl HollowShell {
+    const CENTRE: DVec3 = DVec3::new(30.0, 20.0, 12.0);
+}
+
+impl Volume for HollowShell {
+    fn eval(&self, p: DVec3) -> f64 {
+        let ground = self.model.terrain.distance(p).max(self.model.domain.signed_distance(p));
+        let d = p.distance(Self::CENTRE);
+        let shell = (3.0 - d).max(d - 6.0);
+        let shaft = Capsule { a: [30.0, 20.0, 17.5], b: [30.0, 20.0, 40.0], radius: 1.5 }.distance(p);
+        let air = shell.min(shaft);
+        if self.cave { air.max(ground) } else { ground.max(-air) }
+    }
+
+    fn extent(&self) -> (DVec3, DVec3) {
+        (self.model.domain.min(), self.model.domain.max())
+    }
+}
+
+#[test]
+fn rock_island_in_cave_air_is_removed_from_both_surfaces() {
+    let island = 4.0 / 3.0 * PI * 27.0;
+    for (cave, solid) in [(false, Solid::Rock), (true, Solid::Cave)] {
+        let model = SdfModel { capsules: Vec::new(), ..model() };
+        let volume = HollowShell { model: model.clone(), cave };
+        let mut surface = polygonize(&volume, 0.4);
+        assert_eq!(components::count(&surface), 2, "the ground (or the open shell) and the island");
+        clean(&mut surface, solid, &model, &[], 0.4);
+        assert_eq!((surface.removed.islands, surface.removed.pockets), (1, 0), "{solid:?}");
+        assert!((surface.removed.island_volume / island - 1.0).abs() < 0.03, "{:?}", surface.removed);
+        assert_eq!(components::count(&surface), 1);
+        assert_watertight(&format!("{solid:?} without the island"), &surface);
     }
 }
