@@ -243,6 +243,14 @@ fn sdf_bench(runs: usize) -> Result<(), StageError> {
         b.artifact_bytes,
         per(b.artifact_bytes as f64)
     );
+
+    println!("\nmesher, synthetic 30k capsules (issue 8)");
+    for case in bench::synthetic::run(runs) {
+        println!(
+            "{:<45} {:>8.3} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB",
+            case.name, case.seconds, case.triangles, case.evaluations_per_vertex, case.peak_mb
+        );
+    }
     Ok(())
 }
 

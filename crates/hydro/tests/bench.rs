@@ -28,6 +28,8 @@ fn maze(n: usize, sinks: usize) -> Skeleton {
                 nodes: vec![i as u32, j as u32],
                 radius: vec![2.0; 2],
                 types: vec![ConduitType::Canyon],
+                phase: 0,
+                keypoints: vec![],
             });
         }
     }

@@ -1,5 +1,6 @@
-//! `karst-mesher`: stage 6 of karstgen. `run SCENE --out DIR` writes DIR/mesh.bin and DIR/mesh.obj;
-//! `inspect FILE [--json]` prints a summary or the whole artifact.
+//! `karst-mesher`: stage 6 of karstgen. `run SCENE --out DIR` writes DIR/mesh.bin, DIR/mesh.obj
+//! and DIR/export/; `inspect FILE [--json]` prints a summary or the whole artifact;
+//! `render FILE --png OUT` draws a preview.
 
 use std::process::ExitCode;
 
@@ -7,19 +8,22 @@ use clap::Parser;
 use karst_artifact::cli::{InspectArgs, RunArgs, finish};
 use karst_mesher::stage;
 
-/// Poisson-disk sampling of the bedrock (karstgen stage 6).
+/// Sparse polygonization of the carved terrain and its caves (karstgen stage 6).
 #[derive(Parser)]
 #[command(name = "karst-mesher", version)]
 enum Cli {
-    /// Polygonize DIR/sdf.bin into DIR/mesh.bin and DIR/mesh.obj.
+    /// Polygonize DIR/sdf.bin into DIR/mesh.bin, DIR/mesh.obj and DIR/export/.
     Run(RunArgs),
     /// Summarize a mesh artifact (or print it whole with --json).
     Inspect(InspectArgs),
+    /// Render one surface of a mesh artifact to PNG.
+    Render(stage::RenderArgs),
 }
 
 fn main() -> ExitCode {
     finish(match Cli::parse() {
         Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
         Cli::Inspect(args) => stage::inspect(&args),
+        Cli::Render(args) => stage::render(&args),
     })
 }

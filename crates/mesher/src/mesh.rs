@@ -1,66 +1,68 @@
-//! The mesh artifact and its OBJ export.
+//! The mesh artifact: the carved terrain and the cave alone, each a closed surface.
 
-use std::path::Path;
-
+use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Kind, Payload, atomic};
+use karst_artifact::{Kind, Payload};
 
-/// An indexed triangle mesh; triangles are counter-clockwise seen from the air side.
+use crate::cleanup::Removed;
+
+/// The artifact `mesh.bin`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Mesh {
-    pub vertices: Vec<[f32; 3]>,
-    pub triangles: Vec<[u32; 3]>,
     /// Lattice cell size used, metres.
     pub cell_size: f64,
-    /// Field evaluations spent (octree and bricks).
-    pub field_evaluations: u64,
+    /// The carved rock: normals point from rock to air.
+    pub terrain: Surface,
+    /// The karst volume alone: normals point out of the cave, into the rock.
+    pub cave: Surface,
 }
 
 impl Payload for Mesh {
     const KIND: Kind = Kind::Mesh;
-    const SCHEMA: u32 = 1;
+    const SCHEMA: u32 = 2;
 }
 
-impl Mesh {
+/// An indexed triangle mesh; triangles are counter-clockwise seen from outside the solid.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Surface {
+    pub vertices: Vec<[f32; 3]>,
+    pub triangles: Vec<[u32; 3]>,
+    /// Field evaluations spent (octree and bricks).
+    pub field_evaluations: u64,
+    /// What the cleanup took away.
+    pub removed: Removed,
+}
+
+impl Surface {
     /// Total area, m².
     pub fn area(&self) -> f64 {
-        self.triangles.iter().map(|t| self.corners(t).1.length() * 0.5).sum()
+        self.triangles.iter().map(|t| self.normal(t).length() * 0.5).sum()
     }
 
-    /// Volume enclosed by the (closed, outward-oriented) mesh, m³: Σ a·(b × c)/6.
+    /// Volume enclosed by the (closed, outward-oriented) mesh, m³.
     pub fn enclosed_volume(&self) -> f64 {
-        self.triangles
-            .iter()
-            .map(|t| {
-                let ([a, _, _], n) = self.corners(t);
-                a.dot(n) / 6.0
-            })
-            .sum()
+        self.volume_of(self.triangles.iter())
     }
 
-    /// Corners of a triangle and its (unnormalized, doubled-area) normal.
-    fn corners(&self, t: &[u32; 3]) -> ([glam::DVec3; 3], glam::DVec3) {
-        let [a, b, c] = t.map(|i| glam::Vec3::from_array(self.vertices[i as usize]).as_dvec3());
-        ([a, b, c], (b - a).cross(c - a))
+    /// Signed volume under a set of triangles: Σ a·(b × c)/6.
+    pub fn volume_of<'a>(&self, triangles: impl Iterator<Item = &'a [u32; 3]>) -> f64 {
+        triangles.map(|t| self.position(t[0]).dot(self.normal(t)) / 6.0).sum()
     }
 
-    /// Writes the mesh as Wavefront OBJ (1-based faces), atomically.
-    pub fn write_obj(&self, path: &Path) -> std::io::Result<()> {
-        atomic::write_with(path, |w| {
-            writeln!(
-                w,
-                "# karstgen mesh: {} vertices, {} triangles",
-                self.vertices.len(),
-                self.triangles.len()
-            )?;
-            for [x, y, z] in &self.vertices {
-                writeln!(w, "v {x} {y} {z}")?;
-            }
-            for [a, b, c] in &self.triangles {
-                writeln!(w, "f {} {} {}", a + 1, b + 1, c + 1)?;
-            }
-            Ok(())
-        })
+    /// Vertex i in double precision.
+    pub fn position(&self, i: u32) -> DVec3 {
+        glam::Vec3::from_array(self.vertices[i as usize]).as_dvec3()
+    }
+
+    /// The triangle's normal, of length twice its area.
+    pub fn normal(&self, t: &[u32; 3]) -> DVec3 {
+        let [a, b, c] = t.map(|i| self.position(i));
+        (b - a).cross(c - a)
+    }
+
+    /// Field evaluations per output vertex.
+    pub fn evaluations_per_vertex(&self) -> f64 {
+        self.field_evaluations as f64 / self.vertices.len().max(1) as f64
     }
 }

@@ -4,16 +4,15 @@
 //! the surface cannot cross it and the whole subtree is skipped; otherwise it is split into
 //! eight until the brick size is reached. The field is 1-Lipschitz, so skipping is exact.
 
-use karst_sdf::CarvedTerrain;
-
 use crate::lattice::Lattice;
+use crate::volume::Volume;
 
 /// Cells along a brick's edge.
-pub const BRICK: u64 = 8;
+pub const BRICK: u64 = 4;
 
 /// Lattice cell coordinates of the first cell of every brick the surface may cross, in
 /// (z, y, x) order, and the number of field evaluations spent finding them.
-pub fn active_bricks(field: &CarvedTerrain, lattice: &Lattice) -> (Vec<[u64; 3]>, u64) {
+pub fn active_bricks<V: Volume>(field: &V, lattice: &Lattice) -> (Vec<[u64; 3]>, u64) {
     let cells = lattice.dims.map(|d| d - 1);
     let mut size = BRICK;
     while size < cells.into_iter().max().unwrap_or(0) {
@@ -26,8 +25,8 @@ pub fn active_bricks(field: &CarvedTerrain, lattice: &Lattice) -> (Vec<[u64; 3]>
     (bricks, evaluations)
 }
 
-fn visit(
-    field: &CarvedTerrain,
+fn visit<V: Volume>(
+    field: &V,
     lattice: &Lattice,
     cells: [u64; 3],
     at: [u64; 3],

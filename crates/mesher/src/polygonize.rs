@@ -5,12 +5,11 @@ use std::collections::HashMap;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use karst_sdf::CarvedTerrain;
-
-use crate::Mesh;
 use crate::lattice::Lattice;
+use crate::mesh::Surface;
 use crate::octree::{self, BRICK};
 use crate::tetra::{self, TETRAHEDRA};
+use crate::volume::Volume;
 
 /// A mesh vertex is identified by the lattice edge it lies on: (lower id, higher id).
 type EdgeKey = (u64, u64);
@@ -27,10 +26,10 @@ struct BrickPart {
     evaluations: u64,
 }
 
-/// Polygonizes the surface f = 0 of `field` at `cell_size` over the domain.
-pub fn polygonize(field: &CarvedTerrain, cell_size: f64) -> Mesh {
-    let domain = field.model().domain;
-    let lattice = Lattice::around(domain.min(), domain.max(), cell_size);
+/// Polygonizes the boundary f = 0 of `field` at `cell_size` over its extent.
+pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
+    let (lo, hi) = field.extent();
+    let lattice = Lattice::around(lo, hi, cell_size);
     let (bricks, octree_evaluations) = octree::active_bricks(field, &lattice);
     let bar = karst_artifact::progress::bar(bricks.len() as u64, "mesher");
     let parts: Vec<BrickPart> = bricks
@@ -42,20 +41,24 @@ pub fn polygonize(field: &CarvedTerrain, cell_size: f64) -> Mesh {
         })
         .collect();
     bar.finish_and_clear();
-    weld(parts, cell_size, octree_evaluations)
+    weld(parts, octree_evaluations)
 }
 
-fn brick(field: &CarvedTerrain, lattice: &Lattice, at: [u64; 3]) -> BrickPart {
+fn brick<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3]) -> BrickPart {
     let n = (BRICK + 1) as usize;
     let size = [0, 1, 2].map(|a| (BRICK + 1).min(lattice.dims[a] - at[a]) as usize);
     let mut values = vec![1.0f64; n * n * n];
     let local = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
+    // A tetrahedron's edge is at most a cube diagonal, √3 cells, so both values of a rock–air
+    // edge lie within √3 cells of zero (1-Lipschitz): beyond 2 cells only the sign matters,
+    // and the vertices are those of exact values.
+    let reach = lattice.cell * 2.0;
     let mut evaluations = 0;
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
                 let p = [at[0] + i as u64, at[1] + j as u64, at[2] + k as u64];
-                values[local(i, j, k)] = field.eval(lattice.point(p));
+                values[local(i, j, k)] = field.eval_within(lattice.point(p), reach);
                 evaluations += 1;
             }
         }
@@ -108,7 +111,7 @@ fn ordered(a: u64, b: u64) -> EdgeKey {
 
 /// Merges brick parts in brick order; a vertex on an edge shared by two bricks keeps the
 /// position computed by the first.
-fn weld(parts: Vec<BrickPart>, cell_size: f64, octree_evaluations: u64) -> Mesh {
+fn weld(parts: Vec<BrickPart>, octree_evaluations: u64) -> Surface {
     let mut global: HashMap<EdgeKey, u32> = HashMap::new();
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
@@ -128,5 +131,5 @@ fn weld(parts: Vec<BrickPart>, cell_size: f64, octree_evaluations: u64) -> Mesh 
             .collect();
         triangles.extend(part.triangles.iter().map(|t| t.map(|i| remap[i as usize])));
     }
-    Mesh { vertices, triangles, cell_size, field_evaluations }
+    Surface { vertices, triangles, field_evaluations, removed: Default::default() }
 }

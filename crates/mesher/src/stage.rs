@@ -1,35 +1,69 @@
-//! The mesher stage: `sdf.bin` in, `mesh.bin` and `mesh.obj` out.
+//! The mesher stage: `sdf.bin` in; `mesh.bin`, `mesh.obj` and `export/` out.
 
+use std::path::PathBuf;
 use std::time::Instant;
+
+use clap::Args;
 
 use karst_artifact::cli::{InspectArgs, RunArgs, StageRun, print_json};
 use karst_artifact::{Stage, StageError, read_artifact, write_artifact};
-use karst_geology::Scene;
+use karst_geology::{KeyPointKind, Scene};
 use karst_sdf::{CarvedTerrain, SdfModel};
 
-use crate::Mesh;
-use crate::polygonize::polygonize;
-
-/// Name of the OBJ export in the output folder.
-pub const OBJ_NAME: &str = "mesh.obj";
+use crate::mesh::Surface;
+use crate::{Mesh, build, components, export, render, watertight};
 
 /// `karst-mesher run`.
 pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let scene = Scene::load(&args.scene)?;
     let mut run = StageRun::new(Stage::Mesher, &args.out);
     let model: SdfModel = run.read_input(Stage::Sdf)?;
+    check_lattice(&args.scene, &model, scene.mesher.cell_size)?;
     let start = Instant::now();
-    let mesh = polygonize(&CarvedTerrain::new(model), scene.mesher.cell_size);
+    let anchors: Vec<_> = scene
+        .keypoints
+        .iter()
+        .filter(|k| matches!(k.kind, KeyPointKind::Sink | KeyPointKind::Spring))
+        .map(|k| k.point())
+        .collect();
+    let params = &scene.mesher;
+    let mesh = build::build_simplified(
+        &CarvedTerrain::new(model),
+        params.cell_size,
+        &anchors,
+        params.target_triangles,
+    );
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Mesher)), &mesh)?;
-    let obj = args.out.join(OBJ_NAME);
-    mesh.write_obj(&obj).map_err(|e| StageError::failure(format!("{}: cannot write: {e}", obj.display())))?;
+    export::write_all(&args.out, &mesh)
+        .map_err(|e| StageError::failure(format!("{}: cannot write the exports: {e}", args.out.display())))?;
+    let (t, c) = (&mesh.terrain, &mesh.cave);
     Ok(format!(
-        "{} triangles, {} vertices, {:.1} evaluations per vertex in {:.2} s",
-        mesh.triangles.len(),
-        mesh.vertices.len(),
-        mesh.field_evaluations as f64 / mesh.vertices.len().max(1) as f64,
+        "terrain {} triangles, cave {} triangles; removed {} islands and {} pockets; \
+         {:.1} evaluations per vertex in {:.2} s",
+        t.triangles.len(),
+        c.triangles.len(),
+        t.removed.islands + c.removed.islands,
+        t.removed.pockets + c.removed.pockets,
+        (t.field_evaluations + c.field_evaluations) as f64
+            / (t.vertices.len() + c.vertices.len()).max(1) as f64,
         start.elapsed().as_secs_f64()
     ))
+}
+
+/// Cells per axis the lattice may have: lattice point ids are (k·ny + j)·nx + i in a u64.
+const MAX_CELLS_PER_AXIS: f64 = (1u64 << 21) as f64;
+
+/// Refuses a cell size that would overflow the lattice's point ids.
+fn check_lattice(scene: &std::path::Path, model: &SdfModel, cell_size: f64) -> Result<(), StageError> {
+    let cells = (model.domain.size() / cell_size).max_element() + 2.0;
+    if cells > MAX_CELLS_PER_AXIS {
+        return Err(StageError::input(format!(
+            "{}: mesher.cell_size = {cell_size} gives {cells:.0} cells along the domain's longest axis; \
+             at most {MAX_CELLS_PER_AXIS} are possible",
+            scene.display()
+        )));
+    }
+    Ok(())
 }
 
 /// `karst-mesher inspect`.
@@ -39,15 +73,69 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     }
     let (header, mesh) = read_artifact::<Mesh>(&args.file)?;
     println!("{}: mesh, schema {}, by {}", args.file.display(), header.schema, header.producer);
-    println!("  triangles    {}", mesh.triangles.len());
-    println!("  vertices     {}", mesh.vertices.len());
     println!("  cell size    {} m", mesh.cell_size);
-    println!("  area         {:.1} m²", mesh.area());
-    println!("  volume       {:.1} m³ of rock", mesh.enclosed_volume());
-    println!(
-        "  evaluations  {} ({:.1} per vertex)",
-        mesh.field_evaluations,
-        mesh.field_evaluations as f64 / mesh.vertices.len().max(1) as f64
-    );
+    for (name, surface) in [("terrain", &mesh.terrain), ("cave", &mesh.cave)] {
+        summary(name, surface);
+    }
     Ok(())
+}
+
+fn summary(name: &str, s: &Surface) {
+    println!("  {name}");
+    println!("    triangles    {}", s.triangles.len());
+    println!("    vertices     {}", s.vertices.len());
+    println!("    components   {}", components::count(s));
+    match watertight::check(s) {
+        Ok(()) => println!("    watertight   yes: closed, 2-manifold, oriented, no degenerate triangle"),
+        Err(defect) => println!("    watertight   NO: {defect}"),
+    }
+    println!("    area         {:.1} m²", s.area());
+    println!("    volume       {:.1} m³ enclosed", s.enclosed_volume());
+    println!("    evaluations  {} ({:.2} per vertex)", s.field_evaluations, s.evaluations_per_vertex());
+    let r = &s.removed;
+    println!(
+        "    removed      {} islands ({:.1} m³), {} pockets ({:.1} m³)",
+        r.islands, r.island_volume, r.pockets, r.pocket_volume
+    );
+}
+
+/// `karst-mesher render`: a PNG preview of one surface of a mesh artifact.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// The mesh artifact (mesh.bin).
+    pub file: PathBuf,
+    /// The PNG to write.
+    #[arg(long)]
+    pub png: PathBuf,
+    /// Which surface: `cave` or `terrain`.
+    #[arg(long, default_value = "cave")]
+    pub surface: String,
+    /// Picture width and height, pixels.
+    #[arg(long, default_value_t = 1200)]
+    pub width: u32,
+    #[arg(long, default_value_t = 800)]
+    pub height: u32,
+}
+
+/// `karst-mesher render`.
+pub fn render(args: &RenderArgs) -> Result<(), StageError> {
+    let (_, mesh) = read_artifact::<Mesh>(&args.file)?;
+    let surface = match args.surface.as_str() {
+        "cave" => &mesh.cave,
+        "terrain" => &mesh.terrain,
+        other => {
+            return Err(StageError::input(format!("--surface {other}: expected `cave` or `terrain`")));
+        }
+    };
+    if !(16..=8192).contains(&args.width) || !(16..=8192).contains(&args.height) {
+        return Err(StageError::input(format!(
+            "--width {} --height {}: each must be within 16..=8192 pixels",
+            args.width, args.height
+        )));
+    }
+    let caption = format!("{}: {} triangles at {} m", args.surface, surface.triangles.len(), mesh.cell_size);
+    let canvas = render::render(surface, args.width, args.height, &caption);
+    canvas
+        .write_png(&args.png)
+        .map_err(|e| StageError::failure(format!("{}: cannot write: {e}", args.png.display())))
 }

@@ -1,12 +1,17 @@
-//! The mesher's promises on a small carved terrain: closed, 2-manifold, consistently oriented,
-//! no degenerate triangle, the right volume, and the same bytes whatever the thread count.
+//! The mesher's promises: closed, 2-manifold, consistently oriented surfaces without degenerate
+//! triangles, the right areas and volumes, and the same bytes whatever the thread count.
 
-use std::collections::HashMap;
+use glam::DVec3;
 
 use karst_geology::Domain;
-use karst_mesher::Mesh;
+use karst_mesher::build::build;
+use karst_mesher::cleanup::{Solid, clean};
 use karst_mesher::polygonize::polygonize;
+use karst_mesher::volume::{Cave, Volume};
+use karst_mesher::{Mesh, Surface, components, export, watertight};
 use karst_sdf::{Capsule, CarvedTerrain, SdfModel, TerrainField};
+
+const PI: f64 = std::f64::consts::PI;
 
 fn model() -> SdfModel {
     SdfModel {
@@ -23,54 +28,209 @@ fn model() -> SdfModel {
     }
 }
 
-fn mesh_with_threads(threads: usize, cell: f64) -> Mesh {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-    pool.install(|| polygonize(&CarvedTerrain::new(model()), cell))
-}
-
-#[test]
-fn closed_oriented_manifold_without_degenerate_triangles() {
-    let mesh = mesh_with_threads(2, 1.0);
-    assert!(!mesh.triangles.is_empty());
-    let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in &mesh.triangles {
-        for e in 0..3 {
-            *directed.entry((t[e], t[(e + 1) % 3])).or_default() += 1;
+/// A seeded tangle of 80 conduits (random walks of capsules) under a tilted plane.
+fn random_model() -> SdfModel {
+    let mut state = 0x5eed_u64;
+    let mut next = move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut capsules = Vec::new();
+    for _ in 0..8 {
+        let mut p = DVec3::new(next() * 80.0 + 10.0, next() * 80.0 + 10.0, next() * 30.0 + 5.0);
+        for _ in 0..10 {
+            let q = p + DVec3::new(next() - 0.5, next() - 0.5, (next() - 0.5) * 0.4) * 16.0;
+            capsules.push(Capsule { a: p.to_array(), b: q.to_array(), radius: 0.8 + next() * 2.0 });
+            p = q;
         }
-        let [a, b, c] = t.map(|i| glam::Vec3::from_array(mesh.vertices[i as usize]).as_dvec3());
-        assert!((b - a).cross(c - a).length() > 1e-9, "degenerate triangle {t:?}");
     }
-    for (&(a, b), &n) in &directed {
-        assert_eq!(n, 1, "edge {a}→{b} used {n} times in one direction");
-        assert_eq!(directed.get(&(b, a)), Some(&1), "edge {a}→{b} has no twin");
+    SdfModel {
+        capsules,
+        ..SdfModel::new(Domain { min: [0.0, 0.0, 0.0], max: [100.0, 100.0, 45.0] }, TerrainField::Plane { elevation: 38.0, origin: [0.0, 0.0], gradient: [0.03, -0.02] })
+    }
+}
+
+fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(f)
+}
+
+fn mesh_of(model: SdfModel, cell: f64) -> Mesh {
+    build(&CarvedTerrain::new(model), cell, &[])
+}
+
+fn assert_watertight(name: &str, surface: &Surface) {
+    assert!(!surface.triangles.is_empty(), "{name}: empty");
+    if let Err(defect) = watertight::check(surface) {
+        panic!("{name}: {defect}");
+    }
+    assert!(surface.enclosed_volume() > 0.0, "{name}: volume {}", surface.enclosed_volume());
+}
+
+#[test]
+fn both_surfaces_are_closed_oriented_manifolds() {
+    for (name, model, cell) in [("fixed", model(), 1.0), ("random", random_model(), 0.7)] {
+        let mesh = with_threads(2, || mesh_of(model, cell));
+        assert_watertight(&format!("{name} terrain"), &mesh.terrain);
+        assert_watertight(&format!("{name} cave"), &mesh.cave);
     }
 }
 
 #[test]
-fn volume_is_the_rock_volume() {
-    let mesh = mesh_with_threads(2, 0.5);
-    // Rock under the tilted plane, minus the caves (the sealed pocket and the conduits).
+fn the_checker_finds_holes_flips_and_degenerate_triangles() {
+    let mesh = mesh_of(model(), 2.0);
+    let mut open = mesh.terrain.clone();
+    open.triangles.pop();
+    assert!(matches!(watertight::check(&open), Err(watertight::Defect::OpenEdge(..))));
+    let mut flipped = mesh.terrain.clone();
+    flipped.triangles[0].swap(1, 2);
+    assert!(watertight::check(&flipped).is_err());
+    let mut flat = mesh.terrain.clone();
+    let t = flat.triangles[0];
+    flat.vertices[t[1] as usize] = flat.vertices[t[0] as usize];
+    assert!(watertight::check(&flat).is_err());
+}
+
+#[test]
+fn rock_and_cave_fill_the_ground_between_them() {
+    let mesh = mesh_of(model(), 0.5);
     let under_terrain: f64 = 60.0 * 40.0 * (25.0 + 0.05 * 30.0 + 0.02 * 20.0);
-    let pocket = std::f64::consts::PI * 4.0 * 4.0 + 4.0 / 3.0 * std::f64::consts::PI * 8.0;
-    let volume = mesh.enclosed_volume();
-    assert!(volume < under_terrain - pocket, "{volume}");
-    assert!(volume > under_terrain - pocket - 2000.0, "{volume}: the conduits are far smaller");
+    let (rock, cave) = (mesh.terrain.enclosed_volume(), mesh.cave.enclosed_volume());
+    assert!(((rock + cave) / under_terrain - 1.0).abs() < 1e-3, "{rock} + {cave} vs {under_terrain}");
+    // The open conduits: π·2.5²·16.8 + π·3²·35.1 + a half ball of 3 m, less their top above
+    // the ground and the overlap at the bend.
+    assert!(cave > 1250.0 && cave < 1400.0, "{cave}");
 }
 
 #[test]
-fn obj_reads_back_with_tobj() {
-    let mesh = mesh_with_threads(2, 2.0);
-    let path = std::env::temp_dir().join(format!("karst-mesher-{}.obj", std::process::id()));
-    mesh.write_obj(&path).unwrap();
-    let (models, _) = tobj::load_obj(&path, &tobj::LoadOptions::default()).unwrap();
-    let m = &models[0].mesh;
-    assert_eq!(m.positions.len(), mesh.vertices.len() * 3);
-    assert_eq!(m.indices.len(), mesh.triangles.len() * 3);
-    assert_eq!(m.indices[..3], mesh.triangles[0]);
-    std::fs::remove_file(path).unwrap();
+fn sealed_pocket_is_removed_unless_it_holds_a_spring() {
+    let field = CarvedTerrain::new(model());
+    let mesh = build(&field, 0.5, &[]);
+    let pocket = PI * 4.0 * 4.0 + 4.0 / 3.0 * PI * 8.0;
+    for removed in [mesh.terrain.removed, mesh.cave.removed] {
+        assert_eq!((removed.islands, removed.pockets), (0, 1));
+        assert!((removed.pocket_volume / pocket - 1.0).abs() < 0.02, "{removed:?}");
+    }
+    let spring = DVec3::new(42.0, 8.0, 5.0);
+    let kept = build(&field, 0.5, &[spring]);
+    assert_eq!(kept.terrain.removed.pockets + kept.cave.removed.pockets, 0);
+    let gained = kept.cave.enclosed_volume() - mesh.cave.enclosed_volume();
+    assert!((gained / pocket - 1.0).abs() < 0.02, "{gained}");
 }
 
 #[test]
-fn same_mesh_with_one_or_two_threads() {
-    assert_eq!(mesh_with_threads(1, 1.5), mesh_with_threads(2, 1.5));
+fn a_capsule_matches_its_analytic_area_and_volume() {
+    let (r, length) = (2.0, 10.0);
+    let field = CarvedTerrain::new(SdfModel {
+        capsules: vec![Capsule { a: [4.3, 5.1, 4.7], b: [4.3 + length, 5.1, 4.7], radius: r }],
+        ..SdfModel::new(Domain { min: [0.0, 0.0, 0.0], max: [20.0, 10.0, 10.0] }, TerrainField::Plane { elevation: 9.0, origin: [0.0, 0.0], gradient: [0.0, 0.0] })
+    });
+    let cave = polygonize(&Cave(&field), 0.05);
+    let area = 2.0 * PI * r * length + 4.0 * PI * r * r;
+    let volume = PI * r * r * length + 4.0 / 3.0 * PI * r * r * r;
+    assert!((cave.area() / area - 1.0).abs() < 0.01, "area {} vs {area}", cave.area());
+    assert!(
+        (cave.enclosed_volume() / volume - 1.0).abs() < 0.01,
+        "volume {} vs {volume}",
+        cave.enclosed_volume()
+    );
+}
+
+#[test]
+fn one_or_two_threads_write_the_same_files() {
+    let runs: Vec<_> = [1, 2]
+        .map(|threads| {
+            let mesh = with_threads(threads, || mesh_of(random_model(), 1.0));
+            let dir = std::env::temp_dir().join(format!("karst-mesher-{}-{threads}", std::process::id()));
+            let files = export::write_all(&dir, &mesh).unwrap();
+            (dir, files)
+        })
+        .to_vec();
+    assert_eq!(runs[0].1.len(), 6, "mesh.obj and five exports");
+    for (one, two) in runs[0].1.iter().zip(&runs[1].1) {
+        let (a, b) = (std::fs::read(one).unwrap(), std::fs::read(two).unwrap());
+        assert!(a == b, "{} differs between 1 and 2 threads", one.display());
+    }
+    for (dir, _) in runs {
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+}
+
+/// The cave field with every value exact (no reach-limited search).
+struct ExactCave<'a>(Cave<'a>);
+
+impl Volume for ExactCave<'_> {
+    fn eval(&self, p: DVec3) -> f64 {
+        self.0.eval(p)
+    }
+
+    fn extent(&self) -> (DVec3, DVec3) {
+        self.0.extent()
+    }
+}
+
+#[test]
+fn reach_limited_values_give_the_exact_mesh() {
+    let field = CarvedTerrain::new(random_model());
+    let limited = polygonize(&Cave(&field), 0.8);
+    let exact = polygonize(&ExactCave(Cave(&field)), 0.8);
+    assert!(!limited.triangles.is_empty());
+    assert_eq!(limited, exact);
+}
+
+#[test]
+fn simplification_keeps_the_promises() {
+    let mesh = mesh_of(random_model(), 0.7);
+    for (name, surface) in [("terrain", &mesh.terrain), ("cave", &mesh.cave)] {
+        let target = surface.triangles.len() / 4;
+        let mut simple = surface.clone();
+        karst_mesher::simplify::simplify(&mut simple, target);
+        assert!(simple.triangles.len() <= target, "{name}: {} > {target}", simple.triangles.len());
+        assert_watertight(&format!("simplified {name}"), &simple);
+        let (before, after) = (surface.enclosed_volume(), simple.enclosed_volume());
+        assert!((after / before - 1.0).abs() < 0.03, "{name}: volume {before} → {after}");
+        let (before, after) = (surface.area(), simple.area());
+        assert!((after / before - 1.0).abs() < 0.05, "{name}: area {before} → {after}");
+    }
+}
+
+/// Rock with a hollow shell of air (3 m to 6 m around a centre) opened to the sky by a shaft:
+/// the ball inside the shell is a rock island floating in cave air.
+struct HollowShell {
+    model: SdfModel,
+    cave: bool,
+}
+
+impl HollowShell {
+    const CENTRE: DVec3 = DVec3::new(30.0, 20.0, 12.0);
+}
+
+impl Volume for HollowShell {
+    fn eval(&self, p: DVec3) -> f64 {
+        let ground = self.model.terrain.distance(p).max(self.model.domain.signed_distance(p));
+        let d = p.distance(Self::CENTRE);
+        let shell = (3.0 - d).max(d - 6.0);
+        let shaft = Capsule { a: [30.0, 20.0, 17.5], b: [30.0, 20.0, 40.0], radius: 1.5 }.distance(p);
+        let air = shell.min(shaft);
+        if self.cave { air.max(ground) } else { ground.max(-air) }
+    }
+
+    fn extent(&self) -> (DVec3, DVec3) {
+        (self.model.domain.min(), self.model.domain.max())
+    }
+}
+
+#[test]
+fn rock_island_in_cave_air_is_removed_from_both_surfaces() {
+    let island = 4.0 / 3.0 * PI * 27.0;
+    for (cave, solid) in [(false, Solid::Rock), (true, Solid::Cave)] {
+        let model = SdfModel { capsules: Vec::new(), ..model() };
+        let volume = HollowShell { model: model.clone(), cave };
+        let mut surface = polygonize(&volume, 0.4);
+        assert_eq!(components::count(&surface), 2, "the ground (or the open shell) and the island");
+        clean(&mut surface, solid, &model, &[], 0.4);
+        assert_eq!((surface.removed.islands, surface.removed.pockets), (1, 0), "{solid:?}");
+        assert!((surface.removed.island_volume / island - 1.0).abs() < 0.03, "{:?}", surface.removed);
+        assert_eq!(components::count(&surface), 1);
+        assert_watertight(&format!("{solid:?} without the island"), &surface);
+    }
 }

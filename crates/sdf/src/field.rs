@@ -80,6 +80,19 @@ impl CarvedTerrain {
         pieces.max(self.cave(p))
     }
 
+    /// The cave alone: the karst volume clipped to the rock under the terrain and inside the
+    /// domain, negative inside the cave. Exact where its magnitude is below `reach`; elsewhere
+    /// a value of the same sign and magnitude at least min(`reach`, the karst's 8 m cap), so
+    /// that the search for the nearest conduit can stop early (the mesher asks for a cell or a
+    /// half diagonal). Still 1-Lipschitz, so box pruning on it stays exact.
+    pub fn cave_below_ground(&self, p: DVec3, reach: f64) -> f64 {
+        let rock = self.uncarved(p);
+        if rock >= reach {
+            return rock;
+        }
+        self.caves.min_value(p, reach.min(REACH), &self.context()).max(rock)
+    }
+
     /// A guaranteed lower bound of |f| over the box [lo, hi] (0 when the surface may cross it).
     pub fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
         let centre = (lo + hi) * 0.5;

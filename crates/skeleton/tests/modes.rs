@@ -69,7 +69,7 @@ fn scene(extra: &str) -> Scene {
 
 fn inputs(scene: &Scene) -> (Samples, CostGraph) {
     let samples = karst_sampling::stage::sample_scene(scene).unwrap();
-    let graph = karst_costgraph::stage::build(scene, &samples).unwrap();
+    let graph = karst_costgraph::build(scene, &samples).unwrap();
     (samples, graph)
 }
 

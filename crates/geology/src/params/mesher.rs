@@ -9,11 +9,13 @@ use crate::validate::Checks;
 pub struct MesherParams {
     /// Edge of the finest cell, metres.
     pub cell_size: f64,
+    /// Simplify each surface to at most this many triangles (0: no simplification).
+    pub target_triangles: u64,
 }
 
 impl Default for MesherParams {
     fn default() -> Self {
-        MesherParams { cell_size: 2.0 }
+        MesherParams { cell_size: 2.0, target_triangles: 0 }
     }
 }
 

@@ -1,0 +1,147 @@
+//! Removing rock islands floating in cave air and air pockets sealed in rock (Cui et al. 2011,
+//! §3.2–3.3: floating islands are dropped, then a flood fill from the cave keeps only the air
+//! connected to it).
+//!
+//! The flood fill is done on the closed surface rather than on voxels: every connected
+//! component of a closed, outward-oriented 2-manifold mesh bounds one connected piece of the
+//! solid (positive enclosed volume) or one hole in it (negative volume). Hence:
+//! - carved rock: a piece of rock is kept when it reaches the domain box (it stands on the
+//!   floor or leans on a side; the box is where the model's rock ends), otherwise it is an
+//!   island hanging in cave air. A hole in the rock is air that reaches neither the sky nor a
+//!   domain face, so it is a sealed pocket, kept only when it holds a sink or a spring;
+//! - cave alone: a hole in the karst volume is rock surrounded by cave air, an island; a piece
+//!   of cave is kept when it reaches the ground or a domain face (it opens to the outside) or
+//!   holds a sink or a spring, otherwise it is a sealed pocket.
+//!
+//! "Reaches" means a vertex within a quarter cell of the boundary: the polygonizer puts the
+//! vertices of a surface that meets the boundary on it, up to the interpolation clamp.
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use karst_sdf::SdfModel;
+
+use crate::components;
+use crate::mesh::Surface;
+
+/// What the cleanup took away from one surface.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Removed {
+    /// Rock islands floating in cave air, and their total volume, m³.
+    pub islands: u32,
+    pub island_volume: f64,
+    /// Air pockets sealed in rock, and their total volume, m³.
+    pub pockets: u32,
+    pub pocket_volume: f64,
+}
+
+/// Which solid a surface bounds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Solid {
+    /// The carved terrain: rock inside.
+    Rock,
+    /// The cave alone: karst volume inside.
+    Cave,
+}
+
+/// What a component is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Verdict {
+    Keep,
+    Island,
+    Pocket,
+}
+
+/// Removes islands and pockets from `surface` in place; `anchors` are the sinks and springs.
+pub fn clean(surface: &mut Surface, solid: Solid, model: &SdfModel, anchors: &[DVec3], cell_size: f64) {
+    let (labels, count) = components::label(surface);
+    let mut volume = vec![0.0; count];
+    let mut reaches = vec![false; count];
+    let near = -0.25 * cell_size;
+    let boundary = |p: DVec3| match solid {
+        Solid::Rock => model.domain.signed_distance(p),
+        Solid::Cave => model.domain.signed_distance(p).max(model.terrain.distance(p)),
+    };
+    for (t, &c) in surface.triangles.iter().zip(&labels) {
+        volume[c as usize] += surface.volume_of(std::iter::once(t));
+        reaches[c as usize] |= t.iter().any(|&v| boundary(surface.position(v)) > near);
+    }
+    let holds_anchor = |c: usize| anchors.iter().any(|&a| encloses(surface, &labels, c as u32, a));
+    let verdicts: Vec<Verdict> = (0..count)
+        .map(|c| match (solid, volume[c] > 0.0) {
+            (Solid::Rock, true) if !reaches[c] => Verdict::Island,
+            (Solid::Rock, false) if !holds_anchor(c) => Verdict::Pocket,
+            (Solid::Cave, false) => Verdict::Island,
+            (Solid::Cave, true) if !reaches[c] && !holds_anchor(c) => Verdict::Pocket,
+            _ => Verdict::Keep,
+        })
+        .collect();
+    let mut removed = Removed::default();
+    for (c, verdict) in verdicts.iter().enumerate() {
+        match verdict {
+            Verdict::Island => {
+                removed.islands += 1;
+                removed.island_volume += volume[c].abs();
+            }
+            Verdict::Pocket => {
+                removed.pockets += 1;
+                removed.pocket_volume += volume[c].abs();
+            }
+            Verdict::Keep => {}
+        }
+    }
+    let keep: Vec<bool> = labels.iter().map(|&c| verdicts[c as usize] == Verdict::Keep).collect();
+    retain(surface, &keep);
+    surface.removed = removed;
+}
+
+/// Whether component `c` encloses `p`: parity of the crossings of a ray from p. The ray's
+/// direction is irrational in every axis so that it does not run along lattice planes.
+fn encloses(surface: &Surface, labels: &[u32], c: u32, p: DVec3) -> bool {
+    let direction = DVec3::new(1.0, 2f64.sqrt() * 1e-3, 3f64.sqrt() * 1e-3).normalize();
+    let crossings = surface
+        .triangles
+        .iter()
+        .zip(labels)
+        .filter(|&(t, &l)| l == c && crosses(t.map(|v| surface.position(v)), p, direction))
+        .count();
+    crossings % 2 == 1
+}
+
+/// Möller–Trumbore: does the ray p + s·d, s > 0, cross the triangle?
+fn crosses([a, b, c]: [DVec3; 3], p: DVec3, d: DVec3) -> bool {
+    let (e1, e2) = (b - a, c - a);
+    let h = d.cross(e2);
+    let det = e1.dot(h);
+    if det.abs() < 1e-15 {
+        return false;
+    }
+    let s = p - a;
+    let u = s.dot(h) / det;
+    let q = s.cross(e1);
+    let v = d.dot(q) / det;
+    u >= 0.0 && v >= 0.0 && u + v <= 1.0 && e2.dot(q) / det > 0.0
+}
+
+/// Keeps the triangles marked in `keep` and the vertices they use, in their order.
+fn retain(surface: &mut Surface, keep: &[bool]) {
+    let mut used = vec![false; surface.vertices.len()];
+    let mut triangles: Vec<[u32; 3]> =
+        surface.triangles.iter().zip(keep).filter(|&(_, &k)| k).map(|(t, _)| *t).collect();
+    for t in &triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    let mut renumber = vec![u32::MAX; used.len()];
+    let mut vertices = Vec::new();
+    for (i, _) in used.iter().enumerate().filter(|&(_, &u)| u) {
+        renumber[i] = vertices.len() as u32;
+        vertices.push(surface.vertices[i]);
+    }
+    for t in &mut triangles {
+        *t = t.map(|v| renumber[v as usize]);
+    }
+    surface.vertices = vertices;
+    surface.triangles = triangles;
+}

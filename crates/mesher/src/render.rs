@@ -1,0 +1,85 @@
+//! A preview picture of a surface: orthographic view from above one corner, software z-buffer,
+//! flat Lambert shading, tinted by elevation (deep passages dark blue, shallow ones sand).
+
+use glam::DVec3;
+use karst_raster::{BLACK, Canvas, Rgb};
+
+use crate::mesh::Surface;
+
+/// Where the viewer stands: azimuth and elevation of the view direction, degrees.
+const AZIMUTH: f64 = -60.0;
+const ELEVATION: f64 = 35.0;
+const BACKGROUND: Rgb = [245, 245, 240];
+const DEEP: DVec3 = DVec3::new(40.0, 70.0, 140.0);
+const SHALLOW: DVec3 = DVec3::new(225.0, 190.0, 130.0);
+
+/// Renders `surface` on a `width` × `height` canvas with a caption.
+pub fn render(surface: &Surface, width: u32, height: u32, caption: &str) -> Canvas {
+    let mut canvas = Canvas::new(width, height, BACKGROUND);
+    let (az, el) = (AZIMUTH.to_radians(), ELEVATION.to_radians());
+    let toward_viewer = DVec3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
+    let right = DVec3::new(-az.sin(), az.cos(), 0.0);
+    let up = toward_viewer.cross(right);
+    let light = (toward_viewer + up * 0.6 - right * 0.4).normalize();
+    let project = |p: DVec3| DVec3::new(p.dot(right), -p.dot(up), p.dot(toward_viewer));
+    let screen: Vec<DVec3> =
+        (0..surface.vertices.len() as u32).map(|v| project(surface.position(v))).collect();
+    let (lo, hi) =
+        screen.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let (zlo, zhi) = (0..surface.vertices.len() as u32)
+        .map(|v| surface.position(v).z)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| (a.min(z), b.max(z)));
+    let margin = 24.0;
+    let top = 40.0;
+    let scale =
+        ((width as f64 - 2.0 * margin) / (hi.x - lo.x)).min((height as f64 - top - margin) / (hi.y - lo.y));
+    let to_pixel = |p: DVec3| DVec3::new(margin + (p.x - lo.x) * scale, top + (p.y - lo.y) * scale, p.z);
+    let mut depth = vec![f64::NEG_INFINITY; width as usize * height as usize];
+    for t in &surface.triangles {
+        let n = surface.normal(t).normalize_or_zero();
+        if n.dot(toward_viewer) <= 0.0 {
+            continue;
+        }
+        let z = t.iter().map(|&v| surface.position(v).z).sum::<f64>() / 3.0;
+        let s = if zhi > zlo { (z - zlo) / (zhi - zlo) } else { 0.5 };
+        let shade = 0.3 + 0.7 * n.dot(light).max(0.0);
+        let colour = (DEEP.lerp(SHALLOW, s) * shade).min(DVec3::splat(255.0));
+        let colour = [colour.x as u8, colour.y as u8, colour.z as u8];
+        let corners = t.map(|v| to_pixel(screen[v as usize]));
+        fill(&mut canvas, &mut depth, corners, colour);
+    }
+    canvas.text((margin as i64, 14), caption, 2, BLACK);
+    canvas
+}
+
+/// Fills a triangle whose pixels are nearer than what is drawn (larger z is nearer).
+fn fill(canvas: &mut Canvas, depth: &mut [f64], [a, b, c]: [DVec3; 3], colour: Rgb) {
+    let area = edge(a, b, c);
+    if area.abs() < 1e-12 {
+        return;
+    }
+    let x0 = a.x.min(b.x).min(c.x).floor().max(0.0) as i64;
+    let x1 = a.x.max(b.x).max(c.x).ceil().min(canvas.width as f64 - 1.0) as i64;
+    let y0 = a.y.min(b.y).min(c.y).floor().max(0.0) as i64;
+    let y1 = a.y.max(b.y).max(c.y).ceil().min(canvas.height as f64 - 1.0) as i64;
+    for y in y0..=y1 {
+        for x in x0..=x1 {
+            let p = DVec3::new(x as f64 + 0.5, y as f64 + 0.5, 0.0);
+            let (wa, wb, wc) = (edge(b, c, p) / area, edge(c, a, p) / area, edge(a, b, p) / area);
+            if wa < 0.0 || wb < 0.0 || wc < 0.0 {
+                continue;
+            }
+            let z = wa * a.z + wb * b.z + wc * c.z;
+            let i = y as usize * canvas.width as usize + x as usize;
+            if z > depth[i] {
+                depth[i] = z;
+                canvas.set(x, y, colour);
+            }
+        }
+    }
+}
+
+/// Twice the signed area of (a, b, p) in the screen plane.
+fn edge(a: DVec3, b: DVec3, p: DVec3) -> f64 {
+    (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)
+}
