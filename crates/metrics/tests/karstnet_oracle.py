@@ -42,7 +42,8 @@ def metrics(kg):
     n, s = gs.number_of_nodes(), gs.number_of_edges()
     p = nx.number_connected_components(gs)
     cycles = s - n + p
-    alpha, beta, gamma = cycles / (2 * n - 5), s / n, s / (3 * (n - 2))
+    # IEEE division (a 2-node reduced graph has an infinite gamma, as in karst-metrics).
+    alpha, beta, gamma = (np.float64(a) / np.float64(b) for a, b in ((cycles, 2 * n - 5), (s, n), (s, 3 * (n - 2))))
     degrees = [d for _, d in gs.degree()]
     counts = {
         "1": sum(d == 1 for d in degrees),
