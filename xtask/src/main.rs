@@ -9,7 +9,7 @@ use karst_artifact::{Stage, StageError};
 use karst_geology::Scene;
 use xtask::executor::{Binaries, InProcess};
 use xtask::pipeline::{self, Selection};
-use xtask::{bench, diff};
+use xtask::{bench, diff, ensemble};
 
 /// The embedded default scene, run when `cargo xtask run` is given no scene.
 const DEFAULT_SCENE: &str = include_str!("../../fixtures/scenes/default.toml");
@@ -60,6 +60,20 @@ enum Task {
         #[arg(long, default_value_t = 5)]
         runs: usize,
     },
+    /// Run N seeds of SCENE in parallel: every realization's metrics in one CSV, their summary and
+    /// the conduit probability grid (EXR slices and a top-view PNG).
+    Ensemble {
+        scene: PathBuf,
+        /// Number of realizations (seeds scene seed .. scene seed + N − 1).
+        #[arg(long, default_value_t = 50)]
+        n: usize,
+        /// Edge of a probability-grid cell, metres.
+        #[arg(long, default_value_t = 10.0)]
+        cell: f64,
+        /// Output folder (default out/ensemble-<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Run the test suite (`cargo test --release --workspace`), after installing the karstnet
     /// oracle in .venv when it is missing.
     Test {
@@ -88,6 +102,7 @@ fn main() -> ExitCode {
         Task::Bless => bless(),
         Task::Bench { runs } => bench_command(runs),
         Task::Test { args } => return test(&args),
+        Task::Ensemble { scene, n, cell, out } => ensemble_command(scene, n, cell, out),
     };
     karst_artifact::cli::finish(result)
 }
@@ -164,6 +179,13 @@ fn bench_command(runs: usize) -> Result<(), StageError> {
             println!("{:<10} {seconds:>10.4}", stage.name());
         }
     }
+    Ok(())
+}
+
+fn ensemble_command(scene: PathBuf, n: usize, cell: f64, out: Option<PathBuf>) -> Result<(), StageError> {
+    let name = Scene::load(&scene)?.name;
+    let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("ensemble-{name}")));
+    println!("{}", ensemble::run(&ensemble::EnsembleArgs { scene, n, cell, out })?);
     Ok(())
 }
 
