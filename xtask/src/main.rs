@@ -9,7 +9,7 @@ use karst_artifact::{Stage, StageError};
 use karst_geology::Scene;
 use xtask::executor::{Binaries, InProcess};
 use xtask::pipeline::{self, Selection};
-use xtask::{bench, diff, ensemble};
+use xtask::{bench, diff, ensemble, metrics_table};
 
 /// The embedded default scene, run when `cargo xtask run` is given no scene.
 const DEFAULT_SCENE: &str = include_str!("../../fixtures/scenes/default.toml");
@@ -74,6 +74,12 @@ enum Task {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
+    MetricsTable {
+        /// Also copy each metrics.json to fixtures/metrics/ and update the README's table.
+        #[arg(long)]
+        write: bool,
+    },
     /// Run the test suite (`cargo test --release --workspace`), after installing the karstnet
     /// oracle in .venv when it is missing.
     Test {
@@ -103,6 +109,7 @@ fn main() -> ExitCode {
         Task::Bench { runs } => bench_command(runs),
         Task::Test { args } => return test(&args),
         Task::Ensemble { scene, n, cell, out } => ensemble_command(scene, n, cell, out),
+        Task::MetricsTable { write } => metrics_table_command(write),
     };
     karst_artifact::cli::finish(result)
 }
@@ -186,6 +193,31 @@ fn ensemble_command(scene: PathBuf, n: usize, cell: f64, out: Option<PathBuf>) -
     let name = Scene::load(&scene)?.name;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("ensemble-{name}")));
     println!("{}", ensemble::run(&ensemble::EnsembleArgs { scene, n, cell, out })?);
+    Ok(())
+}
+
+fn metrics_table_command(write: bool) -> Result<(), StageError> {
+    let mut reports = Vec::new();
+    for scene in metrics_table::scenes(Path::new("fixtures/scenes"))? {
+        let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        let out = PathBuf::from("out/metrics-table").join(&name);
+        reports.push((name, metrics_table::scene_report(&scene, &out)?));
+    }
+    let table = metrics_table::markdown(&reports);
+    print!("{table}");
+    if write {
+        let fail = |p: &Path, e: std::io::Error| StageError::failure(format!("{}: {e}", p.display()));
+        let dir = Path::new("fixtures/metrics");
+        std::fs::create_dir_all(dir).map_err(|e| fail(dir, e))?;
+        for (name, _) in &reports {
+            let target = dir.join(format!("{name}.json"));
+            let source = PathBuf::from("out/metrics-table").join(name).join("metrics.json");
+            std::fs::copy(&source, &target).map_err(|e| fail(&target, e))?;
+        }
+        let readme = Path::new("README.md");
+        let text = std::fs::read_to_string(readme).map_err(|e| fail(readme, e))?;
+        write_if_changed(readme, &metrics_table::replace_section(&text, &table))?;
+    }
     Ok(())
 }
 
