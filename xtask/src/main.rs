@@ -186,6 +186,21 @@ fn bench_command(runs: usize) -> Result<(), StageError> {
             println!("{:<10} {seconds:>10.4}", stage.name());
         }
     }
+    println!("\nnetwork statistics (karstnet: load and metrics, Python start-up excluded)");
+    println!(
+        "{:<14} {:>7} {:>8} {:>12} {:>12} {:>8}",
+        "network", "nodes", "reduced", "karstgen s", "karstnet s", "ratio"
+    );
+    for t in bench::time_networks(runs)? {
+        let (theirs, ratio) = match t.karstnet {
+            Some(k) => (format!("{k:.3}"), format!("{:.0}x", k / t.ours)),
+            None => ("(set KARSTNET_PYTHON)".into(), String::new()),
+        };
+        println!(
+            "{:<14} {:>7} {:>8} {:>12.4} {theirs:>12} {ratio:>8}",
+            t.name, t.nodes, t.reduced_nodes, t.ours
+        );
+    }
     Ok(())
 }
 

@@ -12,8 +12,14 @@
 //! crosses p) and v loses size(v) − 1 (it is the source, not an intermediate): over the size(v)
 //! sources of v's subtree, which all share this difference, p gains size(v)(n_c − size(v) − 1)
 //! and v loses size(v)(size(v) − 1), and each kept node's BFS counts for the nodes hanging from
-//! it. Dijkstra also settles leaves without the heap. Real caves have ~30 % leaves in the reduced
-//! graph and more in their dead-end trees, which this skips.
+//! it.
+//!
+//! The traversals themselves stay on the kept nodes: a kept node c stands for the size(c) targets
+//! of c and its trees, `Σ_t d(s, t) = Σ_c size(c) d(s, c) + tail(c)` (tail(c): the distances
+//! from c to its tree nodes), Brandes' recursion weighs target c by size(c), and c is an
+//! intermediate of the size(c) − 1 paths into its trees. Each tree node x lies on the paths from
+//! every source of its component into its subtree: n_c (size(x) − 1) dependencies. Real caves
+//! have ~30 % leaves in the reduced graph and more in their dead-end trees, which this skips.
 //!
 //! Sources are split into [`CHUNKS`] fixed ranges that depend only on the graph; rayon runs the
 //! ranges in parallel and their results are combined in range order, so every value is
@@ -50,6 +56,10 @@ struct Trees<'a> {
     peeled: Vec<usize>,
     /// Nodes in the subtree of a peeled node; 1 + the nodes hanging from a kept node.
     size: Vec<usize>,
+    /// For a kept node: the hop distances to the nodes hanging from it, summed.
+    hop_tail: Vec<u64>,
+    /// For a kept node: the conduit-length distances to the nodes hanging from it, summed.
+    length_tail: Vec<f64>,
 }
 
 impl<'a> Trees<'a> {
@@ -77,16 +87,24 @@ impl<'a> Trees<'a> {
                 queue.push_back(p);
             }
         }
-        Self { adj, lengths, anchor, peeled, size }
+        let (mut hop_tail, mut length_tail) = (vec![0; n], vec![0.0; n]);
+        let (mut root, mut hops, mut length) = ((0..n).collect::<Vec<_>>(), vec![0u64; n], vec![0.0; n]);
+        for &v in peeled.iter().rev() {
+            let Some((p, e)) = anchor[v] else { continue };
+            (root[v], hops[v], length[v]) = (root[p], hops[p] + 1, length[p] + lengths[e]);
+            hop_tail[root[v]] += hops[v];
+            length_tail[root[v]] += length[v];
+        }
+        Self { adj, lengths, anchor, peeled, size, hop_tail, length_tail }
     }
 
     fn is_peeled(&self, v: usize) -> bool {
         self.anchor[v].is_some()
     }
 
-    /// A peeled node of degree 1: settled by Dijkstra straight from its parent.
-    fn is_pendant(&self, v: usize) -> bool {
-        self.is_peeled(v) && self.adj.degree(v) == 1
+    /// Kept neighbours and edges of a kept node.
+    fn kept(&self, v: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.adj.incident(v).filter(|&(w, _)| !self.is_peeled(w))
     }
 }
 
@@ -126,7 +144,8 @@ fn add_tree_sources(trees: &Trees, total: &mut AllPairs) {
         total.hop_sums[v] = total.hop_sums[p].saturating_add_signed(shift);
         total.length_sums[v] = total.length_sums[p] + shift as f64 * trees.lengths[e];
         total.betweenness[p] += (size * (n - size - 1)) as f64;
-        total.betweenness[v] -= (size * (size - 1)) as f64;
+        // n_c (size − 1) as an intermediate from every source, minus size (size − 1) as a source.
+        total.betweenness[v] += ((size - 1) * (n - size)) as f64;
     }
 }
 
@@ -135,8 +154,7 @@ fn from_sources(trees: &Trees, sources: &[usize]) -> AllPairs {
     let mut bfs = Brandes::new(n);
     let mut dijkstra = Dijkstra::new(n);
     let mut betweenness = vec![0.0; n];
-    let hop_sums =
-        sources.iter().map(|&s| bfs.run(trees.adj, s, trees.size[s] as f64, &mut betweenness)).collect();
+    let hop_sums = sources.iter().map(|&s| bfs.run(trees, s, &mut betweenness)).collect();
     let length_sums = sources.iter().map(|&s| dijkstra.run(trees, s)).collect();
     AllPairs { hop_sums, length_sums, betweenness }
 }
@@ -159,21 +177,24 @@ impl Brandes {
         }
     }
 
-    /// Adds `weight` times the dependencies of source `s` to `betweenness`; returns `Σ_t d(s, t)`.
-    fn run(&mut self, adj: &Csr, s: usize, weight: f64, betweenness: &mut [f64]) -> u64 {
-        self.count_shortest_paths(adj, s);
+    /// Adds the dependencies of kept source `s` on kept nodes, times the size(s) sources it
+    /// stands for, to `betweenness`; returns `Σ_t d(s, t)` over all targets (module docs).
+    fn run(&mut self, trees: &Trees, s: usize, betweenness: &mut [f64]) -> u64 {
+        self.count_shortest_paths(trees, s);
+        let weight = trees.size[s] as f64;
         for &w in self.order.iter().rev() {
-            let coeff = (1.0 + self.delta[w]) / self.sigma[w];
-            for &v in adj.neighbors(w) {
+            let coeff = (trees.size[w] as f64 + self.delta[w]) / self.sigma[w];
+            for (v, _) in trees.kept(w) {
                 if self.dist[v] + 1 == self.dist[w] {
                     self.delta[v] += self.sigma[v] * coeff;
                 }
             }
             if w != s {
-                betweenness[w] += weight * self.delta[w];
+                betweenness[w] += weight * (self.delta[w] + (trees.size[w] - 1) as f64);
             }
         }
-        let hop_sum = self.order.iter().map(|&v| self.dist[v] as u64).sum();
+        let hop_sum =
+            self.order.iter().map(|&v| trees.size[v] as u64 * self.dist[v] as u64 + trees.hop_tail[v]).sum();
         for &v in &self.order {
             self.dist[v] = usize::MAX;
             self.sigma[v] = 0.0;
@@ -182,8 +203,8 @@ impl Brandes {
         hop_sum
     }
 
-    /// BFS from `s`: hop distances, shortest-path counts and the visiting order.
-    fn count_shortest_paths(&mut self, adj: &Csr, s: usize) {
+    /// BFS from `s` over the kept nodes: hop distances, shortest-path counts, visiting order.
+    fn count_shortest_paths(&mut self, trees: &Trees, s: usize) {
         self.order.clear();
         self.order.push(s);
         self.dist[s] = 0;
@@ -191,7 +212,7 @@ impl Brandes {
         let mut head = 0;
         while let Some(&v) = self.order.get(head) {
             head += 1;
-            for &w in adj.neighbors(v) {
+            for (w, _) in trees.kept(v) {
                 if self.dist[w] == usize::MAX {
                     self.dist[w] = self.dist[v] + 1;
                     self.order.push(w);
@@ -223,9 +244,8 @@ impl Dijkstra {
         }
     }
 
-    /// `Σ_t d(s, t)` along edge lengths; leaves are settled from their neighbour directly.
+    /// `Σ_t d(s, t)` along edge lengths, over the kept nodes and the trees hanging from them.
     fn run(&mut self, trees: &Trees, s: usize) -> f64 {
-        let mut leaf_sum = 0.0;
         self.dist[s] = 0.0;
         self.heap.push(Reverse((0f64.to_bits(), s)));
         while let Some(Reverse((_, node))) = self.heap.pop() {
@@ -235,17 +255,19 @@ impl Dijkstra {
             self.done[node] = true;
             self.settled.push(node);
             let d = self.dist[node];
-            for (w, e) in trees.adj.incident(node) {
+            for (w, e) in trees.kept(node) {
                 let through = d + trees.lengths[e];
-                if trees.is_pendant(w) {
-                    leaf_sum += through;
-                } else if !self.done[w] && through < self.dist[w] {
+                if !self.done[w] && through < self.dist[w] {
                     self.dist[w] = through;
                     self.heap.push(Reverse((through.to_bits(), w)));
                 }
             }
         }
-        let sum = self.settled.iter().map(|&v| self.dist[v]).sum::<f64>() + leaf_sum;
+        let sum = self
+            .settled
+            .iter()
+            .map(|&v| trees.size[v] as f64 * self.dist[v] + trees.length_tail[v])
+            .sum::<f64>();
         for &v in &self.settled {
             self.dist[v] = f64::INFINITY;
             self.done[v] = false;
