@@ -43,8 +43,8 @@ pub struct NetworkTiming {
     pub reduced_nodes: usize,
     /// Median seconds of `characterize`.
     pub ours: f64,
-    /// karstnet's seconds for load + `characterize_graph()` + the extra metrics, Python start-up
-    /// and imports excluded (`None` without `KARSTNET_PYTHON`).
+    /// karstnet's seconds for load + `characterize_graph()` + the extra metrics, timed inside
+    /// Python (start-up and imports excluded; `None` without `KARSTNET_PYTHON`).
     pub karstnet: Option<f64>,
 }
 
@@ -69,7 +69,6 @@ pub fn time_networks(runs: usize) -> Result<Vec<NetworkTiming>, StageError> {
         cases.push((name.into(), net, base));
     }
     let python = std::env::var("KARSTNET_PYTHON").ok();
-    let start_up = python.as_deref().and_then(|p| python_seconds(p, &["-c", IMPORTS]));
     let mut timings = Vec::new();
     for (name, net, file) in cases {
         let metrics = characterize(&net).map_err(|e| StageError::input(format!("{name}: {e}")))?;
@@ -82,11 +81,7 @@ pub fn time_networks(runs: usize) -> Result<Vec<NetworkTiming>, StageError> {
                 })
                 .collect(),
         );
-        let karstnet = python.as_deref().zip(start_up).and_then(|(p, start_up)| {
-            let script = Path::new("crates/metrics/tests/karstnet_oracle.py");
-            let total = python_seconds(p, &[&script.display().to_string(), &file.display().to_string()])?;
-            Some((total - start_up).max(0.0))
-        });
+        let karstnet = python.as_deref().and_then(|p| karstnet_seconds(p, &file));
         timings.push(NetworkTiming {
             name,
             nodes: metrics.n_nodes_full,
@@ -99,14 +94,13 @@ pub fn time_networks(runs: usize) -> Result<Vec<NetworkTiming>, StageError> {
     Ok(timings)
 }
 
-/// What `karstnet_oracle.py` imports before its work starts.
-const IMPORTS: &str = "import numpy, networkx, scipy, matplotlib; matplotlib.use('Agg'); import karstnet";
-
-/// Wall seconds of one successful Python run.
-fn python_seconds(python: &str, args: &[&str]) -> Option<f64> {
-    let start = Instant::now();
-    let out = std::process::Command::new(python).args(args).env("MPLBACKEND", "Agg").output().ok()?;
-    out.status.success().then(|| start.elapsed().as_secs_f64())
+/// karstnet's own time on `file` (load and metrics), as `karstnet_oracle.py` reports it.
+fn karstnet_seconds(python: &str, file: &Path) -> Option<f64> {
+    let script = Path::new("crates/metrics/tests/karstnet_oracle.py");
+    let out = std::process::Command::new(python).arg(script).arg(file).output().ok()?;
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let line = stderr.lines().find_map(|l| l.strip_prefix("karstnet seconds: "))?;
+    out.status.success().then(|| line.trim().parse().ok()).flatten()
 }
 
 /// A cave-like network: a random walk tree with long chains (each new station continues the
