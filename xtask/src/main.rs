@@ -213,11 +213,15 @@ fn ensemble_command(scene: PathBuf, n: usize, cell: f64, out: Option<PathBuf>) -
 
 fn metrics_table_command(write: bool) -> Result<(), StageError> {
     let mut reports = Vec::new();
-    for scene in metrics_table::scenes(Path::new("fixtures/scenes"))? {
+    let scenes = metrics_table::scenes(Path::new("fixtures/scenes"))?;
+    let bar = karst_artifact::progress::bar(scenes.len() as u64, "scenes");
+    for scene in scenes {
         let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         let out = PathBuf::from("out/metrics-table").join(&name);
         reports.push((name, metrics_table::scene_report(&scene, &out)?));
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     let table = metrics_table::markdown(&reports);
     print!("{table}");
     if write {
