@@ -2,9 +2,13 @@
 //!
 //! - [`pipeline`]: run the stages in order like make, skipping up-to-date artifacts;
 //! - [`diff`]: compare two artifacts of the same kind semantically;
-//! - [`bench`]: time every stage on the benchmark scenes.
+//! - [`bench`]: time every stage on the benchmark scenes;
+//! - [`ensemble`]: run many seeds of a scene and gather their statistics;
+//! - [`metrics_table`]: table every scene's metrics against the real caves.
 
 pub mod bench;
 pub mod diff;
+pub mod ensemble;
 pub mod executor;
+pub mod metrics_table;
 pub mod pipeline;

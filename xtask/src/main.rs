@@ -9,7 +9,7 @@ use karst_artifact::{Stage, StageError};
 use karst_geology::Scene;
 use xtask::executor::{Binaries, InProcess};
 use xtask::pipeline::{self, Selection};
-use xtask::{bench, diff};
+use xtask::{bench, diff, ensemble, metrics_table};
 
 /// The embedded default scene, run when `cargo xtask run` is given no scene.
 const DEFAULT_SCENE: &str = include_str!("../../fixtures/scenes/default.toml");
@@ -75,6 +75,26 @@ enum Task {
         #[arg(long)]
         costgraph: bool,
     },
+    /// Run N seeds of SCENE in parallel: every realization's metrics in one CSV, their summary and
+    /// the conduit probability grid (EXR slices and a top-view PNG).
+    Ensemble {
+        scene: PathBuf,
+        /// Number of realizations (seeds scene seed .. scene seed + N − 1).
+        #[arg(long, default_value_t = 50)]
+        n: usize,
+        /// Edge of a probability-grid cell, metres.
+        #[arg(long, default_value_t = 10.0)]
+        cell: f64,
+        /// Output folder (default out/ensemble-<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
+    MetricsTable {
+        /// Also copy each metrics.json to fixtures/metrics/ and update the README's table.
+        #[arg(long)]
+        write: bool,
+    },
     /// Run the test suite (`cargo test --release --workspace`), after installing the karstnet
     /// oracle in .venv when it is missing.
     Test {
@@ -103,6 +123,8 @@ fn main() -> ExitCode {
         Task::Bless => bless(),
         Task::Bench { runs, costgraph } => bench_command(runs, costgraph),
         Task::Test { args } => return test(&args),
+        Task::Ensemble { scene, n, cell, out } => ensemble_command(scene, n, cell, out),
+        Task::MetricsTable { write } => metrics_table_command(write),
     };
     karst_artifact::cli::finish(result)
 }
@@ -250,6 +272,58 @@ fn sdf_bench(runs: usize) -> Result<(), StageError> {
             "{:<45} {:>8.3} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB",
             case.name, case.seconds, case.triangles, case.evaluations_per_vertex, case.peak_mb
         );
+    }
+
+    println!("\nnetwork statistics (karstnet: load and metrics, Python start-up excluded)");
+    println!(
+        "{:<14} {:>7} {:>8} {:>12} {:>12} {:>8}",
+        "network", "nodes", "reduced", "karstgen s", "karstnet s", "ratio"
+    );
+    for t in bench::time_networks(runs)? {
+        let (theirs, ratio) = match t.karstnet {
+            Some(k) => (format!("{k:.3}"), format!("{:.0}x", k / t.ours)),
+            None => ("(set KARSTNET_PYTHON)".into(), String::new()),
+        };
+        println!(
+            "{:<14} {:>7} {:>8} {:>12.4} {theirs:>12} {ratio:>8}",
+            t.name, t.nodes, t.reduced_nodes, t.ours
+        );
+    }
+    Ok(())
+}
+
+fn ensemble_command(scene: PathBuf, n: usize, cell: f64, out: Option<PathBuf>) -> Result<(), StageError> {
+    let name = Scene::load(&scene)?.name;
+    let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("ensemble-{name}")));
+    println!("{}", ensemble::run(&ensemble::EnsembleArgs { scene, n, cell, out })?);
+    Ok(())
+}
+
+fn metrics_table_command(write: bool) -> Result<(), StageError> {
+    let mut reports = Vec::new();
+    let scenes = metrics_table::scenes(Path::new("fixtures/scenes"))?;
+    let bar = karst_artifact::progress::bar(scenes.len() as u64, "scenes");
+    for scene in scenes {
+        let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        let out = PathBuf::from("out/metrics-table").join(&name);
+        reports.push((name, metrics_table::scene_report(&scene, &out)?));
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let table = metrics_table::markdown(&reports);
+    print!("{table}");
+    if write {
+        let fail = |p: &Path, e: std::io::Error| StageError::failure(format!("{}: {e}", p.display()));
+        let dir = Path::new("fixtures/metrics");
+        std::fs::create_dir_all(dir).map_err(|e| fail(dir, e))?;
+        for (name, _) in &reports {
+            let target = dir.join(format!("{name}.json"));
+            let source = PathBuf::from("out/metrics-table").join(name).join("metrics.json");
+            std::fs::copy(&source, &target).map_err(|e| fail(&target, e))?;
+        }
+        let readme = Path::new("README.md");
+        let text = std::fs::read_to_string(readme).map_err(|e| fail(readme, e))?;
+        write_if_changed(readme, metrics_table::replace_section(&text, &table).as_bytes())?;
     }
     Ok(())
 }

@@ -83,20 +83,31 @@ pub(crate) fn length_entropy(lengths: &[f64], bins: Bins) -> f64 {
 
 /// Entropy of the axial azimuths of the non-vertical edges, weighted by projected length.
 pub(crate) fn orientation_entropy(g: &FullGraph, bins: Bins) -> f64 {
-    let (azimuths, weights): (Vec<f64>, Vec<f64>) = g
-        .edges
+    let (azimuths, weights) = azimuths(g);
+    if azimuths.len() < 2 {
+        return 0.0;
+    }
+    let n_bins = bins.count(18, azimuths.len());
+    entropy(&histogram(&azimuths, Some(&weights), n_bins, 180.0), n_bins)
+}
+
+/// Projected conduit length per 10° azimuth class (N–S first): the histogram behind the
+/// orientation entropy, and the petals of the rose diagram.
+pub(crate) fn orientation_histogram(g: &FullGraph) -> Vec<f64> {
+    let (azimuths, weights) = azimuths(g);
+    histogram(&azimuths, Some(&weights), 18, 180.0)
+}
+
+/// Axial azimuth and projected length of every non-vertical edge.
+fn azimuths(g: &FullGraph) -> (Vec<f64>, Vec<f64>) {
+    g.edges
         .iter()
         .filter_map(|&[u, v]| {
             let (dx, dy) = (g.pos[u][0] - g.pos[v][0], g.pos[u][1] - g.pos[v][1]);
             let l2d = (dx * dx + dy * dy).sqrt();
             (l2d != 0.0).then(|| (azimuth(dx, dy, l2d), l2d))
         })
-        .unzip();
-    if azimuths.len() < 2 {
-        return 0.0;
-    }
-    let n_bins = bins.count(18, azimuths.len());
-    entropy(&histogram(&azimuths, Some(&weights), n_bins, 180.0), n_bins)
+        .unzip()
 }
 
 /// Axial azimuth in degrees, in [0, 180): N–S = 0, E–W = 90.

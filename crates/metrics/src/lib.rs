@@ -11,6 +11,8 @@
 //! `branches` (spec §1) → `reduced` (spec §2) → `geometry` / `topology` (spec §3), with the
 //! all-pairs traversals of the reduced graph in `shortest_paths`.
 //!
+//! [`ranges`] compares the metrics with real caves, [`plots`] draws them.
+//!
 //! [`readers`] load karstnet `_nodes.dat`/`_links.dat` pairs, GOCAD PLines and CSV tables.
 
 mod branches;
@@ -19,12 +21,14 @@ mod graph;
 mod metrics;
 mod network;
 mod nullable;
+pub mod plots;
+pub mod ranges;
 pub mod readers;
 mod reduced;
 mod shortest_paths;
 pub mod stage;
 mod topology;
 
-pub use metrics::{Metrics, characterize};
+pub use metrics::{Distributions, Metrics, characterize, distributions};
 pub use network::{MetricsError, Network};
 pub use readers::ReadError;

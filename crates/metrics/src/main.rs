@@ -3,15 +3,20 @@
 //! - `run SCENE --out DIR` writes DIR/metrics.json from DIR/skeleton.json;
 //! - `inspect FILE [--json]` prints a summary or the whole artifact;
 //! - `--karstnet BASE`, `--pline FILE.pl`, `--csv NODES EDGES` print the metrics of a surveyed or
-//!   simulated network as JSON, with karstnet's key names.
+//!   simulated network as JSON, with karstnet's key names, each `characterize_graph()` metric
+//!   beside its real-cave range; `--plots DIR` also draws the rose diagram, the branch-length
+//!   histogram and the range chart there.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 use karst_artifact::StageError;
 use karst_artifact::cli::{InspectArgs, RunArgs, finish};
-use karst_metrics::{Network, ReadError, characterize, readers, stage};
+use karst_metrics::ranges::{self, Compared};
+use karst_metrics::{Metrics, Network, ReadError, characterize, readers, stage};
+use serde::Serialize;
 
 /// Karst network statistics identical to karstnet 1.2.5 (karstgen stage 7).
 #[derive(Parser)]
@@ -21,6 +26,9 @@ struct Cli {
     command: Option<Command>,
     #[command(flatten)]
     network: NetworkFile,
+    /// Also write the plots of the network (PNG) into this folder.
+    #[arg(long, value_name = "DIR")]
+    plots: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -51,15 +59,26 @@ fn main() -> ExitCode {
     finish(match cli.command {
         Some(Command::Run(args)) => stage::run(&args).map(|headline| println!("{headline}")),
         Some(Command::Inspect(args)) => stage::inspect(&args),
-        None => characterize_file(&cli.network),
+        None => characterize_file(&cli.network, cli.plots.as_deref()),
     })
 }
 
-fn characterize_file(file: &NetworkFile) -> Result<(), StageError> {
+/// What the command prints for a network file.
+#[derive(Serialize)]
+struct FileReport<'a> {
+    karstnet: BTreeMap<&'a str, Compared>,
+    network: &'a Metrics,
+}
+
+fn characterize_file(file: &NetworkFile, plots: Option<&Path>) -> Result<(), StageError> {
     let (network, name) = read(file)?;
     let metrics = characterize(&network).map_err(|e| StageError::input(format!("{name}: {e}")))?;
-    let text = serde_json::to_string_pretty(&metrics).map_err(|e| StageError::failure(e.to_string()))?;
+    let report = FileReport { karstnet: ranges::compare(&metrics).into_iter().collect(), network: &metrics };
+    let text = serde_json::to_string_pretty(&report).map_err(|e| StageError::failure(e.to_string()))?;
     println!("{text}");
+    if let Some(dir) = plots {
+        stage::write_plots(dir, &network, &metrics)?;
+    }
     Ok(())
 }
 

@@ -203,6 +203,26 @@ pub fn characterize(net: &Network) -> Result<Metrics, MetricsError> {
     })
 }
 
+/// The distributions behind the geometric metrics, for plots.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Distributions {
+    /// Length of every branch, in karstnet's discovery order.
+    pub branch_lengths: Vec<f64>,
+    /// Projected conduit length per 10° azimuth class, N–S (0°–10°) first, 18 classes.
+    pub azimuth_lengths: Vec<f64>,
+}
+
+/// The branch lengths and the azimuth histogram of a network.
+pub fn distributions(net: &Network) -> Result<Distributions, MetricsError> {
+    net.validate()?;
+    let g = FullGraph::build(net);
+    let branches = branches::extract(&g);
+    Ok(Distributions {
+        branch_lengths: geometry::branch_lengths(&g, &branches),
+        azimuth_lengths: geometry::orientation_histogram(&g),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -237,5 +257,18 @@ mod tests {
         let back: Metrics = serde_json::from_str(&text).expect("deserialisable");
         assert!(back.howard_gamma.is_nan());
         assert_eq!(back.mean_length, 5.0);
+    }
+
+    #[test]
+    fn distributions_of_an_l_shaped_pair() {
+        // A 3-4-5 edge (azimuth ~36.9°) and an E–W edge of 2 from a junction of degree 2: one branch.
+        let net =
+            Network { nodes: vec![[0.0; 3], [3.0, 4.0, 0.0], [5.0, 4.0, 0.0]], links: vec![[0, 1], [1, 2]] };
+        let d = distributions(&net).expect("valid network");
+        assert_eq!(d.branch_lengths, vec![7.0]);
+        assert_eq!(d.azimuth_lengths.len(), 18);
+        assert_eq!(d.azimuth_lengths[3], 5.0);
+        assert_eq!(d.azimuth_lengths[9], 2.0);
+        assert_eq!(d.azimuth_lengths.iter().sum::<f64>(), 7.0);
     }
 }

@@ -2,11 +2,24 @@
 //! BFS per source, conduit-length distances from one Dijkstra per source (spec §3 "aspl", "cpd"
 //! and `average_SPL(dist_weight=True)`).
 //!
-//! Leaves are not run as sources. A leaf ℓ hanging from node p (of degree > 1) reaches every other
-//! node of its component of n_c nodes through p, so `Σ_t d(ℓ, t) = Σ_t d(p, t) + (n_c − 2) w_ℓ`
-//! (w_ℓ: the leaf edge's length, 1 in hops), its Brandes dependencies equal p's on every node but
-//! p, and p gains n_c − 2 (all of ℓ's paths cross it). Dijkstra also settles leaves without the
-//! heap. Real caves have ~30 % leaves in the reduced graph, which this skips.
+//! Nodes of hanging trees are not run as sources. Peeling leaves repeatedly (keeping one node
+//! of a component that is a tree) leaves the 2-core plus one root per tree component; every
+//! peeled node v hangs from a parent p through edge w_v, with size(v) nodes in its subtree
+//! (itself included). In its component of n_c nodes, the targets outside v's subtree are reached
+//! through p and those inside it one edge closer than from p, so
+//! `Σ_t d(v, t) = Σ_t d(p, t) + (n_c − 2 size(v)) w_v` (w_v = 1 in hops). v's Brandes dependency
+//! vector equals p's, except that p gains n_c − size(v) − 1 (every path leaving the subtree
+//! crosses p) and v loses size(v) − 1 (it is the source, not an intermediate): over the size(v)
+//! sources of v's subtree, which all share this difference, p gains size(v)(n_c − size(v) − 1)
+//! and v loses size(v)(size(v) − 1), and each kept node's BFS counts for the nodes hanging from
+//! it.
+//!
+//! The traversals themselves stay on the kept nodes: a kept node c stands for the size(c) targets
+//! of c and its trees, `Σ_t d(s, t) = Σ_c size(c) d(s, c) + tail(c)` (tail(c): the distances
+//! from c to its tree nodes), Brandes' recursion weighs target c by size(c), and c is an
+//! intermediate of the size(c) − 1 paths into its trees. Each tree node x lies on the paths from
+//! every source of its component into its subtree: n_c (size(x) − 1) dependencies. Real caves
+//! have ~30 % leaves in the reduced graph and more in their dead-end trees, which this skips.
 //!
 //! Sources are split into [`CHUNKS`] fixed ranges that depend only on the graph; rayon runs the
 //! ranges in parallel and their results are combined in range order, so every value is
@@ -33,43 +46,76 @@ pub(crate) struct AllPairs {
     pub(crate) betweenness: Vec<f64>,
 }
 
-/// The graph with its leaves singled out.
-struct Leaves<'a> {
+/// The graph with its hanging trees peeled off.
+struct Trees<'a> {
     adj: &'a Csr,
     lengths: &'a [f64],
-    /// For a leaf whose neighbour has degree > 1: `(neighbour, edge)`.
+    /// For a peeled node: `(parent, edge)`.
     anchor: Vec<Option<(usize, usize)>>,
-    /// Leaves hanging from each node.
-    count: Vec<usize>,
+    /// Peeled nodes, children before their parents.
+    peeled: Vec<usize>,
+    /// Nodes in the subtree of a peeled node; 1 + the nodes hanging from a kept node.
+    size: Vec<usize>,
+    /// For a kept node: the hop distances to the nodes hanging from it, summed.
+    hop_tail: Vec<u64>,
+    /// For a kept node: the conduit-length distances to the nodes hanging from it, summed.
+    length_tail: Vec<f64>,
 }
 
-impl<'a> Leaves<'a> {
+impl<'a> Trees<'a> {
     fn new(adj: &'a Csr, lengths: &'a [f64]) -> Self {
         let n = adj.n_nodes();
+        let mut degree: Vec<usize> = (0..n).map(|v| adj.degree(v)).collect();
         let mut anchor = vec![None; n];
-        let mut count = vec![0; n];
-        for v in (0..n).filter(|&v| adj.degree(v) == 1) {
-            if let Some((p, e)) = adj.incident(v).find(|&(p, _)| adj.degree(p) > 1) {
-                anchor[v] = Some((p, e));
-                count[p] += 1;
+        let mut size = vec![1; n];
+        let mut peeled = Vec::new();
+        let mut queue: std::collections::VecDeque<usize> = (0..n).filter(|&v| degree[v] == 1).collect();
+        while let Some(v) = queue.pop_front() {
+            // Degree 0: the last node of a tree component, kept as its root.
+            if degree[v] != 1 {
+                continue;
+            }
+            let Some((p, e)) = adj.incident(v).find(|&(p, _)| anchor[p].is_none() && degree[p] > 0) else {
+                continue;
+            };
+            anchor[v] = Some((p, e));
+            peeled.push(v);
+            degree[v] = 0;
+            degree[p] -= 1;
+            size[p] += size[v];
+            if degree[p] == 1 {
+                queue.push_back(p);
             }
         }
-        Self { adj, lengths, anchor, count }
+        let (mut hop_tail, mut length_tail) = (vec![0; n], vec![0.0; n]);
+        let (mut root, mut hops, mut length) = ((0..n).collect::<Vec<_>>(), vec![0u64; n], vec![0.0; n]);
+        for &v in peeled.iter().rev() {
+            let Some((p, e)) = anchor[v] else { continue };
+            (root[v], hops[v], length[v]) = (root[p], hops[p] + 1, length[p] + lengths[e]);
+            hop_tail[root[v]] += hops[v];
+            length_tail[root[v]] += length[v];
+        }
+        Self { adj, lengths, anchor, peeled, size, hop_tail, length_tail }
     }
 
-    fn is_leaf(&self, v: usize) -> bool {
+    fn is_peeled(&self, v: usize) -> bool {
         self.anchor[v].is_some()
+    }
+
+    /// Kept neighbours and edges of a kept node.
+    fn kept(&self, v: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.adj.incident(v).filter(|&(w, _)| !self.is_peeled(w))
     }
 }
 
-/// Runs a BFS (with Brandes' accumulation) and a Dijkstra from every non-leaf node and derives
-/// the leaves' results from their neighbours'.
+/// Runs a BFS (with Brandes' accumulation) and a Dijkstra from every kept node and derives the
+/// peeled nodes' results from their parents'.
 pub(crate) fn all_pairs(adj: &Csr, lengths: &[f64]) -> AllPairs {
     let n = adj.n_nodes();
-    let leaves = Leaves::new(adj, lengths);
-    let sources: Vec<usize> = (0..n).filter(|&v| !leaves.is_leaf(v)).collect();
+    let trees = Trees::new(adj, lengths);
+    let sources: Vec<usize> = (0..n).filter(|&v| !trees.is_peeled(v)).collect();
     let chunk = sources.len().div_ceil(CHUNKS).max(1);
-    let parts: Vec<AllPairs> = sources.par_chunks(chunk).map(|chunk| from_sources(&leaves, chunk)).collect();
+    let parts: Vec<AllPairs> = sources.par_chunks(chunk).map(|chunk| from_sources(&trees, chunk)).collect();
     let mut total = AllPairs { hop_sums: vec![0; n], length_sums: vec![0.0; n], betweenness: vec![0.0; n] };
     for (part, chunk) in parts.into_iter().zip(sources.chunks(chunk)) {
         for (i, &s) in chunk.iter().enumerate() {
@@ -80,40 +126,36 @@ pub(crate) fn all_pairs(adj: &Csr, lengths: &[f64]) -> AllPairs {
             *b += p;
         }
     }
-    add_leaf_sources(&leaves, &mut total);
+    add_tree_sources(&trees, &mut total);
     total
 }
 
-/// Completes `total` with the contributions of the leaves as sources.
-fn add_leaf_sources(leaves: &Leaves, total: &mut AllPairs) {
-    let (component, n_components) = leaves.adj.components();
-    let mut size = vec![0usize; n_components];
+/// Completes `total` with the contributions of the peeled nodes as sources (module docs).
+fn add_tree_sources(trees: &Trees, total: &mut AllPairs) {
+    let (component, n_components) = trees.adj.components();
+    let mut n_c = vec![0i64; n_components];
     for &c in &component {
-        size[c] += 1;
+        n_c[c] += 1;
     }
-    for (leaf, anchor) in leaves.anchor.iter().enumerate() {
-        if let Some((p, e)) = *anchor {
-            let others = size[component[leaf]] - 2;
-            total.hop_sums[leaf] = total.hop_sums[p] + others as u64;
-            total.length_sums[leaf] = total.length_sums[p] + others as f64 * leaves.lengths[e];
-            total.betweenness[p] += others as f64;
-        }
+    for &v in trees.peeled.iter().rev() {
+        let Some((p, e)) = trees.anchor[v] else { continue };
+        let (n, size) = (n_c[component[v]], trees.size[v] as i64);
+        let shift = n - 2 * size;
+        total.hop_sums[v] = total.hop_sums[p].saturating_add_signed(shift);
+        total.length_sums[v] = total.length_sums[p] + shift as f64 * trees.lengths[e];
+        total.betweenness[p] += (size * (n - size - 1)) as f64;
+        // n_c (size − 1) as an intermediate from every source, minus size (size − 1) as a source.
+        total.betweenness[v] += ((size - 1) * (n - size)) as f64;
     }
 }
 
-fn from_sources(leaves: &Leaves, sources: &[usize]) -> AllPairs {
-    let n = leaves.adj.n_nodes();
+fn from_sources(trees: &Trees, sources: &[usize]) -> AllPairs {
+    let n = trees.adj.n_nodes();
     let mut bfs = Brandes::new(n);
     let mut dijkstra = Dijkstra::new(n);
     let mut betweenness = vec![0.0; n];
-    let hop_sums = sources
-        .iter()
-        .map(|&s| {
-            let weight = 1.0 + leaves.count[s] as f64;
-            bfs.run(leaves.adj, s, weight, &mut betweenness)
-        })
-        .collect();
-    let length_sums = sources.iter().map(|&s| dijkstra.run(leaves, s)).collect();
+    let hop_sums = sources.iter().map(|&s| bfs.run(trees, s, &mut betweenness)).collect();
+    let length_sums = sources.iter().map(|&s| dijkstra.run(trees, s)).collect();
     AllPairs { hop_sums, length_sums, betweenness }
 }
 
@@ -135,21 +177,24 @@ impl Brandes {
         }
     }
 
-    /// Adds `weight` times the dependencies of source `s` to `betweenness`; returns `Σ_t d(s, t)`.
-    fn run(&mut self, adj: &Csr, s: usize, weight: f64, betweenness: &mut [f64]) -> u64 {
-        self.count_shortest_paths(adj, s);
+    /// Adds the dependencies of kept source `s` on kept nodes, times the size(s) sources it
+    /// stands for, to `betweenness`; returns `Σ_t d(s, t)` over all targets (module docs).
+    fn run(&mut self, trees: &Trees, s: usize, betweenness: &mut [f64]) -> u64 {
+        self.count_shortest_paths(trees, s);
+        let weight = trees.size[s] as f64;
         for &w in self.order.iter().rev() {
-            let coeff = (1.0 + self.delta[w]) / self.sigma[w];
-            for &v in adj.neighbors(w) {
+            let coeff = (trees.size[w] as f64 + self.delta[w]) / self.sigma[w];
+            for (v, _) in trees.kept(w) {
                 if self.dist[v] + 1 == self.dist[w] {
                     self.delta[v] += self.sigma[v] * coeff;
                 }
             }
             if w != s {
-                betweenness[w] += weight * self.delta[w];
+                betweenness[w] += weight * (self.delta[w] + (trees.size[w] - 1) as f64);
             }
         }
-        let hop_sum = self.order.iter().map(|&v| self.dist[v] as u64).sum();
+        let hop_sum =
+            self.order.iter().map(|&v| trees.size[v] as u64 * self.dist[v] as u64 + trees.hop_tail[v]).sum();
         for &v in &self.order {
             self.dist[v] = usize::MAX;
             self.sigma[v] = 0.0;
@@ -158,8 +203,8 @@ impl Brandes {
         hop_sum
     }
 
-    /// BFS from `s`: hop distances, shortest-path counts and the visiting order.
-    fn count_shortest_paths(&mut self, adj: &Csr, s: usize) {
+    /// BFS from `s` over the kept nodes: hop distances, shortest-path counts, visiting order.
+    fn count_shortest_paths(&mut self, trees: &Trees, s: usize) {
         self.order.clear();
         self.order.push(s);
         self.dist[s] = 0;
@@ -167,7 +212,7 @@ impl Brandes {
         let mut head = 0;
         while let Some(&v) = self.order.get(head) {
             head += 1;
-            for &w in adj.neighbors(v) {
+            for (w, _) in trees.kept(v) {
                 if self.dist[w] == usize::MAX {
                     self.dist[w] = self.dist[v] + 1;
                     self.order.push(w);
@@ -199,9 +244,8 @@ impl Dijkstra {
         }
     }
 
-    /// `Σ_t d(s, t)` along edge lengths; leaves are settled from their neighbour directly.
-    fn run(&mut self, leaves: &Leaves, s: usize) -> f64 {
-        let mut leaf_sum = 0.0;
+    /// `Σ_t d(s, t)` along edge lengths, over the kept nodes and the trees hanging from them.
+    fn run(&mut self, trees: &Trees, s: usize) -> f64 {
         self.dist[s] = 0.0;
         self.heap.push(Reverse((0f64.to_bits(), s)));
         while let Some(Reverse((_, node))) = self.heap.pop() {
@@ -211,17 +255,19 @@ impl Dijkstra {
             self.done[node] = true;
             self.settled.push(node);
             let d = self.dist[node];
-            for (w, e) in leaves.adj.incident(node) {
-                let through = d + leaves.lengths[e];
-                if leaves.is_leaf(w) {
-                    leaf_sum += through;
-                } else if !self.done[w] && through < self.dist[w] {
+            for (w, e) in trees.kept(node) {
+                let through = d + trees.lengths[e];
+                if !self.done[w] && through < self.dist[w] {
                     self.dist[w] = through;
                     self.heap.push(Reverse((through.to_bits(), w)));
                 }
             }
         }
-        let sum = self.settled.iter().map(|&v| self.dist[v]).sum::<f64>() + leaf_sum;
+        let sum = self
+            .settled
+            .iter()
+            .map(|&v| trees.size[v] as f64 * self.dist[v] + trees.length_tail[v])
+            .sum::<f64>();
         for &v in &self.settled {
             self.dist[v] = f64::INFINITY;
             self.done[v] = false;
@@ -255,13 +301,29 @@ mod tests {
 
     #[test]
     fn leaves_match_a_direct_traversal() {
-        // Star 0-{1,2,3} with a tail 3-4: leaves 1, 2 and 4 are not run as sources.
+        // Star 0-{1,2,3} with a tail 3-4: only node 0 is run as a source.
         let adj = Csr::from_edges(5, &[[0, 1], [0, 2], [0, 3], [3, 4]]);
         let r = all_pairs(&adj, &[1.0, 2.0, 3.0, 4.0]);
         assert_eq!(r.hop_sums, vec![5, 8, 8, 6, 9]);
         assert_eq!(r.length_sums, vec![13.0, 16.0, 19.0, 16.0, 28.0]);
         // Node 0 is on 1-2, 1-3, 1-4, 2-3, 2-4 (both ways); node 3 on 0-4, 1-4, 2-4.
         assert_eq!(r.betweenness, vec![10.0, 0.0, 0.0, 6.0, 0.0]);
+    }
+
+    #[test]
+    fn dead_end_trees_match_a_direct_traversal() {
+        // A path 0-1-2-3 (only node 2 is run as a source) and a triangle 4-5-6 with a tree
+        // 6-7-8, 7-9 hanging from it.
+        let edges = [[0, 1], [1, 2], [2, 3], [4, 5], [5, 6], [6, 4], [6, 7], [7, 8], [7, 9]];
+        let adj = Csr::from_edges(10, &edges);
+        let lengths = [1.0, 2.0, 3.0, 1.0, 1.0, 1.0, 2.0, 0.5, 4.0];
+        let r = all_pairs(&adj, &lengths);
+        assert_eq!(r.hop_sums, vec![6, 4, 4, 6, 10, 10, 7, 7, 11, 11]);
+        assert_eq!(r.length_sums[0], 1.0 + 3.0 + 6.0);
+        assert_eq!(r.length_sums[8], 0.5 + 2.5 + 3.5 + 3.5 + 4.5);
+        // Path: nodes 1 and 2 each lie inside 2 unordered pairs; the tree: 6 inside (4|5)×(7,8,9)
+        // = 6 pairs, 7 inside (4,5,6)×(8,9) + (8,9) = 7 pairs. Ordered: twice as many.
+        assert_eq!(r.betweenness, vec![0.0, 4.0, 4.0, 0.0, 0.0, 0.0, 12.0, 14.0, 0.0, 0.0]);
     }
 
     #[test]

@@ -3,7 +3,8 @@ that karst-metrics computes, as one JSON object on stdout (non-finite values as 
 
 Usage: karstnet_oracle.py BASE        reads BASE_nodes.dat / BASE_links.dat (1-based links)
        karstnet_oracle.py FILE.pl     reads a GOCAD PLine
-karstnet's own printing is suppressed and matplotlib runs headless.
+karstnet's own printing is suppressed and matplotlib runs headless. The time taken by loading
+and characterising (imports excluded) is printed on stderr as `karstnet seconds: S`.
 """
 import contextlib
 import io
@@ -11,6 +12,7 @@ import json
 import math
 import os
 import sys
+import time
 import warnings
 
 os.environ.setdefault("MPLBACKEND", "Agg")
@@ -42,7 +44,8 @@ def metrics(kg):
     n, s = gs.number_of_nodes(), gs.number_of_edges()
     p = nx.number_connected_components(gs)
     cycles = s - n + p
-    alpha, beta, gamma = cycles / (2 * n - 5), s / n, s / (3 * (n - 2))
+    # IEEE division (a 2-node reduced graph has an infinite gamma, as in karst-metrics).
+    alpha, beta, gamma = (np.float64(a) / np.float64(b) for a, b in ((cycles, 2 * n - 5), (s, n), (s, 3 * (n - 2))))
     degrees = [d for _, d in gs.degree()]
     counts = {
         "1": sum(d == 1 for d in degrees),
@@ -82,5 +85,8 @@ def clean(v):
 
 
 if __name__ == "__main__":
+    start = time.perf_counter()
     result = metrics(load(sys.argv[1]))
+    seconds = time.perf_counter() - start
     print(json.dumps({k: clean(v) for k, v in result.items()}, indent=1))
+    print(f"karstnet seconds: {seconds}", file=sys.stderr)

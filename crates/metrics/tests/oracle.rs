@@ -8,29 +8,10 @@
 
 mod common;
 
-use std::path::Path;
-use std::process::Command;
-
-use common::{CaveSpec, as_map, assert_same, json_map, random_cave, temp_dir, write_karstnet};
+use common::{
+    CaveSpec, as_map, assert_same, json_map, karstnet_metrics, python, random_cave, temp_dir, write_karstnet,
+};
 use karst_metrics::{Network, characterize};
-
-fn python() -> String {
-    std::env::var("KARSTNET_PYTHON").unwrap_or_else(|_| {
-        panic!("set KARSTNET_PYTHON to a python with karstnet==1.2.5 (cargo xtask test does this)")
-    })
-}
-
-fn karstnet_metrics(python: &str, base: &Path) -> serde_json::Value {
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/karstnet_oracle.py");
-    let out = Command::new(python).arg(&script).arg(base).output().expect("run the karstnet oracle");
-    assert!(
-        out.status.success(),
-        "karstnet oracle failed on {}:\n{}",
-        base.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("oracle prints JSON")
-}
 
 fn check(python: &str, name: &str, net: &Network) {
     let dir = temp_dir(name);

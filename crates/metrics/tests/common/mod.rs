@@ -18,10 +18,11 @@ pub fn as_map(m: &Metrics) -> BTreeMap<String, f64> {
     m.to_pairs().into_iter().map(|(k, v)| (k.to_string(), v)).collect()
 }
 
-/// Whether `a` and `b` agree within `rel` relative, or 1e-12 absolute near 0; NaN equals NaN.
+/// Whether `a` and `b` agree within `rel` relative, or 1e-12 absolute near 0. Undefined values
+/// (NaN, ±∞) only equal undefined values: JSON writes them all as null.
 pub fn close(a: f64, b: f64, rel: f64) -> bool {
-    if a.is_nan() || b.is_nan() {
-        return a.is_nan() && b.is_nan();
+    if !a.is_finite() || !b.is_finite() {
+        return a == b || (!a.is_finite() && !b.is_finite() && (a.is_nan() || b.is_nan()));
     }
     let diff = (a - b).abs();
     a == b || diff <= rel * a.abs().max(b.abs()) || diff <= 1e-12
@@ -268,4 +269,30 @@ pub fn temp_dir(tag: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("karst-metrics-{tag}-{}-{nanos}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("create temp dir");
     dir
+}
+
+/// The Python of `KARSTNET_PYTHON` (set by `cargo xtask test`); panics when unset, so that the
+/// comparisons with karstnet never pass silently.
+pub fn python() -> String {
+    std::env::var("KARSTNET_PYTHON").unwrap_or_else(|_| {
+        panic!("set KARSTNET_PYTHON to a python with karstnet==1.2.5 (cargo xtask test does this)")
+    })
+}
+
+/// karstnet 1.2.5's metrics of `base` (`_nodes.dat`/`_links.dat` or a `.pl`), through
+/// `karstnet_oracle.py`; panics loudly when the interpreter or karstnet is broken.
+pub fn karstnet_metrics(python: &str, base: &Path) -> serde_json::Value {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/karstnet_oracle.py");
+    let out = std::process::Command::new(python)
+        .arg(&script)
+        .arg(base)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run the karstnet oracle with {python}: {e}"));
+    assert!(
+        out.status.success(),
+        "karstnet oracle failed on {}:\n{}",
+        base.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("oracle prints JSON")
 }
