@@ -14,7 +14,6 @@ pub enum KeyPointKind {
     Spring,
     Waypoint,
     /// A known blind passage: the network reaches it, nothing flows on from it.
-
     DeadEnd,
 }
 

@@ -15,7 +15,13 @@ fn node(p: [f64; 3], zone: Zone) -> Node {
 
 fn conduit(nodes: Vec<u32>) -> Conduit {
     let n = nodes.len();
-    Conduit { nodes, radius: vec![1.5; n], types: vec![ConduitType::Canyon; n - 1], phase: 0, keypoints: vec![] }
+    Conduit {
+        nodes,
+        radius: vec![1.5; n],
+        types: vec![ConduitType::Canyon; n - 1],
+        phase: 0,
+        keypoints: vec![],
+    }
 }
 
 fn route(sink: &str, spring: &str, weight: f64, a: u32, b: u32) -> Route {

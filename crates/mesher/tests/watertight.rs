@@ -46,7 +46,10 @@ fn random_model() -> SdfModel {
     }
     SdfModel {
         capsules,
-        ..SdfModel::new(Domain { min: [0.0, 0.0, 0.0], max: [100.0, 100.0, 45.0] }, TerrainField::Plane { elevation: 38.0, origin: [0.0, 0.0], gradient: [0.03, -0.02] })
+        ..SdfModel::new(
+            Domain { min: [0.0, 0.0, 0.0], max: [100.0, 100.0, 45.0] },
+            TerrainField::Plane { elevation: 38.0, origin: [0.0, 0.0], gradient: [0.03, -0.02] },
+        )
     }
 }
 
@@ -122,7 +125,10 @@ fn a_capsule_matches_its_analytic_area_and_volume() {
     let (r, length) = (2.0, 10.0);
     let field = CarvedTerrain::new(SdfModel {
         capsules: vec![Capsule { a: [4.3, 5.1, 4.7], b: [4.3 + length, 5.1, 4.7], radius: r }],
-        ..SdfModel::new(Domain { min: [0.0, 0.0, 0.0], max: [20.0, 10.0, 10.0] }, TerrainField::Plane { elevation: 9.0, origin: [0.0, 0.0], gradient: [0.0, 0.0] })
+        ..SdfModel::new(
+            Domain { min: [0.0, 0.0, 0.0], max: [20.0, 10.0, 10.0] },
+            TerrainField::Plane { elevation: 9.0, origin: [0.0, 0.0], gradient: [0.0, 0.0] },
+        )
     });
     let cave = polygonize(&Cave(&field), 0.05);
     let area = 2.0 * PI * r * length + 4.0 * PI * r * r;

@@ -62,8 +62,13 @@ pub fn network(seed: u64, conduits: usize, nodes: usize) -> (Skeleton, Hydro) {
         );
         let tortuous = c % 2 == 0;
         let mut heading = random.range(0.0, std::f64::consts::TAU);
-        let mut conduit =
-            Conduit { nodes: Vec::new(), radius: Vec::new(), types: Vec::new(), phase: 0, keypoints: Vec::new() };
+        let mut conduit = Conduit {
+            nodes: Vec::new(),
+            radius: Vec::new(),
+            types: Vec::new(),
+            phase: 0,
+            keypoints: Vec::new(),
+        };
         for i in 0..nodes {
             let zone = if p.z < 60.0 { Zone::Phreatic } else { Zone::Vadose };
             conduit.nodes.push(skeleton.nodes.len() as u32);

@@ -60,8 +60,14 @@ mod tests {
     fn sumps_streams_falls_and_shafts() {
         let (v, p) = (Zone::Vadose, Zone::Phreatic);
         assert_eq!(level(&segment(ConduitType::Bed, [p, p], WaterType::Sump, 0.3)), Water::Flooded);
-        assert_eq!(level(&segment(ConduitType::Canyon, [v, v], WaterType::Stream, 0.5)), Water::Stream { depth: 0.5 });
-        assert_eq!(level(&segment(ConduitType::Canyon, [v, v], WaterType::River, 9.0)), Water::Stream { depth: 2.0 });
+        assert_eq!(
+            level(&segment(ConduitType::Canyon, [v, v], WaterType::Stream, 0.5)),
+            Water::Stream { depth: 0.5 }
+        );
+        assert_eq!(
+            level(&segment(ConduitType::Canyon, [v, v], WaterType::River, 9.0)),
+            Water::Stream { depth: 2.0 }
+        );
         assert_eq!(level(&segment(ConduitType::Passage, [v, v], WaterType::Ledge, 0.2)), Water::None);
         assert_eq!(level(&segment(ConduitType::Epikarst, [v, v], WaterType::Rapid, 0.1)), Water::None);
         assert_eq!(level(&segment(ConduitType::Bed, [p, p], WaterType::Dry, 0.0)), Water::None);

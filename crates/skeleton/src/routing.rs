@@ -37,7 +37,8 @@ pub fn build(scene: &Scene, samples: &Samples, full: &CostGraph) -> Result<Skele
     let routes = match scene.skeleton.mode {
         SkeletonMode::Karstnsim => {
             // One cost set per spring's water table (KarstNSim §1.3): C_WT differs between them.
-            let sets: Vec<CostSetOf> = (0..graph.cost_sets.len()).map(|set| CostSetOf { graph, set }).collect();
+            let sets: Vec<CostSetOf> =
+                (0..graph.cost_sets.len()).map(|set| CostSetOf { graph, set }).collect();
             let cost_set =
                 |table: &str| -> &dyn EdgeCosts { &sets[graph.cost_set_of_water_table(table).unwrap_or(0)] };
             let sinks = sinks_in_order(scene);

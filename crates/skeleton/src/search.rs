@@ -244,8 +244,9 @@ fn grow(
         match csr {
             Some((g, costs)) => {
                 let (first, last) = (g.offsets[u] as usize, g.offsets[u + 1] as usize);
-                for edge in first..last {
-                    relax(edge, g.targets[edge] as usize, f64::from(costs[edge]));
+                let edges = g.targets[first..last].iter().zip(&costs[first..last]);
+                for (edge, (&target, &cost)) in (first..last).zip(edges) {
+                    relax(edge, target as usize, f64::from(cost));
                 }
             }
             None => graph.for_each_out(u, &mut relax),
