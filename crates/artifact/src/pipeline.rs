@@ -100,7 +100,7 @@ impl Stage {
             Stage::Hydro => &[Stage::Skeleton],
             Stage::Sdf => &[Stage::Skeleton, Stage::Hydro],
             Stage::Mesher => &[Stage::Sdf],
-            Stage::Metrics => &[Stage::Skeleton],
+            Stage::Metrics => &[Stage::Skeleton, Stage::Hydro],
         }
     }
 

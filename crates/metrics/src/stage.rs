@@ -1,4 +1,5 @@
-//! The metrics stage: `skeleton.json` in, `metrics.json` and three pictures (DIR/preview/) out.
+//! The metrics stage: `skeleton.json` and `hydro.json` in, `metrics.json` and three pictures
+//! (DIR/preview/) out.
 //!
 //! `metrics.json` holds, under karstnet's key names, every `characterize_graph()` metric beside
 //! its real-cave range (`karstnet`), every statistic of [`Metrics`] (`network`), and what only a
@@ -7,8 +8,8 @@
 //! different zones crosses the water table somewhere between them: half of its length counts in
 //! each zone.
 //!
-//! The length per water type (stream, rapid, sump, ... of the hydro stage) is not reported: this
-//! version of `hydro.json` carries flows only.
+//! The length per water type (`water_types`: stream, rapid, plunge, sump, pool, dry... of the
+//! hydro stage, Emilien et al. 2015 Table 1) sums each segment under the type hydro gave it.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -19,6 +20,7 @@ use serde::{Deserialize, Serialize};
 use karst_artifact::cli::{InspectArgs, RunArgs, StageRun, print_json};
 use karst_artifact::{Kind, Payload, Stage, StageError, read_artifact, write_artifact};
 use karst_geology::Scene;
+use karst_hydro::{Hydro, WaterType};
 use karst_skeleton::{ConduitType, Skeleton, Zone};
 
 use crate::ranges::{self, Compared};
@@ -35,6 +37,10 @@ pub struct MetricsReport {
     pub zones: ZoneLengths,
     /// Conduit length per conduit type (every type, zero when absent).
     pub conduit_types: BTreeMap<String, f64>,
+    /// Conduit length per water type of the hydro stage (every type, zero when absent); empty
+    /// when the report is made from a skeleton alone (ensembles).
+    #[serde(default)]
+    pub water_types: BTreeMap<String, f64>,
 }
 
 /// Conduit length above (vadose) and below (phreatic) the water table, metres.
@@ -46,7 +52,7 @@ pub struct ZoneLengths {
 
 impl Payload for MetricsReport {
     const KIND: Kind = Kind::Metrics;
-    const SCHEMA: u32 = 2;
+    const SCHEMA: u32 = 3;
 }
 
 /// The network of a skeleton as karstnet sees it.
@@ -68,7 +74,32 @@ pub fn report(skeleton: &Skeleton) -> Result<MetricsReport, crate::MetricsError>
             .iter()
             .map(|&t| (t.name().to_string(), skeleton.length_of_type(t) + 0.0)) // + 0.0: no -0 for an empty sum
             .collect(),
+        water_types: BTreeMap::new(),
     })
+}
+
+/// Conduit length per water type of `hydro`, which must describe the segments of `skeleton`.
+pub fn water_type_lengths(skeleton: &Skeleton, hydro: &Hydro) -> Result<BTreeMap<String, f64>, String> {
+    let mut lengths: BTreeMap<String, f64> =
+        WaterType::ALL.iter().map(|t| (t.name().to_string(), 0.0)).collect();
+    if hydro.conduits.len() != skeleton.conduits.len() {
+        return Err(format!(
+            "hydro.json has {} conduits, skeleton.json {}",
+            hydro.conduits.len(),
+            skeleton.conduits.len()
+        ));
+    }
+    for (c, (conduit, water)) in skeleton.conduits.iter().zip(&hydro.conduits).enumerate() {
+        if water.segments.len() + 1 != conduit.nodes.len() {
+            return Err(format!("conduit {c}: hydro.json has {} segments", water.segments.len()));
+        }
+        for (w, segment) in conduit.nodes.windows(2).zip(&water.segments) {
+            let [a, b] = [w[0], w[1]].map(|i| skeleton.nodes[i as usize].position);
+            *lengths.entry(segment.water.name().to_string()).or_default() +=
+                crate::geometry::distance(&a, &b);
+        }
+    }
+    Ok(lengths)
 }
 
 /// Conduit length per zone; a segment between zones counts half in each.
@@ -101,8 +132,11 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let scene = Scene::load(&args.scene)?;
     let mut run = StageRun::new(Stage::Metrics, &args.out);
     let skeleton: Skeleton = run.read_input(Stage::Skeleton)?;
+    let hydro: Hydro = run.read_input(Stage::Hydro)?;
     let start = Instant::now();
-    let report = report(&skeleton).map_err(|e| StageError::input(format!("skeleton.json: {e}")))?;
+    let mut report = report(&skeleton).map_err(|e| StageError::input(format!("skeleton.json: {e}")))?;
+    report.water_types = water_type_lengths(&skeleton, &hydro)
+        .map_err(|e| StageError::input(format!("{e}: rerun `cargo xtask run --from hydro`")))?;
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Metrics)), &report)?;
     write_plots(&args.out.join("preview"), &network_of(&skeleton), &report.network)?;
     let m = &report.network;
@@ -133,7 +167,7 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
         println!("  {key:<28} {value:>12.5}");
     }
     println!("  vadose length {:.1} m, phreatic length {:.1} m", report.zones.vadose, report.zones.phreatic);
-    for (kind, length) in report.conduit_types.iter().filter(|(_, l)| **l > 0.0) {
+    for (kind, length) in report.conduit_types.iter().chain(&report.water_types).filter(|(_, l)| **l > 0.0) {
         println!("  {kind} {length:.1} m");
     }
     Ok(())

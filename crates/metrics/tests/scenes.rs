@@ -35,6 +35,7 @@ fn run_stages(scene: &Path, out: &Path) {
     karst_sampling::stage::run(&args).unwrap_or_else(|e| panic!("{name}: sampling: {e}"));
     karst_costgraph::stage::run(&args).unwrap_or_else(|e| panic!("{name}: costgraph: {e}"));
     karst_skeleton::stage::run(&args).unwrap_or_else(|e| panic!("{name}: skeleton: {e}"));
+    karst_hydro::stage::run(&args).unwrap_or_else(|e| panic!("{name}: hydro: {e}"));
     karst_metrics::stage::run(&args).unwrap_or_else(|e| panic!("{name}: metrics: {e}"));
 }
 
@@ -53,6 +54,12 @@ fn every_scene_matches_karstnet() {
         assert_same(&as_map(&exported), &theirs, 1e-9, &[], &format!("{name} (export)"));
         let (_, report) = read_artifact::<MetricsReport>(&out.join("metrics.json")).expect("metrics.json");
         assert_same(&as_map(&report.network), &theirs, 1e-9, &[], &format!("{name} (metrics.json)"));
+        // Every segment is counted once under its water type, and under its conduit type.
+        let total = report.network.total_length;
+        for (what, lengths) in [("water", &report.water_types), ("conduit", &report.conduit_types)] {
+            let sum: f64 = lengths.values().sum();
+            assert!((sum - total).abs() <= 1e-9 * total, "{name}: {what} types sum to {sum}, total {total}");
+        }
         for (key, compared) in &report.karstnet {
             assert!(common::close(compared.value, theirs[key], 1e-9), "{name}: {key}");
         }
