@@ -32,7 +32,7 @@ pub fn scenes(dir: &Path) -> Result<Vec<PathBuf>, StageError> {
 
 /// Runs the stages up to metrics for `scene` into `out` and reads its report.
 pub fn scene_report(scene: &Path, out: &Path) -> Result<MetricsReport, StageError> {
-    for stage in [Stage::Sampling, Stage::Costgraph, Stage::Skeleton, Stage::Metrics] {
+    for stage in [Stage::Sampling, Stage::Costgraph, Stage::Skeleton, Stage::Hydro, Stage::Metrics] {
         InProcess.run(stage, scene, out)?;
     }
     Ok(read_artifact::<MetricsReport>(&out.join(Stage::Metrics.file_name()))?.1)

@@ -1,5 +1,8 @@
 //! Errors of the artifact layer, and the error every stage binary reports.
 //!
+//! I/O errors keep the operating system's error as their source: the stage binaries print the
+//! whole chain ("FILE: cannot read: No such file or directory").
+//!
 //! Exit codes are part of karstgen's command-line contract: 2 for bad input (a scene, an
 //! artifact or a network file that is wrong), 1 for a failure of karstgen itself or of the
 //! machine (a write that fails, an internal invariant).
@@ -9,9 +12,9 @@ use std::path::PathBuf;
 /// What can go wrong when reading or writing an artifact. Every message names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    #[error("{path}: cannot read: {source}")]
+    #[error("{path}: cannot read")]
     Open { path: PathBuf, source: std::io::Error },
-    #[error("{path}: cannot write: {source}")]
+    #[error("{path}: cannot write")]
     Write { path: PathBuf, source: std::io::Error },
     #[error("{path}: not a karstgen artifact ({detail})")]
     NotAnArtifact { path: PathBuf, detail: String },

@@ -145,7 +145,7 @@ pub enum Link {
 /// A scene that cannot be used, with every reason.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    #[error("{path}: cannot read the scene: {source}")]
+    #[error("{path}: cannot read the scene")]
     Read { path: PathBuf, source: std::io::Error },
     #[error("{}", format_problems(path, problems))]
     Invalid { path: PathBuf, problems: Vec<Problem> },
