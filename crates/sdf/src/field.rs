@@ -31,13 +31,16 @@ pub struct CarvedTerrain {
     model: SdfModel,
     caves: Bvh,
     water: Bvh,
+    /// The terrain leaf's 1/√(1 + λ²), computed once rather than at every evaluation.
+    terrain_scale: f64,
 }
 
 impl CarvedTerrain {
     pub fn new(model: SdfModel) -> Self {
         let caves = Bvh::build(karst_leaves(&model));
         let water = Bvh::build(water_leaves(&model));
-        CarvedTerrain { model, caves, water }
+        let terrain_scale = model.terrain.scale();
+        CarvedTerrain { model, caves, water, terrain_scale }
     }
 
     pub fn model(&self) -> &SdfModel {
@@ -50,7 +53,8 @@ impl CarvedTerrain {
 
     /// Rock before the caves: below the terrain and inside the domain (negative inside).
     fn uncarved(&self, p: DVec3) -> f64 {
-        self.model.terrain.distance(p).max(self.model.domain.signed_distance(p))
+        let terrain = (p.z - self.model.terrain.height(p.x, p.y)) * self.terrain_scale;
+        terrain.max(self.model.domain.signed_distance(p))
     }
 
     /// f(p): negative in rock, positive in air; 1-Lipschitz.

@@ -40,46 +40,45 @@ impl TerrainField {
         }
     }
 
-    /// The scene terrain this field stands for (the geology crate evaluates it).
-    fn terrain(&self) -> Option<Terrain> {
-        match self {
-            TerrainField::Noise { elevation, amplitude, wavelength, octaves, gradient } => {
-                Some(Terrain::Noise {
-                    elevation: *elevation,
-                    amplitude: *amplitude,
-                    wavelength: *wavelength,
-                    octaves: *octaves,
-                    gradient: *gradient,
-                })
+    /// The analytic scene terrain this field stands for: the geology crate evaluates planes and
+    /// noise, so their formulas live in one place. None for a grid.
+    fn analytic(&self) -> Option<Terrain> {
+        match *self {
+            TerrainField::Plane { elevation, origin, gradient } => {
+                Some(Terrain::Plane { elevation, origin, gradient })
             }
-            _ => None,
+            TerrainField::Noise { elevation, amplitude, wavelength, octaves, gradient } => {
+                Some(Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient })
+            }
+            TerrainField::Grid(_) => None,
         }
     }
 
     /// Ground elevation at (x, y).
     pub fn height(&self, x: f64, y: f64) -> f64 {
         match self {
-            TerrainField::Plane { elevation, origin, gradient } => {
-                elevation + gradient[0] * (x - origin[0]) + gradient[1] * (y - origin[1])
-            }
             TerrainField::Grid(grid) => grid.height(x, y),
-            TerrainField::Noise { .. } => self.terrain().map_or(f64::NAN, |t| t.height(x, y)),
+            _ => self.analytic().map_or(f64::NAN, |t| t.height(x, y)),
         }
     }
 
     /// Lipschitz bound λ of the height function.
     pub fn lipschitz(&self) -> f64 {
         match self {
-            TerrainField::Plane { gradient, .. } => gradient[0].hypot(gradient[1]),
             TerrainField::Grid(grid) => grid.lipschitz,
-            TerrainField::Noise { .. } => self.terrain().map_or(f64::NAN, |t| t.lipschitz()),
+            _ => self.analytic().map_or(f64::NAN, |t| t.lipschitz()),
         }
+    }
+
+    /// 1/√(1 + λ²): the factor that makes z − h(x, y) a 1-Lipschitz distance bound.
+    pub fn scale(&self) -> f64 {
+        let lambda = self.lipschitz();
+        1.0 / (1.0 + lambda * lambda).sqrt()
     }
 
     /// The 1-Lipschitz signed distance bound: positive above the ground.
     pub fn distance(&self, p: DVec3) -> f64 {
-        let lambda = self.lipschitz();
-        (p.z - self.height(p.x, p.y)) / (1.0 + lambda * lambda).sqrt()
+        (p.z - self.height(p.x, p.y)) * self.scale()
     }
 }
 
