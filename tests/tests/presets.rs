@@ -2,8 +2,12 @@
 //! by a summary of their skeleton in fixtures/golden/<preset>/skeleton-summary.json: node,
 //! conduit and link counts, total length, length per conduit type and the routes. Rerun with
 //! `KARSTGEN_BLESS_PRESETS=1` to rewrite the summaries, and say why in the commit.
+//! Every preset's routes are also checked: each sink reaches a spring it may reach (connectivity
+//! matrix, last phase's springs) along the network's links.
 
 use karst_artifact::{Stage, read_artifact};
+use karst_geology::{KeyPointKind, Link, Scene};
+use karst_skeleton::routing::ends;
 use karst_skeleton::{ConduitType, Skeleton};
 use karstgen_tests::{root, run, scratch};
 use xtask::pipeline::Selection;
@@ -35,6 +39,52 @@ fn summary(s: &Skeleton) -> serde_json::Value {
     })
 }
 
+/// Why the routes of `skeleton` break the rules of `scene`: a sink without a route, a route to a
+/// spring the sink may not reach (connectivity 0, or a spring of an earlier phase), a connected
+/// (1) spring not reached, or a route that does not follow the links from its sink to its spring.
+fn route_failures(scene: &Scene, skeleton: &Skeleton, preset: &str) -> Vec<String> {
+    let mut failures = Vec::new();
+    let springs = ends(scene, KeyPointKind::Spring);
+    let active = |name: &str| scene.phases.last().is_none_or(|p| p.springs.iter().any(|s| s == name));
+    let mut links = skeleton.links();
+    links.sort_unstable();
+    for sink in ends(scene, KeyPointKind::Sink) {
+        let routes: Vec<_> = skeleton.routes.iter().filter(|r| r.sink == sink.name).collect();
+        if routes.is_empty() {
+            failures.push(format!("{preset}: sink {} has no route", sink.name));
+        }
+        for spring in &springs {
+            let link = scene.link(sink.row, spring.row);
+            let reached = routes.iter().any(|r| r.spring == spring.name);
+            if reached && (link == Link::None || !active(spring.name)) {
+                failures.push(format!(
+                    "{preset}: sink {} reaches spring {} it may not reach",
+                    sink.name, spring.name
+                ));
+            }
+            if !reached && link == Link::Connected && active(spring.name) {
+                failures
+                    .push(format!("{preset}: sink {} does not reach its spring {}", sink.name, spring.name));
+            }
+        }
+    }
+    for r in &skeleton.routes {
+        let name = |i: Option<&u32>| i.and_then(|&i| skeleton.nodes[i as usize].keypoint.clone());
+        let follows =
+            r.nodes.windows(2).all(|w| links.binary_search(&[w[0].min(w[1]), w[0].max(w[1])]).is_ok());
+        if name(r.nodes.first()).as_deref() != Some(r.sink.as_str())
+            || name(r.nodes.last()).as_deref() != Some(r.spring.as_str())
+            || !follows
+        {
+            failures.push(format!(
+                "{preset}: route {} → {} does not follow the links between them",
+                r.sink, r.spring
+            ));
+        }
+    }
+    failures
+}
+
 #[test]
 fn preset_skeletons_match_their_golden_summaries() {
     let bless = std::env::var_os("KARSTGEN_BLESS_PRESETS").is_some();
@@ -46,6 +96,7 @@ fn preset_skeletons_match_their_golden_summaries() {
             run(&scene, &out, &Selection { only: Some(stage), ..Selection::default() }).unwrap();
         }
         let (_, skeleton) = read_artifact::<Skeleton>(&out.join(Stage::Skeleton.file_name())).unwrap();
+        failures.extend(route_failures(&Scene::load(&scene).unwrap(), &skeleton, preset));
         let got = summary(&skeleton);
         let golden = root().join(format!("fixtures/golden/{preset}/skeleton-summary.json"));
         if bless {

@@ -161,6 +161,42 @@ fn gamma_mode_joins_every_key_point_and_honours_forced_links() {
     assert!(!with_link.routes.is_empty());
 }
 
+/// The links of a skeleton as pairs of samples, which do not depend on node numbering.
+fn sample_links(s: &Skeleton) -> BTreeSet<(u32, u32)> {
+    s.links()
+        .iter()
+        .map(|[a, b]| {
+            let (a, b) = (s.nodes[*a as usize].sample, s.nodes[*b as usize].sample);
+            (a.min(b), a.max(b))
+        })
+        .collect()
+}
+
+#[test]
+fn a_smaller_gamma_never_removes_a_conduit_a_larger_gamma_keeps() {
+    // Six waypoints inside the rock give the γ-skeleton pairs to prune. Without tortuosity,
+    // amplification or dead ends, the network is the union of the kept pairs' paths, so the
+    // pair monotonicity of the rule must hold for the conduits themselves.
+    let waypoints: String =
+        [[80, 150, 40], [150, 60, 35], [230, 140, 45], [120, 100, 25], [260, 70, 30], [40, 90, 50]]
+            .iter()
+            .enumerate()
+            .map(|(i, p)| format!("[[keypoints]]\nname = \"w{i}\"\nkind = \"waypoint\"\nposition = {p:?}\n"))
+            .collect();
+    let build = |gamma: f64| {
+        let scene = scene(&format!("{waypoints}[skeleton]\nmode = \"gamma\"\ngamma = {gamma}\n"));
+        let (samples, graph) = inputs(&scene);
+        sample_links(&routing::build(&scene, &samples, &graph).unwrap())
+    };
+    let gammas = [0.8, 1.2, 1.7, 2.0, 3.0, 60.0];
+    let networks: Vec<_> = gammas.iter().map(|&g| build(g)).collect();
+    for (i, w) in networks.windows(2).enumerate() {
+        let lost: Vec<_> = w[1].difference(&w[0]).collect();
+        assert!(lost.is_empty(), "γ {} removes {} links γ {} keeps", gammas[i], lost.len(), gammas[i + 1]);
+    }
+    assert!(networks[0].len() > networks[gammas.len() - 1].len(), "γ must matter on this scene");
+}
+
 #[test]
 fn bad_skeleton_parameters_are_refused() {
     let bad = |extra: &str| {
