@@ -7,6 +7,7 @@ use karst_artifact::cli::{InspectArgs, RunArgs, StageRun, print_json};
 use karst_artifact::{Stage, StageError, read_artifact, write_artifact};
 use karst_costgraph::CostGraph;
 use karst_geology::Scene;
+use karst_geology::params::SkeletonMode;
 use karst_sampling::Samples;
 
 use crate::{ConduitType, Skeleton, Zone, karstnet, routing};
@@ -33,12 +34,16 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     karstnet::write(&skeleton, &args.out.join(KARSTNET_BASE)).map_err(|e| {
         StageError::failure(format!("{}: cannot write the karstnet export: {e}", args.out.display()))
     })?;
+    // Least-cost distances obey the triangle inequality, so γ ≤ 1 prunes nothing (docs/skeleton.md):
+    // say so, since Paris et al.'s Table 1 suggests 0.8 for mazes.
+    let complete = scene.skeleton.mode == SkeletonMode::Gamma && scene.skeleton.gamma <= 1.0;
     Ok(format!(
-        "{} nodes, {} conduits, {:.0} m in {:.2} s",
+        "{} nodes, {} conduits, {:.0} m in {:.2} s{}",
         skeleton.nodes.len(),
         skeleton.conduits.len(),
         skeleton.total_length(),
-        start.elapsed().as_secs_f64()
+        start.elapsed().as_secs_f64(),
+        if complete { " (skeleton.gamma ≤ 1 keeps every pair of key points)" } else { "" }
     ))
 }
 
