@@ -3,14 +3,20 @@
 //! the 2021 corrigendum), as computed by karstnet 1.2.5 (`data/real-cave-ranges.json`, a copy of
 //! `shared/reference/real-cave-ranges.json`).
 //!
-//! A value is inside when `min ≤ value ≤ max`; an undefined value (NaN, e.g. the tortuosity of a
-//! network made only of loops) is outside.
+//! A value is inside when `min ≤ value ≤ max` up to a relative [`RANGE_SLACK`] of the bound: the
+//! bounds are themselves floating-point results of karstnet, and the same ratio (−5/9, say)
+//! computed in another order may differ in the last bit. An undefined value (NaN, e.g. the
+//! tortuosity of a network made only of loops) is outside.
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
 use crate::Metrics;
+
+/// Relative rounding allowance on a range bound: a few units in the last place of an f64, far
+/// below any difference between caves.
+pub const RANGE_SLACK: f64 = 1e-12;
 
 /// The keys of `characterize_graph()`, in karstnet's order.
 pub const CHARACTERIZE_KEYS: [&str; 10] = [
@@ -42,9 +48,11 @@ pub struct CaveRange {
 }
 
 impl CaveRange {
-    /// Whether `value` lies in `[min, max]` (NaN never does).
+    /// Whether `value` lies in `[min, max]`, each bound widened by [`RANGE_SLACK`] of its
+    /// magnitude (NaN never does).
     pub fn contains(&self, value: f64) -> bool {
-        (self.min..=self.max).contains(&value)
+        let slack = |bound: f64| RANGE_SLACK * bound.abs();
+        (self.min - slack(self.min)..=self.max + slack(self.max)).contains(&value)
     }
 }
 
@@ -103,6 +111,15 @@ mod tests {
         let r = CaveRange { min: 1.0, max: 2.0, min_network: "a".into(), max_network: "b".into(), n: 2 };
         assert!(r.contains(1.0) && r.contains(2.0) && r.contains(1.5));
         assert!(!r.contains(0.99) && !r.contains(2.01) && !r.contains(f64::NAN));
+    }
+
+    #[test]
+    fn a_bound_computed_in_another_order_still_counts_as_inside() {
+        let min = -0.5555555555555555;
+        let r = CaveRange { min, max: -0.15, min_network: "a".into(), max_network: "b".into(), n: 2 };
+        let same_ratio = -5.0 / 9.0 - f64::EPSILON / 2.0;
+        assert!(same_ratio < min && r.contains(same_ratio));
+        assert!(!r.contains(-0.5555556));
     }
 
     #[test]
