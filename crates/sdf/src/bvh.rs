@@ -2,125 +2,237 @@
 //! only the leaves that can be below the current minimum, and so that a whole box of space can
 //! be bounded at once.
 //!
-//! Median split on the longest axis; leaves are reordered into tree order (no index array).
-//! Node boxes are f32, rounded outwards, to keep the tree at 32 bytes per node.
+//! Median split on the longest axis down to at most `LEAF` leaves, then split further by leaf
+//! class (kind and conduit type), so that each leaf node holds leaves of one class: the leaves
+//! are stored by kind in tree order (no index array, no per-leaf tag or type), and a leaf node
+//! names its class and the range in that kind's array. Node boxes are f32, rounded outwards,
+//! to keep the tree at 32 bytes per node. The traversal visits the nearer child first and keeps
+//! each pushed node's box distance, so a node is dropped without recomputing it once the
+//! minimum found so far is below it.
 
 use glam::{DVec3, Vec3};
 
-use crate::primitive::{Context, Primitive, signed_box_distance};
+use crate::Capsule;
+use crate::chamber::Chamber;
+use crate::primitive::{
+    CAPSULE, CHAMBER, Context, Leaf, SPHERE, SWEEP, WATER, WaterLeaf, capsule_value, chamber_value,
+    signed_box_distance, sphere_value, sweep_value, water_value,
+};
+use crate::sweep::SweepLeaf;
 
-/// Leaves per BVH leaf node.
+/// Leaves per BVH leaf node, at most.
 const LEAF: usize = 8;
 
 #[derive(Debug, Clone)]
 struct Node {
     lo: Vec3,
     hi: Vec3,
-    /// Leaf: first primitive; inner: the right child (the left one is next).
+    /// Leaf: first leaf in its kind's array; inner: the right child (the left one is next).
     first: u32,
-    /// Primitives of a leaf node; 0 for an inner node.
+    /// Leaf: number of leaves | class << 16; 0 for an inner node.
     count: u32,
 }
 
-/// The hierarchy and its primitives, in tree order.
+/// The hierarchy and its leaves, by kind, in tree order.
 #[derive(Debug, Clone, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
-    pub primitives: Vec<Primitive>,
+    spheres: Vec<[f32; 4]>,
+    sweeps: Vec<SweepLeaf>,
+    water: Vec<WaterLeaf>,
+    chambers: Vec<Chamber>,
+    capsules: Vec<Capsule>,
 }
 
 impl Bvh {
-    pub fn build(primitives: Vec<Primitive>) -> Self {
-        let bounds: Vec<(DVec3, DVec3)> = primitives.iter().map(Primitive::bounds).collect();
-        let mut order: Vec<u32> = (0..primitives.len() as u32).collect();
-        let mut bvh =
-            Bvh { nodes: Vec::with_capacity(2 * primitives.len() / LEAF + 1), primitives: Vec::new() };
+    /// The hierarchy of `leaves`; `ctx` gives their boxes.
+    pub fn build(leaves: Vec<Leaf>, ctx: &Context) -> Self {
+        let bounds: Vec<(DVec3, DVec3)> = leaves.iter().map(|l| l.bounds(ctx)).collect();
+        let classes: Vec<u8> = leaves.iter().map(Leaf::class).collect();
+        let mut order: Vec<u32> = (0..leaves.len() as u32).collect();
+        let mut slots: Vec<Option<Leaf>> = leaves.into_iter().map(Some).collect();
+        let mut bvh = Bvh { nodes: Vec::with_capacity(slots.len() / 2 + 1), ..Bvh::default() };
         if !order.is_empty() {
-            bvh.split(&bounds, &mut order, 0);
+            bvh.split(&bounds, &classes, &mut order, &mut slots);
         }
-        let mut slots: Vec<Option<Primitive>> = primitives.into_iter().map(Some).collect();
-        bvh.primitives =
-            order.iter().map(|&i| slots[i as usize].take().expect("each primitive once")).collect();
         bvh
     }
 
-    fn split(&mut self, bounds: &[(DVec3, DVec3)], items: &mut [u32], offset: usize) -> usize {
+    fn split(
+        &mut self,
+        bounds: &[(DVec3, DVec3)],
+        classes: &[u8],
+        items: &mut [u32],
+        slots: &mut [Option<Leaf>],
+    ) -> usize {
         let (lo, hi) = items.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &i| {
             (lo.min(bounds[i as usize].0), hi.max(bounds[i as usize].1))
         });
         let index = self.nodes.len();
-        self.nodes.push(Node {
-            lo: round_down(lo),
-            hi: round_up(hi),
-            first: offset as u32,
-            count: items.len() as u32,
-        });
-        if items.len() <= LEAF {
+        self.nodes.push(Node { lo: round_down(lo), hi: round_up(hi), first: 0, count: 0 });
+        let class = classes[items[0] as usize];
+        let uniform = items.iter().all(|&i| classes[i as usize] == class);
+        if items.len() <= LEAF && uniform {
+            let first = self.store(items, slots);
+            self.nodes[index].first = first;
+            self.nodes[index].count = items.len() as u32 | (class as u32) << 16;
             return index;
         }
-        let axis = (hi - lo).max_position();
-        let centre = |i: u32| bounds[i as usize].0[axis] + bounds[i as usize].1[axis];
-        let mid = items.len() / 2;
-        items.select_nth_unstable_by(mid, |&x, &y| centre(x).total_cmp(&centre(y)).then(x.cmp(&y)));
+        let mid = if items.len() <= LEAF {
+            // Mixed classes: split off the smallest class.
+            items.sort_unstable_by_key(|&i| (classes[i as usize], i));
+            let smallest = classes[items[0] as usize];
+            items.iter().position(|&i| classes[i as usize] != smallest).expect("mixed classes")
+        } else {
+            let axis = (hi - lo).max_position();
+            let centre = |i: u32| bounds[i as usize].0[axis] + bounds[i as usize].1[axis];
+            let mid = items.len() / 2;
+            items.select_nth_unstable_by(mid, |&x, &y| centre(x).total_cmp(&centre(y)).then(x.cmp(&y)));
+            mid
+        };
         let (left, right) = items.split_at_mut(mid);
-        self.split(bounds, left, offset);
-        let right_index = self.split(bounds, right, offset + mid);
+        self.split(bounds, classes, left, slots);
+        let right_index = self.split(bounds, classes, right, slots);
         self.nodes[index].first = right_index as u32;
-        self.nodes[index].count = 0;
         index
     }
 
-    /// min(limit, min over primitives of their value at p).
+    /// Moves the leaves `items` (of one class) to the end of their kind's array; returns where
+    /// they start.
+    fn store(&mut self, items: &[u32], slots: &mut [Option<Leaf>]) -> u32 {
+        let mut first = None;
+        for &i in items {
+            let at = match slots[i as usize].take().expect("each leaf once") {
+                Leaf::Sphere(s, _) => push(&mut self.spheres, s),
+                Leaf::Sweep(s, _) => push(&mut self.sweeps, s),
+                Leaf::Water(w) => push(&mut self.water, w),
+                Leaf::Chamber(c) => push(&mut self.chambers, c),
+                Leaf::Capsule(c) => push(&mut self.capsules, c),
+            };
+            first.get_or_insert(at);
+        }
+        first.expect("a leaf node holds leaves") as u32
+    }
+
+    /// Number of leaves.
+    pub fn len(&self) -> usize {
+        self.spheres.len() + self.sweeps.len() + self.water.len() + self.chambers.len() + self.capsules.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// min(limit, min over leaves of their value at p).
     pub fn min_value(&self, p: DVec3, limit: f64, ctx: &Context) -> f64 {
         let mut best = limit;
-        if self.nodes.is_empty() {
+        let Some(root) = self.nodes.first() else {
             return best;
-        }
-        let mut stack = [0u32; 64];
+        };
+        let distance = |node: &Node| signed_box_distance(node.lo.as_dvec3(), node.hi.as_dvec3(), p);
+        let mut stack = [(0u32, 0.0f64); 64];
+        stack[0] = (0, distance(root));
         let mut top = 1;
         while top > 0 {
             top -= 1;
-            let n = stack[top] as usize;
-            let node = &self.nodes[n];
+            let (n, d) = stack[top];
             // Every leaf's value is at least its box's signed distance, which is at least the
             // node's (negative inside: a node holding p is skipped once best is deeper).
-            if signed_box_distance(node.lo.as_dvec3(), node.hi.as_dvec3(), p) >= best {
+            if d >= best {
                 continue;
             }
+            let node = &self.nodes[n as usize];
             if node.count > 0 {
-                let range = node.first as usize..(node.first + node.count) as usize;
-                for prim in &self.primitives[range] {
-                    best = best.min(prim.value(p, best, ctx));
-                }
+                best = self.leaf_min(node, p, best, ctx);
             } else {
                 // Visit the nearer child first, so the farther one is more often pruned.
-                let (l, r) = (n + 1, node.first as usize);
-                let dl = signed_box_distance(self.nodes[l].lo.as_dvec3(), self.nodes[l].hi.as_dvec3(), p);
-                let dr = signed_box_distance(self.nodes[r].lo.as_dvec3(), self.nodes[r].hi.as_dvec3(), p);
-                let (near, far) = if dl <= dr { (l, r) } else { (r, l) };
-                stack[top] = far as u32;
-                stack[top + 1] = near as u32;
-                top += 2;
+                let (l, r) = (n as usize + 1, node.first as usize);
+                let (dl, dr) = (distance(&self.nodes[l]), distance(&self.nodes[r]));
+                let (near, far) = if dl <= dr { ((l, dl), (r, dr)) } else { ((r, dr), (l, dl)) };
+                if far.1 < best {
+                    stack[top] = (far.0 as u32, far.1);
+                    top += 1;
+                }
+                if near.1 < best {
+                    stack[top] = (near.0 as u32, near.1);
+                    top += 1;
+                }
             }
         }
         best
     }
 
-    /// Bytes held by the tree and its primitives (the sweeps' and chambers' boxed parts too).
+    /// The minimum of `best` and the values of a leaf node's leaves.
+    fn leaf_min(&self, node: &Node, p: DVec3, mut best: f64, ctx: &Context) -> f64 {
+        let class = (node.count >> 16) as u8;
+        let range = node.first as usize..node.first as usize + (node.count & 0xffff) as usize;
+        let a = ctx.amplitude_of(class);
+        match class / 8 {
+            SPHERE => {
+                for s in &self.spheres[range] {
+                    best = best.min(sphere_value(p, s, a, best, ctx));
+                }
+            }
+            SWEEP => {
+                for s in &self.sweeps[range] {
+                    best = best.min(sweep_value(p, s, a, best, ctx));
+                }
+            }
+            WATER => {
+                for w in &self.water[range] {
+                    best = best.min(water_value(p, w, best, ctx));
+                }
+            }
+            CHAMBER => {
+                for c in &self.chambers[range] {
+                    best = best.min(chamber_value(p, c, best, ctx));
+                }
+            }
+            CAPSULE => {
+                for c in &self.capsules[range] {
+                    best = best.min(capsule_value(p, c));
+                }
+            }
+            _ => unreachable!("leaf classes are built by Leaf::class"),
+        }
+        best
+    }
+
+    /// min over every leaf, without the hierarchy: the reference its pruning is tested against.
+    pub fn min_without_bvh(&self, p: DVec3, limit: f64, ctx: &Context) -> f64 {
+        let mut best = limit;
+        for node in self.nodes.iter().filter(|n| n.count > 0) {
+            let class = (node.count >> 16) as u8;
+            let range = node.first as usize..node.first as usize + (node.count & 0xffff) as usize;
+            let a = ctx.amplitude_of(class);
+            let inf = f64::INFINITY;
+            let values: Vec<f64> = match class / 8 {
+                SPHERE => self.spheres[range].iter().map(|s| sphere_value(p, s, a, inf, ctx)).collect(),
+                SWEEP => self.sweeps[range].iter().map(|s| sweep_value(p, s, a, inf, ctx)).collect(),
+                WATER => self.water[range].iter().map(|w| water_value(p, w, inf, ctx)).collect(),
+                CHAMBER => self.chambers[range].iter().map(|c| chamber_value(p, c, inf, ctx)).collect(),
+                _ => self.capsules[range].iter().map(|c| capsule_value(p, c)).collect(),
+            };
+            best = values.into_iter().fold(best, f64::min);
+        }
+        best
+    }
+
+    /// Bytes held by the tree and its leaves (not the shared sweep table).
     pub fn memory(&self) -> usize {
         use std::mem::size_of;
-        let boxed: usize = self
-            .primitives
-            .iter()
-            .map(|p| match p {
-                Primitive::Sphere { .. } => 0,
-                Primitive::Capsule(_) => size_of::<crate::Capsule>(),
-                Primitive::Sweep(_) | Primitive::Water(_) => size_of::<(crate::sweep::Sweep, f64)>(),
-                Primitive::Chamber(_) => size_of::<crate::chamber::Chamber>(),
-            })
-            .sum();
-        self.nodes.len() * size_of::<Node>() + self.primitives.len() * size_of::<Primitive>() + boxed
+        self.nodes.len() * size_of::<Node>()
+            + self.spheres.len() * size_of::<[f32; 4]>()
+            + self.sweeps.len() * size_of::<SweepLeaf>()
+            + self.water.len() * size_of::<WaterLeaf>()
+            + self.chambers.len() * size_of::<Chamber>()
+            + self.capsules.len() * size_of::<Capsule>()
     }
+}
+
+fn push<T>(v: &mut Vec<T>, item: T) -> usize {
+    v.push(item);
+    v.len() - 1
 }
 
 fn round_down(v: DVec3) -> Vec3 {

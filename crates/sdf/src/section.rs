@@ -51,18 +51,15 @@ impl Section {
     /// The section of conduit type `kind` with `shape`: control polygons in units of the
     /// half-width, x across and y up, scaled by the radius; the height stretches y.
     pub fn of(kind: ConduitType, shape: Shape) -> Section {
-        let unit = unit_polygon(kind);
-        // Only vadose shapes lean: a free-surface stream undercuts the outside of its bends,
-        // while phreatic tubes and beds dissolve evenly all round.
-        let leans = matches!(kind, ConduitType::Canyon | ConduitType::Keyhole);
-        let (r, ratio) = (shape.radius as f64, shape.ratio as f64);
-        let skew = if leans { shape.asymmetry as f64 } else { 0.0 };
-        let control = unit.map(|[x, y]| {
-            // Asymmetry shears the upper half sideways (an undercut meander bend).
-            let x = x + skew * y.max(0.0) * 0.5;
-            DVec2::new(x * r, y * r * ratio)
-        });
-        Section { control }
+        Section::blend([kind, kind], shape)
+    }
+
+    /// The half-and-half blend of two types' sections with one shape: the unit polygon
+    /// [`unit_blend`] scaled by (radius, radius · ratio).
+    pub fn blend(kinds: [ConduitType; 2], shape: Shape) -> Section {
+        let unit = unit_blend(kinds, shape.asymmetry);
+        let scale = scale_of(shape);
+        Section { control: unit.map(|u| u * scale) }
     }
 
     /// Linear interpolation of the control points.
@@ -95,16 +92,23 @@ impl Section {
     }
 
     /// Signed distance in the section's plane: negative inside.
+    ///
+    /// The nearest on-curve end point bounds the distance from above, so only arcs whose
+    /// control box is nearer need their cubic solved. The winding number counts crossings of
+    /// the chords between on-curve points, except for arcs whose control triangle holds q: an
+    /// arc and its chord bound a region inside that triangle, so elsewhere they cross the ray
+    /// from q the same net number of times.
     pub fn distance(&self, q: DVec2) -> f64 {
-        let mut d2 = f64::INFINITY;
+        let c = &self.control;
+        let ends: [DVec2; CONTROL] = std::array::from_fn(|i| (c[i] + c[(i + 1) % CONTROL]) * 0.5);
+        let mut d2 = ends.iter().map(|m| (*m - q).length_squared()).fold(f64::INFINITY, f64::min);
         let mut winding = 0i32;
-        for arc in self.arcs() {
-            // The arc lies in the box of its control points: skip the cubic when that box is
-            // already farther than the nearest arc so far.
+        for i in 0..CONTROL {
+            let arc = Arc { p0: ends[(i + CONTROL - 1) % CONTROL], p1: c[i], p2: ends[i] };
             if arc.box_distance_squared(q) < d2 {
                 d2 = d2.min(arc.distance_squared(q));
             }
-            winding += arc.winding(q);
+            winding += if arc.triangle_holds(q) { arc.winding(q) } else { chord_winding(arc.p0, arc.p2, q) };
         }
         let d = d2.sqrt();
         if winding != 0 { -d } else { d }
@@ -136,6 +140,32 @@ impl Section {
         }
         Ok(())
     }
+}
+
+/// The control polygon of a section in units of (radius, radius · ratio): the two types'
+/// polygons, each sheared by `asymmetry` if it leans, averaged.
+pub fn unit_blend(kinds: [ConduitType; 2], asymmetry: f32) -> [DVec2; CONTROL] {
+    let sheared = |kind: ConduitType| {
+        // Only vadose shapes lean: a free-surface stream undercuts the outside of its bends,
+        // while phreatic tubes and beds dissolve evenly all round.
+        let leans = matches!(kind, ConduitType::Canyon | ConduitType::Keyhole);
+        let skew = if leans { asymmetry as f64 } else { 0.0 };
+        // Asymmetry shears the upper half sideways (an undercut meander bend).
+        unit_polygon(kind).map(|[x, y]| DVec2::new(x + skew * y.max(0.0) * 0.5, y))
+    };
+    let [k0, k1] = kinds;
+    let first = sheared(k0);
+    if k0 == k1 {
+        return first;
+    }
+    let second = sheared(k1);
+    std::array::from_fn(|i| (first[i] + second[i]) * 0.5)
+}
+
+/// The factors (radius, radius · ratio) that scale a unit polygon into a section.
+pub fn scale_of(shape: Shape) -> DVec2 {
+    let r = shape.radius as f64;
+    DVec2::new(r, r * shape.ratio as f64)
 }
 
 /// Control polygons in half-widths, counter-clockwise from the bottom.
@@ -262,6 +292,16 @@ impl Arc {
         best
     }
 
+    /// Whether q lies in the closed control triangle (p0, p1, p2).
+    fn triangle_holds(&self, q: DVec2) -> bool {
+        let (a, b, c) = (
+            (self.p1 - self.p0).perp_dot(q - self.p0),
+            (self.p2 - self.p1).perp_dot(q - self.p1),
+            (self.p0 - self.p2).perp_dot(q - self.p2),
+        );
+        (a >= 0.0 && b >= 0.0 && c >= 0.0) || (a <= 0.0 && b <= 0.0 && c <= 0.0)
+    }
+
     /// Signed crossings of the ray from q towards +x (±1 per crossing, by direction).
     fn winding(&self, q: DVec2) -> i32 {
         let a = self.p1.y - self.p0.y;
@@ -282,6 +322,21 @@ impl Arc {
             }
         }
         w
+    }
+}
+
+/// Signed crossings of the ray from q towards +x by the segment p0 p2, with the arcs'
+/// convention (a crossing at the start counts, one at the end does not).
+fn chord_winding(p0: DVec2, p2: DVec2, q: DVec2) -> i32 {
+    let dy = p2.y - p0.y;
+    if dy == 0.0 {
+        return 0;
+    }
+    let t = (q.y - p0.y) / dy;
+    if (0.0..1.0).contains(&t) && p0.x + (p2.x - p0.x) * t > q.x {
+        if dy > 0.0 { 1 } else { -1 }
+    } else {
+        0
     }
 }
 

@@ -1,0 +1,49 @@
+//! Times `CarvedTerrain::eval` on an sdf.bin: points uniform in the domain and within 6 m of a
+//! skeleton node. `cargo run --release -p karst-sdf --example evalbench -- DIR [RUNS]`.
+use std::time::Instant;
+
+use glam::DVec3;
+use karst_artifact::read_artifact;
+use karst_sdf::{CarvedTerrain, SdfModel};
+use karst_skeleton::Skeleton;
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let dir = std::path::Path::new(&args[1]);
+    let runs: usize = args.get(2).and_then(|r| r.parse().ok()).unwrap_or(5);
+    let (_, model): (_, SdfModel) = read_artifact(&dir.join("sdf.bin")).unwrap();
+    let (_, skeleton): (_, Skeleton) = read_artifact(&dir.join("skeleton.json")).unwrap();
+    let field = CarvedTerrain::new(model);
+    let mut state = 12345u64;
+    let mut unit = move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let d = &field.model().domain;
+    let (lo, hi) = (DVec3::from_array(d.min), DVec3::from_array(d.max));
+    let uniform: Vec<DVec3> = (0..200_000).map(|_| lo + (hi - lo) * DVec3::new(unit(), unit(), unit())).collect();
+    let anchors: Vec<DVec3> = skeleton.nodes.iter().map(|n| DVec3::from_array(n.position)).collect();
+    let near: Vec<DVec3> = (0..200_000)
+        .map(|_| {
+            let a = anchors[(unit() * anchors.len() as f64) as usize % anchors.len()];
+            a + (DVec3::new(unit(), unit(), unit()) - 0.5) * 12.0
+        })
+        .collect();
+    let mut check = 0.0;
+    for (name, pts) in [("uniform", &uniform), ("near", &near)] {
+        let mut t: Vec<f64> = (0..runs)
+            .map(|_| {
+                let s = Instant::now();
+                let sum: f64 = pts.iter().map(|&p| field.eval(p)).sum();
+                check += sum;
+                s.elapsed().as_secs_f64() * 1e9 / pts.len() as f64
+            })
+            .collect();
+        t.sort_by(f64::total_cmp);
+        println!("{name:<8} {:>8.1} ns (runs {:?})", t[t.len() / 2], t.iter().map(|x| (x * 10.0).round() / 10.0).collect::<Vec<_>>());
+    }
+    let [k, w] = field.memory();
+    let n = field.leaves();
+    println!("leaves {n}, memory karst {k} ({:.1} B/leaf), water {w}, total {:.1} B/leaf", k as f64 / n as f64, (k + w) as f64 / n as f64);
+    println!("checksum {check:.6e}");
+}
