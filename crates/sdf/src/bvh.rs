@@ -33,10 +33,25 @@ struct Node {
     count: u32,
 }
 
+/// Four children's boxes (f32, structure of arrays, rounded outwards) and references: a child
+/// is a wide node (`count` 0), a range of leaves (`count` = number | class << 16) or empty
+/// (an empty box, never visited). 128 bytes, two cache lines.
+#[derive(Debug, Clone)]
+#[repr(C, align(64))]
+struct Wide {
+    lo: [[f32; 4]; 3],
+    hi: [[f32; 4]; 3],
+    child: [u32; 4],
+    count: [u32; 4],
+}
+
 /// The hierarchy and its leaves, by kind, in tree order.
 #[derive(Debug, Clone, Default)]
 pub struct Bvh {
+    /// The binary tree, while building.
     nodes: Vec<Node>,
+    /// The tree with four children per node, made from the binary one; the root is first.
+    wide: Vec<Wide>,
     spheres: Vec<[f32; 4]>,
     sweeps: Vec<SweepLeaf>,
     water: Vec<WaterLeaf>,
@@ -54,8 +69,65 @@ impl Bvh {
         let mut bvh = Bvh { nodes: Vec::with_capacity(slots.len() / 2 + 1), ..Bvh::default() };
         if !order.is_empty() {
             bvh.split(&bounds, &classes, &mut order, &mut slots);
+            if bvh.nodes[0].count > 0 {
+                // A single leaf node: give it a wide parent.
+                let root = bvh.nodes[0].clone();
+                bvh.nodes.insert(0, Node { first: 1, count: 0, ..root.clone() });
+                bvh.nodes.insert(1, root);
+                bvh.nodes[1].count = bvh.nodes[1].count;
+            }
+            bvh.widen(0);
         }
+        bvh.nodes = Vec::new();
         bvh
+    }
+
+    /// Children of binary node n: left (next) and right.
+    fn children(&self, n: usize) -> [usize; 2] {
+        [n + 1, self.nodes[n].first as usize]
+    }
+
+    /// Collapses the binary subtree at inner node `n` into wide nodes: its children, with the
+    /// biggest inner ones replaced by their own children until there are four. Returns the
+    /// wide node's index.
+    fn widen(&mut self, n: usize) -> u32 {
+        let mut kids: Vec<usize> = self.children(n).to_vec();
+        while kids.len() < 4 {
+            let volume = |i: usize| {
+                let node = &self.nodes[i];
+                (node.hi - node.lo).as_dvec3().element_product()
+            };
+            let inner = kids.iter().enumerate().filter(|&(_, &k)| self.nodes[k].count == 0);
+            let Some((at, _)) = inner.max_by(|a, b| volume(*a.1).total_cmp(&volume(*b.1))) else {
+                break;
+            };
+            let k = kids.remove(at);
+            let [l, r] = self.children(k);
+            kids.insert(at, r);
+            kids.insert(at, l);
+        }
+        let index = self.wide.len();
+        self.wide.push(Wide {
+            lo: [[f32::INFINITY; 4]; 3],
+            hi: [[f32::NEG_INFINITY; 4]; 3],
+            child: [0; 4],
+            count: [0; 4],
+        });
+        for (slot, &k) in kids.iter().enumerate() {
+            let node = self.nodes[k].clone();
+            for axis in 0..3 {
+                self.wide[index].lo[axis][slot] = node.lo[axis];
+                self.wide[index].hi[axis][slot] = node.hi[axis];
+            }
+            if node.count > 0 {
+                self.wide[index].child[slot] = node.first;
+                self.wide[index].count[slot] = node.count;
+            } else {
+                let child = self.widen(k);
+                self.wide[index].child[slot] = child;
+            }
+        }
+        index as u32
     }
 
     fn split(
@@ -126,35 +198,38 @@ impl Bvh {
     /// min(limit, min over leaves of their value at p).
     pub fn min_value(&self, p: DVec3, limit: f64, ctx: &Context) -> f64 {
         let mut best = limit;
-        let Some(root) = self.nodes.first() else {
+        if self.wide.is_empty() {
             return best;
-        };
-        let distance = |node: &Node| signed_box_distance(node.lo.as_dvec3(), node.hi.as_dvec3(), p);
-        let mut stack = [(0u32, 0.0f64); 64];
-        stack[0] = (0, distance(root));
+        }
+        // (child, count, box distance): count 0 for a wide node.
+        let mut stack = [(0u32, 0u32, 0.0f64); 96];
+        stack[0] = (0, 0, f64::NEG_INFINITY);
         let mut top = 1;
         while top > 0 {
             top -= 1;
-            let (n, d) = stack[top];
+            let (child, count, d) = stack[top];
             // Every leaf's value is at least its box's signed distance, which is at least the
             // node's (negative inside: a node holding p is skipped once best is deeper).
             if d >= best {
                 continue;
             }
-            let node = &self.nodes[n as usize];
-            if node.count > 0 {
-                best = self.leaf_min(node, p, best, ctx);
-            } else {
-                // Visit the nearer child first, so the farther one is more often pruned.
-                let (l, r) = (n as usize + 1, node.first as usize);
-                let (dl, dr) = (distance(&self.nodes[l]), distance(&self.nodes[r]));
-                let (near, far) = if dl <= dr { ((l, dl), (r, dr)) } else { ((r, dr), (l, dl)) };
-                if far.1 < best {
-                    stack[top] = (far.0 as u32, far.1);
-                    top += 1;
-                }
-                if near.1 < best {
-                    stack[top] = (near.0 as u32, near.1);
+            if count > 0 {
+                best = self.leaf_min(child, count, p, best, ctx);
+                continue;
+            }
+            let node = &self.wide[child as usize];
+            let mut near: [(f64, usize); 4] = [(0.0, 0); 4];
+            for (i, slot) in near.iter_mut().enumerate() {
+                let lo = DVec3::new(node.lo[0][i] as f64, node.lo[1][i] as f64, node.lo[2][i] as f64);
+                let hi = DVec3::new(node.hi[0][i] as f64, node.hi[1][i] as f64, node.hi[2][i] as f64);
+                *slot = (signed_box_distance(lo, hi, p), i);
+            }
+            // Push the farthest first, so that the nearest is visited first and the others are
+            // more often pruned.
+            near.sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+            for (d, i) in near {
+                if d < best {
+                    stack[top] = (node.child[i], node.count[i], d);
                     top += 1;
                 }
             }
@@ -163,9 +238,9 @@ impl Bvh {
     }
 
     /// The minimum of `best` and the values of a leaf node's leaves.
-    fn leaf_min(&self, node: &Node, p: DVec3, mut best: f64, ctx: &Context) -> f64 {
-        let class = (node.count >> 16) as u8;
-        let range = node.first as usize..node.first as usize + (node.count & 0xffff) as usize;
+    fn leaf_min(&self, first: u32, count: u32, p: DVec3, mut best: f64, ctx: &Context) -> f64 {
+        let class = (count >> 16) as u8;
+        let range = first as usize..first as usize + (count & 0xffff) as usize;
         let a = ctx.amplitude_of(class);
         match class / 8 {
             SPHERE => {
@@ -201,9 +276,10 @@ impl Bvh {
     /// min over every leaf, without the hierarchy: the reference its pruning is tested against.
     pub fn min_without_bvh(&self, p: DVec3, limit: f64, ctx: &Context) -> f64 {
         let mut best = limit;
-        for node in self.nodes.iter().filter(|n| n.count > 0) {
-            let class = (node.count >> 16) as u8;
-            let range = node.first as usize..node.first as usize + (node.count & 0xffff) as usize;
+        let ranges = self.wide.iter().flat_map(|w| w.child.iter().zip(&w.count)).filter(|(_, c)| **c > 0);
+        for (&first, &count) in ranges {
+            let class = (count >> 16) as u8;
+            let range = first as usize..first as usize + (count & 0xffff) as usize;
             let a = ctx.amplitude_of(class);
             let inf = f64::INFINITY;
             let values: Vec<f64> = match class / 8 {
@@ -221,7 +297,7 @@ impl Bvh {
     /// Bytes held by the tree and its leaves (not the shared sweep table).
     pub fn memory(&self) -> usize {
         use std::mem::size_of;
-        self.nodes.len() * size_of::<Node>()
+        self.wide.len() * size_of::<Wide>()
             + self.spheres.len() * size_of::<[f32; 4]>()
             + self.sweeps.len() * size_of::<SweepLeaf>()
             + self.water.len() * size_of::<WaterLeaf>()
