@@ -11,8 +11,12 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let dir = std::path::Path::new(&args[1]);
     let runs: usize = args.get(2).and_then(|r| r.parse().ok()).unwrap_or(5);
-    let (_, model): (_, SdfModel) = read_artifact(&dir.join("sdf.bin")).unwrap();
-    let (_, skeleton): (_, Skeleton) = read_artifact(&dir.join("skeleton.json")).unwrap();
+    let (model, skeleton): (SdfModel, Skeleton) = if args[1] == "synthetic" {
+        let (skeleton, hydro) = karst_sdf::synthetic::network(5, 100, 12);
+        (karst_sdf::build::build(&karst_sdf::synthetic::scene(), &skeleton, &hydro).unwrap(), skeleton)
+    } else {
+        (read_artifact(&dir.join("sdf.bin")).unwrap().1, read_artifact(&dir.join("skeleton.json")).unwrap().1)
+    };
     let field = CarvedTerrain::new(model);
     let mut state = 12345u64;
     let mut unit = move || {
