@@ -9,6 +9,10 @@ use karst_skeleton::Skeleton;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
+    if args[1] == "micro" {
+        micro();
+        return;
+    }
     let dir = std::path::Path::new(&args[1]);
     let runs: usize = args.get(2).and_then(|r| r.parse().ok()).unwrap_or(5);
     let (model, skeleton): (SdfModel, Skeleton) = if args[1] == "synthetic" {
@@ -45,6 +49,8 @@ fn main() {
             })
             .collect();
         t.sort_by(f64::total_cmp);
+        let c: Vec<f64> = karst_sdf::primitive::COUNTS.iter().map(|c| c.swap(0, std::sync::atomic::Ordering::Relaxed) as f64 / (runs * pts.len()) as f64).collect();
+        println!("per point: wide nodes {:.2}, leaf nodes sphere {:.2} sweep {:.2}; spheres {:.2}, sweeps past box {:.2}, exact {:.2}, noise {:.2}", c[0], c[1], c[2], c[9], c[6], c[7], c[8]);
         println!("{name:<8} {:>8.1} ns (runs {:?})", t[t.len() / 2], t.iter().map(|x| (x * 10.0).round() / 10.0).collect::<Vec<_>>());
     }
     let [k, w] = field.memory();
@@ -58,4 +64,18 @@ fn cpu() -> f64 {
     let stat = std::fs::read_to_string("/proc/self/stat").unwrap();
     let fields: Vec<&str> = stat.rsplit_once(')').unwrap().1.split_whitespace().collect();
     (fields[11].parse::<f64>().unwrap() + fields[12].parse::<f64>().unwrap()) / 100.0
+}
+
+#[allow(dead_code)]
+pub fn micro() {
+    use karst_sdf::section::{Section, Shape};
+    let s = Section::blend([karst_skeleton::ConduitType::Keyhole, karst_skeleton::ConduitType::Canyon], Shape { radius: 2.0, ratio: 1.0, asymmetry: 0.2 });
+    let mut x = 0.0;
+    let c = cpu();
+    let n = 2_000_000;
+    for i in 0..n {
+        let q = glam::DVec2::new((i % 1000) as f64 * 0.006 - 3.0, (i / 1000 % 1000) as f64 * 0.006 - 3.0);
+        x += s.distance(q);
+    }
+    println!("Section::distance {:.1} ns ({x})", (cpu() - c) * 1e9 / n as f64);
 }

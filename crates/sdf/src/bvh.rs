@@ -10,13 +10,13 @@
 //! each pushed node's box distance, so a node is dropped without recomputing it once the
 //! minimum found so far is below it.
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec3, Vec4};
 
 use crate::Capsule;
 use crate::chamber::Chamber;
 use crate::primitive::{
     CAPSULE, CHAMBER, Context, Leaf, SPHERE, SWEEP, WATER, WaterLeaf, capsule_value, chamber_value,
-    signed_box_distance, sphere_value, sweep_value, water_value,
+    sphere_value, sweep_value, water_value,
 };
 use crate::sweep::SweepLeaf;
 
@@ -52,6 +52,8 @@ pub struct Bvh {
     nodes: Vec<Node>,
     /// The tree with four children per node, made from the binary one; the root is first.
     wide: Vec<Wide>,
+    /// Margin taken off the f32 box distances: more than their rounding error.
+    slack: f64,
     spheres: Vec<[f32; 4]>,
     sweeps: Vec<SweepLeaf>,
     water: Vec<WaterLeaf>,
@@ -77,6 +79,10 @@ impl Bvh {
                 bvh.nodes[1].count = bvh.nodes[1].count;
             }
             bvh.widen(0);
+            // Coordinates and distances up to m carry f32 rounding errors of a few m·2⁻²⁴
+            // (p's rounding, the subtractions, squares, sum and root): 2⁻¹⁸·m is ample.
+            let m = bvh.nodes[0].lo.abs().max(bvh.nodes[0].hi.abs()).max_element() as f64 * 2.0;
+            bvh.slack = m * 2f64.powi(-18);
         }
         bvh.nodes = Vec::new();
         bvh
@@ -202,6 +208,7 @@ impl Bvh {
             return best;
         }
         // (child, count, box distance): count 0 for a wide node.
+        let p32 = p.as_vec3();
         let mut stack = [(0u32, 0u32, 0.0f64); 96];
         stack[0] = (0, 0, f64::NEG_INFINITY);
         let mut top = 1;
@@ -218,15 +225,10 @@ impl Bvh {
                 continue;
             }
             let node = &self.wide[child as usize];
-            let mut near: [(f64, usize); 4] = [(0.0, 0); 4];
-            for (i, slot) in near.iter_mut().enumerate() {
-                let lo = DVec3::new(node.lo[0][i] as f64, node.lo[1][i] as f64, node.lo[2][i] as f64);
-                let hi = DVec3::new(node.hi[0][i] as f64, node.hi[1][i] as f64, node.hi[2][i] as f64);
-                *slot = (signed_box_distance(lo, hi, p), i);
-            }
+            crate::primitive::count(0);
+            let near = self.children_distances(node, p32);
             // Push the farthest first, so that the nearest is visited first and the others are
             // more often pruned.
-            near.sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
             for (d, i) in near {
                 if d < best {
                     stack[top] = (node.child[i], node.count[i], d);
@@ -237,9 +239,38 @@ impl Bvh {
         best
     }
 
+    /// Lower bounds of the signed distances from p to the four children's boxes, farthest
+    /// first. Computed four at a time in f32 from `p32` (p rounded) and lowered by
+    /// `self.slack`, which exceeds the rounding error, so they never exceed the exact
+    /// distances and pruning by them stays exact.
+    fn children_distances(&self, node: &Wide, p32: Vec3) -> [(f64, usize); 4] {
+        let axis = |a: usize, v: f32| {
+            (Vec4::from_array(node.lo[a]) - Vec4::splat(v)).max(Vec4::splat(v) - Vec4::from_array(node.hi[a]))
+        };
+        let (dx, dy, dz) = (axis(0, p32.x), axis(1, p32.y), axis(2, p32.z));
+        let (ox, oy, oz) = (dx.max(Vec4::ZERO), dy.max(Vec4::ZERO), dz.max(Vec4::ZERO));
+        let outside = (ox * ox + oy * oy + oz * oz).to_array();
+        let inside = dx.max(dy).max(dz).min(Vec4::ZERO).to_array();
+        let d = |i: usize| (outside[i] as f64).sqrt() + inside[i] as f64 - self.slack;
+        let mut out = [(d(0), 0), (d(1), 1), (d(2), 2), (d(3), 3)];
+        // Sorting network, farthest first (ties by slot, for a fixed order).
+        let swap = |o: &mut [(f64, usize); 4], a: usize, b: usize| {
+            if (o[a].0, o[b].1) < (o[b].0, o[a].1) {
+                o.swap(a, b);
+            }
+        };
+        swap(&mut out, 0, 1);
+        swap(&mut out, 2, 3);
+        swap(&mut out, 0, 2);
+        swap(&mut out, 1, 3);
+        swap(&mut out, 1, 2);
+        out
+    }
+
     /// The minimum of `best` and the values of a leaf node's leaves.
     fn leaf_min(&self, first: u32, count: u32, p: DVec3, mut best: f64, ctx: &Context) -> f64 {
         let class = (count >> 16) as u8;
+        crate::primitive::count(1 + class as usize / 8);
         let range = first as usize..first as usize + (count & 0xffff) as usize;
         let a = ctx.amplitude_of(class);
         match class / 8 {

@@ -125,6 +125,7 @@ impl<'a> Context<'a> {
             return n;
         }
         let n = self.detail.value(p);
+        count(8);
         self.noise_at.set(Some(n));
         n
     }
@@ -144,6 +145,7 @@ impl<'a> Context<'a> {
 /// pruning stays exact), and inside it (f ≤ A) detail(f) ≥ f − A, so the clamp changes nothing.
 /// Any value ≥ `limit` when v(p) ≥ `limit`.
 pub fn sphere_value(p: DVec3, s: &[f32; 4], a: f64, limit: f64, ctx: &Context) -> f64 {
+    count(9);
     let f = p.distance(to_dvec([s[0], s[1], s[2]])) - s[3] as f64;
     if f - a >= limit {
         return f - a;
@@ -159,12 +161,14 @@ pub fn sweep_value(p: DVec3, leaf: &SweepLeaf, a: f64, limit: f64, ctx: &Context
     if outside >= limit {
         return outside;
     }
+    count(6);
     let sweep = ctx.sweeps.sweep(leaf);
     let (l, q) = sweep.local(p);
     let bound = ctx.detail_floor(sweep.lower_bound_local(l, q), a);
     if bound >= limit {
         return bound.max(outside);
     }
+    count(7);
     ctx.detail(sweep.distance_local(l, q), p, a).max(outside)
 }
 
@@ -207,3 +211,6 @@ pub fn signed_box_distance(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
     let d = (lo - p).max(p - hi);
     d.max(DVec3::ZERO).length() + d.max_element().min(0.0)
 }
+
+pub static COUNTS: [std::sync::atomic::AtomicUsize; 12] = [const { std::sync::atomic::AtomicUsize::new(0) }; 12];
+pub fn count(i: usize) { COUNTS[i].fetch_add(1, std::sync::atomic::Ordering::Relaxed); }
