@@ -29,7 +29,8 @@ fn main() {
     };
     let d = &field.model().domain;
     let (lo, hi) = (DVec3::from_array(d.min), DVec3::from_array(d.max));
-    let uniform: Vec<DVec3> = (0..200_000).map(|_| lo + (hi - lo) * DVec3::new(unit(), unit(), unit())).collect();
+    let uniform: Vec<DVec3> =
+        (0..200_000).map(|_| lo + (hi - lo) * DVec3::new(unit(), unit(), unit())).collect();
     let anchors: Vec<DVec3> = skeleton.nodes.iter().map(|n| DVec3::from_array(n.position)).collect();
     let near: Vec<DVec3> = (0..200_000)
         .map(|_| {
@@ -49,13 +50,19 @@ fn main() {
             })
             .collect();
         t.sort_by(f64::total_cmp);
-        let c: Vec<f64> = karst_sdf::primitive::COUNTS.iter().map(|c| c.swap(0, std::sync::atomic::Ordering::Relaxed) as f64 / (runs * pts.len()) as f64).collect();
-        println!("per point: wide nodes {:.2}, leaf nodes sphere {:.2} sweep {:.2}; spheres {:.2}, sweeps past box {:.2}, exact {:.2}, noise {:.2}", c[0], c[1], c[2], c[9], c[6], c[7], c[8]);
-        println!("{name:<8} {:>8.1} ns (runs {:?})", t[t.len() / 2], t.iter().map(|x| (x * 10.0).round() / 10.0).collect::<Vec<_>>());
+        println!(
+            "{name:<8} {:>8.1} ns (runs {:?})",
+            t[t.len() / 2],
+            t.iter().map(|x| (x * 10.0).round() / 10.0).collect::<Vec<_>>()
+        );
     }
     let [k, w] = field.memory();
     let n = field.leaves();
-    println!("leaves {n}, memory karst {k} ({:.1} B/leaf), water {w}, total {:.1} B/leaf", k as f64 / n as f64, (k + w) as f64 / n as f64);
+    println!(
+        "leaves {n}, memory karst {k} ({:.1} B/leaf), water {w}, total {:.1} B/leaf",
+        k as f64 / n as f64,
+        (k + w) as f64 / n as f64
+    );
     println!("checksum {check:.6e}");
 }
 
@@ -69,7 +76,10 @@ fn cpu() -> f64 {
 #[allow(dead_code)]
 pub fn micro() {
     use karst_sdf::section::{Section, Shape};
-    let s = Section::blend([karst_skeleton::ConduitType::Keyhole, karst_skeleton::ConduitType::Canyon], Shape { radius: 2.0, ratio: 1.0, asymmetry: 0.2 });
+    let s = Section::blend(
+        [karst_skeleton::ConduitType::Keyhole, karst_skeleton::ConduitType::Canyon],
+        Shape { radius: 2.0, ratio: 1.0, asymmetry: 0.2 },
+    );
     let mut x = 0.0;
     let c = cpu();
     let n = 2_000_000;

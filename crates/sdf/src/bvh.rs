@@ -2,13 +2,17 @@
 //! only the leaves that can be below the current minimum, and so that a whole box of space can
 //! be bounded at once.
 //!
-//! Median split on the longest axis down to at most `LEAF` leaves, then split further by leaf
-//! class (kind and conduit type), so that each leaf node holds leaves of one class: the leaves
-//! are stored by kind in tree order (no index array, no per-leaf tag or type), and a leaf node
-//! names its class and the range in that kind's array. Node boxes are f32, rounded outwards,
-//! to keep the tree at 32 bytes per node. The traversal visits the nearer child first and keeps
-//! each pushed node's box distance, so a node is dropped without recomputing it once the
-//! minimum found so far is below it.
+//! Median split across the longest extent of the leaves' centres down to at most `LEAF`
+//! leaves, then split further by kind (sphere, sweep, water, chamber, capsule), so that each
+//! leaf node holds leaves of one kind: the leaves are stored by kind in tree order (no index
+//! array, no per-leaf tag), and a leaf node names its kind and the range in that kind's array.
+//! The binary tree is then collapsed into one with four children per node, their boxes side
+//! by side in f32 rounded outwards: a visit reads two adjacent cache lines instead of one cache
+//! miss per binary level, which is what evaluation at scattered points waits on. The traversal
+//! visits the nearest child first and keeps each pushed child's box distance, so a child is
+//! dropped without recomputing it once the minimum found so far is below it. Within a leaf
+//! node of sweeps, the sweeps are taken in the order of a cheap lower bound (box and capsule),
+//! and the exact sections are only computed while that bound is below the minimum.
 
 use glam::{DVec3, Vec3, Vec4};
 
@@ -16,12 +20,13 @@ use crate::Capsule;
 use crate::chamber::Chamber;
 use crate::primitive::{
     CAPSULE, CHAMBER, Context, Leaf, SPHERE, SWEEP, WATER, WaterLeaf, capsule_value, chamber_value,
-    sphere_value, sweep_value, water_value,
+    sphere_value, sweep_floor, sweep_value, water_value,
 };
 use crate::sweep::SweepLeaf;
 
-/// Leaves per BVH leaf node, at most.
-const LEAF: usize = 8;
+/// Leaves per BVH leaf node, at most: 16 rather than 8 halves the wide nodes (most of the
+/// tree's memory) at the same evaluation speed.
+const LEAF: usize = 16;
 
 #[derive(Debug, Clone)]
 struct Node {
@@ -29,12 +34,12 @@ struct Node {
     hi: Vec3,
     /// Leaf: first leaf in its kind's array; inner: the right child (the left one is next).
     first: u32,
-    /// Leaf: number of leaves | class << 16; 0 for an inner node.
+    /// Leaf: number of leaves | kind << 16; 0 for an inner node.
     count: u32,
 }
 
 /// Four children's boxes (f32, structure of arrays, rounded outwards) and references: a child
-/// is a wide node (`count` 0), a range of leaves (`count` = number | class << 16) or empty
+/// is a wide node (`count` 0), a range of leaves (`count` = number | kind << 16) or empty
 /// (an empty box, never visited). 128 bytes, two cache lines.
 #[derive(Debug, Clone)]
 #[repr(C, align(64))]
@@ -55,7 +60,10 @@ pub struct Bvh {
     /// Margin taken off the f32 box distances: more than their rounding error.
     slack: f64,
     spheres: Vec<[f32; 4]>,
+    /// The conduit type of each sphere (its detail amplitude).
+    sphere_types: Vec<u8>,
     sweeps: Vec<SweepLeaf>,
+    sweep_types: Vec<u8>,
     water: Vec<WaterLeaf>,
     chambers: Vec<Chamber>,
     capsules: Vec<Capsule>,
@@ -65,19 +73,12 @@ impl Bvh {
     /// The hierarchy of `leaves`; `ctx` gives their boxes.
     pub fn build(leaves: Vec<Leaf>, ctx: &Context) -> Self {
         let bounds: Vec<(DVec3, DVec3)> = leaves.iter().map(|l| l.bounds(ctx)).collect();
-        let classes: Vec<u8> = leaves.iter().map(Leaf::class).collect();
+        let classes: Vec<u8> = leaves.iter().map(Leaf::kind).collect();
         let mut order: Vec<u32> = (0..leaves.len() as u32).collect();
         let mut slots: Vec<Option<Leaf>> = leaves.into_iter().map(Some).collect();
         let mut bvh = Bvh { nodes: Vec::with_capacity(slots.len() / 2 + 1), ..Bvh::default() };
         if !order.is_empty() {
             bvh.split(&bounds, &classes, &mut order, &mut slots);
-            if bvh.nodes[0].count > 0 {
-                // A single leaf node: give it a wide parent.
-                let root = bvh.nodes[0].clone();
-                bvh.nodes.insert(0, Node { first: 1, count: 0, ..root.clone() });
-                bvh.nodes.insert(1, root);
-                bvh.nodes[1].count = bvh.nodes[1].count;
-            }
             bvh.widen(0);
             // Coordinates and distances up to m carry f32 rounding errors of a few m·2⁻²⁴
             // (p's rounding, the subtractions, squares, sum and root): 2⁻¹⁸·m is ample.
@@ -97,7 +98,8 @@ impl Bvh {
     /// biggest inner ones replaced by their own children until there are four. Returns the
     /// wide node's index.
     fn widen(&mut self, n: usize) -> u32 {
-        let mut kids: Vec<usize> = self.children(n).to_vec();
+        // A root that is a leaf node (few leaves) becomes the only child of a wide root.
+        let mut kids: Vec<usize> = if self.nodes[n].count > 0 { vec![n] } else { self.children(n).to_vec() };
         while kids.len() < 4 {
             let volume = |i: usize| {
                 let node = &self.nodes[i];
@@ -157,12 +159,17 @@ impl Bvh {
             return index;
         }
         let mid = if items.len() <= LEAF {
-            // Mixed classes: split off the smallest class.
+            // Mixed kinds: split off the smallest kind.
             items.sort_unstable_by_key(|&i| (classes[i as usize], i));
             let smallest = classes[items[0] as usize];
             items.iter().position(|&i| classes[i as usize] != smallest).expect("mixed classes")
         } else {
-            let axis = (hi - lo).max_position();
+            // Split across the longest extent of the leaves' centres.
+            let (clo, chi) = items.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &i| {
+                let c = bounds[i as usize].0 + bounds[i as usize].1;
+                (lo.min(c), hi.max(c))
+            });
+            let axis = (chi - clo).max_position();
             let centre = |i: u32| bounds[i as usize].0[axis] + bounds[i as usize].1[axis];
             let mid = items.len() / 2;
             items.select_nth_unstable_by(mid, |&x, &y| centre(x).total_cmp(&centre(y)).then(x.cmp(&y)));
@@ -181,8 +188,14 @@ impl Bvh {
         let mut first = None;
         for &i in items {
             let at = match slots[i as usize].take().expect("each leaf once") {
-                Leaf::Sphere(s, _) => push(&mut self.spheres, s),
-                Leaf::Sweep(s, _) => push(&mut self.sweeps, s),
+                Leaf::Sphere(s, t) => {
+                    self.sphere_types.push(t as u8);
+                    push(&mut self.spheres, s)
+                }
+                Leaf::Sweep(s, t) => {
+                    self.sweep_types.push(t as u8);
+                    push(&mut self.sweeps, s)
+                }
                 Leaf::Water(w) => push(&mut self.water, w),
                 Leaf::Chamber(c) => push(&mut self.chambers, c),
                 Leaf::Capsule(c) => push(&mut self.capsules, c),
@@ -209,7 +222,7 @@ impl Bvh {
         }
         // (child, count, box distance): count 0 for a wide node.
         let p32 = p.as_vec3();
-        let mut stack = [(0u32, 0u32, 0.0f64); 96];
+        let mut stack = [(0u32, 0u32, 0.0f64); 128];
         stack[0] = (0, 0, f64::NEG_INFINITY);
         let mut top = 1;
         while top > 0 {
@@ -225,7 +238,6 @@ impl Bvh {
                 continue;
             }
             let node = &self.wide[child as usize];
-            crate::primitive::count(0);
             let near = self.children_distances(node, p32);
             // Push the farthest first, so that the nearest is visited first and the others are
             // more often pruned.
@@ -269,19 +281,30 @@ impl Bvh {
 
     /// The minimum of `best` and the values of a leaf node's leaves.
     fn leaf_min(&self, first: u32, count: u32, p: DVec3, mut best: f64, ctx: &Context) -> f64 {
-        let class = (count >> 16) as u8;
-        crate::primitive::count(1 + class as usize / 8);
+        let kind = (count >> 16) as u8;
         let range = first as usize..first as usize + (count & 0xffff) as usize;
-        let a = ctx.amplitude_of(class);
-        match class / 8 {
+        match kind {
             SPHERE => {
-                for s in &self.spheres[range] {
-                    best = best.min(sphere_value(p, s, a, best, ctx));
+                for (s, &t) in self.spheres[range.clone()].iter().zip(&self.sphere_types[range]) {
+                    best = best.min(sphere_value(p, s, ctx.amplitude[t as usize], best, ctx));
                 }
             }
             SWEEP => {
-                for s in &self.sweeps[range] {
-                    best = best.min(sweep_value(p, s, a, best, ctx));
+                // Nearest first by a cheap lower bound, so that the exact sections are only
+                // computed for sweeps that can still lower the minimum.
+                let (sweeps, types) = (&self.sweeps[range.clone()], &self.sweep_types[range]);
+                let amplitude = |k: usize| ctx.amplitude[types[k] as usize];
+                let mut order = [(0.0f64, 0usize); LEAF];
+                for (k, s) in sweeps.iter().enumerate() {
+                    order[k] = (sweep_floor(p, s, amplitude(k), ctx), k);
+                }
+                let order = &mut order[..sweeps.len()];
+                order.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+                for &(floor, k) in order.iter() {
+                    if floor >= best {
+                        break;
+                    }
+                    best = best.min(sweep_value(p, &sweeps[k], amplitude(k), best, ctx));
                 }
             }
             WATER => {
@@ -299,7 +322,7 @@ impl Bvh {
                     best = best.min(capsule_value(p, c));
                 }
             }
-            _ => unreachable!("leaf classes are built by Leaf::class"),
+            _ => unreachable!("leaf kinds are built by Leaf::kind"),
         }
         best
     }
@@ -309,13 +332,19 @@ impl Bvh {
         let mut best = limit;
         let ranges = self.wide.iter().flat_map(|w| w.child.iter().zip(&w.count)).filter(|(_, c)| **c > 0);
         for (&first, &count) in ranges {
-            let class = (count >> 16) as u8;
+            let kind = (count >> 16) as u8;
             let range = first as usize..first as usize + (count & 0xffff) as usize;
-            let a = ctx.amplitude_of(class);
             let inf = f64::INFINITY;
-            let values: Vec<f64> = match class / 8 {
-                SPHERE => self.spheres[range].iter().map(|s| sphere_value(p, s, a, inf, ctx)).collect(),
-                SWEEP => self.sweeps[range].iter().map(|s| sweep_value(p, s, a, inf, ctx)).collect(),
+            let a = |types: &[u8], k: usize| ctx.amplitude[types[range.start + k] as usize];
+            let values: Vec<f64> = match kind {
+                SPHERE => (range.clone())
+                    .map(|k| {
+                        sphere_value(p, &self.spheres[k], a(&self.sphere_types, k - range.start), inf, ctx)
+                    })
+                    .collect(),
+                SWEEP => (range.clone())
+                    .map(|k| sweep_value(p, &self.sweeps[k], a(&self.sweep_types, k - range.start), inf, ctx))
+                    .collect(),
                 WATER => self.water[range].iter().map(|w| water_value(p, w, inf, ctx)).collect(),
                 CHAMBER => self.chambers[range].iter().map(|c| chamber_value(p, c, inf, ctx)).collect(),
                 _ => self.capsules[range].iter().map(|c| capsule_value(p, c)).collect(),
@@ -329,8 +358,8 @@ impl Bvh {
     pub fn memory(&self) -> usize {
         use std::mem::size_of;
         self.wide.len() * size_of::<Wide>()
-            + self.spheres.len() * size_of::<[f32; 4]>()
-            + self.sweeps.len() * size_of::<SweepLeaf>()
+            + self.spheres.len() * (size_of::<[f32; 4]>() + 1)
+            + self.sweeps.len() * (size_of::<SweepLeaf>() + 1)
             + self.water.len() * size_of::<WaterLeaf>()
             + self.chambers.len() * size_of::<Chamber>()
             + self.capsules.len() * size_of::<Capsule>()

@@ -18,8 +18,8 @@ use crate::chamber::Chamber;
 use crate::model::detail_factor;
 use crate::primitive::{Context, Leaf, WaterLeaf};
 use crate::sweep::SweepTable;
-use karst_skeleton::ConduitType;
 use crate::{SdfModel, ops};
+use karst_skeleton::ConduitType;
 
 /// The karst terms are clamped to at most this many metres: min(cave, REACH) keeps the sign and
 /// the Lipschitz bound (a smaller |f| is still a distance bound), and spares eval every leaf
@@ -49,7 +49,8 @@ impl CarvedTerrain {
         let mut sweeps = SweepTable::default();
         let karst = karst_leaves(&model, &mut sweeps);
         let water = water_leaves(&model, &mut sweeps);
-        let ctx = Context::new(&model.detail_noise, &model.chamber_noise, model.chamber_bias, &sweeps, &amplitude);
+        let ctx =
+            Context::new(&model.detail_noise, &model.chamber_noise, model.chamber_bias, &sweeps, &amplitude);
         let caves = Bvh::build(karst, &ctx);
         let water = Bvh::build(water, &ctx);
         let terrain_scale = model.terrain.scale();

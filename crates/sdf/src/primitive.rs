@@ -11,8 +11,7 @@
 //!
 //! Leaves are small: a sphere is four f32, a sweep a [`SweepLeaf`] (12 bytes) whose two nodes
 //! and unit polygons live in the shared [`SweepTable`]; its frame and sections are rebuilt when
-//! it is evaluated. The conduit type (hence the detail amplitude) is kept by the BVH's leaf
-//! nodes, which hold leaves of one kind and one type.
+//! it is evaluated. The conduit type (hence the detail amplitude) is one byte beside each.
 
 use std::cell::Cell;
 
@@ -44,7 +43,7 @@ pub struct WaterLeaf {
     pub level: f32,
 }
 
-/// Leaf kinds, as the BVH's leaf nodes record them (times 8, plus the conduit type).
+/// Leaf kinds, as the BVH's leaf nodes record them.
 pub const SPHERE: u8 = 0;
 pub const SWEEP: u8 = 1;
 pub const WATER: u8 = 2;
@@ -52,20 +51,28 @@ pub const CHAMBER: u8 = 3;
 pub const CAPSULE: u8 = 4;
 
 impl Leaf {
-    /// Kind × 8 + conduit type: a BVH leaf node holds leaves of one class.
-    pub fn class(&self) -> u8 {
+    /// The leaf's kind: a BVH leaf node holds leaves of one kind.
+    pub fn kind(&self) -> u8 {
         match self {
-            Leaf::Sphere(_, k) => SPHERE * 8 + *k as u8,
-            Leaf::Sweep(_, k) => SWEEP * 8 + *k as u8,
-            Leaf::Water(_) => WATER * 8,
-            Leaf::Chamber(_) => CHAMBER * 8,
-            Leaf::Capsule(_) => CAPSULE * 8,
+            Leaf::Sphere(..) => SPHERE,
+            Leaf::Sweep(..) => SWEEP,
+            Leaf::Water(_) => WATER,
+            Leaf::Chamber(_) => CHAMBER,
+            Leaf::Capsule(_) => CAPSULE,
+        }
+    }
+
+    /// Detail amplitude, metres: spheres and sweeps by their conduit type, others none.
+    pub fn amplitude(&self, ctx: &Context) -> f64 {
+        match self {
+            Leaf::Sphere(_, t) | Leaf::Sweep(_, t) => ctx.amplitude[*t as usize],
+            _ => 0.0,
         }
     }
 
     /// Axis-aligned box containing the detailed leaf.
     pub fn bounds(&self, ctx: &Context) -> (DVec3, DVec3) {
-        let a = ctx.amplitude_of(self.class());
+        let a = self.amplitude(ctx);
         let (lo, hi) = match self {
             Leaf::Sphere(s, _) => sphere_bounds(s),
             Leaf::Sweep(s, _) => ctx.sweeps.bounds(s),
@@ -115,17 +122,11 @@ impl<'a> Context<'a> {
         }
     }
 
-    /// Detail amplitude of a leaf class: water, chambers and capsules have none.
-    pub fn amplitude_of(&self, class: u8) -> f64 {
-        if class / 8 <= SWEEP { self.amplitude[(class % 8) as usize] } else { 0.0 }
-    }
-
     fn noise(&self, p: DVec3) -> f64 {
         if let Some(n) = self.noise_at.get() {
             return n;
         }
         let n = self.detail.value(p);
-        count(8);
         self.noise_at.set(Some(n));
         n
     }
@@ -145,7 +146,6 @@ impl<'a> Context<'a> {
 /// pruning stays exact), and inside it (f ≤ A) detail(f) ≥ f − A, so the clamp changes nothing.
 /// Any value ≥ `limit` when v(p) ≥ `limit`.
 pub fn sphere_value(p: DVec3, s: &[f32; 4], a: f64, limit: f64, ctx: &Context) -> f64 {
-    count(9);
     let f = p.distance(to_dvec([s[0], s[1], s[2]])) - s[3] as f64;
     if f - a >= limit {
         return f - a;
@@ -161,15 +161,25 @@ pub fn sweep_value(p: DVec3, leaf: &SweepLeaf, a: f64, limit: f64, ctx: &Context
     if outside >= limit {
         return outside;
     }
-    count(6);
     let sweep = ctx.sweeps.sweep(leaf);
     let (l, q) = sweep.local(p);
     let bound = ctx.detail_floor(sweep.lower_bound_local(l, q), a);
     if bound >= limit {
         return bound.max(outside);
     }
-    count(7);
     ctx.detail(sweep.distance_local(l, q), p, a).max(outside)
+}
+
+/// A cheap lower bound of [`sweep_value`]: the larger of the box's signed distance and the
+/// detailed capsule bound (distance to the axis segment minus the extent, times the factor).
+pub fn sweep_floor(p: DVec3, leaf: &SweepLeaf, a: f64, ctx: &Context) -> f64 {
+    let (s0, s1) = ctx.sweeps.ends(leaf);
+    let r = leaf.extent as f64;
+    let outside = signed_box_distance(s0.min(s1) - DVec3::splat(r + a), s0.max(s1) + DVec3::splat(r + a), p);
+    let ab = s1 - s0;
+    let t = ((p - s0).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+    let capsule = (p - s0 - ab * t).length() - r;
+    ctx.detail_floor(capsule * leaf.scale as f64, a).max(outside)
 }
 
 /// A water piece's value: its sweep below its level.
@@ -211,6 +221,3 @@ pub fn signed_box_distance(lo: DVec3, hi: DVec3, p: DVec3) -> f64 {
     let d = (lo - p).max(p - hi);
     d.max(DVec3::ZERO).length() + d.max_element().min(0.0)
 }
-
-pub static COUNTS: [std::sync::atomic::AtomicUsize; 12] = [const { std::sync::atomic::AtomicUsize::new(0) }; 12];
-pub fn count(i: usize) { COUNTS[i].fetch_add(1, std::sync::atomic::Ordering::Relaxed); }

@@ -333,11 +333,7 @@ fn chord_winding(p0: DVec2, p2: DVec2, q: DVec2) -> i32 {
         return 0;
     }
     let t = (q.y - p0.y) / dy;
-    if (0.0..1.0).contains(&t) && p0.x + (p2.x - p0.x) * t > q.x {
-        if dy > 0.0 { 1 } else { -1 }
-    } else {
-        0
-    }
+    if (0.0..1.0).contains(&t) && p0.x + (p2.x - p0.x) * t > q.x { if dy > 0.0 { 1 } else { -1 } } else { 0 }
 }
 
 /// Up to three real roots, without allocating.

@@ -126,9 +126,8 @@ impl SweepTable {
         let node = match self.pair_index.get(&pair) {
             Some(&i) => i,
             None => {
-                let continues = self.nodes.last().is_some_and(|last| {
-                    key(last) == key(&start) && last.unit == start.unit
-                });
+                let continues =
+                    self.nodes.last().is_some_and(|last| key(last) == key(&start) && last.unit == start.unit);
                 if !continues {
                     self.nodes.push(start);
                 }
@@ -140,12 +139,11 @@ impl SweepTable {
         };
         let mut leaf = SweepLeaf { node, scale: 1.0, extent: 0.0 };
         let sweep = self.sweep(&leaf);
-        let k = (0..CONTROL)
-            .map(|i| sweep.control(0, i).distance(sweep.control(1, i)))
-            .fold(0.0, f64::max)
+        let k = (0..CONTROL).map(|i| sweep.control(0, i).distance(sweep.control(1, i))).fold(0.0, f64::max)
             / sweep.length;
-        let extent =
-            (0..CONTROL).map(|i| sweep.control(0, i).length().max(sweep.control(1, i).length())).fold(0.0, f64::max);
+        let extent = (0..CONTROL)
+            .map(|i| sweep.control(0, i).length().max(sweep.control(1, i).length()))
+            .fold(0.0, f64::max);
         leaf.scale = round_down(1.0 / (1.0 + k * k).sqrt());
         leaf.extent = -round_down(-extent);
         leaf
@@ -172,9 +170,14 @@ impl SweepTable {
         }
     }
 
+    /// The end points of `leaf`'s axis.
+    pub fn ends(&self, leaf: &SweepLeaf) -> (DVec3, DVec3) {
+        (to_dvec(self.nodes[leaf.node as usize].p), to_dvec(self.nodes[leaf.node as usize + 1].p))
+    }
+
     /// Axis-aligned bounds of the swept volume of `leaf`, without building the sweep.
     pub fn bounds(&self, leaf: &SweepLeaf) -> (DVec3, DVec3) {
-        let (a, b) = (to_dvec(self.nodes[leaf.node as usize].p), to_dvec(self.nodes[leaf.node as usize + 1].p));
+        let (a, b) = self.ends(leaf);
         let r = DVec3::splat(leaf.extent as f64);
         (a.min(b) - r, a.max(b) + r)
     }
