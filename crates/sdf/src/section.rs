@@ -94,24 +94,57 @@ impl Section {
     /// Signed distance in the section's plane: negative inside.
     ///
     /// The nearest on-curve end point bounds the distance from above, so only arcs whose
-    /// control box is nearer need their cubic solved. The winding number counts crossings of
-    /// the chords between on-curve points, except for arcs whose control triangle holds q: an
-    /// arc and its chord bound a region inside that triangle, so elsewhere they cross the ray
-    /// from q the same net number of times.
+    /// control box is nearer need their cubic solved. The sign comes from the nearest point c:
+    /// the open segment from c to q meets no curve point (one would be nearer), so q lies on
+    /// the side of the curve that q − c points to, and the curve is tangent-continuous and
+    /// counter-clockwise, so that side is the inside when q − c points left of the tangent at
+    /// c. When that is too close to call (q on the curve or the tangent vanishing), the winding
+    /// number decides ([`Section::winding`]).
     pub fn distance(&self, q: DVec2) -> f64 {
         let c = &self.control;
         let ends: [DVec2; CONTROL] = std::array::from_fn(|i| (c[i] + c[(i + 1) % CONTROL]) * 0.5);
-        let mut d2 = ends.iter().map(|m| (*m - q).length_squared()).fold(f64::INFINITY, f64::min);
-        let mut winding = 0i32;
-        for i in 0..CONTROL {
-            let arc = Arc { p0: ends[(i + CONTROL - 1) % CONTROL], p1: c[i], p2: ends[i] };
-            if arc.box_distance_squared(q) < d2 {
-                d2 = d2.min(arc.distance_squared(q));
+        let mut nearest = (f64::INFINITY, 0, 0.0);
+        for (i, m) in ends.iter().enumerate() {
+            let d2 = (*m - q).length_squared();
+            if d2 < nearest.0 {
+                // End i is the end (t = 1) of arc i.
+                nearest = (d2, i, 1.0);
             }
-            winding += if arc.triangle_holds(q) { arc.winding(q) } else { chord_winding(arc.p0, arc.p2, q) };
         }
+        let arc = |i: usize| Arc { p0: ends[(i + CONTROL - 1) % CONTROL], p1: c[i], p2: ends[i] };
+        for i in 0..CONTROL {
+            let arc = arc(i);
+            if arc.box_distance_squared(q) < nearest.0 {
+                let (d2, t) = arc.nearest(q);
+                if d2 < nearest.0 {
+                    nearest = (d2, i, t);
+                }
+            }
+        }
+        let (d2, i, t) = nearest;
         let d = d2.sqrt();
-        if winding != 0 { -d } else { d }
+        let arc = arc(i);
+        let (tangent, away) = (arc.tangent(t), q - arc.at(t));
+        let side = tangent.perp_dot(away);
+        let inside = if side.abs() > 1e-9 * tangent.length() * away.length() && d > 0.0 {
+            side > 0.0
+        } else {
+            self.winding(q, &ends) != 0
+        };
+        if inside { -d } else { d }
+    }
+
+    /// Winding number of the curve around q: crossings of the chords between on-curve points,
+    /// except for arcs whose control triangle holds q (an arc and its chord bound a region
+    /// inside that triangle, so elsewhere they cross the ray from q the same net number of
+    /// times).
+    fn winding(&self, q: DVec2, ends: &[DVec2; CONTROL]) -> i32 {
+        (0..CONTROL)
+            .map(|i| {
+                let arc = Arc { p0: ends[(i + CONTROL - 1) % CONTROL], p1: self.control[i], p2: ends[i] };
+                if arc.triangle_holds(q) { arc.winding(q) } else { chord_winding(arc.p0, arc.p2, q) }
+            })
+            .sum()
     }
 
     /// Checks the size and that no two arcs cross (each arc sampled as a polyline).
@@ -279,17 +312,29 @@ impl Arc {
 
     /// min over t ∈ [0, 1] of |B(t) − q|²: B(t) = p0 + 2at + bt², the stationary points solve
     /// (b·b)t³ + 3(a·b)t² + (2a·a + d·b)t + d·a = 0 with d = p0 − q.
-    fn distance_squared(&self, q: DVec2) -> f64 {
+    /// (min over t ∈ [0, 1] of |B(t) − q|², a t where it is reached).
+    fn nearest(&self, q: DVec2) -> (f64, f64) {
         let a = self.p1 - self.p0;
         let b = self.p0 - 2.0 * self.p1 + self.p2;
         let d = self.p0 - q;
-        let mut best = d.length_squared().min((self.p2 - q).length_squared());
+        let (start, end) = (d.length_squared(), (self.p2 - q).length_squared());
+        let mut best = if end < start { (end, 1.0) } else { (start, 0.0) };
         let coefficients = [b.dot(b), 3.0 * a.dot(b), 2.0 * a.dot(a) + d.dot(b), d.dot(a)];
         for t in cubic_roots(coefficients).iter() {
             let t = polish(coefficients, t).clamp(0.0, 1.0);
-            best = best.min((self.at(t) - q).length_squared());
+            let d2 = (self.at(t) - q).length_squared();
+            if d2 < best.0 {
+                best = (d2, t);
+            }
         }
         best
+    }
+
+    /// B′(t).
+    fn tangent(&self, t: f64) -> DVec2 {
+        let a = self.p1 - self.p0;
+        let b = self.p0 - 2.0 * self.p1 + self.p2;
+        (a + b * t) * 2.0
     }
 
     /// Whether q lies in the closed control triangle (p0, p1, p2).
