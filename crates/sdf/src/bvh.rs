@@ -2,7 +2,8 @@
 //! only the leaves that can be below the current minimum, and so that a whole box of space can
 //! be bounded at once.
 //!
-//! Median split across the longest extent of the leaves' centres down to at most `LEAF`
+//! Surface-area split (16 bins per axis; median split across the longest extent of the
+//! leaves' centres when the centres fall in one bin) down to at most `LEAF`
 //! leaves, then split further by kind (sphere, sweep, water, chamber, capsule), so that each
 //! leaf node holds leaves of one kind: the leaves are stored by kind in tree order (no index
 //! array, no per-leaf tag), and a leaf node names its kind and the range in that kind's array.
@@ -169,11 +170,18 @@ impl Bvh {
                 let c = bounds[i as usize].0 + bounds[i as usize].1;
                 (lo.min(c), hi.max(c))
             });
-            let axis = (chi - clo).max_position();
-            let centre = |i: u32| bounds[i as usize].0[axis] + bounds[i as usize].1[axis];
-            let mid = items.len() / 2;
-            items.select_nth_unstable_by(mid, |&x, &y| centre(x).total_cmp(&centre(y)).then(x.cmp(&y)));
-            mid
+            match binned_split(bounds, items, clo, chi) {
+                Some(mid) => mid,
+                None => {
+                    let axis = (chi - clo).max_position();
+                    let centre = |i: u32| bounds[i as usize].0[axis] + bounds[i as usize].1[axis];
+                    let mid = items.len() / 2;
+                    items.select_nth_unstable_by(mid, |&x, &y| {
+                        centre(x).total_cmp(&centre(y)).then(x.cmp(&y))
+                    });
+                    mid
+                }
+            }
         };
         let (left, right) = items.split_at_mut(mid);
         self.split(bounds, classes, left, slots);
@@ -364,6 +372,67 @@ impl Bvh {
             + self.chambers.len() * size_of::<Chamber>()
             + self.capsules.len() * size_of::<Capsule>()
     }
+}
+
+/// Bins of the surface-area split.
+const BINS: usize = 16;
+
+/// The surface-area heuristic over `BINS` bins of the centres (lo..hi, doubled) on each axis:
+/// the split minimising area(left)·n(left) + area(right)·n(right), so that sibling boxes overlap
+/// less than with a median split. Partitions `items` and returns the split position; `None`
+/// when every centre falls in one bin.
+fn binned_split(bounds: &[(DVec3, DVec3)], items: &mut [u32], lo: DVec3, hi: DVec3) -> Option<usize> {
+    let area = |(l, h): (DVec3, DVec3)| {
+        let e = (h - l).max(DVec3::ZERO);
+        e.x * e.y + e.y * e.z + e.z * e.x
+    };
+    let empty = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    let join = |a: (DVec3, DVec3), b: (DVec3, DVec3)| (a.0.min(b.0), a.1.max(b.1));
+    let bin = |i: u32, axis: usize| {
+        let c = bounds[i as usize].0[axis] + bounds[i as usize].1[axis];
+        let t = (c - lo[axis]) / (hi[axis] - lo[axis]);
+        ((t * BINS as f64) as usize).min(BINS - 1)
+    };
+    let mut best: Option<(f64, usize, usize)> = None;
+    for axis in 0..3 {
+        if hi[axis] <= lo[axis] {
+            continue;
+        }
+        let mut boxes = [empty; BINS];
+        let mut counts = [0usize; BINS];
+        for &i in items.iter() {
+            let b = bin(i, axis);
+            boxes[b] = join(boxes[b], bounds[i as usize]);
+            counts[b] += 1;
+        }
+        // Costs of splitting before bin k, from the right.
+        let mut right = [0.0; BINS];
+        let (mut acc, mut n) = (empty, 0);
+        for k in (1..BINS).rev() {
+            acc = join(acc, boxes[k]);
+            n += counts[k];
+            right[k] = if n > 0 { area(acc) * n as f64 } else { 0.0 };
+        }
+        let (mut acc, mut n) = (empty, 0);
+        for k in 1..BINS {
+            acc = join(acc, boxes[k - 1]);
+            n += counts[k - 1];
+            if n == 0 || n == items.len() {
+                continue;
+            }
+            let cost = area(acc) * n as f64 + right[k];
+            if best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, axis, k));
+            }
+        }
+    }
+    let (_, axis, k) = best?;
+    // Stable partition: the order inside each side stays the input's.
+    let (left, right): (Vec<u32>, Vec<u32>) = items.iter().partition(|&&i| bin(i, axis) < k);
+    let mid = left.len();
+    items[..mid].copy_from_slice(&left);
+    items[mid..].copy_from_slice(&right);
+    Some(mid)
 }
 
 fn push<T>(v: &mut Vec<T>, item: T) -> usize {
