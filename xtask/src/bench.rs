@@ -168,38 +168,64 @@ pub fn time_skeleton_budgets(runs: usize) -> Result<Vec<(String, usize, f64)>, S
     Ok(results)
 }
 
-/// The sdf stage's budgets on a synthetic network (issue 7; the looping preset is not merged
-/// yet): build time, mean evaluation time and memory per primitive.
+/// The sdf stage's budgets (issue 7) on one tree: build time, mean evaluation time and memory
+/// per primitive.
 pub struct SdfBench {
     pub primitives: usize,
     pub by_kind: Vec<(&'static str, usize)>,
     pub build_seconds: f64,
     pub eval_uniform_ns: f64,
     pub eval_near_ns: f64,
+    /// The same in CPU time of the process (Linux): on a shared machine wall time also counts
+    /// the waits for a core.
+    pub eval_uniform_cpu_ns: Option<f64>,
+    pub eval_near_cpu_ns: Option<f64>,
     /// [karst, water] in-memory bytes.
     pub memory_bytes: [usize; 2],
     pub artifact_bytes: u64,
 }
 
 /// Times `karst_sdf::build` and `CarvedTerrain::eval` on `conduits` synthetic conduits of 12
-/// nodes: evaluations at 200k points uniform in the domain and 200k within 6 m of a leaf.
+/// nodes: evaluations at 200k points uniform in the domain and 200k within 6 m of a node.
 pub fn sdf_network(conduits: usize, runs: usize) -> Result<SdfBench, StageError> {
-    use glam::DVec3;
-    use karst_sdf::{CarvedTerrain, build, synthetic};
+    let scene = karst_sdf::synthetic::scene();
+    let (skeleton, hydro) = karst_sdf::synthetic::network(5, conduits, 12);
+    sdf_tree(&scene, &skeleton, &hydro, runs)
+}
 
-    let scene = synthetic::scene();
-    let (skeleton, hydro) = synthetic::network(5, conduits, 12);
+/// The same on the tree of a preset scene: its stages up to hydro run once (not timed).
+pub fn sdf_preset(scene: &Path, runs: usize) -> Result<SdfBench, StageError> {
+    use karst_artifact::read_artifact;
+    let out = scratch_dir(scene);
+    for stage in [Stage::Sampling, Stage::Costgraph, Stage::Skeleton, Stage::Hydro] {
+        InProcess.run(stage, scene, &out)?;
+    }
+    let (_, skeleton) = read_artifact::<karst_skeleton::Skeleton>(&out.join(Stage::Skeleton.file_name()))?;
+    let (_, hydro) = read_artifact::<karst_hydro::Hydro>(&out.join(Stage::Hydro.file_name()))?;
+    let _ = std::fs::remove_dir_all(&out);
+    sdf_tree(&karst_geology::Scene::load(scene)?, &skeleton, &hydro, runs)
+}
+
+fn sdf_tree(
+    scene: &karst_geology::Scene,
+    skeleton: &karst_skeleton::Skeleton,
+    hydro: &karst_hydro::Hydro,
+    runs: usize,
+) -> Result<SdfBench, StageError> {
+    use glam::DVec3;
+    use karst_sdf::{CarvedTerrain, build};
+
     let mut builds = Vec::new();
     let mut model = None;
     for _ in 0..runs.max(1) {
         let start = Instant::now();
-        let built = build::build(&scene, &skeleton, &hydro)?;
+        let built = build::build(scene, skeleton, hydro)?;
         let field = CarvedTerrain::new(built);
         builds.push(start.elapsed().as_secs_f64());
         model = Some(field);
     }
     let field = model.expect("at least one run");
-    let dir = scratch_dir(Path::new("sdf-synthetic"));
+    let dir = scratch_dir(Path::new(&format!("sdf-{}", scene.name)));
     std::fs::create_dir_all(&dir).map_err(|e| StageError::failure(format!("{}: {e}", dir.display())))?;
     let run = karst_artifact::cli::StageRun::new(Stage::Sdf, &dir);
     let header =
@@ -223,24 +249,28 @@ pub fn sdf_network(conduits: usize, runs: usize) -> Result<SdfBench, StageError>
         })
         .collect();
     let time = |points: &[DVec3]| {
-        let per_run: Vec<f64> = (0..runs.max(1))
-            .map(|_| {
-                let start = Instant::now();
-                let sum: f64 = points.iter().map(|&p| field.eval(p)).sum();
-                std::hint::black_box(sum);
-                start.elapsed().as_secs_f64() * 1e9 / points.len() as f64
-            })
-            .collect();
-        median(per_run)
+        let (mut wall, mut cpu) = (Vec::new(), Vec::new());
+        for _ in 0..runs.max(1) {
+            let (start, cpu_start) = (Instant::now(), cpu_seconds());
+            let sum: f64 = points.iter().map(|&p| field.eval(p)).sum();
+            std::hint::black_box(sum);
+            wall.push(start.elapsed().as_secs_f64() * 1e9 / points.len() as f64);
+            cpu.extend(cpu_seconds().zip(cpu_start).map(|(e, s)| (e - s) * 1e9 / points.len() as f64));
+        }
+        (median(wall), (!cpu.is_empty()).then(|| median(cpu)))
     };
     let by_kind: Vec<(&'static str, usize)> = field.model().primitive_counts().into_iter().collect();
     let primitives = by_kind.iter().filter(|(k, _)| *k != "water").map(|(_, n)| n).sum();
+    let (eval_uniform_ns, eval_uniform_cpu_ns) = time(&uniform);
+    let (eval_near_ns, eval_near_cpu_ns) = time(&near);
     Ok(SdfBench {
         primitives,
         by_kind,
         build_seconds: median(builds),
-        eval_uniform_ns: time(&uniform),
-        eval_near_ns: time(&near),
+        eval_uniform_ns,
+        eval_near_ns,
+        eval_uniform_cpu_ns,
+        eval_near_cpu_ns,
         memory_bytes: field.memory(),
         artifact_bytes: header.payload_len,
     })

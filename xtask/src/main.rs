@@ -74,6 +74,9 @@ enum Task {
         /// Only the cost-graph budget cases (100k samples at k = 50, 1M at k = 30).
         #[arg(long)]
         costgraph: bool,
+        /// Only the sdf budgets (synthetic network and looping preset).
+        #[arg(long, conflicts_with = "costgraph")]
+        sdf: bool,
     },
     /// Run N seeds of SCENE in parallel: every realization's metrics in one CSV, their summary and
     /// the conduit probability grid (EXR slices and a top-view PNG).
@@ -121,7 +124,7 @@ fn main() -> ExitCode {
         Task::Run { scene, out, from, only, force } => run(scene, out, Selection { from, only, force }),
         Task::Diff { a, b, tol } => return diff_command(&a, &b, tol),
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph } => bench_command(runs, costgraph),
+        Task::Bench { runs, costgraph, sdf } => bench_command(runs, costgraph, sdf),
         Task::Test { args } => return test(&args),
         Task::Ensemble { scene, n, cell, out } => ensemble_command(scene, n, cell, out),
         Task::MetricsTable { write } => metrics_table_command(write),
@@ -202,8 +205,15 @@ fn bless() -> Result<(), StageError> {
 /// Conduits of the synthetic sdf benchmark network (about 30k primitives).
 const SDF_BENCH_CONDUITS: usize = 100;
 
-fn bench_command(runs: usize, costgraph_only: bool) -> Result<(), StageError> {
+fn bench_command(runs: usize, costgraph_only: bool, sdf_only: bool) -> Result<(), StageError> {
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
+    if sdf_only {
+        let synthetic = bench::sdf_network(SDF_BENCH_CONDUITS, runs)?;
+        print_sdf_bench(&format!("synthetic network of {SDF_BENCH_CONDUITS} conduits"), &synthetic);
+        let looping = bench::sdf_preset(Path::new("fixtures/scenes/looping.toml"), runs)?;
+        print_sdf_bench("looping preset", &looping);
+        return Ok(());
+    }
     let scenes = if costgraph_only { &[][..] } else { BENCH_SCENES };
     for scene in scenes {
         println!("\n{scene}");
@@ -244,28 +254,40 @@ fn bench_command(runs: usize, costgraph_only: bool) -> Result<(), StageError> {
     sdf_bench(runs)
 }
 
-/// The sdf budgets (issue 7) on a synthetic network of about 30k primitives.
+/// The sdf budgets (issue 7) on a synthetic network of about 30k primitives and on the
+/// looping preset's tree.
 fn sdf_bench(runs: usize) -> Result<(), StageError> {
-    let b = bench::sdf_network(SDF_BENCH_CONDUITS, runs)?;
+    let synthetic = bench::sdf_network(SDF_BENCH_CONDUITS, runs)?;
+    print_sdf_bench(&format!("synthetic network of {SDF_BENCH_CONDUITS} conduits"), &synthetic);
+    let looping = bench::sdf_preset(Path::new("fixtures/scenes/looping.toml"), runs)?;
+    print_sdf_bench("looping preset", &looping);
+    mesher_and_network_bench(runs)
+}
+
+fn print_sdf_bench(name: &str, b: &bench::SdfBench) {
     let kinds: Vec<String> = b.by_kind.iter().map(|(k, n)| format!("{n} {k}")).collect();
-    println!(
-        "\nsdf, synthetic network of {SDF_BENCH_CONDUITS} conduits: {} primitives ({})",
-        b.primitives,
-        kinds.join(", ")
-    );
+    println!("\nsdf, {name}: {} primitives ({})", b.primitives, kinds.join(", "));
     println!("build + BVH        {:>10.4} s", b.build_seconds);
-    println!("eval, uniform      {:>10.1} ns per point", b.eval_uniform_ns);
-    println!("eval, near conduits{:>10.1} ns per point", b.eval_near_ns);
+    let cpu = |c: Option<f64>| c.map_or(String::new(), |c| format!(" ({c:.0} ns CPU)"));
+    println!("eval, uniform      {:>10.1} ns per point{}", b.eval_uniform_ns, cpu(b.eval_uniform_cpu_ns));
+    println!("eval, near conduits{:>10.1} ns per point{}", b.eval_near_ns, cpu(b.eval_near_cpu_ns));
     let per = |bytes: f64| bytes / b.primitives.max(1) as f64;
     let [karst, water] = b.memory_bytes;
     println!("memory, karst      {karst:>10} bytes ({:.1} per primitive)", per(karst as f64));
     println!("memory, water      {water:>10} bytes ({:.1} per primitive)", per(water as f64));
     println!(
+        "memory, both       {:>10} bytes ({:.1} per primitive)",
+        karst + water,
+        per((karst + water) as f64)
+    );
+    println!(
         "artifact payload   {:>10} bytes ({:.1} per primitive)",
         b.artifact_bytes,
         per(b.artifact_bytes as f64)
     );
+}
 
+fn mesher_and_network_bench(runs: usize) -> Result<(), StageError> {
     println!("\nmesher, synthetic 30k capsules (issue 8)");
     for case in bench::synthetic::run(runs) {
         println!(

@@ -27,7 +27,7 @@ use crate::chamber::ChamberSpec;
 use crate::model::{SphereGroup, TypedSweep, WaterSpec};
 use crate::noise::WaveNoise;
 use crate::section::{Section, Shape};
-use crate::sweep::{SectionSpec, Sweep, SweepSpec, frame};
+use crate::sweep::{SectionSpec, SweepSpec, frame};
 use crate::terrain::TerrainField;
 use crate::water::{self, Water};
 
@@ -78,7 +78,7 @@ pub fn build(scene: &Scene, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMod
                 model.sweeps.push(TypedSweep { kind, sweep });
             }
             let zones = [conduit.nodes[i], conduit.nodes[i + 1]].map(|n| skeleton.nodes[n as usize].zone);
-            let height = Sweep::new(&sweep).floor().abs() * 2.0;
+            let height = sweep.floor().abs() * 2.0;
             let wet = hydro.conduits[c].segments.get(i).ok_or_else(|| segments_mismatch(c))?;
             let segment = water::Segment { kind, zones, water: wet.water, depth: wet.depth, height };
             if let Some(spec) = water_piece(&sweep, water::level(&segment)) {
@@ -189,7 +189,7 @@ fn water_piece(sweep: &SweepSpec, water: Water) -> Option<WaterSpec> {
         Water::None => None,
         Water::Flooded => Some(WaterSpec { sweep: *sweep, level: None }),
         Water::Stream { depth } => {
-            let floor = Sweep::new(sweep).floor();
+            let floor = sweep.floor();
             Some(WaterSpec { sweep: *sweep, level: Some((floor + depth) as f32) })
         }
     }

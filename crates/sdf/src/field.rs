@@ -16,9 +16,10 @@ use glam::DVec3;
 use crate::bvh::Bvh;
 use crate::chamber::Chamber;
 use crate::model::detail_factor;
-use crate::primitive::{Context, Primitive};
-use crate::sweep::Sweep;
+use crate::primitive::{Context, Leaf, WaterLeaf};
+use crate::sweep::SweepTable;
 use crate::{SdfModel, ops};
+use karst_skeleton::ConduitType;
 
 /// The karst terms are clamped to at most this many metres: min(cave, REACH) keeps the sign and
 /// the Lipschitz bound (a smaller |f| is still a distance bound), and spares eval every leaf
@@ -31,16 +32,29 @@ pub struct CarvedTerrain {
     model: SdfModel,
     caves: Bvh,
     water: Bvh,
+    /// The nodes and sections of the sweeps and water pieces.
+    sweeps: SweepTable,
+    /// Detail amplitude per conduit type.
+    amplitude: [f64; 8],
     /// The terrain leaf's 1/√(1 + λ²), computed once rather than at every evaluation.
     terrain_scale: f64,
 }
 
 impl CarvedTerrain {
     pub fn new(model: SdfModel) -> Self {
-        let caves = Bvh::build(karst_leaves(&model));
-        let water = Bvh::build(water_leaves(&model));
+        let mut amplitude = [0.0; 8];
+        for kind in ConduitType::ALL {
+            amplitude[kind as usize] = model.detail * detail_factor(kind);
+        }
+        let mut sweeps = SweepTable::default();
+        let karst = karst_leaves(&model, &mut sweeps);
+        let water = water_leaves(&model, &mut sweeps);
+        let ctx =
+            Context::new(&model.detail_noise, &model.chamber_noise, model.chamber_bias, &sweeps, &amplitude);
+        let caves = Bvh::build(karst, &ctx);
+        let water = Bvh::build(water, &ctx);
         let terrain_scale = model.terrain.scale();
-        CarvedTerrain { model, caves, water, terrain_scale }
+        CarvedTerrain { model, caves, water, sweeps, amplitude, terrain_scale }
     }
 
     pub fn model(&self) -> &SdfModel {
@@ -48,7 +62,13 @@ impl CarvedTerrain {
     }
 
     fn context(&self) -> Context<'_> {
-        Context::new(&self.model.detail_noise, &self.model.chamber_noise, self.model.chamber_bias)
+        Context::new(
+            &self.model.detail_noise,
+            &self.model.chamber_noise,
+            self.model.chamber_bias,
+            &self.sweeps,
+            &self.amplitude,
+        )
     }
 
     /// Rock before the caves: below the terrain and inside the domain (negative inside).
@@ -74,8 +94,7 @@ impl CarvedTerrain {
     /// [`CarvedTerrain::cave`] by visiting every leaf, without the BVH: the reference the
     /// hierarchy's pruning is tested against.
     pub fn cave_without_bvh(&self, p: DVec3) -> f64 {
-        let ctx = self.context();
-        self.caves.primitives.iter().map(|leaf| leaf.value(p, f64::INFINITY, &ctx)).fold(REACH, f64::min)
+        self.caves.min_without_bvh(p, REACH, &self.context())
     }
 
     /// The water volume: negative in the water inside the conduits; 1-Lipschitz.
@@ -103,42 +122,37 @@ impl CarvedTerrain {
         (self.eval(centre).abs() - (hi - lo).length() * 0.5).max(0.0)
     }
 
-    /// Bytes held in memory by the evaluable tree: [karst leaves and their BVH, water pieces and
-    /// theirs].
+    /// Bytes held in memory by the evaluable tree: [karst leaves, their BVH and the sweep
+    /// nodes and sections, water pieces and their BVH]. The model's own copy (kept for
+    /// [`CarvedTerrain::model`]) is not counted.
     pub fn memory(&self) -> [usize; 2] {
-        [self.caves.memory(), self.water.memory()]
+        [self.caves.memory() + self.sweeps.memory(), self.water.memory()]
     }
 
     /// Number of karst leaves.
     pub fn leaves(&self) -> usize {
-        self.caves.primitives.len()
+        self.caves.len()
     }
 }
 
-/// The karst leaves of `model`, each with its detail amplitude.
-fn karst_leaves(model: &SdfModel) -> Vec<Primitive> {
+/// The karst leaves of `model`, their sweeps' nodes added to `sweeps`.
+fn karst_leaves(model: &SdfModel, sweeps: &mut SweepTable) -> Vec<Leaf> {
     let mut leaves = Vec::new();
-    leaves.extend(model.capsules.iter().map(|c| Primitive::Capsule(Box::new(*c))));
+    leaves.extend(model.capsules.iter().map(|c| Leaf::Capsule(*c)));
     for s in &model.sweeps {
-        let amplitude = model.detail * detail_factor(s.kind);
-        leaves.push(Primitive::Sweep(Box::new((Sweep::new(&s.sweep), amplitude))));
+        leaves.push(Leaf::Sweep(sweeps.push(&s.sweep), s.kind));
     }
     for group in &model.spheres {
-        let amplitude = (model.detail * detail_factor(group.kind)) as f32;
-        leaves.extend(group.spheres.iter().map(|&[x, y, z, radius]| Primitive::Sphere {
-            centre: [x, y, z],
-            radius,
-            amplitude,
-        }));
+        leaves.extend(group.spheres.iter().map(|&s| Leaf::Sphere(s, group.kind)));
     }
-    leaves.extend(model.chambers.iter().map(|c| Primitive::Chamber(Box::new(Chamber::new(c)))));
+    leaves.extend(model.chambers.iter().map(|c| Leaf::Chamber(Chamber::new(c))));
     leaves
 }
 
-fn water_leaves(model: &SdfModel) -> Vec<Primitive> {
+fn water_leaves(model: &SdfModel, sweeps: &mut SweepTable) -> Vec<Leaf> {
     let piece = |w: &crate::model::WaterSpec| {
-        let level = w.level.map_or(f64::INFINITY, f64::from);
-        Primitive::Water(Box::new((Sweep::new(&w.sweep), level)))
+        let level = w.level.unwrap_or(f32::INFINITY);
+        Leaf::Water(WaterLeaf { sweep: sweeps.push(&w.sweep), level })
     };
     model.water.iter().map(piece).collect()
 }

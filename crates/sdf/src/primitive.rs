@@ -1,51 +1,125 @@
 //! The leaves of the karst volume, ready to evaluate, with their detail noise and their boxes.
 //!
 //! Every leaf i contributes v_i(p) = max(detail(f_i(p)), box_i(p)) (spheres: see
-//! [`sphere_value`]), where f_i is the leaf's
-//! 1-Lipschitz bound, detail adds the per-type fBm of amplitude A_i with its gradient
-//! compensated (see [`crate::ops::detail`]), and box_i is the distance to the leaf's box grown by
-//! A_i (signed: negative inside). The max keeps the bound and changes nothing inside the box
-//! (there the box's value is at most minus the distance to the leaf's surface), but guarantees v_i ≥ distance to the box, which makes the BVH's pruning
-//! exact: skipping a node whose box is farther than the current minimum never changes the union.
+//! [`sphere_value`]), where f_i is the leaf's 1-Lipschitz bound, detail adds the per-type fBm
+//! of amplitude A_i with its gradient compensated (see [`crate::ops::detail`]), and box_i is
+//! the distance to the leaf's box grown by A_i (signed: negative inside). The max keeps the
+//! bound and changes nothing inside the box (there the box's value is at most minus the
+//! distance to the leaf's surface), but guarantees v_i ≥ distance to the box, which makes the
+//! BVH's pruning exact: skipping a node whose box is farther than the current minimum never
+//! changes the union.
+//!
+//! Leaves are small: a sphere is four f32, a sweep a [`SweepLeaf`] (12 bytes) whose two nodes
+//! and unit polygons live in the shared [`SweepTable`]; its frame and sections are rebuilt when
+//! it is evaluated. The conduit type (hence the detail amplitude) is one byte beside each.
 
 use std::cell::Cell;
 
 use glam::DVec3;
+use karst_skeleton::ConduitType;
 
 use crate::Capsule;
 use crate::chamber::Chamber;
 use crate::noise::WaveNoise;
 use crate::ops;
-use crate::sweep::{Sweep, to_dvec};
+use crate::sweep::{SweepLeaf, SweepTable, to_dvec};
 
-/// A leaf of the karst volume.
+/// A leaf before it is placed in the BVH.
 #[derive(Debug, Clone)]
-pub enum Primitive {
-    Sphere {
-        centre: [f32; 3],
-        radius: f32,
-        amplitude: f32,
-    },
-    Capsule(Box<Capsule>),
-    Sweep(Box<(Sweep, f64)>),
-    Chamber(Box<Chamber>),
-    /// The water of a segment: its sweep below a level (height above the axis; +∞ flooded).
-    Water(Box<(Sweep, f64)>),
+pub enum Leaf {
+    /// (x, y, z, radius) and the conduit type.
+    Sphere([f32; 4], ConduitType),
+    Sweep(SweepLeaf, ConduitType),
+    /// The water of a segment: its sweep below a level.
+    Water(WaterLeaf),
+    Chamber(Chamber),
+    Capsule(Capsule),
 }
 
-/// What leaves share during the evaluation of one point: the noises, and the detail noise at
-/// that point, computed at most once (a context serves one point only).
+/// The water of a segment: its sweep below `level` (height above the axis; +∞ flooded).
+#[derive(Debug, Clone, Copy)]
+pub struct WaterLeaf {
+    pub sweep: SweepLeaf,
+    pub level: f32,
+}
+
+/// Leaf kinds, as the BVH's leaf nodes record them.
+pub const SPHERE: u8 = 0;
+pub const SWEEP: u8 = 1;
+pub const WATER: u8 = 2;
+pub const CHAMBER: u8 = 3;
+pub const CAPSULE: u8 = 4;
+
+impl Leaf {
+    /// The leaf's kind: a BVH leaf node holds leaves of one kind.
+    pub fn kind(&self) -> u8 {
+        match self {
+            Leaf::Sphere(..) => SPHERE,
+            Leaf::Sweep(..) => SWEEP,
+            Leaf::Water(_) => WATER,
+            Leaf::Chamber(_) => CHAMBER,
+            Leaf::Capsule(_) => CAPSULE,
+        }
+    }
+
+    /// Detail amplitude, metres: spheres and sweeps by their conduit type, others none.
+    pub fn amplitude(&self, ctx: &Context) -> f64 {
+        match self {
+            Leaf::Sphere(_, t) | Leaf::Sweep(_, t) => ctx.amplitude[*t as usize],
+            _ => 0.0,
+        }
+    }
+
+    /// Axis-aligned box containing the detailed leaf.
+    pub fn bounds(&self, ctx: &Context) -> (DVec3, DVec3) {
+        let a = self.amplitude(ctx);
+        let (lo, hi) = match self {
+            Leaf::Sphere(s, _) => sphere_bounds(s),
+            Leaf::Sweep(s, _) => ctx.sweeps.bounds(s),
+            Leaf::Water(w) => ctx.sweeps.bounds(&w.sweep),
+            Leaf::Chamber(c) => c.bounds(),
+            Leaf::Capsule(c) => c.bounds(),
+        };
+        (lo - DVec3::splat(a), hi + DVec3::splat(a))
+    }
+}
+
+fn sphere_bounds(s: &[f32; 4]) -> (DVec3, DVec3) {
+    let c = to_dvec([s[0], s[1], s[2]]);
+    (c - DVec3::splat(s[3] as f64), c + DVec3::splat(s[3] as f64))
+}
+
+/// What leaves share during the evaluation of one point: the noises, the sweep table, the
+/// amplitudes, and the detail noise at that point, computed at most once (a context serves one
+/// point only).
 pub struct Context<'a> {
     pub detail: &'a WaveNoise,
     pub detail_gradient: f64,
     pub chamber: &'a WaveNoise,
     pub bias: f64,
+    pub sweeps: &'a SweepTable,
+    /// Detail amplitude of each conduit type (index: the type's discriminant).
+    pub amplitude: &'a [f64; 8],
     noise_at: Cell<Option<f64>>,
 }
 
 impl<'a> Context<'a> {
-    pub fn new(detail: &'a WaveNoise, chamber: &'a WaveNoise, bias: f64) -> Self {
-        Context { detail, detail_gradient: detail.gradient_bound(), chamber, bias, noise_at: Cell::new(None) }
+    pub fn new(
+        detail: &'a WaveNoise,
+        chamber: &'a WaveNoise,
+        bias: f64,
+        sweeps: &'a SweepTable,
+        amplitude: &'a [f64; 8],
+    ) -> Self {
+        Context {
+            detail,
+            detail_gradient: detail.gradient_bound(),
+            chamber,
+            bias,
+            sweeps,
+            amplitude,
+            noise_at: Cell::new(None),
+        }
     }
 
     fn noise(&self, p: DVec3) -> f64 {
@@ -60,71 +134,85 @@ impl<'a> Context<'a> {
     fn detail(&self, f: f64, p: DVec3, amplitude: f64) -> f64 {
         if amplitude > 0.0 { ops::detail(f, self.noise(p), amplitude, self.detail_gradient) } else { f }
     }
-}
 
-impl Primitive {
-    /// Detail amplitude, metres.
-    fn amplitude(&self) -> f64 {
-        match self {
-            Primitive::Sphere { amplitude, .. } => *amplitude as f64,
-            Primitive::Sweep(s) => s.1,
-            Primitive::Capsule(_) | Primitive::Chamber(_) | Primitive::Water(_) => 0.0,
-        }
-    }
-
-    /// Axis-aligned box containing the detailed leaf.
-    pub fn bounds(&self) -> (DVec3, DVec3) {
-        let (lo, hi) = match self {
-            Primitive::Sphere { centre, radius, .. } => {
-                let c = to_dvec(*centre);
-                (c - DVec3::splat(*radius as f64), c + DVec3::splat(*radius as f64))
-            }
-            Primitive::Capsule(c) => c.bounds(),
-            Primitive::Sweep(s) => s.0.bounds(),
-            Primitive::Chamber(c) => c.bounds(),
-            Primitive::Water(w) => w.0.bounds(),
-        };
-        let grow = DVec3::splat(self.amplitude());
-        (lo - grow, hi + grow)
-    }
-
-    /// v(p), or any value ≥ `limit` when v(p) ≥ `limit` (the caller takes a minimum).
-    pub fn value(&self, p: DVec3, limit: f64, ctx: &Context) -> f64 {
-        if let Primitive::Sphere { centre, radius, amplitude } = self {
-            return sphere_value(p, *centre, *radius as f64, *amplitude as f64, limit, ctx);
-        }
-        let (lo, hi) = self.bounds();
-        let outside = signed_box_distance(lo, hi, p);
-        if outside >= limit {
-            return outside;
-        }
-        let a = self.amplitude();
-        let f = match self {
-            Primitive::Sweep(s) => {
-                let bound = (s.0.lower_bound(p) - a) / (1.0 + a * ctx.detail_gradient);
-                if bound >= limit {
-                    return bound.max(outside);
-                }
-                s.0.distance(p)
-            }
-            Primitive::Chamber(c) => c.distance(p, ctx.chamber, ctx.bias),
-            Primitive::Water(w) => w.0.distance(p).max(w.0.height(p) - w.1),
-            Primitive::Capsule(c) => c.distance(p),
-            Primitive::Sphere { centre, radius, .. } => p.distance(to_dvec(*centre)) - *radius as f64,
-        };
-        ctx.detail(f, p, a).max(outside)
+    /// The smallest value detail(f) can take for any noise: (f − A)/(1 + A·G).
+    fn detail_floor(&self, f: f64, amplitude: f64) -> f64 {
+        if amplitude > 0.0 { (f - amplitude) / (1.0 + amplitude * self.detail_gradient) } else { f }
     }
 }
 
 /// A sphere's value, clamped by the sphere grown by its amplitude A rather than by its box:
 /// the grown sphere's distance f − A is at least its box's signed distance (so the BVH's
 /// pruning stays exact), and inside it (f ≤ A) detail(f) ≥ f − A, so the clamp changes nothing.
-fn sphere_value(p: DVec3, centre: [f32; 3], radius: f64, a: f64, limit: f64, ctx: &Context) -> f64 {
-    let f = p.distance(to_dvec(centre)) - radius;
+/// Any value ≥ `limit` when v(p) ≥ `limit`.
+pub fn sphere_value(p: DVec3, s: &[f32; 4], a: f64, limit: f64, ctx: &Context) -> f64 {
+    let f = p.distance(to_dvec([s[0], s[1], s[2]])) - s[3] as f64;
     if f - a >= limit {
         return f - a;
     }
     ctx.detail(f, p, a).max(f - a)
+}
+
+/// A sweep's value, or any value ≥ `limit` when it is ≥ `limit`: the box, then the sweep's
+/// lower bound with the smallest detail, before the section's distance.
+pub fn sweep_value(p: DVec3, leaf: &SweepLeaf, a: f64, limit: f64, ctx: &Context) -> f64 {
+    let (lo, hi) = ctx.sweeps.bounds(leaf);
+    let outside = signed_box_distance(lo - DVec3::splat(a), hi + DVec3::splat(a), p);
+    if outside >= limit {
+        return outside;
+    }
+    let sweep = ctx.sweeps.sweep(leaf);
+    let (l, q) = sweep.local(p);
+    let bound = ctx.detail_floor(sweep.lower_bound_local(l, q), a);
+    if bound >= limit {
+        return bound.max(outside);
+    }
+    ctx.detail(sweep.distance_local(l, q), p, a).max(outside)
+}
+
+/// A cheap lower bound of [`sweep_value`]: the larger of the box's signed distance and the
+/// detailed capsule bound (distance to the axis segment minus the extent, times the factor).
+pub fn sweep_floor(p: DVec3, leaf: &SweepLeaf, a: f64, ctx: &Context) -> f64 {
+    let (s0, s1) = ctx.sweeps.ends(leaf);
+    let r = leaf.extent as f64;
+    let outside = signed_box_distance(s0.min(s1) - DVec3::splat(r + a), s0.max(s1) + DVec3::splat(r + a), p);
+    let ab = s1 - s0;
+    let t = ((p - s0).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+    let capsule = (p - s0 - ab * t).length() - r;
+    ctx.detail_floor(capsule * leaf.scale as f64, a).max(outside)
+}
+
+/// A water piece's value: its sweep below its level.
+pub fn water_value(p: DVec3, w: &WaterLeaf, limit: f64, ctx: &Context) -> f64 {
+    let (lo, hi) = ctx.sweeps.bounds(&w.sweep);
+    let outside = signed_box_distance(lo, hi, p);
+    if outside >= limit {
+        return outside;
+    }
+    let sweep = ctx.sweeps.sweep(&w.sweep);
+    let (l, q) = sweep.local(p);
+    let surface = sweep.height(p) - w.level as f64;
+    let bound = sweep.lower_bound_local(l, q).max(surface);
+    if bound >= limit {
+        return bound.max(outside);
+    }
+    sweep.distance_local(l, q).max(surface).max(outside)
+}
+
+/// A chamber's value.
+pub fn chamber_value(p: DVec3, c: &Chamber, limit: f64, ctx: &Context) -> f64 {
+    let (lo, hi) = c.bounds();
+    let outside = signed_box_distance(lo, hi, p);
+    if outside >= limit {
+        return outside;
+    }
+    c.distance(p, ctx.chamber, ctx.bias).max(outside)
+}
+
+/// A capsule's value.
+pub fn capsule_value(p: DVec3, c: &Capsule) -> f64 {
+    let (lo, hi) = c.bounds();
+    c.distance(p).max(signed_box_distance(lo, hi, p))
 }
 
 /// Signed distance to the box: negative inside, at most minus the distance to the surface of

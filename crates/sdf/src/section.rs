@@ -51,18 +51,15 @@ impl Section {
     /// The section of conduit type `kind` with `shape`: control polygons in units of the
     /// half-width, x across and y up, scaled by the radius; the height stretches y.
     pub fn of(kind: ConduitType, shape: Shape) -> Section {
-        let unit = unit_polygon(kind);
-        // Only vadose shapes lean: a free-surface stream undercuts the outside of its bends,
-        // while phreatic tubes and beds dissolve evenly all round.
-        let leans = matches!(kind, ConduitType::Canyon | ConduitType::Keyhole);
-        let (r, ratio) = (shape.radius as f64, shape.ratio as f64);
-        let skew = if leans { shape.asymmetry as f64 } else { 0.0 };
-        let control = unit.map(|[x, y]| {
-            // Asymmetry shears the upper half sideways (an undercut meander bend).
-            let x = x + skew * y.max(0.0) * 0.5;
-            DVec2::new(x * r, y * r * ratio)
-        });
-        Section { control }
+        Section::blend([kind, kind], shape)
+    }
+
+    /// The half-and-half blend of two types' sections with one shape: the unit polygon
+    /// [`unit_blend`] scaled by (radius, radius · ratio).
+    pub fn blend(kinds: [ConduitType; 2], shape: Shape) -> Section {
+        let unit = unit_blend(kinds, shape.asymmetry);
+        let scale = scale_of(shape);
+        Section { control: unit.map(|u| u * scale) }
     }
 
     /// Linear interpolation of the control points.
@@ -95,19 +92,59 @@ impl Section {
     }
 
     /// Signed distance in the section's plane: negative inside.
+    ///
+    /// The nearest on-curve end point bounds the distance from above, so only arcs whose
+    /// control box is nearer need their cubic solved. The sign comes from the nearest point c:
+    /// the open segment from c to q meets no curve point (one would be nearer), so q lies on
+    /// the side of the curve that q − c points to, and the curve is tangent-continuous and
+    /// counter-clockwise, so that side is the inside when q − c points left of the tangent at
+    /// c. When that is too close to call (q on the curve or the tangent vanishing), the winding
+    /// number decides ([`Section::winding`]).
     pub fn distance(&self, q: DVec2) -> f64 {
-        let mut d2 = f64::INFINITY;
-        let mut winding = 0i32;
-        for arc in self.arcs() {
-            // The arc lies in the box of its control points: skip the cubic when that box is
-            // already farther than the nearest arc so far.
-            if arc.box_distance_squared(q) < d2 {
-                d2 = d2.min(arc.distance_squared(q));
+        let c = &self.control;
+        let ends: [DVec2; CONTROL] = std::array::from_fn(|i| (c[i] + c[(i + 1) % CONTROL]) * 0.5);
+        let mut nearest = (f64::INFINITY, 0, 0.0);
+        for (i, m) in ends.iter().enumerate() {
+            let d2 = (*m - q).length_squared();
+            if d2 < nearest.0 {
+                // End i is the end (t = 1) of arc i.
+                nearest = (d2, i, 1.0);
             }
-            winding += arc.winding(q);
         }
+        let arc = |i: usize| Arc { p0: ends[(i + CONTROL - 1) % CONTROL], p1: c[i], p2: ends[i] };
+        for i in 0..CONTROL {
+            let arc = arc(i);
+            if arc.box_distance_squared(q) < nearest.0 {
+                let (d2, t) = arc.nearest(q);
+                if d2 < nearest.0 {
+                    nearest = (d2, i, t);
+                }
+            }
+        }
+        let (d2, i, t) = nearest;
         let d = d2.sqrt();
-        if winding != 0 { -d } else { d }
+        let arc = arc(i);
+        let (tangent, away) = (arc.tangent(t), q - arc.at(t));
+        let side = tangent.perp_dot(away);
+        let inside = if side.abs() > 1e-9 * tangent.length() * away.length() && d > 0.0 {
+            side > 0.0
+        } else {
+            self.winding(q, &ends) != 0
+        };
+        if inside { -d } else { d }
+    }
+
+    /// Winding number of the curve around q: crossings of the chords between on-curve points,
+    /// except for arcs whose control triangle holds q (an arc and its chord bound a region
+    /// inside that triangle, so elsewhere they cross the ray from q the same net number of
+    /// times).
+    fn winding(&self, q: DVec2, ends: &[DVec2; CONTROL]) -> i32 {
+        (0..CONTROL)
+            .map(|i| {
+                let arc = Arc { p0: ends[(i + CONTROL - 1) % CONTROL], p1: self.control[i], p2: ends[i] };
+                if arc.triangle_holds(q) { arc.winding(q) } else { chord_winding(arc.p0, arc.p2, q) }
+            })
+            .sum()
     }
 
     /// Checks the size and that no two arcs cross (each arc sampled as a polyline).
@@ -136,6 +173,32 @@ impl Section {
         }
         Ok(())
     }
+}
+
+/// The control polygon of a section in units of (radius, radius · ratio): the two types'
+/// polygons, each sheared by `asymmetry` if it leans, averaged.
+pub fn unit_blend(kinds: [ConduitType; 2], asymmetry: f32) -> [DVec2; CONTROL] {
+    let sheared = |kind: ConduitType| {
+        // Only vadose shapes lean: a free-surface stream undercuts the outside of its bends,
+        // while phreatic tubes and beds dissolve evenly all round.
+        let leans = matches!(kind, ConduitType::Canyon | ConduitType::Keyhole);
+        let skew = if leans { asymmetry as f64 } else { 0.0 };
+        // Asymmetry shears the upper half sideways (an undercut meander bend).
+        unit_polygon(kind).map(|[x, y]| DVec2::new(x + skew * y.max(0.0) * 0.5, y))
+    };
+    let [k0, k1] = kinds;
+    let first = sheared(k0);
+    if k0 == k1 {
+        return first;
+    }
+    let second = sheared(k1);
+    std::array::from_fn(|i| (first[i] + second[i]) * 0.5)
+}
+
+/// The factors (radius, radius · ratio) that scale a unit polygon into a section.
+pub fn scale_of(shape: Shape) -> DVec2 {
+    let r = shape.radius as f64;
+    DVec2::new(r, r * shape.ratio as f64)
 }
 
 /// Control polygons in half-widths, counter-clockwise from the bottom.
@@ -249,17 +312,39 @@ impl Arc {
 
     /// min over t ∈ [0, 1] of |B(t) − q|²: B(t) = p0 + 2at + bt², the stationary points solve
     /// (b·b)t³ + 3(a·b)t² + (2a·a + d·b)t + d·a = 0 with d = p0 − q.
-    fn distance_squared(&self, q: DVec2) -> f64 {
+    /// (min over t ∈ [0, 1] of |B(t) − q|², a t where it is reached).
+    fn nearest(&self, q: DVec2) -> (f64, f64) {
         let a = self.p1 - self.p0;
         let b = self.p0 - 2.0 * self.p1 + self.p2;
         let d = self.p0 - q;
-        let mut best = d.length_squared().min((self.p2 - q).length_squared());
+        let (start, end) = (d.length_squared(), (self.p2 - q).length_squared());
+        let mut best = if end < start { (end, 1.0) } else { (start, 0.0) };
         let coefficients = [b.dot(b), 3.0 * a.dot(b), 2.0 * a.dot(a) + d.dot(b), d.dot(a)];
         for t in cubic_roots(coefficients).iter() {
             let t = polish(coefficients, t).clamp(0.0, 1.0);
-            best = best.min((self.at(t) - q).length_squared());
+            let d2 = (self.at(t) - q).length_squared();
+            if d2 < best.0 {
+                best = (d2, t);
+            }
         }
         best
+    }
+
+    /// B′(t).
+    fn tangent(&self, t: f64) -> DVec2 {
+        let a = self.p1 - self.p0;
+        let b = self.p0 - 2.0 * self.p1 + self.p2;
+        (a + b * t) * 2.0
+    }
+
+    /// Whether q lies in the closed control triangle (p0, p1, p2).
+    fn triangle_holds(&self, q: DVec2) -> bool {
+        let (a, b, c) = (
+            (self.p1 - self.p0).perp_dot(q - self.p0),
+            (self.p2 - self.p1).perp_dot(q - self.p1),
+            (self.p0 - self.p2).perp_dot(q - self.p2),
+        );
+        (a >= 0.0 && b >= 0.0 && c >= 0.0) || (a <= 0.0 && b <= 0.0 && c <= 0.0)
     }
 
     /// Signed crossings of the ray from q towards +x (±1 per crossing, by direction).
@@ -283,6 +368,17 @@ impl Arc {
         }
         w
     }
+}
+
+/// Signed crossings of the ray from q towards +x by the segment p0 p2, with the arcs'
+/// convention (a crossing at the start counts, one at the end does not).
+fn chord_winding(p0: DVec2, p2: DVec2, q: DVec2) -> i32 {
+    let dy = p2.y - p0.y;
+    if dy == 0.0 {
+        return 0;
+    }
+    let t = (q.y - p0.y) / dy;
+    if (0.0..1.0).contains(&t) && p0.x + (p2.x - p0.x) * t > q.x { if dy > 0.0 { 1 } else { -1 } } else { 0 }
 }
 
 /// Up to three real roots, without allocating.

@@ -48,8 +48,9 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     let [karst, water] = field.memory();
     let leaves = field.leaves().max(1) as f64;
     println!(
-        "  memory      {karst} bytes for the karst ({:.1} per karst leaf), {water} for the water",
-        karst as f64 / leaves
+        "  memory      {karst} bytes for the karst ({:.1} per karst leaf), {water} for the water ({:.1} per karst leaf with it)",
+        karst as f64 / leaves,
+        (karst + water) as f64 / leaves
     );
     Ok(())
 }

@@ -14,12 +14,14 @@
 //! Frame: the section's y axis is the world's up projected perpendicular to ab (x for vertical
 //! shafts), its x axis points to the right looking from a to b.
 
-use glam::{DVec2, DVec3, Vec2};
+use std::collections::HashMap;
+
+use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
 use karst_skeleton::ConduitType;
 
-use crate::section::{CONTROL, Section, Shape};
+use crate::section::{CONTROL, Section, Shape, unit_blend};
 
 /// A section as the artifact stores it: the blend, half and half, of two conduit types' shapes
 /// (the types of the segments meeting at a node), with one shape.
@@ -31,9 +33,7 @@ pub struct SectionSpec {
 
 impl SectionSpec {
     pub fn section(&self) -> Section {
-        let [k0, k1] = self.kinds;
-        let s0 = Section::of(k0, self.shape);
-        if k0 == k1 { s0 } else { s0.lerp(&Section::of(k1, self.shape), 0.5) }
+        Section::blend(self.kinds, self.shape)
     }
 }
 
@@ -46,47 +46,178 @@ pub struct SweepSpec {
     pub end: SectionSpec,
 }
 
-/// A sweep ready to evaluate.
+impl SweepSpec {
+    /// Lowest point of the end sections (y of the floor, relative to the axis); the sections
+    /// in between are convex combinations of theirs.
+    pub fn floor(&self) -> f64 {
+        self.start.section().floor().min(self.end.section().floor())
+    }
+}
+
+/// A section's unit polygon (see [`unit_blend`]) with its control box.
 #[derive(Debug, Clone)]
-pub struct Sweep {
+pub struct Unit {
+    control: [DVec2; CONTROL],
+    lo: DVec2,
+    hi: DVec2,
+}
+
+/// An end of a sweep as evaluation keeps it: the node position, the section's radius and
+/// ratio, and its unit polygon (an index into [`SweepTable::units`]). 24 bytes; consecutive
+/// sweeps of a conduit, and a segment's karst sweep and water piece, share their nodes.
+#[derive(Debug, Clone, Copy)]
+pub struct SweepNode {
+    p: [f32; 3],
+    shape: [f32; 2],
+    unit: u32,
+}
+
+/// A sweep leaf: its first node (the second follows it), its Lipschitz factor 1/√(1 + k²)
+/// rounded down and the largest control-point distance to the axis rounded up (f32).
+#[derive(Debug, Clone, Copy)]
+pub struct SweepLeaf {
+    pub node: u32,
+    pub scale: f32,
+    pub extent: f32,
+}
+
+/// The nodes and unit polygons the sweep leaves refer to.
+#[derive(Debug, Clone, Default)]
+pub struct SweepTable {
+    pub units: Vec<Unit>,
+    pub nodes: Vec<SweepNode>,
+    unit_index: HashMap<([u8; 2], u32), u32>,
+    pair_index: HashMap<[u32; 12], u32>,
+}
+
+impl SweepTable {
+    fn unit(&mut self, spec: &SectionSpec) -> u32 {
+        let key = (spec.kinds.map(|k| k as u8), spec.shape.asymmetry.to_bits());
+        if let Some(&i) = self.unit_index.get(&key) {
+            return i;
+        }
+        let control = unit_blend(spec.kinds, spec.shape.asymmetry);
+        let lo = control.iter().fold(DVec2::INFINITY, |m, c| m.min(*c));
+        let hi = control.iter().fold(DVec2::NEG_INFINITY, |m, c| m.max(*c));
+        self.units.push(Unit { control, lo, hi });
+        let i = (self.units.len() - 1) as u32;
+        self.unit_index.insert(key, i);
+        i
+    }
+
+    fn node(&mut self, p: [f32; 3], spec: &SectionSpec) -> SweepNode {
+        SweepNode { p, shape: [spec.shape.radius, spec.shape.ratio], unit: self.unit(spec) }
+    }
+
+    /// The leaf of `spec`, sharing nodes with the previous sweep when it continues it, and with
+    /// an earlier sweep of the same segment.
+    pub fn push(&mut self, spec: &SweepSpec) -> SweepLeaf {
+        let (start, end) = (self.node(spec.a, &spec.start), self.node(spec.b, &spec.end));
+        let key = |n: &SweepNode| [n.p[0], n.p[1], n.p[2], n.shape[0], n.shape[1]].map(f32::to_bits);
+        let pair: [u32; 12] = {
+            let (k0, k1) = (key(&start), key(&end));
+            let mut pair = [0; 12];
+            pair[..5].copy_from_slice(&k0);
+            pair[5] = start.unit;
+            pair[6..11].copy_from_slice(&k1);
+            pair[11] = end.unit;
+            pair
+        };
+        let node = match self.pair_index.get(&pair) {
+            Some(&i) => i,
+            None => {
+                let continues =
+                    self.nodes.last().is_some_and(|last| key(last) == key(&start) && last.unit == start.unit);
+                if !continues {
+                    self.nodes.push(start);
+                }
+                self.nodes.push(end);
+                let i = (self.nodes.len() - 2) as u32;
+                self.pair_index.insert(pair, i);
+                i
+            }
+        };
+        let mut leaf = SweepLeaf { node, scale: 1.0, extent: 0.0 };
+        let sweep = self.sweep(&leaf);
+        let k = (0..CONTROL).map(|i| sweep.control(0, i).distance(sweep.control(1, i))).fold(0.0, f64::max)
+            / sweep.length;
+        let extent = (0..CONTROL)
+            .map(|i| sweep.control(0, i).length().max(sweep.control(1, i).length()))
+            .fold(0.0, f64::max);
+        leaf.scale = round_down(1.0 / (1.0 + k * k).sqrt());
+        leaf.extent = -round_down(-extent);
+        leaf
+    }
+
+    /// The sweep of `leaf`, ready to evaluate.
+    pub fn sweep(&self, leaf: &SweepLeaf) -> Sweep<'_> {
+        let (n0, n1) = (&self.nodes[leaf.node as usize], &self.nodes[leaf.node as usize + 1]);
+        let (a, b) = (to_dvec(n0.p), to_dvec(n1.p));
+        let length = a.distance(b);
+        let axis = (b - a) / length;
+        let (right, up) = frame(axis);
+        let scale_of = |n: &SweepNode| DVec2::new(n.shape[0] as f64, n.shape[0] as f64 * n.shape[1] as f64);
+        Sweep {
+            a,
+            axis,
+            length,
+            right,
+            up,
+            units: [&self.units[n0.unit as usize], &self.units[n1.unit as usize]],
+            scales: [scale_of(n0), scale_of(n1)],
+            scale: leaf.scale as f64,
+            extent: leaf.extent as f64,
+        }
+    }
+
+    /// The end points of `leaf`'s axis.
+    pub fn ends(&self, leaf: &SweepLeaf) -> (DVec3, DVec3) {
+        (to_dvec(self.nodes[leaf.node as usize].p), to_dvec(self.nodes[leaf.node as usize + 1].p))
+    }
+
+    /// Axis-aligned bounds of the swept volume of `leaf`, without building the sweep.
+    pub fn bounds(&self, leaf: &SweepLeaf) -> (DVec3, DVec3) {
+        let (a, b) = self.ends(leaf);
+        let r = DVec3::splat(leaf.extent as f64);
+        (a.min(b) - r, a.max(b) + r)
+    }
+
+    /// Bytes held by the nodes and unit polygons.
+    pub fn memory(&self) -> usize {
+        self.nodes.len() * std::mem::size_of::<SweepNode>() + self.units.len() * std::mem::size_of::<Unit>()
+    }
+}
+
+/// The largest f32 not above `v`.
+fn round_down(v: f64) -> f32 {
+    let f = v as f32;
+    if f as f64 > v { f.next_down() } else { f }
+}
+
+/// A sweep ready to evaluate, built on the fly from its two nodes.
+#[derive(Debug, Clone)]
+pub struct Sweep<'a> {
     a: DVec3,
     axis: DVec3,
     length: f64,
     right: DVec3,
     up: DVec3,
-    /// The end sections' control points, in f32 (the sections are exactly these points).
-    start: [Vec2; CONTROL],
-    end: [Vec2; CONTROL],
+    units: [&'a Unit; 2],
+    scales: [DVec2; 2],
     /// 1/√(1 + k²).
     scale: f64,
-    /// The largest control-point distance to the axis.
+    /// At least the largest control-point distance to the axis.
     extent: f64,
 }
 
-impl Sweep {
-    pub fn new(spec: &SweepSpec) -> Self {
-        Self::between(to_dvec(spec.a), to_dvec(spec.b), spec.start.section(), spec.end.section())
-    }
-
-    /// The sweep from `start` at a to `end` at b (a ≠ b).
-    pub fn between(a: DVec3, b: DVec3, start: Section, end: Section) -> Self {
-        let (start, end) = (start.control.map(|c| c.as_vec2()), end.control.map(|c| c.as_vec2()));
-        let (start, end) = (
-            Section { control: start.map(|c| c.as_dvec2()) },
-            Section { control: end.map(|c| c.as_dvec2()) },
-        );
-        let length = a.distance(b);
-        let axis = (b - a) / length;
-        let (right, up) = frame(axis);
-        let k =
-            start.control.iter().zip(&end.control).map(|(s, e)| s.distance(*e)).fold(0.0, f64::max) / length;
-        let extent = start.extent().max(end.extent());
-        let (start, end) = (start.control.map(|c| c.as_vec2()), end.control.map(|c| c.as_vec2()));
-        Sweep { a, axis, length, right, up, start, end, scale: 1.0 / (1.0 + k * k).sqrt(), extent }
+impl Sweep<'_> {
+    /// Control point i of end e (0 at a, 1 at b).
+    fn control(&self, e: usize, i: usize) -> DVec2 {
+        self.units[e].control[i] * self.scales[e]
     }
 
     /// Position of p in the sweep's frame: (abscissa along ab, section-plane coordinates).
-    fn local(&self, p: DVec3) -> (f64, DVec2) {
+    pub fn local(&self, p: DVec3) -> (f64, DVec2) {
         let d = p - self.a;
         (d.dot(self.axis), DVec2::new(d.dot(self.right), d.dot(self.up)))
     }
@@ -94,25 +225,42 @@ impl Sweep {
     /// The 1-Lipschitz signed distance bound: negative inside.
     pub fn distance(&self, p: DVec3) -> f64 {
         let (l, q) = self.local(p);
+        self.distance_local(l, q)
+    }
+
+    /// [`Sweep::distance`] at the local coordinates of [`Sweep::local`].
+    pub fn distance_local(&self, l: f64, q: DVec2) -> f64 {
         let t = (l / self.length).clamp(0.0, 1.0);
         let f = self.section_at(t).distance(q);
+        self.combine(f, l)
+    }
+
+    /// The exact extrusion of a section value f at abscissa l, times the Lipschitz factor; it
+    /// grows with f.
+    fn combine(&self, f: f64, l: f64) -> f64 {
         let s = (-l).max(l - self.length);
         let g = f.max(s).min(0.0) + DVec2::new(f.max(0.0), s.max(0.0)).length();
         g * self.scale
     }
 
-    /// A lower bound of [`Sweep::distance`], from the capsule of radius `extent` around ab.
+    /// A lower bound of [`Sweep::distance`]: the section value is at least the signed
+    /// distance to the union of the end sections' control boxes and at least |q| − extent.
     pub fn lower_bound(&self, p: DVec3) -> f64 {
         let (l, q) = self.local(p);
-        let s = (-l).max(l - self.length).max(0.0);
-        (DVec2::new(s, q.length()).length() - self.extent) * self.scale
+        self.lower_bound_local(l, q)
     }
 
-    /// Axis-aligned bounds of the swept volume.
-    pub fn bounds(&self) -> (DVec3, DVec3) {
-        let b = self.a + self.axis * self.length;
-        let r = DVec3::splat(self.extent);
-        (self.a.min(b) - r, self.a.max(b) + r)
+    /// [`Sweep::lower_bound`] at local coordinates.
+    pub fn lower_bound_local(&self, l: f64, q: DVec2) -> f64 {
+        let lo = (self.units[0].lo * self.scales[0]).min(self.units[1].lo * self.scales[1]);
+        let hi = (self.units[0].hi * self.scales[0]).max(self.units[1].hi * self.scales[1]);
+        let d = (lo - q).max(q - hi);
+        let boxed = d.max(DVec2::ZERO).length() + d.max_element().min(0.0);
+        self.combine(boxed.max(q.length() - self.extent), l)
+    }
+
+    pub fn length(&self) -> f64 {
+        self.length
     }
 
     /// Height of p above the axis, along the section's up direction.
@@ -120,15 +268,9 @@ impl Sweep {
         (p - self.a).dot(self.up)
     }
 
-    /// Lowest point of the sections (y of the floor, relative to the axis).
-    pub fn floor(&self) -> f64 {
-        self.section_at(0.0).floor().min(self.section_at(1.0).floor())
-    }
-
     /// The section at fraction t of the way from a to b.
     fn section_at(&self, t: f64) -> Section {
-        let control = std::array::from_fn(|i| self.start[i].as_dvec2().lerp(self.end[i].as_dvec2(), t));
-        Section { control }
+        Section { control: std::array::from_fn(|i| self.control(0, i).lerp(self.control(1, i), t)) }
     }
 }
 
@@ -156,12 +298,14 @@ mod tests {
     #[test]
     fn the_sweep_of_a_circle_is_a_capsule_with_flat_caps() {
         let (a, b) = ([1.0, 2.0, 3.0], [9.0, 4.0, 6.0]);
-        let sweep = Sweep::new(&SweepSpec {
+        let mut table = SweepTable::default();
+        let leaf = table.push(&SweepSpec {
             a,
             b,
             start: spec(ConduitType::Tube, 2.0),
             end: spec(ConduitType::Tube, 2.0),
         });
+        let sweep = table.sweep(&leaf);
         let capsule = Capsule { a: a.map(f64::from), b: b.map(f64::from), radius: 2.0 };
         // Within the slab the sweep is the capsule (a cylinder there), unless a flat cap is
         // nearer than the wall; beyond the caps the capsule is rounded and the sweep flat, so
@@ -180,21 +324,23 @@ mod tests {
 
     #[test]
     fn sweeps_are_one_lipschitz() {
-        let sweeps = [
-            Sweep::new(&SweepSpec {
+        let mut table = SweepTable::default();
+        let leaves = [
+            table.push(&SweepSpec {
                 a: [0.0; 3],
                 b: [6.0, 1.0, 0.5],
                 start: spec(ConduitType::Keyhole, 2.0),
                 end: spec(ConduitType::Canyon, 1.0),
             }),
-            Sweep::new(&SweepSpec {
+            table.push(&SweepSpec {
                 a: [0.0; 3],
                 b: [0.0, 0.0, 5.0],
                 start: spec(ConduitType::Bed, 1.0),
                 end: spec(ConduitType::Passage, 2.5),
             }),
         ];
-        for s in &sweeps {
+        for leaf in &leaves {
+            let s = table.sweep(leaf);
             assert_lipschitz(
                 |p| s.distance(p),
                 Pairs::new(9, 6.0, 1.5).around(DVec3::new(2.0, 0.0, 1.0)),

@@ -1,8 +1,9 @@
-//! Whole construction trees: the tiny scene's network (its golden skeleton and flows), the
-//! default scene's (run through the upstream stages) and a synthetic network of a few thousand
-//! primitives. On each, the field, the karst volume and the water are 1-Lipschitz on random
-//! pairs; on the synthetic one the BVH's pruning changes nothing and the sign agrees with a
-//! brute-force inside test over every leaf.
+//! Whole construction trees: the tiny scene's network (its golden skeleton and flows), every
+//! other preset of fixtures/scenes (run through the upstream stages) and a synthetic network of
+//! a few thousand primitives. On each, the field, the karst volume and the water are
+//! 1-Lipschitz on random pairs, most of them near the leaves where the field is intricate; the
+//! BVH's pruning changes nothing and the sign agrees with a brute-force inside test over every
+//! leaf.
 
 use std::path::{Path, PathBuf};
 
@@ -89,12 +90,13 @@ fn tiny_tree_is_one_lipschitz() {
     let field = field_of(&root().join("fixtures/scenes/tiny.toml"), &root().join("fixtures/golden/tiny"));
     assert!(!field.model().water.is_empty());
     check_tree(&field, 20_000);
+    check_sign(&field, 1000, "tiny");
 }
 
-#[test]
-fn default_tree_is_one_lipschitz() {
-    let scene = root().join("fixtures/scenes/default.toml");
-    let out = std::env::temp_dir().join(format!("karst-sdf-default-{}", std::process::id()));
+/// The tree of a preset scene, its upstream stages run into a scratch folder.
+fn preset_field(name: &str) -> CarvedTerrain {
+    let scene = root().join(format!("fixtures/scenes/{name}.toml"));
+    let out = std::env::temp_dir().join(format!("karst-sdf-{name}-{}", std::process::id()));
     let args = RunArgs { scene: scene.clone(), out: out.clone() };
     karst_sampling::stage::run(&args).unwrap();
     karst_costgraph::stage::run(&args).unwrap();
@@ -102,7 +104,59 @@ fn default_tree_is_one_lipschitz() {
     karst_hydro::stage::run(&args).unwrap();
     let field = field_of(&scene, &out);
     let _ = std::fs::remove_dir_all(&out);
-    check_tree(&field, 10_000);
+    field
+}
+
+/// On a preset's tree: 1-Lipschitz on pairs near its leaves (and a quarter anywhere); the BVH
+/// changes nothing and the sign agrees with a brute-force inside test over every leaf.
+fn check_preset(name: &str, pairs: usize, brute: usize) {
+    let field = preset_field(name);
+    assert!(field.leaves() > 0, "{name}: no leaves");
+    check_tree(&field, pairs);
+    check_sign(&field, brute, name);
+}
+
+macro_rules! preset_tests {
+    ($($test:ident: $name:literal, $pairs:literal, $brute:literal;)*) => {$(
+        #[test]
+        fn $test() {
+            check_preset($name, $pairs, $brute);
+        }
+    )*};
+}
+
+preset_tests! {
+    default_tree_is_one_lipschitz: "default", 10_000, 1000;
+    branchwork_tree_is_one_lipschitz: "branchwork", 5000, 200;
+    looping_tree_is_one_lipschitz: "looping", 5000, 100;
+    rectilinear_tree_is_one_lipschitz: "rectilinear", 5000, 200;
+    superimposed_tree_is_one_lipschitz: "superimposed", 5000, 200;
+    karstnsim_tree_is_one_lipschitz: "karstnsim", 5000, 200;
+    karstnsim_2phase_tree_is_one_lipschitz: "karstnsim-2phase", 5000, 200;
+    layered_tree_is_one_lipschitz: "layered", 5000, 200;
+}
+
+/// Every fixtures/scenes/*.toml preset has its test above.
+#[test]
+fn every_preset_is_tested() {
+    let tested = [
+        "tiny",
+        "default",
+        "branchwork",
+        "looping",
+        "rectilinear",
+        "superimposed",
+        "karstnsim",
+        "karstnsim-2phase",
+        "layered",
+    ];
+    for entry in std::fs::read_dir(root().join("fixtures/scenes")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+            assert!(tested.contains(&stem.as_str()), "preset {stem} has no tree test");
+        }
+    }
 }
 
 #[test]
@@ -116,16 +170,22 @@ fn synthetic_tree_is_one_lipschitz() {
 /// The BVH changes nothing, and the sign of f agrees with a brute-force inside test.
 #[test]
 fn sign_agrees_with_brute_force() {
-    let field = synthetic_field(40);
+    check_sign(&synthetic_field(40), 5000, "synthetic");
+}
+
+/// At `n` points near the leaves: the union through the BVH equals the union over every leaf,
+/// and f is negative exactly in rock (below the terrain, inside the domain) outside the karst,
+/// away from the entrance blend.
+fn check_sign(field: &CarvedTerrain, n: usize, name: &str) {
     let model = field.model();
-    for p in points(&field, 5000, 3) {
+    for p in points(field, n, 3) {
         let cave = field.cave_without_bvh(p);
-        assert_eq!(cave, field.cave(p), "the BVH changed the union at {p}");
+        assert_eq!(cave, field.cave(p), "{name}: the BVH changed the union at {p}");
         let rock = model.terrain.distance(p).max(model.domain.signed_distance(p));
         let f = field.eval(p);
         // The entrance blend only acts where −rock and cave are within `blend` of each other.
         if (-rock - cave).abs() >= model.blend {
-            assert_eq!(f < 0.0, rock < 0.0 && cave > 0.0, "at {p}: f = {f}, rock {rock}, cave {cave}");
+            assert_eq!(f < 0.0, rock < 0.0 && cave > 0.0, "{name} at {p}: f = {f}, rock {rock}, cave {cave}");
         }
     }
 }

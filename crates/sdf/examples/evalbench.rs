@@ -1,0 +1,91 @@
+//! Times `CarvedTerrain::eval` on an sdf.bin: points uniform in the domain and within 6 m of a
+//! skeleton node. `cargo run --release -p karst-sdf --example evalbench -- DIR [RUNS]`.
+use std::time::Instant;
+
+use glam::DVec3;
+use karst_artifact::read_artifact;
+use karst_sdf::{CarvedTerrain, SdfModel};
+use karst_skeleton::Skeleton;
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if args[1] == "micro" {
+        micro();
+        return;
+    }
+    let dir = std::path::Path::new(&args[1]);
+    let runs: usize = args.get(2).and_then(|r| r.parse().ok()).unwrap_or(5);
+    let (model, skeleton): (SdfModel, Skeleton) = if args[1] == "synthetic" {
+        let (skeleton, hydro) = karst_sdf::synthetic::network(5, 100, 12);
+        (karst_sdf::build::build(&karst_sdf::synthetic::scene(), &skeleton, &hydro).unwrap(), skeleton)
+    } else {
+        (read_artifact(&dir.join("sdf.bin")).unwrap().1, read_artifact(&dir.join("skeleton.json")).unwrap().1)
+    };
+    let field = CarvedTerrain::new(model);
+    let mut state = 12345u64;
+    let mut unit = move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let d = &field.model().domain;
+    let (lo, hi) = (DVec3::from_array(d.min), DVec3::from_array(d.max));
+    let uniform: Vec<DVec3> =
+        (0..200_000).map(|_| lo + (hi - lo) * DVec3::new(unit(), unit(), unit())).collect();
+    let anchors: Vec<DVec3> = skeleton.nodes.iter().map(|n| DVec3::from_array(n.position)).collect();
+    let near: Vec<DVec3> = (0..200_000)
+        .map(|_| {
+            let a = anchors[(unit() * anchors.len() as f64) as usize % anchors.len()];
+            a + (DVec3::new(unit(), unit(), unit()) - 0.5) * 12.0
+        })
+        .collect();
+    let mut check = 0.0;
+    for (name, pts) in [("uniform", &uniform), ("near", &near)] {
+        let mut t: Vec<f64> = (0..runs)
+            .map(|_| {
+                let (s, c) = (Instant::now(), cpu());
+                let sum: f64 = pts.iter().map(|&p| field.eval(p)).sum();
+                check += sum;
+                let _ = s;
+                (cpu() - c) * 1e9 / pts.len() as f64
+            })
+            .collect();
+        t.sort_by(f64::total_cmp);
+        println!(
+            "{name:<8} {:>8.1} ns (runs {:?})",
+            t[t.len() / 2],
+            t.iter().map(|x| (x * 10.0).round() / 10.0).collect::<Vec<_>>()
+        );
+    }
+    let [k, w] = field.memory();
+    let n = field.leaves();
+    println!(
+        "leaves {n}, memory karst {k} ({:.1} B/leaf), water {w}, total {:.1} B/leaf",
+        k as f64 / n as f64,
+        (k + w) as f64 / n as f64
+    );
+    println!("checksum {check:.6e}");
+}
+
+/// User + system CPU seconds of this process (clock ticks of 1/100 s).
+fn cpu() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap();
+    let fields: Vec<&str> = stat.rsplit_once(')').unwrap().1.split_whitespace().collect();
+    (fields[11].parse::<f64>().unwrap() + fields[12].parse::<f64>().unwrap()) / 100.0
+}
+
+#[allow(dead_code)]
+pub fn micro() {
+    use karst_sdf::section::{Section, Shape};
+    let s = Section::blend(
+        [karst_skeleton::ConduitType::Keyhole, karst_skeleton::ConduitType::Canyon],
+        Shape { radius: 2.0, ratio: 1.0, asymmetry: 0.2 },
+    );
+    let mut x = 0.0;
+    let c = cpu();
+    let n = 2_000_000;
+    for i in 0..n {
+        let q = glam::DVec2::new((i % 1000) as f64 * 0.006 - 3.0, (i / 1000 % 1000) as f64 * 0.006 - 3.0);
+        x += s.distance(q);
+    }
+    println!("Section::distance {:.1} ns ({x})", (cpu() - c) * 1e9 / n as f64);
+}
