@@ -60,6 +60,8 @@ pub struct CostModel {
     families: Vec<Family>,
     /// The water table of each cost set (karstnsim2024); empty for paris2021.
     water_tables: Vec<Surface>,
+    /// The potential is the same everywhere (no layer, no grid, no potential tree).
+    uniform_potential: bool,
 }
 
 /// Per-node values the edges share, packed node by node so that reading a neighbour costs one
@@ -124,6 +126,9 @@ impl CostModel {
             inception: scene.geology.inception_surfaces().cloned().collect(),
             families,
             water_tables,
+            uniform_potential: scene.geology.layers.is_empty()
+                && scene.geology.grid.is_none()
+                && scene.geology.potential.is_empty(),
         }
     }
 
@@ -214,7 +219,9 @@ impl CostModel {
         let surfaces = 4..4 + fields.surfaces;
         out.inception =
             mean_of_nearest(&from[surfaces.clone()], &to[surfaces], (reach, falloff), &mut out.cuts);
-        let middle = self.resistance_at((a + b) * 0.5);
+        // A uniform potential (no layer, grid or potential tree) is the same at the middle as
+        // at the ends: skip its evaluation, keep the same arithmetic (bit-identical).
+        let middle = if self.uniform_potential { from[3] } else { self.resistance_at((a + b) * 0.5) };
         out.resistance = (from[3] + 4.0 * middle + to[3]) / 6.0;
         out.fracture = self.fracture(direction);
         out.water_table.clear();
@@ -236,7 +243,9 @@ impl CostModel {
                 if fields.sets == 0 {
                     out.cost.push(length * shared);
                 }
-                let vadose = 1.0 - direction.z.clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
+                // Depends on the direction only; acos is dear, so only when an edge has a
+                // vadose part.
+                let vadose = || 1.0 - direction.z.clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
                 let first = 4 + fields.surfaces;
                 for s in first..first + fields.sets {
                     let ends = (from[s], to[s]);
@@ -278,20 +287,20 @@ impl CostModel {
 
     /// Mean C_WT along an edge whose ends lie at signed distances `(a, b)` from the water
     /// table: `vadose` above it, s(d_WT) below, split where the edge crosses it.
-    fn water_table_term(&self, (a, b): (f64, f64), vadose: f64, cuts: &mut Vec<f64>) -> f64 {
+    fn water_table_term(&self, (a, b): (f64, f64), vadose: impl Fn() -> f64, cuts: &mut Vec<f64>) -> f64 {
         let phreatic = |from: f64, to: f64, cuts: &mut Vec<f64>| {
             mean_of_nearest(&[from], &[to], (self.params.water_table_distance, wyvill_of_ratio), cuts)
         };
         match (a >= 0.0, b >= 0.0) {
-            (true, true) => vadose,
+            (true, true) => vadose(),
             (false, false) => phreatic(a, b, cuts),
             (true, false) => {
                 let t = a / (a - b);
-                t * vadose + (1.0 - t) * phreatic(0.0, b, cuts)
+                t * vadose() + (1.0 - t) * phreatic(0.0, b, cuts)
             }
             (false, true) => {
                 let t = a / (a - b);
-                t * phreatic(a, 0.0, cuts) + (1.0 - t) * vadose
+                t * phreatic(a, 0.0, cuts) + (1.0 - t) * vadose()
             }
         }
     }
@@ -321,6 +330,12 @@ fn mean_of_nearest(
     cuts: &mut Vec<f64>,
 ) -> f64 {
     if a.is_empty() {
+        return 1.0;
+    }
+    // Both ends at least `reach` from every surface, on the same side: the distance to each
+    // stays ≥ reach along the edge (it is linear), the falloff is 1 everywhere, and so is its
+    // mean (the general sum below gives exactly 1.0 too: one piece, (1 + 4 + 1)/6).
+    if a.iter().zip(b).all(|(&sa, &sb)| (sa >= reach && sb >= reach) || (sa <= -reach && sb <= -reach)) {
         return 1.0;
     }
     cuts.clear();

@@ -16,7 +16,7 @@
 
 /// Wanted points per cell: small cells fit the searched ball closely, larger ones cost fewer
 /// cell visits.
-const POINTS_PER_CELL: f64 = 3.0;
+const POINTS_PER_CELL: f64 = 6.0;
 
 pub struct Grid<'a> {
     points: &'a [[f64; 3]],
@@ -124,8 +124,8 @@ impl<'a> Grid<'a> {
             out.sort_unstable();
         }
         if out.len() == k {
-            // Next guess: a little beyond this k-th distance (never below half a cell).
-            *radius = (1.15 * squared_distance(out[k - 1]).sqrt()).max(0.5 * self.cell);
+            // Next guess: 10 % beyond this k-th distance (never below half a cell).
+            *radius = (1.1 * squared_distance(out[k - 1]).sqrt()).max(0.5 * self.cell);
         }
     }
 
