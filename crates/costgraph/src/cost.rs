@@ -9,7 +9,9 @@
 //!   (e = ẑ·âb: falling is cheap, climbing is dear) and s(d_WT) below it, C_P = 1 − P. C_WT
 //!   depends on the water table, so there is one cost set per water table named by a spring.
 //! - **paris2021** (Paris et al. 2021 §4.2): per metre ε + w_dist + w_L·g(d_L/r) + w_F·c_F +
-//!   w_π·π, g the smoothstep, π = 1 − P the relative resistance to flow. One cost set.
+//!   w_π·π, g the smoothstep, π = 1 − P the relative resistance to flow. One cost set. The
+//!   user-prescribed paths (`skeleton.forced_links`) cost `forced_link_cost` per metre along
+//!   the straight corridor between their key points.
 //!
 //! Terms are integrated along the edge, never taken at one endpoint. The distance terms use
 //! the signed distances of both ends to every surface, computed once per node ([`NodeFields`]):
@@ -62,6 +64,8 @@ pub struct CostModel {
     water_tables: Vec<Surface>,
     /// The potential is the same everywhere (no layer, no grid, no potential tree).
     uniform_potential: bool,
+    /// paris2021: the straight corridors (ends) of the forced links, `skeleton.forced_links`.
+    corridors: Vec<(DVec3, DVec3)>,
 }
 
 /// Per-node values the edges share, packed node by node so that reading a neighbour costs one
@@ -72,6 +76,10 @@ pub struct NodeFields {
     stride: usize,
     surfaces: usize,
     sets: usize,
+    /// Per node, a bit per forced-link corridor containing it (`words` u64 per node; none
+    /// without forced links).
+    corridors: Vec<u64>,
+    words: usize,
 }
 
 impl NodeFields {
@@ -126,6 +134,10 @@ impl CostModel {
             inception: scene.geology.inception_surfaces().cloned().collect(),
             families,
             water_tables,
+            corridors: match scene.costgraph.model {
+                CostModelKind::Paris2021 => forced_corridors(scene),
+                CostModelKind::Karstnsim2024 => Vec::new(),
+            },
             uniform_potential: scene.geology.layers.is_empty()
                 && scene.geology.grid.is_none()
                 && scene.geology.potential.is_empty(),
@@ -201,7 +213,29 @@ impl CostModel {
                 p.iter().copied().chain([self.resistance_at(at)]).chain(inception).chain(water_tables)
             })
             .collect();
-        NodeFields { data, stride: 4 + surfaces + sets, surfaces, sets }
+        let words = self.corridors.len().div_ceil(64);
+        let radius = self.params.forced_link_radius;
+        let corridors = points
+            .par_iter()
+            .flat_map_iter(|p| {
+                let at = DVec3::from_array(*p);
+                let mut mask = vec![0u64; words];
+                for (c, &(a, b)) in self.corridors.iter().enumerate() {
+                    if distance_to_segment(at, a, b) <= radius {
+                        mask[c / 64] |= 1 << (c % 64);
+                    }
+                }
+                mask
+            })
+            .collect();
+        NodeFields { data, stride: 4 + surfaces + sets, surfaces, sets, corridors, words }
+    }
+
+    /// True when both ends of edge i → j lie in the corridor of the same forced link.
+    fn along_forced_link(&self, fields: &NodeFields, i: usize, j: usize) -> bool {
+        let w = fields.words;
+        let (a, b) = (&fields.corridors[i * w..(i + 1) * w], &fields.corridors[j * w..(j + 1) * w]);
+        a.iter().zip(b).any(|(x, y)| x & y != 0)
     }
 
     /// Fills `out` with the terms and costs of the edge from node `i` to node `j`.
@@ -228,11 +262,14 @@ impl CostModel {
         out.cost.clear();
         match self.kind {
             CostModelKind::Paris2021 => {
-                let per_metre = p.cost_floor
+                let mut per_metre = p.cost_floor
                     + p.w_distance
                     + p.w_horizon * out.inception
                     + p.w_fracture * out.fracture
                     + p.w_permeability * out.resistance;
+                if fields.words > 0 && self.along_forced_link(fields, i, j) {
+                    per_metre = per_metre.min(p.forced_link_cost);
+                }
                 out.cost.push(length * per_metre);
             }
             CostModelKind::Karstnsim2024 => {
@@ -304,6 +341,21 @@ impl CostModel {
             }
         }
     }
+}
+
+/// The ends of every forced link (`skeleton.forced_links`), at the scene's key point positions.
+fn forced_corridors(scene: &Scene) -> Vec<(DVec3, DVec3)> {
+    let at =
+        |name: &str| scene.keypoints.iter().find(|k| k.name == name).map(|k| DVec3::from_array(k.position));
+    scene.skeleton.forced_links.iter().filter_map(|[a, b]| Some((at(a)?, at(b)?))).collect()
+}
+
+/// Distance from `p` to the segment a–b.
+fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let ab = b - a;
+    let t =
+        if ab.length_squared() > 0.0 { ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+    p.distance(a + ab * t)
 }
 
 /// Water tables named by springs, in [geology.water_tables] order.

@@ -192,3 +192,86 @@ symmetrise = true
     assert!(one == two, "the graphs differ between 1 and 2 threads");
     assert!(one.cost_sets[0].costs.iter().all(|&c| c > 0.0));
 }
+
+/// Largest distance from the path's nodes to the segment between its ends.
+fn largest_offset(points: &[[f64; 3]], nodes: &[usize]) -> f64 {
+    let (a, b) = (at(points, nodes[0]), at(points, *nodes.last().unwrap()));
+    nodes
+        .iter()
+        .map(|&n| {
+            let p = at(points, n);
+            let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+            p.distance(a + (b - a) * t)
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn a_forced_link_is_a_cheap_straight_corridor_under_paris2021() {
+    let size = [200.0, 60.0, 100.0];
+    let (a, b) = ([10.0, 30.0, 80.0], [190.0, 30.0, 80.0]);
+    // A horizon 60 m below the two key points draws the least-cost path down to it and back.
+    let text = |forced: &str| {
+        format!(
+            r#"
+name = "t"
+[domain]
+min = [0, 0, 0]
+max = [200, 60, 100]
+[terrain]
+kind = "plane"
+elevation = 100
+[[geology.horizons]]
+name = "bed"
+elevation = 20
+[[geology.water_tables]]
+name = "wt"
+elevation = -1000
+[[keypoints]]
+name = "a"
+kind = "sink"
+position = {a:?}
+[[keypoints]]
+name = "b"
+kind = "spring"
+position = {b:?}
+water_table = "wt"
+[costgraph]
+model = "paris2021"
+k = 30
+w_horizon = 4.0
+w_fracture = 0.0
+w_permeability = 0.0
+horizon_distance = 10.0
+forced_link_radius = 6.0
+[skeleton]
+mode = "gamma"
+{forced}
+"#
+        )
+    };
+    let points = cloud(20_000, size, [a, b], 6);
+    let route = |forced: &str| {
+        let scene = Scene::parse(&text(forced), Path::new("t.toml")).unwrap();
+        let graph = build_points(&scene, &points).unwrap();
+        path(&graph, 0)
+    };
+    let free = route("");
+    let lowest = free.iter().map(|&n| points[n][2]).fold(f64::INFINITY, f64::min);
+    assert!(
+        lowest < 35.0,
+        "without the forced link the path should dive to the horizon (lowest {lowest:.1} m)"
+    );
+    let forced = route("forced_links = [[\"a\", \"b\"]]");
+    let offset = largest_offset(&points, &forced);
+    let ratio = length(&points, &forced) / at(&points, 0).distance(at(&points, 1));
+    eprintln!("forced link: largest offset {offset:.2} m, path / straight line {ratio:.3}");
+    assert!(offset <= 6.0, "the forced path leaves its corridor by {offset:.2} m");
+    assert!(ratio < 1.1, "the forced path is {ratio:.3} × the straight line");
+    // Under karstnsim2024 forced links do not change the costs (KarstNSim has none).
+    let k = |forced: &str| {
+        let t = text(forced).replace("model = \"paris2021\"", "model = \"karstnsim2024\"");
+        build_points(&Scene::parse(&t, Path::new("t.toml")).unwrap(), &points).unwrap()
+    };
+    assert!(k("") == k("forced_links = [[\"a\", \"b\"]]"));
+}
