@@ -375,21 +375,27 @@ fn wyvill_of_ratio(x: f64) -> f64 {
 /// distance to a plane is linear along the edge; between the points where it crosses 0 or
 /// ±reach the falloff of one surface is a cubic in t, which Simpson's rule integrates exactly.
 /// Without surfaces the term is saturated (1).
-fn mean_of_nearest(
+#[inline]
+fn mean_of_nearest(a: &[f64], b: &[f64], along: (f64, fn(f64) -> f64), cuts: &mut Vec<f64>) -> f64 {
+    // No surface, or both ends at least `reach` from every surface on the same side: the
+    // distance to each stays ≥ reach along the edge (it is linear), the falloff is 1 everywhere,
+    // and so is its mean (the general sum gives exactly 1.0 too: one piece, (1 + 4 + 1)/6).
+    // Most edges are there; this test is inlined, the integration is not.
+    let reach = along.0;
+    if a.iter().zip(b).all(|(&sa, &sb)| (sa >= reach && sb >= reach) || (sa <= -reach && sb <= -reach)) {
+        return 1.0;
+    }
+    integrate_nearest(a, b, along, cuts)
+}
+
+/// [`mean_of_nearest`] on an edge that comes within reach of some surface.
+#[inline(never)]
+fn integrate_nearest(
     a: &[f64],
     b: &[f64],
     (reach, falloff): (f64, fn(f64) -> f64),
     cuts: &mut Vec<f64>,
 ) -> f64 {
-    if a.is_empty() {
-        return 1.0;
-    }
-    // Both ends at least `reach` from every surface, on the same side: the distance to each
-    // stays ≥ reach along the edge (it is linear), the falloff is 1 everywhere, and so is its
-    // mean (the general sum below gives exactly 1.0 too: one piece, (1 + 4 + 1)/6).
-    if a.iter().zip(b).all(|(&sa, &sb)| (sa >= reach && sb >= reach) || (sa <= -reach && sb <= -reach)) {
-        return 1.0;
-    }
     cuts.clear();
     cuts.extend([0.0, 1.0]);
     for (&sa, &sb) in a.iter().zip(b) {

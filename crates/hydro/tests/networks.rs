@@ -425,3 +425,33 @@ fn the_csv_export_loads_back_as_nodes_and_links() {
     assert!(expected > 0.0 && (outlets - expected).abs() < 1e-9, "{outlets} {expected}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn the_picture_colours_every_segment_by_its_water_type() {
+    use karst_hydro::render::{colour, picture};
+    let nodes = vec![
+        node([0.0, 0.0, 100.0], Zone::Vadose),
+        node([50.0, 0.0, 95.0], Zone::Vadose),
+        node([50.0, 0.0, 40.0], Zone::Vadose),
+        node([150.0, 0.0, 20.0], Zone::Phreatic),
+        node([250.0, 0.0, 10.0], Zone::Phreatic),
+        node([50.0, 80.0, 60.0], Zone::Vadose),
+    ];
+    let skeleton = Skeleton {
+        nodes,
+        conduits: vec![conduit(vec![0, 1, 2, 3, 4]), conduit(vec![2, 5])],
+        routes: vec![route("a", "s", 1.0, 0, 4)],
+    };
+    let h = compute(&skeleton, &HydroParams::default(), &Inputs::default()).unwrap();
+    let canvas = picture(&skeleton, &h);
+    // The network views only (the legend on the right shows every colour).
+    let drawn: std::collections::HashSet<[u8; 3]> = (0..2 * 600)
+        .flat_map(|x| (0..600).map(move |y| (x, y)))
+        .filter_map(|(x, y)| canvas.get(x, y))
+        .collect();
+    let used: Vec<WaterType> = h.conduits.iter().flat_map(|c| c.segments.iter().map(|s| s.water)).collect();
+    assert!(used.contains(&WaterType::Sump) && used.contains(&WaterType::Dry) && used.iter().any(|w| w.is_free_fall()));
+    for w in WaterType::ALL {
+        assert_eq!(drawn.contains(&colour(*w)), used.contains(w), "{w:?}: drawn iff used");
+    }
+}
