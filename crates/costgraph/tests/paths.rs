@@ -162,9 +162,23 @@ fn vadose_paths_descend() {
     let scene = scene(size, params);
     let points = cloud(20_000, size, [[10.0, 50.0, 95.0], [90.0, 50.0, 5.0]], 4);
     let graph = build_points(&scene, &points).unwrap();
-    let nodes = path(&graph, graph.cost_set_of_water_table("wt").unwrap());
+    let set = graph.cost_set_of_water_table("wt").unwrap();
+    let nodes = path(&graph, set);
     let climbs: f64 = nodes.windows(2).map(|w| (points[w[1]][2] - points[w[0]][2]).max(0.0)).sum();
     assert_eq!(climbs, 0.0, "the vadose path climbs {climbs:.2} m");
+    // No climb would also hold in a homogeneous medium here; what makes the path vadose is
+    // that going down is cheap and going up dear: the same route climbed costs far more.
+    let route_cost = |graph: &CostGraph, nodes: &[usize]| -> f64 {
+        let edge = |u: usize, v: usize| graph.out_edges_in(set, u).find(|e| e.0 == v).unwrap().1;
+        nodes.windows(2).map(|w| f64::from(edge(w[0], w[1]))).sum()
+    };
+    let down = route_cost(&graph, &nodes);
+    let swapped: Vec<[f64; 3]> =
+        [points[1], points[0]].into_iter().chain(points[2..].iter().copied()).collect();
+    let graph_up = build_points(&scene, &swapped).unwrap();
+    let up = route_cost(&graph_up, &path(&graph_up, set));
+    eprintln!("vadose route: {down:.1} down, {up:.1} up");
+    assert!(up > 3.0 * down, "climbing ({up:.1}) should cost far more than falling ({down:.1})");
 }
 
 #[test]
