@@ -450,8 +450,12 @@ fn the_picture_colours_every_segment_by_its_water_type() {
         .filter_map(|(x, y)| canvas.get(x, y))
         .collect();
     let used: Vec<WaterType> = h.conduits.iter().flat_map(|c| c.segments.iter().map(|s| s.water)).collect();
-    assert!(used.contains(&WaterType::Sump) && used.contains(&WaterType::Dry) && used.iter().any(|w| w.is_free_fall()));
+    assert!(
+        used.contains(&WaterType::Sump)
+            && used.contains(&WaterType::Dry)
+            && used.iter().any(|w| w.is_free_fall())
+    );
     for w in WaterType::ALL {
-        assert_eq!(drawn.contains(&colour(*w)), used.contains(w), "{w:?}: drawn iff used");
+        assert_eq!(drawn.contains(&colour(w)), used.contains(&w), "{w:?}: drawn iff used");
     }
 }
