@@ -109,7 +109,15 @@ impl Stage {
     pub fn scene_sections(self) -> &'static [&'static str] {
         match self {
             Stage::Sampling => &["seed", "domain", "terrain", "geology", "keypoints", "sampling"],
-            Stage::Costgraph => &["domain", "terrain", "geology", "keypoints", "connectivity", "costgraph"],
+            Stage::Costgraph => &[
+                "domain",
+                "terrain",
+                "geology",
+                "keypoints",
+                "connectivity",
+                "costgraph",
+                "skeleton.forced_links",
+            ],
             Stage::Skeleton => {
                 &["seed", "domain", "terrain", "geology", "keypoints", "connectivity", "phases", "skeleton"]
             }

@@ -9,7 +9,9 @@
 //!   (e = ẑ·âb: falling is cheap, climbing is dear) and s(d_WT) below it, C_P = 1 − P. C_WT
 //!   depends on the water table, so there is one cost set per water table named by a spring.
 //! - **paris2021** (Paris et al. 2021 §4.2): per metre ε + w_dist + w_L·g(d_L/r) + w_F·c_F +
-//!   w_π·π, g the smoothstep, π = 1 − P the relative resistance to flow. One cost set.
+//!   w_π·π, g the smoothstep, π = 1 − P the relative resistance to flow. One cost set. The
+//!   user-prescribed paths (`skeleton.forced_links`) cost `forced_link_cost` per metre along
+//!   the straight corridor between their key points.
 //!
 //! Terms are integrated along the edge, never taken at one endpoint. The distance terms use
 //! the signed distances of both ends to every surface, computed once per node ([`NodeFields`]):
@@ -60,6 +62,10 @@ pub struct CostModel {
     families: Vec<Family>,
     /// The water table of each cost set (karstnsim2024); empty for paris2021.
     water_tables: Vec<Surface>,
+    /// The potential is the same everywhere (no layer, no grid, no potential tree).
+    uniform_potential: bool,
+    /// paris2021: the straight corridors (ends) of the forced links, `skeleton.forced_links`.
+    corridors: Vec<(DVec3, DVec3)>,
 }
 
 /// Per-node values the edges share, packed node by node so that reading a neighbour costs one
@@ -70,6 +76,10 @@ pub struct NodeFields {
     stride: usize,
     surfaces: usize,
     sets: usize,
+    /// Per node, a bit per forced-link corridor containing it (`words` u64 per node; none
+    /// without forced links).
+    corridors: Vec<u64>,
+    words: usize,
 }
 
 impl NodeFields {
@@ -124,6 +134,13 @@ impl CostModel {
             inception: scene.geology.inception_surfaces().cloned().collect(),
             families,
             water_tables,
+            corridors: match scene.costgraph.model {
+                CostModelKind::Paris2021 => forced_corridors(scene),
+                CostModelKind::Karstnsim2024 => Vec::new(),
+            },
+            uniform_potential: scene.geology.layers.is_empty()
+                && scene.geology.grid.is_none()
+                && scene.geology.potential.is_empty(),
         }
     }
 
@@ -196,7 +213,29 @@ impl CostModel {
                 p.iter().copied().chain([self.resistance_at(at)]).chain(inception).chain(water_tables)
             })
             .collect();
-        NodeFields { data, stride: 4 + surfaces + sets, surfaces, sets }
+        let words = self.corridors.len().div_ceil(64);
+        let radius = self.params.forced_link_radius;
+        let corridors = points
+            .par_iter()
+            .flat_map_iter(|p| {
+                let at = DVec3::from_array(*p);
+                let mut mask = vec![0u64; words];
+                for (c, &(a, b)) in self.corridors.iter().enumerate() {
+                    if distance_to_segment(at, a, b) <= radius {
+                        mask[c / 64] |= 1 << (c % 64);
+                    }
+                }
+                mask
+            })
+            .collect();
+        NodeFields { data, stride: 4 + surfaces + sets, surfaces, sets, corridors, words }
+    }
+
+    /// True when both ends of edge i → j lie in the corridor of the same forced link.
+    fn along_forced_link(&self, fields: &NodeFields, i: usize, j: usize) -> bool {
+        let w = fields.words;
+        let (a, b) = (&fields.corridors[i * w..(i + 1) * w], &fields.corridors[j * w..(j + 1) * w]);
+        a.iter().zip(b).any(|(x, y)| x & y != 0)
     }
 
     /// Fills `out` with the terms and costs of the edge from node `i` to node `j`.
@@ -214,18 +253,23 @@ impl CostModel {
         let surfaces = 4..4 + fields.surfaces;
         out.inception =
             mean_of_nearest(&from[surfaces.clone()], &to[surfaces], (reach, falloff), &mut out.cuts);
-        let middle = self.resistance_at((a + b) * 0.5);
+        // A uniform potential (no layer, grid or potential tree) is the same at the middle as
+        // at the ends: skip its evaluation, keep the same arithmetic (bit-identical).
+        let middle = if self.uniform_potential { from[3] } else { self.resistance_at((a + b) * 0.5) };
         out.resistance = (from[3] + 4.0 * middle + to[3]) / 6.0;
         out.fracture = self.fracture(direction);
         out.water_table.clear();
         out.cost.clear();
         match self.kind {
             CostModelKind::Paris2021 => {
-                let per_metre = p.cost_floor
+                let mut per_metre = p.cost_floor
                     + p.w_distance
                     + p.w_horizon * out.inception
                     + p.w_fracture * out.fracture
                     + p.w_permeability * out.resistance;
+                if fields.words > 0 && self.along_forced_link(fields, i, j) {
+                    per_metre = per_metre.min(p.forced_link_cost);
+                }
                 out.cost.push(length * per_metre);
             }
             CostModelKind::Karstnsim2024 => {
@@ -236,7 +280,9 @@ impl CostModel {
                 if fields.sets == 0 {
                     out.cost.push(length * shared);
                 }
-                let vadose = 1.0 - direction.z.clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
+                // Depends on the direction only; acos is dear, so only when an edge has a
+                // vadose part.
+                let vadose = || 1.0 - direction.z.clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
                 let first = 4 + fields.surfaces;
                 for s in first..first + fields.sets {
                     let ends = (from[s], to[s]);
@@ -278,23 +324,38 @@ impl CostModel {
 
     /// Mean C_WT along an edge whose ends lie at signed distances `(a, b)` from the water
     /// table: `vadose` above it, s(d_WT) below, split where the edge crosses it.
-    fn water_table_term(&self, (a, b): (f64, f64), vadose: f64, cuts: &mut Vec<f64>) -> f64 {
+    fn water_table_term(&self, (a, b): (f64, f64), vadose: impl Fn() -> f64, cuts: &mut Vec<f64>) -> f64 {
         let phreatic = |from: f64, to: f64, cuts: &mut Vec<f64>| {
             mean_of_nearest(&[from], &[to], (self.params.water_table_distance, wyvill_of_ratio), cuts)
         };
         match (a >= 0.0, b >= 0.0) {
-            (true, true) => vadose,
+            (true, true) => vadose(),
             (false, false) => phreatic(a, b, cuts),
             (true, false) => {
                 let t = a / (a - b);
-                t * vadose + (1.0 - t) * phreatic(0.0, b, cuts)
+                t * vadose() + (1.0 - t) * phreatic(0.0, b, cuts)
             }
             (false, true) => {
                 let t = a / (a - b);
-                t * phreatic(a, 0.0, cuts) + (1.0 - t) * vadose
+                t * phreatic(a, 0.0, cuts) + (1.0 - t) * vadose()
             }
         }
     }
+}
+
+/// The ends of every forced link (`skeleton.forced_links`), at the scene's key point positions.
+fn forced_corridors(scene: &Scene) -> Vec<(DVec3, DVec3)> {
+    let at =
+        |name: &str| scene.keypoints.iter().find(|k| k.name == name).map(|k| DVec3::from_array(k.position));
+    scene.skeleton.forced_links.iter().filter_map(|[a, b]| Some((at(a)?, at(b)?))).collect()
+}
+
+/// Distance from `p` to the segment a–b.
+fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let ab = b - a;
+    let t =
+        if ab.length_squared() > 0.0 { ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+    p.distance(a + ab * t)
 }
 
 /// Water tables named by springs, in [geology.water_tables] order.
@@ -314,15 +375,27 @@ fn wyvill_of_ratio(x: f64) -> f64 {
 /// distance to a plane is linear along the edge; between the points where it crosses 0 or
 /// ±reach the falloff of one surface is a cubic in t, which Simpson's rule integrates exactly.
 /// Without surfaces the term is saturated (1).
-fn mean_of_nearest(
+#[inline]
+fn mean_of_nearest(a: &[f64], b: &[f64], along: (f64, fn(f64) -> f64), cuts: &mut Vec<f64>) -> f64 {
+    // No surface, or both ends at least `reach` from every surface on the same side: the
+    // distance to each stays ≥ reach along the edge (it is linear), the falloff is 1 everywhere,
+    // and so is its mean (the general sum gives exactly 1.0 too: one piece, (1 + 4 + 1)/6).
+    // Most edges are there; this test is inlined, the integration is not.
+    let reach = along.0;
+    if a.iter().zip(b).all(|(&sa, &sb)| (sa >= reach && sb >= reach) || (sa <= -reach && sb <= -reach)) {
+        return 1.0;
+    }
+    integrate_nearest(a, b, along, cuts)
+}
+
+/// [`mean_of_nearest`] on an edge that comes within reach of some surface.
+#[inline(never)]
+fn integrate_nearest(
     a: &[f64],
     b: &[f64],
     (reach, falloff): (f64, fn(f64) -> f64),
     cuts: &mut Vec<f64>,
 ) -> f64 {
-    if a.is_empty() {
-        return 1.0;
-    }
     cuts.clear();
     cuts.extend([0.0, 1.0]);
     for (&sa, &sb) in a.iter().zip(b) {

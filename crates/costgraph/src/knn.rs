@@ -1,10 +1,9 @@
 //! The k-nearest-neighbour graph in compressed rows, built in parallel with a deterministic
 //! result, and its symmetrisation and transpose.
 
-use std::num::NonZero;
-
-use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
+
+use crate::grid::{self, Grid};
 
 /// Nodes per parallel work item. Fixed, so that results never depend on the thread count.
 pub const CHUNK: usize = 2048;
@@ -162,37 +161,19 @@ pub fn neighbours(
     if points.len() < 2 || k == 0 {
         return Rows { offsets: vec![0; points.len() + 1], targets: Vec::new() };
     }
-    // f32 coordinates relative to the first point keep millimetre precision over kilometres.
-    let origin = points[0];
-    let local: Vec<[f32; 3]> = points
-        .iter()
-        .map(|p| [(p[0] - origin[0]) as f32, (p[1] - origin[1]) as f32, (p[2] - origin[2]) as f32])
-        .collect();
-    let tree = ImmutableKdTree::new_from_slice(&local).expect("a non-empty point set builds a tree");
-    let wanted = NonZero::new((k + 1).min(points.len())).expect("k + 1 > 0");
+    let grid = Grid::new(points);
     let max2 = max_length.map(|l| l * l).unwrap_or(f64::INFINITY);
     let chunks: Vec<(Vec<u32>, Vec<u32>)> = order
         .par_chunks(CHUNK)
         .map(|nodes| {
             let mut lengths = Vec::with_capacity(nodes.len());
             let mut list = Vec::with_capacity(nodes.len() * k);
-            let mut row: Vec<(f64, u32)> = Vec::with_capacity(k + 1);
+            let mut row: Vec<u128> = Vec::with_capacity(4 * k);
+            let mut radius = grid.initial_radius(k);
             for &i in nodes {
-                let i = i as usize;
-                let found = tree.query(&local[i]).nearest_n::<SquaredEuclidean<f32>>(wanted).execute();
-                row.clear();
-                row.extend(
-                    found
-                        .iter()
-                        .map(|n| n.item as usize)
-                        .filter(|&j| j != i)
-                        .map(|j| (distance2(&points[i], &points[j]), j as u32))
-                        .filter(|&(d2, _)| d2 <= max2),
-                );
-                row.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                row.truncate(k);
+                grid.nearest(i as usize, k, max2, &mut radius, &mut row);
                 lengths.push(row.len() as u32);
-                list.extend(row.iter().map(|&(_, j)| j));
+                list.extend(row.iter().map(|&key| grid::index(key)));
             }
             done();
             (lengths, list)
@@ -201,13 +182,10 @@ pub fn neighbours(
     Rows::from_chunks(order, chunks)
 }
 
-fn distance2(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::grid::distance2;
 
     fn cloud(n: usize) -> Vec<[f64; 3]> {
         let mut state = 12345u64;

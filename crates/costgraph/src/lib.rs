@@ -14,6 +14,7 @@ pub mod cost;
 mod error;
 pub mod falloff;
 pub mod graph;
+mod grid;
 pub mod knn;
 pub mod stage;
 pub mod stats;

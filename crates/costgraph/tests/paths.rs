@@ -162,9 +162,23 @@ fn vadose_paths_descend() {
     let scene = scene(size, params);
     let points = cloud(20_000, size, [[10.0, 50.0, 95.0], [90.0, 50.0, 5.0]], 4);
     let graph = build_points(&scene, &points).unwrap();
-    let nodes = path(&graph, graph.cost_set_of_water_table("wt").unwrap());
+    let set = graph.cost_set_of_water_table("wt").unwrap();
+    let nodes = path(&graph, set);
     let climbs: f64 = nodes.windows(2).map(|w| (points[w[1]][2] - points[w[0]][2]).max(0.0)).sum();
     assert_eq!(climbs, 0.0, "the vadose path climbs {climbs:.2} m");
+    // No climb would also hold in a homogeneous medium here; what makes the path vadose is
+    // that going down is cheap and going up dear: the same route climbed costs far more.
+    let route_cost = |graph: &CostGraph, nodes: &[usize]| -> f64 {
+        let edge = |u: usize, v: usize| graph.out_edges_in(set, u).find(|e| e.0 == v).unwrap().1;
+        nodes.windows(2).map(|w| f64::from(edge(w[0], w[1]))).sum()
+    };
+    let down = route_cost(&graph, &nodes);
+    let swapped: Vec<[f64; 3]> =
+        [points[1], points[0]].into_iter().chain(points[2..].iter().copied()).collect();
+    let graph_up = build_points(&scene, &swapped).unwrap();
+    let up = route_cost(&graph_up, &path(&graph_up, set));
+    eprintln!("vadose route: {down:.1} down, {up:.1} up");
+    assert!(up > 3.0 * down, "climbing ({up:.1}) should cost far more than falling ({down:.1})");
 }
 
 #[test]
@@ -191,4 +205,87 @@ symmetrise = true
     let (one, two) = (with(1), with(2));
     assert!(one == two, "the graphs differ between 1 and 2 threads");
     assert!(one.cost_sets[0].costs.iter().all(|&c| c > 0.0));
+}
+
+/// Largest distance from the path's nodes to the segment between its ends.
+fn largest_offset(points: &[[f64; 3]], nodes: &[usize]) -> f64 {
+    let (a, b) = (at(points, nodes[0]), at(points, *nodes.last().unwrap()));
+    nodes
+        .iter()
+        .map(|&n| {
+            let p = at(points, n);
+            let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+            p.distance(a + (b - a) * t)
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn a_forced_link_is_a_cheap_straight_corridor_under_paris2021() {
+    let size = [200.0, 60.0, 100.0];
+    let (a, b) = ([10.0, 30.0, 80.0], [190.0, 30.0, 80.0]);
+    // A horizon 60 m below the two key points draws the least-cost path down to it and back.
+    let text = |forced: &str| {
+        format!(
+            r#"
+name = "t"
+[domain]
+min = [0, 0, 0]
+max = [200, 60, 100]
+[terrain]
+kind = "plane"
+elevation = 100
+[[geology.horizons]]
+name = "bed"
+elevation = 20
+[[geology.water_tables]]
+name = "wt"
+elevation = -1000
+[[keypoints]]
+name = "a"
+kind = "sink"
+position = {a:?}
+[[keypoints]]
+name = "b"
+kind = "spring"
+position = {b:?}
+water_table = "wt"
+[costgraph]
+model = "paris2021"
+k = 30
+w_horizon = 4.0
+w_fracture = 0.0
+w_permeability = 0.0
+horizon_distance = 10.0
+forced_link_radius = 6.0
+[skeleton]
+mode = "gamma"
+{forced}
+"#
+        )
+    };
+    let points = cloud(20_000, size, [a, b], 6);
+    let route = |forced: &str| {
+        let scene = Scene::parse(&text(forced), Path::new("t.toml")).unwrap();
+        let graph = build_points(&scene, &points).unwrap();
+        path(&graph, 0)
+    };
+    let free = route("");
+    let lowest = free.iter().map(|&n| points[n][2]).fold(f64::INFINITY, f64::min);
+    assert!(
+        lowest < 35.0,
+        "without the forced link the path should dive to the horizon (lowest {lowest:.1} m)"
+    );
+    let forced = route("forced_links = [[\"a\", \"b\"]]");
+    let offset = largest_offset(&points, &forced);
+    let ratio = length(&points, &forced) / at(&points, 0).distance(at(&points, 1));
+    eprintln!("forced link: largest offset {offset:.2} m, path / straight line {ratio:.3}");
+    assert!(offset <= 6.0, "the forced path leaves its corridor by {offset:.2} m");
+    assert!(ratio < 1.1, "the forced path is {ratio:.3} × the straight line");
+    // Under karstnsim2024 forced links do not change the costs (KarstNSim has none).
+    let k = |forced: &str| {
+        let t = text(forced).replace("model = \"paris2021\"", "model = \"karstnsim2024\"");
+        build_points(&Scene::parse(&t, Path::new("t.toml")).unwrap(), &points).unwrap()
+    };
+    assert!(k("") == k("forced_links = [[\"a\", \"b\"]]"));
 }

@@ -219,12 +219,17 @@ impl Scene {
         self.sections_hash(stage.scene_sections())
     }
 
-    /// Hash of the named top-level sections (defaults applied), for artifact keys.
+    /// Hash of the named top-level sections (defaults applied), or of one field of a section
+    /// when the name is dotted, for artifact keys.
     pub fn sections_hash(&self, sections: &[&str]) -> String {
         let value = serde_json::to_value(self).expect("a scene always serializes");
         let texts: Vec<String> = sections
             .iter()
-            .map(|name| format!("{name}={}", value.get(*name).cloned().unwrap_or_default()))
+            .map(|name| {
+                // A dotted name ("skeleton.forced_links") hashes one field of a section.
+                let field = name.split('.').try_fold(&value, |v, key| v.get(key));
+                format!("{name}={}", field.cloned().unwrap_or_default())
+            })
             .collect();
         karst_artifact::hash::hex_of_parts(texts.iter().map(|t| t.as_bytes()))
     }

@@ -16,4 +16,22 @@ pub enum HydroError {
     Radii { conduit: usize, nodes: usize, radii: usize },
     #[error("node {node} has a non-finite position")]
     Position { node: usize },
+    #[error("hydro.pools[{index}]: no pool within {radius} m of {at:?} ({nearest})")]
+    NoPoolNear { index: usize, at: [f64; 3], radius: f64, nearest: String },
+    #[error("hydro.pools[{second}]: selects pool node {node}, which hydro.pools[{first}] already selects")]
+    SamePool { first: usize, second: usize, node: u32 },
+    #[error(
+        "hydro.pools[{index}]: every outgoing conduit of pool node {node} gets weight 0: water could not leave it"
+    )]
+    PoolClosed { index: usize, node: u32 },
+}
+
+impl HydroError {
+    /// True when the error is about the scene's `[hydro]` section rather than the network.
+    pub fn concerns_scene(&self) -> bool {
+        matches!(
+            self,
+            HydroError::NoPoolNear { .. } | HydroError::SamePool { .. } | HydroError::PoolClosed { .. }
+        )
+    }
 }

@@ -2,12 +2,15 @@
 //! order, from the sources to the wells. At a branch node each incoming flow γ_j (a link, or
 //! the recharge of a sink, which arrives from above) is split over the outgoing links with
 //! the normalized weights w̄_jk of w_jk = 1 + u_j · v_k, u_j the incoming and v_k the outgoing
-//! direction, so that water mostly keeps its course; at a pool the inflow is split equally.
+//! direction, so that water mostly keeps its course; at a pool the inflow is split equally, or
+//! by the weights the scene gives its outlets (`[[hydro.pools]]`).
 //! A spring takes all the water reaching it. The last outgoing link receives what the others
 //! left, so each node gives out exactly what it receives (up to the rounding of one
 //! subtraction). Flows are carried per sink, so every spring knows which sinks feed it.
 
 use glam::DVec3;
+
+use karst_geology::params::PoolOutlet;
 
 use crate::graph::{Graph, Terminal};
 use crate::orient::Orientation;
@@ -43,14 +46,53 @@ struct Inflow {
     shares: Vec<f64>,
 }
 
-/// Propagates the sinks' recharge through the oriented graph. `pool(node)` says where water
-/// is split equally.
-pub fn propagate(
+/// How a node splits each inflow over its outgoing links.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Split<'a> {
+    /// Emilien et al.'s w_jk = 1 + u_j·v_k: water mostly keeps its course.
+    Directional,
+    /// A pool: equal shares.
+    Equal,
+    /// A pool with user weights (`[[hydro.pools]]`): see [`outlet_weights`].
+    User(&'a [PoolOutlet]),
+}
+
+/// The user weight of each outgoing direction `out` (unit vectors) of a pool at `at`: the
+/// weight of the outlet whose direction from the pool is closest to it (largest cosine, the
+/// first listed on a tie).
+pub fn outlet_weights(at: DVec3, out: &[DVec3], outlets: &[PoolOutlet]) -> Vec<f64> {
+    let towards: Vec<DVec3> =
+        outlets.iter().map(|o| (DVec3::from_array(o.towards) - at).normalize_or_zero()).collect();
+    out.iter()
+        .map(|v| {
+            let mut best = (f64::NEG_INFINITY, 0.0);
+            for (t, o) in towards.iter().zip(outlets) {
+                let cosine = v.dot(*t);
+                if cosine > best.0 {
+                    best = (cosine, o.weight);
+                }
+            }
+            best.1
+        })
+        .collect()
+}
+
+/// The unit directions of the outgoing links `(link, to)` of `node`.
+pub fn out_directions(graph: &Graph, node: u32, outgoing: &[(usize, u32)]) -> Vec<DVec3> {
+    outgoing
+        .iter()
+        .map(|&(_, to)| (graph.positions[to as usize] - graph.positions[node as usize]).normalize_or_zero())
+        .collect()
+}
+
+/// Propagates the sinks' recharge through the oriented graph. `split(node)` says how a node
+/// shares its water.
+pub fn propagate<'a>(
     graph: &Graph,
     orientation: &Orientation,
     sinks: &[Terminal],
     springs: &[Terminal],
-    pool: impl Fn(u32) -> bool,
+    split_at: impl Fn(u32) -> Split<'a>,
 ) -> Flows {
     let s = sinks.len();
     let mut flows = Flows {
@@ -89,24 +131,28 @@ pub fn propagate(
             }
             continue;
         }
-        let out: Vec<DVec3> = outgoing
-            .iter()
-            .map(|&(_, to)| {
-                (graph.positions[to as usize] - graph.positions[node as usize]).normalize_or_zero()
-            })
-            .collect();
+        let out = out_directions(graph, node, &outgoing);
+        let rule = split_at(node);
+        let user = match rule {
+            Split::User(outlets) => Some(outlet_weights(graph.positions[node as usize], &out, outlets)),
+            _ => None,
+        };
         for f in &inflows {
-            let weights = split(f.direction, &out, pool(node));
+            let weights = split(f.direction, &out, rule, user.as_deref());
             distribute(&mut flows.shares, s, &outgoing, &weights, &f.shares);
         }
     }
     flows
 }
 
-/// Normalized weights of one inflow over the outgoing directions `out`.
-fn split(u: DVec3, out: &[DVec3], equal: bool) -> Vec<f64> {
-    let raw: Vec<f64> =
-        if equal { vec![1.0; out.len()] } else { out.iter().map(|v| 1.0 + u.dot(*v)).collect() };
+/// Normalized weights of one inflow of direction `u` over the outgoing directions `out`
+/// (`user`: the user weights of a [`Split::User`] pool).
+fn split(u: DVec3, out: &[DVec3], rule: Split, user: Option<&[f64]>) -> Vec<f64> {
+    let raw: Vec<f64> = match (rule, user) {
+        (Split::Directional, _) => out.iter().map(|v| 1.0 + u.dot(*v)).collect(),
+        (Split::User(_), Some(user)) => user.to_vec(),
+        _ => vec![1.0; out.len()],
+    };
     let total: f64 = raw.iter().sum();
     if total > 1e-12 {
         raw.iter().map(|w| w / total).collect()
@@ -136,9 +182,22 @@ mod tests {
 
     #[test]
     fn straight_on_takes_most_and_backwards_takes_nothing() {
-        let w = split(DVec3::X, &[DVec3::X, DVec3::Y, DVec3::NEG_X], false);
+        let w = split(DVec3::X, &[DVec3::X, DVec3::Y, DVec3::NEG_X], Split::Directional, None);
         assert_eq!(w, vec![2.0 / 3.0, 1.0 / 3.0, 0.0]);
-        assert_eq!(split(DVec3::X, &[DVec3::X, DVec3::Y], true), vec![0.5, 0.5]);
-        assert_eq!(split(DVec3::X, &[DVec3::NEG_X], false), vec![1.0]);
+        assert_eq!(split(DVec3::X, &[DVec3::X, DVec3::Y], Split::Equal, None), vec![0.5, 0.5]);
+        assert_eq!(split(DVec3::X, &[DVec3::NEG_X], Split::Directional, None), vec![1.0]);
+    }
+
+    #[test]
+    fn user_weights_go_to_the_outlet_in_the_closest_direction() {
+        let outlets = [
+            PoolOutlet { towards: [10.0, 1.0, 0.0], weight: 3.0 },
+            PoolOutlet { towards: [0.0, 10.0, -5.0], weight: 1.0 },
+        ];
+        let out = [DVec3::Y, DVec3::X, DVec3::new(0.7, -0.7, 0.0)];
+        let user = outlet_weights(DVec3::ZERO, &out, &outlets);
+        assert_eq!(user, vec![1.0, 3.0, 3.0]);
+        let w = split(DVec3::NEG_Z, &out, Split::User(&outlets), Some(&user));
+        assert_eq!(w, vec![1.0 / 7.0, 3.0 / 7.0, 3.0 / 7.0]);
     }
 }

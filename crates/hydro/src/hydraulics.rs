@@ -1,13 +1,13 @@
 //! The hydro stage's computation: hydraulic graph, orientation, flows, water types, water
 //! geometry and flow-sized radii, assembled into the [`Hydro`] artifact.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
-use karst_geology::params::HydroParams;
+use karst_geology::params::{HydroParams, PoolWeights};
 use karst_skeleton::{ConduitType, Skeleton, Zone};
 
 use crate::artifact::{ConduitWater, FlowUnits, Hydro, NodeWater, Role, SegmentWater, Share, Sink, Spring};
-use crate::flow::{Flows, propagate};
+use crate::flow::{self, Flows, Split, propagate};
 use crate::geometry::{self, Surface};
 use crate::graph::{self, Graph, Terminal};
 use crate::orient::{Orientation, orient};
@@ -37,7 +37,12 @@ pub fn compute(skeleton: &Skeleton, params: &HydroParams, inputs: &Inputs) -> Re
         return Err(HydroError::NoDownstreamPath { sink: t.name.clone(), node: t.node });
     }
     let ponds = Ponds::of(skeleton, &graph, &orientation);
-    let flows = propagate(&graph, &orientation, &sinks, &springs, |n| ponds.pool[n as usize]);
+    let user = user_pools(&params.pools, &graph, &orientation, &ponds)?;
+    let flows = propagate(&graph, &orientation, &sinks, &springs, |n| match user[n as usize] {
+        Some(i) => Split::User(&params.pools[i].outlets),
+        None if ponds.pool[n as usize] => Split::Equal,
+        None => Split::Directional,
+    });
     let water = Water::new(skeleton, params, &graph, &orientation, &flows, &sinks, &ponds);
     let segments = water.segments();
     let conduits = conduits(skeleton, &water, segments);
@@ -102,6 +107,52 @@ impl Ponds {
         }
         Ponds { pool, ponded }
     }
+}
+
+/// The pool node each `[[hydro.pools]]` entry selects (the pool nearest to its `at`, within
+/// its radius, ties to the smaller node), as the entry's index per node; checks that no two
+/// entries select the same pool and that some outgoing conduit of each gets a weight > 0.
+fn user_pools(
+    pools: &[PoolWeights],
+    graph: &Graph,
+    orientation: &Orientation,
+    ponds: &Ponds,
+) -> Result<Vec<Option<usize>>, HydroError> {
+    let mut user = vec![None; graph.positions.len()];
+    for (index, pool) in pools.iter().enumerate() {
+        let at = DVec3::from_array(pool.at);
+        let nearest = (0..graph.positions.len())
+            .filter(|&i| ponds.pool[i])
+            .map(|i| (graph.positions[i].distance(at), i))
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let node = match nearest {
+            Some((d, i)) if d <= pool.radius => i,
+            _ => {
+                let nearest = match nearest {
+                    Some((d, i)) => format!("the nearest pool is node {i}, {d:.1} m away"),
+                    None => "the network has no pool".to_string(),
+                };
+                return Err(HydroError::NoPoolNear { index, at: pool.at, radius: pool.radius, nearest });
+            }
+        };
+        if let Some(first) = user[node] {
+            return Err(HydroError::SamePool { first, second: index, node: node as u32 });
+        }
+        user[node] = Some(index);
+        let outgoing: Vec<(usize, u32)> = graph.at_node[node]
+            .iter()
+            .filter_map(|&l| match orientation.direction(graph, l) {
+                Some((from, to)) if from as usize == node => Some((l, to)),
+                _ => None,
+            })
+            .collect();
+        let out = flow::out_directions(graph, node as u32, &outgoing);
+        let weights = flow::outlet_weights(graph.positions[node], &out, &pool.outlets);
+        if !weights.is_empty() && weights.iter().all(|&w| w <= 0.0) {
+            return Err(HydroError::PoolClosed { index, node: node as u32 });
+        }
+    }
+    Ok(user)
 }
 
 /// Everything needed to describe the water of each link.

@@ -30,8 +30,10 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
                 .collect(),
         },
     };
-    let hydro = compute(&skeleton, &scene.hydro, &inputs)
-        .map_err(|e| StageError::input(format!("{}: {e}", run.path_of(Stage::Skeleton).display())))?;
+    let hydro = compute(&skeleton, &scene.hydro, &inputs).map_err(|e| {
+        let file = if e.concerns_scene() { args.scene.clone() } else { run.path_of(Stage::Skeleton) };
+        StageError::input(format!("{}: {e}", file.display()))
+    })?;
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Hydro)), &hydro)?;
     export::write(&args.out, &skeleton, &hydro).map_err(|e| {
         StageError::failure(format!("cannot write the CSV tables in {}: {e}", args.out.display()))

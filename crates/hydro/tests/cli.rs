@@ -90,3 +90,21 @@ fn run_render_and_inspect() {
     let summary = hydro(&["inspect", out.join("hydro.json").to_str().unwrap()]);
     assert!(String::from_utf8_lossy(&summary.stdout).contains("spring    spring: 4"));
 }
+
+#[test]
+fn pool_weights_naming_no_pool_exit_2_naming_the_scene_and_the_entry() {
+    let out = scratch("pool");
+    let tiny = tiny_skeleton(&out);
+    // The same scene with weights for a pool 1 km outside the network.
+    let scene = out.join("tiny-pools.toml");
+    let text = std::fs::read_to_string(&tiny).unwrap()
+        + "\n[[hydro.pools]]\nat = [5000.0, 5000.0, 0.0]\noutlets = [{ towards = [0.0, 0.0, 0.0], weight = 1.0 }]\n";
+    std::fs::write(&scene, text).unwrap();
+    let result = hydro(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("tiny-pools.toml: hydro.pools[0]: no pool within 10 m of [5000.0, 5000.0, 0.0] ("),
+        "{stderr}"
+    );
+}

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use karst_geology::params::HydroParams;
+use karst_geology::params::{HydroParams, PoolOutlet, PoolWeights};
 use karst_geology::rng::Random;
 use karst_hydro::{Hydro, HydroError, Inputs, WaterType, compute, export};
 use karst_skeleton::{Conduit, ConduitType, Node, Route, Skeleton, Zone};
@@ -219,6 +219,111 @@ fn water_mostly_keeps_its_course_at_a_branch() {
     assert_eq!(h.conduits[2].segments[0].flow, 2.0);
 }
 
+fn outlet(towards: [f64; 3], weight: f64) -> PoolOutlet {
+    PoolOutlet { towards, weight }
+}
+
+fn pools(pools: Vec<PoolWeights>) -> HydroParams {
+    HydroParams { pools, ..HydroParams::default() }
+}
+
+#[test]
+fn a_pool_shares_its_water_by_the_user_weights_of_its_outlets() {
+    let mut pool = tee();
+    pool.conduits[0].types = vec![ConduitType::Chamber];
+    // The outlet towards the east gets 3, the one towards the north 1 (points past the ends).
+    let weights = PoolWeights {
+        at: [101.0, 1.0, 91.0],
+        radius: 5.0,
+        outlets: vec![outlet([500.0, 10.0, 0.0], 3.0), outlet([90.0, 400.0, 0.0], 1.0)],
+    };
+    let h = compute(&pool, &pools(vec![weights.clone()]), &Inputs::default()).unwrap();
+    assert_eq!(h.conduits[1].segments[0].flow, 3.0);
+    assert_eq!(h.conduits[2].segments[0].flow, 1.0);
+    let east = h.springs.iter().find(|s| s.name == "east").unwrap();
+    assert_eq!(east.flow, 3.0);
+    // A zero weight closes an outlet; all water takes the other.
+    let mut closed = weights.clone();
+    closed.outlets[1].weight = 0.0;
+    let h = compute(&pool, &pools(vec![closed]), &Inputs::default()).unwrap();
+    assert_eq!((h.conduits[1].segments[0].flow, h.conduits[2].segments[0].flow), (4.0, 0.0));
+    // Without the chamber node 1 is no pool: the entry names itself and the nearest pool.
+    let e = compute(&tee(), &pools(vec![weights.clone()]), &Inputs::default()).unwrap_err();
+    assert!(e.concerns_scene());
+    assert!(e.to_string().starts_with("hydro.pools[0]: no pool within 5 m of [101.0, 1.0, 91.0] ("), "{e}");
+    // Two entries for one pool, and a pool whose every outgoing conduit gets 0.
+    let e = compute(&pool, &pools(vec![weights.clone(), weights.clone()]), &Inputs::default()).unwrap_err();
+    assert_eq!(e, HydroError::SamePool { first: 0, second: 1, node: 1 });
+    let shut = PoolWeights {
+        outlets: vec![outlet([500.0, 10.0, 0.0], 0.0), outlet([-500.0, -500.0, 90.0], 2.0)],
+        ..weights
+    };
+    let e = compute(&pool, &pools(vec![shut]), &Inputs::default()).unwrap_err();
+    assert_eq!(e, HydroError::PoolClosed { index: 0, node: 1 });
+    assert!(e.to_string().contains("every outgoing conduit of pool node 1 gets weight 0"), "{e}");
+}
+
+#[test]
+fn flow_is_conserved_with_user_weights_at_pools() {
+    let mut checked = 0;
+    for seed in 0..300 {
+        let mut skeleton = random_network(seed);
+        let mut rng = Random::stream(seed, "hydro-test", "pools");
+        for c in &mut skeleton.conduits {
+            for t in &mut c.types {
+                if rng.uniform() < 0.25 {
+                    *t = ConduitType::Chamber;
+                }
+            }
+        }
+        // Weights at every chamber end, 1–3 outlets in random directions, some weights 0.
+        let mut at: Vec<u32> = skeleton
+            .conduits
+            .iter()
+            .flat_map(|c| {
+                c.types
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, t)| **t == ConduitType::Chamber)
+                    .flat_map(|(i, _)| [c.nodes[i], c.nodes[i + 1]])
+            })
+            .collect();
+        at.sort_unstable();
+        at.dedup();
+        let entries: Vec<PoolWeights> = at
+            .iter()
+            .map(|&n| {
+                let p = skeleton.nodes[n as usize].position;
+                let outlets = (0..1 + rng.index(3))
+                    .map(|o| {
+                        let towards =
+                            [p[0] + rng.range(-100.0, 100.0), p[1] + rng.range(-100.0, 100.0), p[2] - 50.0];
+                        outlet(towards, if o > 0 && rng.uniform() < 0.2 { 0.0 } else { rng.range(0.1, 5.0) })
+                    })
+                    .collect();
+                PoolWeights { at: p, radius: 1e-6, outlets }
+            })
+            .collect();
+        let h = match compute(&skeleton, &pools(entries), &Inputs::default()) {
+            Ok(h) => h,
+            Err(HydroError::NoDownstreamPath { .. } | HydroError::PoolClosed { .. }) => continue,
+            Err(e) => panic!("seed {seed}: {e}"),
+        };
+        checked += 1;
+        for (i, (imbalance, inflow)) in balance(&skeleton, &h).into_iter().enumerate() {
+            assert!(
+                imbalance.abs() <= 1e-9 * inflow.max(f64::MIN_POSITIVE),
+                "seed {seed}, node {i}: {imbalance} of {inflow}"
+            );
+        }
+        let recharge: f64 = h.sinks.iter().map(|s| s.recharge).sum();
+        let out: f64 = h.springs.iter().map(|s| s.flow).sum();
+        assert!((recharge - out).abs() <= 1e-9 * recharge.max(1.0), "seed {seed}: {recharge} in, {out} out");
+    }
+    eprintln!("{checked} networks checked");
+    assert!(checked > 80, "only {checked} networks were checked");
+}
+
 #[test]
 fn a_vertical_shaft_with_water_is_a_free_fall_with_its_parabola() {
     let nodes = vec![
@@ -319,4 +424,38 @@ fn the_csv_export_loads_back_as_nodes_and_links() {
     let expected = HydroParams::default().total_discharge * linked / recharge;
     assert!(expected > 0.0 && (outlets - expected).abs() < 1e-9, "{outlets} {expected}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_picture_colours_every_segment_by_its_water_type() {
+    use karst_hydro::render::{colour, picture};
+    let nodes = vec![
+        node([0.0, 0.0, 100.0], Zone::Vadose),
+        node([50.0, 0.0, 95.0], Zone::Vadose),
+        node([50.0, 0.0, 40.0], Zone::Vadose),
+        node([150.0, 0.0, 20.0], Zone::Phreatic),
+        node([250.0, 0.0, 10.0], Zone::Phreatic),
+        node([50.0, 80.0, 60.0], Zone::Vadose),
+    ];
+    let skeleton = Skeleton {
+        nodes,
+        conduits: vec![conduit(vec![0, 1, 2, 3, 4]), conduit(vec![2, 5])],
+        routes: vec![route("a", "s", 1.0, 0, 4)],
+    };
+    let h = compute(&skeleton, &HydroParams::default(), &Inputs::default()).unwrap();
+    let canvas = picture(&skeleton, &h);
+    // The network views only (the legend on the right shows every colour).
+    let drawn: std::collections::HashSet<[u8; 3]> = (0..2 * 600)
+        .flat_map(|x| (0..600).map(move |y| (x, y)))
+        .filter_map(|(x, y)| canvas.get(x, y))
+        .collect();
+    let used: Vec<WaterType> = h.conduits.iter().flat_map(|c| c.segments.iter().map(|s| s.water)).collect();
+    assert!(
+        used.contains(&WaterType::Sump)
+            && used.contains(&WaterType::Dry)
+            && used.iter().any(|w| w.is_free_fall())
+    );
+    for w in WaterType::ALL {
+        assert_eq!(drawn.contains(&colour(w)), used.contains(&w), "{w:?}: drawn iff used");
+    }
 }

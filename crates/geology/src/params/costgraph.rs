@@ -51,6 +51,12 @@ pub struct CostgraphParams {
     pub w_fracture: f64,
     /// paris2021: w_π, weight of the permeability (resistance 1 − P) term.
     pub w_permeability: f64,
+    /// paris2021: cost per metre of the edges along a user-prescribed path
+    /// (`skeleton.forced_links`), instead of the model's when that is higher.
+    pub forced_link_cost: f64,
+    /// paris2021: radius of the straight corridor of a forced link, metres: an edge whose two
+    /// ends lie within it is along the link.
+    pub forced_link_radius: f64,
 }
 
 impl Default for CostgraphParams {
@@ -72,6 +78,8 @@ impl Default for CostgraphParams {
             horizon_distance: 10.0,
             w_fracture: 1.0,
             w_permeability: 1.0,
+            forced_link_cost: 0.1,
+            forced_link_radius: 15.0,
         }
     }
 }
@@ -104,6 +112,8 @@ impl CostgraphParams {
             ("inception_distance", self.inception_distance),
             ("water_table_distance", self.water_table_distance),
             ("horizon_distance", self.horizon_distance),
+            ("forced_link_cost", self.forced_link_cost),
+            ("forced_link_radius", self.forced_link_radius),
         ] {
             c.positive(&format!("costgraph.{field}"), value);
         }

@@ -33,6 +33,36 @@ pub struct HydroParams {
     pub flow_radius: Option<[f64; 2]>,
     /// Exponent a of the flow sizing: radius ∝ flow^a.
     pub radius_exponent: f64,
+    /// User weights of the outgoing conduits of pools (`[[hydro.pools]]`); elsewhere pools
+    /// split their water equally.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub pools: Vec<PoolWeights>,
+}
+
+/// `[[hydro.pools]]`: how one pool shares its water among its outgoing conduits.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PoolWeights {
+    /// A point at the pool: the pool node of the network nearest to it, within `radius`.
+    pub at: [f64; 3],
+    /// How far from `at` the pool node may be, metres.
+    #[serde(default = "default_pool_radius")]
+    pub radius: f64,
+    /// Each outgoing conduit takes the weight of the outlet whose direction from the pool is
+    /// closest to its own (first listed on a tie).
+    pub outlets: Vec<PoolOutlet>,
+}
+
+/// One outlet of a pool: a point the outgoing conduit heads towards, and its weight.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PoolOutlet {
+    pub towards: [f64; 3],
+    pub weight: f64,
+}
+
+fn default_pool_radius() -> f64 {
+    10.0
 }
 
 impl Default for HydroParams {
@@ -45,6 +75,7 @@ impl Default for HydroParams {
             min_slope: 0.01,
             flow_radius: None,
             radius_exponent: 0.5,
+            pools: Vec::new(),
         }
     }
 }
@@ -60,6 +91,27 @@ impl HydroParams {
             c.positive("hydro.flow_radius", lo);
             if lo.is_finite() && hi.is_finite() && hi < lo {
                 c.report("hydro.flow_radius", format!("[{lo}, {hi}] is not a range (max < min)"));
+            }
+        }
+        for (i, pool) in self.pools.iter().enumerate() {
+            let field = format!("hydro.pools[{i}]");
+            c.finite(&format!("{field}.at"), &pool.at);
+            c.positive(&format!("{field}.radius"), pool.radius);
+            if pool.outlets.is_empty() {
+                c.report(&format!("{field}.outlets"), "is empty: give at least one outlet".into());
+            }
+            for (j, outlet) in pool.outlets.iter().enumerate() {
+                let field = format!("{field}.outlets[{j}]");
+                if c.finite(&format!("{field}.towards"), &outlet.towards) && outlet.towards == pool.at {
+                    c.report(&format!("{field}.towards"), "is the pool's own point: no direction".into());
+                }
+                c.non_negative(&format!("{field}.weight"), outlet.weight);
+            }
+            if !pool.outlets.is_empty() && pool.outlets.iter().all(|o| o.weight == 0.0) {
+                c.report(
+                    &format!("{field}.outlets"),
+                    "every weight is 0: water could not leave the pool".into(),
+                );
             }
         }
     }
@@ -92,5 +144,32 @@ mod tests {
         assert!(p[0].contains("hydro.catchment_cell: must be > 0, got 0"), "{p:?}");
         assert!(p[2].contains("hydro.flow_radius: [2, 1] is not a range"), "{p:?}");
         assert!(problems("recharge = \"rain\"")[0].contains("unknown variant `rain`"));
+    }
+
+    #[test]
+    fn pool_weights_are_checked() {
+        let good = "[[hydro.pools]]\nat = [50, 50, 20]\noutlets = [{ towards = [90, 90, 10], weight = 3 }, { towards = [0, 50, 10], weight = 0 }]";
+        assert!(problems(good).is_empty(), "{:?}", problems(good));
+        let bad = "[[hydro.pools]]\nat = [50, 50, nan]\nradius = 0\noutlets = [{ towards = [1, 2, 3], weight = -1 }, { towards = [1, 2, 3], weight = nan }]";
+        let p = problems(bad);
+        assert!(p.iter().any(|m| m.contains("hydro.pools[0].at")), "{p:?}");
+        assert!(p.iter().any(|m| m.contains("hydro.pools[0].radius: must be > 0, got 0")), "{p:?}");
+        assert!(
+            p.iter().any(|m| m.contains("hydro.pools[0].outlets[0].weight") && m.contains("-1")),
+            "{p:?}"
+        );
+        assert!(
+            p.iter().any(|m| m.contains("hydro.pools[0].outlets[1].weight") && m.contains("NaN")),
+            "{p:?}"
+        );
+        let zero = "[[hydro.pools]]\nat = [50, 50, 20]\noutlets = [{ towards = [1, 2, 3], weight = 0 }]";
+        assert!(problems(zero).iter().any(|m| m.contains("hydro.pools[0].outlets: every weight is 0")));
+        let empty = "[[hydro.pools]]\nat = [50, 50, 20]\noutlets = []";
+        assert!(problems(empty).iter().any(|m| m.contains("hydro.pools[0].outlets: is empty")));
+        assert!(
+            problems("[[hydro.pools]]\nat = [1, 2, 3]\noutlets = [{ toward = [1, 2, 4], weight = 1 }]")
+                .iter()
+                .any(|m| m.contains("unknown field `toward`"))
+        );
     }
 }

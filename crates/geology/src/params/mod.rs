@@ -11,7 +11,7 @@ mod sdf;
 mod skeleton;
 
 pub use costgraph::{CostModelKind, CostgraphParams};
-pub use hydro::{HydroParams, Recharge};
+pub use hydro::{HydroParams, PoolOutlet, PoolWeights, Recharge};
 pub use mesher::MesherParams;
 pub use metrics::MetricsParams;
 pub use sampling::{RadiusUnit, SamplingParams};
