@@ -25,10 +25,9 @@ type SurfaceList<'a> = (&'a [Surface], fn(u32) -> Tag, &'static str);
 pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     let field = RadiusField::of_scene(scene);
     let d = &scene.domain;
-    // Cells of r/√3 for the volume's base radius: where r is smaller a cell may hold several
-    // samples (linked lists), where r is at least the base radius one sample covers its cell.
+    // Background cells of the volume's base radius (a few samples each, linked lists).
     let base = scene.sampling.radius * crate::radius::unit_scale(scene);
-    let cell = field.min().max(base) / 3f64.sqrt();
+    let cell = field.min().max(base);
     let mut sampler = Sampler::new(&field, d.min(), d.max(), cell);
     let mut tags: Vec<Tag> = Vec::new();
     for (i, k) in scene.keypoints.iter().enumerate() {
@@ -38,7 +37,8 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     let region =
         |p: DVec3| d.contains(p) && p.z < scene.terrain.height(p.x, p.y) && !scene.geology.in_no_karst(p);
     let attempts = scene.sampling.attempts;
-    let frame = (d.min(), d.max(), cell);
+    // Surface patches of r/√3, so that one sample covers its patch.
+    let frame = (d.min(), d.max(), cell / 3f64.sqrt());
     let g = &scene.geology;
     let lists: [SurfaceList; 3] = [
         (&g.water_tables, Tag::WaterTable, "water tables"),
@@ -52,9 +52,9 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
             tags.resize(sampler.points.len(), tag(i as u32));
         }
     }
-    let mut rng = Random::stream(scene.seed, "sampling", "volume");
-    let bar = progress::bar(sampler.cells() as u64, "sampling");
-    sampler.fill_volume(attempts, &mut rng, region, |n| bar.set_position(n));
+    let key = Random::stream(scene.seed, "sampling", "volume").uniform().to_bits();
+    let bar = progress::bar(sampler.work() as u64, "sampling");
+    sampler.fill_volume(key, region, |n| bar.set_position(n));
     bar.finish_and_clear();
     tags.resize(sampler.points.len(), Tag::Volume);
     if sampler.points.len() == scene.keypoints.len() {
