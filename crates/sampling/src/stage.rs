@@ -29,10 +29,11 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     let base = scene.sampling.radius * crate::radius::unit_scale(scene);
     let cell = field.min().max(base);
     let mut sampler = Sampler::new(&field, d.min(), d.max(), cell);
-    let mut tags: Vec<Tag> = Vec::new();
+    // Runs of equal tags (the tags themselves are built once the grid is freed).
+    let mut runs: Vec<(Tag, usize)> = Vec::new();
     for (i, k) in scene.keypoints.iter().enumerate() {
         sampler.force(k.point());
-        tags.push(Tag::KeyPoint(i as u32));
+        runs.push((Tag::KeyPoint(i as u32), 1));
     }
     let region =
         |p: DVec3| d.contains(p) && p.z < scene.terrain.height(p.x, p.y) && !scene.geology.in_no_karst(p);
@@ -48,15 +49,17 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     for (surfaces, tag, purpose) in lists {
         for (i, s) in surfaces.iter().enumerate() {
             let mut rng = Random::stream(scene.seed, "sampling", &format!("{purpose} {i}"));
+            let before = sampler.points.len();
             fill_surface(&mut sampler, s, frame, attempts, &mut rng, region);
-            tags.resize(sampler.points.len(), tag(i as u32));
+            runs.push((tag(i as u32), sampler.points.len() - before));
         }
     }
     let key = Random::stream(scene.seed, "sampling", "volume").uniform().to_bits();
     let bar = progress::bar(sampler.work() as u64, "sampling");
     sampler.fill_volume(key, region, |n| bar.set_position(n));
     bar.finish_and_clear();
-    tags.resize(sampler.points.len(), Tag::Volume);
+    let volume = sampler.points.len() - runs.iter().map(|r| r.1).sum::<usize>();
+    runs.push((Tag::Volume, volume));
     if sampler.points.len() == scene.keypoints.len() {
         return Err(StageError::input(format!(
             "sampling.radius: no sample fits in the bedrock: the domain below the terrain and outside the no-karst volumes is empty or thinner than the radius ({} m at the smallest, sampling.radius = {})",
@@ -69,7 +72,15 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     let points = std::mem::take(&mut sampler.points);
     drop(sampler);
     let positions = points.into_iter().map(|p| p.to_array()).collect();
+    let mut tags = Vec::with_capacity(sampler_len(&runs));
+    for (tag, n) in runs {
+        tags.resize(tags.len() + n, tag);
+    }
     Ok(Samples { positions, tags, radius: field.min(), radius_field: field })
+}
+
+fn sampler_len(runs: &[(Tag, usize)]) -> usize {
+    runs.iter().map(|r| r.1).sum()
 }
 
 /// `karst-sampling run`.

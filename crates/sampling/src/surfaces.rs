@@ -45,33 +45,66 @@ fn meets(patch: &Patch, lo: DVec3, hi: DVec3) -> bool {
     l.cmple(hi).all() && h.cmpge(lo).all()
 }
 
-fn patches(surface: &Surface, centre: DVec3, half_diagonal: f64, cell: f64) -> Vec<Patch> {
-    match &surface.geometry {
-        Geometry::Plane { .. } => {
-            let n = surface.normal();
-            let strike =
-                if n.truncate().length() < 1e-12 { DVec3::X } else { DVec3::new(-n.y, n.x, 0.0).normalize() };
-            let dip = n.cross(strike);
-            let origin = surface.closest_point(centre);
-            let count = (2.0 * half_diagonal / cell).ceil() as i64;
-            let (u, v) = (strike * cell, dip * cell);
-            let mut out = Vec::with_capacity((count * count) as usize);
-            for j in 0..count {
-                for i in 0..count {
-                    let corner = origin + u * (i - count / 2) as f64 + v * (j - count / 2) as f64;
-                    out.push(Patch::Square { corner, u, v });
+/// The patches of a surface, each computed from its index when needed (no list is kept: a
+/// plane over a large domain has hundreds of thousands of them).
+enum Patches {
+    /// `count` × `count` squares of `u`, `v` around `origin`.
+    Plane { origin: DVec3, u: DVec3, v: DVec3, count: usize },
+    /// Triangle `slots[i]` of the mesh, ⌈area/h²⌉ slots per triangle.
+    Tin { triangles: Vec<[DVec3; 3]>, slots: Vec<u32> },
+}
+
+impl Patches {
+    fn new(surface: &Surface, centre: DVec3, half_diagonal: f64, cell: f64) -> Patches {
+        match &surface.geometry {
+            Geometry::Plane { .. } => {
+                let n = surface.normal();
+                let strike = if n.truncate().length() < 1e-12 {
+                    DVec3::X
+                } else {
+                    DVec3::new(-n.y, n.x, 0.0).normalize()
+                };
+                let dip = n.cross(strike);
+                let count = (2.0 * half_diagonal / cell).ceil() as usize;
+                Patches::Plane {
+                    origin: surface.closest_point(centre),
+                    u: strike * cell,
+                    v: dip * cell,
+                    count,
                 }
             }
-            out
-        }
-        Geometry::Tin { mesh, .. } => {
-            let mut out = Vec::new();
-            for t in 0..mesh.triangles.len() {
-                let [a, b, c] = mesh.triangle(t);
-                let slots = (0.5 * (b - a).cross(c - a).length() / (cell * cell)).ceil().max(1.0) as usize;
-                out.extend((0..slots).map(|_| Patch::Triangle { a, b, c }));
+            Geometry::Tin { mesh, .. } => {
+                let triangles: Vec<[DVec3; 3]> =
+                    (0..mesh.triangles.len()).map(|t| mesh.triangle(t)).collect();
+                let mut slots = Vec::new();
+                for (t, [a, b, c]) in triangles.iter().enumerate() {
+                    let n =
+                        (0.5 * (*b - *a).cross(*c - *a).length() / (cell * cell)).ceil().max(1.0) as usize;
+                    slots.extend(std::iter::repeat_n(t as u32, n));
+                }
+                Patches::Tin { triangles, slots }
             }
-            out
+        }
+    }
+
+    fn len(&self) -> usize {
+        match self {
+            Patches::Plane { count, .. } => count * count,
+            Patches::Tin { slots, .. } => slots.len(),
+        }
+    }
+
+    fn get(&self, i: usize) -> Patch {
+        match self {
+            Patches::Plane { origin, u, v, count } => {
+                let (x, y) =
+                    ((i % count) as f64 - (count / 2) as f64, (i / count) as f64 - (count / 2) as f64);
+                Patch::Square { corner: *origin + *u * x + *v * y, u: *u, v: *v }
+            }
+            Patches::Tin { triangles, slots } => {
+                let [a, b, c] = triangles[slots[i] as usize];
+                Patch::Triangle { a, b, c }
+            }
         }
     }
 }
@@ -86,14 +119,15 @@ pub fn fill_surface(
     region: impl Fn(DVec3) -> bool,
 ) {
     let (centre, half_diagonal) = ((lo + hi) * 0.5, 0.5 * (hi - lo).length());
-    let mut patches = patches(surface, centre, half_diagonal, cell);
-    patches.retain(|p| meets(p, lo, hi));
-    let mut misses = vec![0u32; patches.len()];
-    let mut live: Vec<u32> = (0..patches.len() as u32).collect();
+    let patches = Patches::new(surface, centre, half_diagonal, cell);
+    let mut live: Vec<u32> =
+        (0..patches.len() as u32).filter(|i| meets(&patches.get(*i as usize), lo, hi)).collect();
+    let mut misses = vec![0u8; patches.len()];
+    let attempts = attempts.min(255) as u8;
     while !live.is_empty() {
         live.retain(|&i| {
             let i = i as usize;
-            let p = patches[i].point(rng.uniform(), rng.uniform());
+            let p = patches.get(i).point(rng.uniform(), rng.uniform());
             if region(p) && sampler.try_insert(p) {
                 misses[i] = 0;
             } else {
