@@ -113,3 +113,47 @@ fn no_sample_in_a_no_karst_volume_or_above_the_terrain() {
     });
     assert!(near.count() > 10);
 }
+
+#[test]
+fn the_same_samples_whatever_the_thread_count() {
+    let scene = scene("fixtures/scenes/layered.toml");
+    let with = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| sample_scene(&scene).unwrap())
+    };
+    let one = with(1);
+    assert_eq!(one, with(2));
+    assert_eq!(one, with(3));
+}
+
+#[test]
+fn the_volume_is_filled_up_to_small_holes() {
+    // Constant radius (no surfaces): a point of the bedrock farther than r from every sample
+    // could still take one. The saturation pass leaves only a small volume of such holes.
+    let mut scene = scene("fixtures/scenes/tiny.toml");
+    scene.geology.water_tables.clear();
+    scene.geology.horizons.clear();
+    scene.geology.faults.clear();
+    scene.geology.layers.clear();
+    scene.geology.potential.clear();
+    scene.keypoints.retain(|k| k.water_table.is_none());
+    let s = sample_scene(&scene).unwrap();
+    let r = s.radius;
+    let points: Vec<DVec3> = s.positions.iter().map(|p| DVec3::from_array(*p)).collect();
+    let (lo, hi) = (scene.domain.min(), scene.domain.max());
+    let mut rng = karst_geology::rng::Random::stream(3, "test", "holes");
+    let (mut inside, mut holes) = (0, 0);
+    for _ in 0..4000 {
+        let p = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
+        if p.z >= scene.terrain.height(p.x, p.y) || scene.geology.in_no_karst(p) {
+            continue;
+        }
+        inside += 1;
+        if points.iter().all(|q| q.distance(p) >= r) {
+            holes += 1;
+        }
+    }
+    assert!(inside > 1000);
+    eprintln!("{holes} holes in {inside} probes, {} samples", s.len());
+    assert!(holes * 100 < inside, "{holes} holes in {inside} probes");
+}
