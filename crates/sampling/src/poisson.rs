@@ -91,7 +91,8 @@ pub struct Sampler<'a> {
     lo: DVec3,
     cell: f64,
     dims: [usize; 3],
-    /// The field's largest radius.
+    /// The field's smallest and largest radii.
+    r_min: f64,
     r_max: f64,
     /// Colour period: cells `reach` + 1 apart along an axis never conflict.
     period: usize,
@@ -129,6 +130,7 @@ impl<'a> Sampler<'a> {
             lo,
             cell,
             dims,
+            r_min: field.min(),
             r_max: field.max(),
             period: reach as usize + 1,
             offsets,
@@ -137,6 +139,11 @@ impl<'a> Sampler<'a> {
             points: Vec::new(),
             radii: Vec::new(),
         }
+    }
+
+    /// The field's smallest radius.
+    pub fn min_radius(&self) -> f64 {
+        self.r_min
     }
 
     /// Units of work of `fill_volume` (cells times passes), for a progress bar.
@@ -177,13 +184,28 @@ impl<'a> Sampler<'a> {
 
     /// Inserts `p` when no sample lies closer than min(r(p), r(q)); returns whether it did.
     pub fn try_insert(&mut self, p: DVec3) -> bool {
+        self.insert_or_blocker(p).is_ok()
+    }
+
+    /// Inserts `p` when no sample q lies closer than min(r(p), r(q)), else returns such a q
+    /// and its radius.
+    pub fn insert_or_blocker(&mut self, p: DVec3) -> Result<(), (DVec3, f64)> {
         let r = self.radius_at(p);
-        if self.blocked(p, r) {
-            return false;
+        let mut hit = None;
+        self.neighbours(self.coords(p), r, |id| {
+            let (q, rq) = (self.points[id as usize], self.radii[id as usize] as f64);
+            let m = r.min(rq);
+            if q.distance_squared(p) < m * m {
+                hit = Some((q, rq));
+            }
+            hit.is_none()
+        });
+        if let Some(b) = hit {
+            return Err(b);
         }
         let c = self.index(self.coords(p));
         self.push(c, p, r as f32);
-        true
+        Ok(())
     }
 
     /// The samples of the cells around cell `c` (coordinates) closer than `gap` to it.
@@ -384,6 +406,7 @@ fn far_squared<const N: usize>(q: f64, lo: f64, s: f64) -> [f64; N] {
 
 /// Bit i + 3j + 9k set when the disk of radius `r` around `q` covers the sub-cell (i, j, k)
 /// of edge `s` of the 3 × 3 × 3 block at `lo` entirely.
+#[inline]
 fn cover27(q: DVec3, r: f64, lo: DVec3, s: f64) -> u32 {
     let r2 = r * r;
     // Along each axis, the far side of any sub-cell is at least the gap to the block plus s,
@@ -396,16 +419,13 @@ fn cover27(q: DVec3, r: f64, lo: DVec3, s: f64) -> u32 {
     let (fx, fy, fz) =
         (far_squared::<3>(q.x, lo.x, s), far_squared::<3>(q.y, lo.y, s), far_squared::<3>(q.z, lo.z, s));
     let mut m = 0;
-    for (k, z) in fz.iter().enumerate() {
-        for (j, y) in fy.iter().enumerate() {
+    let mut bit = 0;
+    for z in fz {
+        for y in fy {
             let yz = y + z;
-            if yz >= r2 {
-                continue;
-            }
-            for (i, x) in fx.iter().enumerate() {
-                if x + yz < r2 {
-                    m |= 1 << (i + 3 * j + 9 * k);
-                }
+            for x in fx {
+                m |= ((x + yz < r2) as u32) << bit;
+                bit += 1;
             }
         }
     }

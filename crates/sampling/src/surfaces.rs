@@ -23,6 +23,17 @@ enum Patch {
 }
 
 impl Patch {
+    /// True when the patch lies inside the disk of radius `r` around `q`.
+    fn inside(&self, q: DVec3, r: f64) -> bool {
+        let r2 = r * r;
+        match self {
+            Patch::Square { corner, u, v } => [*corner, *corner + *u, *corner + *v, *corner + *u + *v]
+                .iter()
+                .all(|c| c.distance_squared(q) < r2),
+            Patch::Triangle { a, b, c } => [a, b, c].iter().all(|c| c.distance_squared(q) < r2),
+        }
+    }
+
     fn point(&self, s: f64, t: f64) -> DVec3 {
         match self {
             Patch::Square { corner, u, v } => *corner + *u * s + *v * t,
@@ -124,14 +135,23 @@ pub fn fill_surface(
         (0..patches.len() as u32).filter(|i| meets(&patches.get(*i as usize), lo, hi)).collect();
     let mut misses = vec![0u8; patches.len()];
     let attempts = attempts.min(255) as u8;
+    // A square patch whose diagonal is below the smallest radius holds one sample at most.
+    let single = matches!(patches, Patches::Plane { .. }) && cell * 2f64.sqrt() < sampler.min_radius();
     while !live.is_empty() {
         live.retain(|&i| {
             let i = i as usize;
-            let p = patches.get(i).point(rng.uniform(), rng.uniform());
-            if region(p) && sampler.try_insert(p) {
-                misses[i] = 0;
-            } else {
+            let patch = patches.get(i);
+            let p = patch.point(rng.uniform(), rng.uniform());
+            if !region(p) {
                 misses[i] += 1;
+                return misses[i] < attempts;
+            }
+            match sampler.insert_or_blocker(p) {
+                Ok(()) if single => return false,
+                Ok(()) => misses[i] = 0,
+                // A disk that covers the whole patch (its corners) leaves it nothing.
+                Err((q, rq)) if patch.inside(q, rq.min(sampler.min_radius())) => return false,
+                Err(_) => misses[i] += 1,
             }
             misses[i] < attempts
         });
