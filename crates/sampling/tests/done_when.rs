@@ -157,3 +157,56 @@ fn the_volume_is_filled_up_to_small_holes() {
     eprintln!("{holes} holes in {inside} probes, {} samples", s.len());
     assert!(holes * 100 < inside, "{holes} holes in {inside} probes");
 }
+
+#[test]
+fn tsurf_horizon_samples_lie_on_it_and_cover_it() {
+    // Paths can run along a TSurf horizon only if its samples are on it and leave no gap on it
+    // where another sample would fit.
+    let scene = scene("fixtures/scenes/default.toml");
+    let horizon = &scene.geology.horizons[0];
+    let mesh = horizon.mesh().expect("the default horizon is a TSurf");
+    let s = sample_scene(&scene).unwrap();
+    let f = &s.radius_field;
+    let points: Vec<DVec3> = s.positions.iter().map(|p| DVec3::from_array(*p)).collect();
+    for (p, t) in points.iter().zip(&s.tags) {
+        if *t == Tag::Horizon(0) {
+            assert!(horizon.distance(*p) < 1e-6, "{p} is {} m off the horizon", horizon.distance(*p));
+        }
+    }
+    // Uniform probes on the triangles, area-weighted, inside the sampled region.
+    let areas: Vec<f64> = (0..mesh.triangles.len())
+        .map(|t| {
+            let [a, b, c] = mesh.triangle(t);
+            0.5 * (b - a).cross(c - a).length()
+        })
+        .collect();
+    let total: f64 = areas.iter().sum();
+    let mut rng = karst_geology::rng::Random::stream(4, "test", "tin probes");
+    let (mut inside, mut holes) = (0, 0);
+    while inside < 1500 {
+        let mut pick = rng.uniform() * total;
+        let t = areas.iter().position(|a| {
+            pick -= a;
+            pick < 0.0
+        });
+        let [a, b, c] = mesh.triangle(t.unwrap_or(areas.len() - 1));
+        let (u, v) = (rng.uniform().sqrt(), rng.uniform());
+        let p = a * (1.0 - u) + b * (u * (1.0 - v)) + c * (u * v);
+        let d = &scene.domain;
+        if !d.contains(p) || p.z >= scene.terrain.height(p.x, p.y) || scene.geology.in_no_karst(p) {
+            continue;
+        }
+        inside += 1;
+        // The horizon is filled after the key points and the water tables, before the volume.
+        let r = f.at(p);
+        let earlier = points
+            .iter()
+            .zip(&s.tags)
+            .filter(|(_, t)| matches!(t, Tag::KeyPoint(_) | Tag::WaterTable(_) | Tag::Horizon(0)));
+        if earlier.map(|(q, _)| q).all(|q| q.distance(p) >= r.min(f.at(*q))) {
+            holes += 1;
+        }
+    }
+    eprintln!("{holes} holes in {inside} probes on the TSurf horizon");
+    assert!(holes * 50 < inside, "{holes} holes in {inside} probes on the TSurf horizon");
+}
