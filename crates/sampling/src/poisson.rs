@@ -28,7 +28,7 @@
 //! samples are darts on the surfaces themselves (see `surfaces.rs`) and go in before the
 //! volume's, sequentially.
 
-use glam::DVec3;
+use glam::{DVec3, Vec4};
 use rayon::prelude::*;
 
 use crate::radius::RadiusField;
@@ -101,6 +101,9 @@ pub struct Sampler<'a> {
     /// Neighbour cell offsets, nearest first, with the smallest distance between a point of
     /// the centre cell and a point of that cell (below the field's largest radius).
     offsets: Vec<([i32; 3], f64)>,
+    /// The same offsets as index deltas, for cells at least `reach` cells from the border.
+    deltas: Vec<(isize, f64)>,
+    reach: usize,
     pub points: Vec<DVec3>,
     radii: Vec<f32>,
 }
@@ -124,7 +127,15 @@ impl<'a> Sampler<'a> {
             }
         }
         offsets.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+        let deltas = offsets
+            .iter()
+            .map(|([x, y, z], g)| {
+                (*x as isize + dims[0] as isize * (*y as isize + dims[1] as isize * *z as isize), *g)
+            })
+            .collect();
         Sampler {
+            deltas,
+            reach: reach as usize,
             field,
             constant: (field.min() == field.max()).then(|| field.min()),
             lo,
@@ -210,6 +221,23 @@ impl<'a> Sampler<'a> {
 
     /// The samples of the cells around cell `c` (coordinates) closer than `gap` to it.
     fn neighbours(&self, c: [usize; 3], gap: f64, mut visit: impl FnMut(u32) -> bool) {
+        let k = self.reach;
+        if (0..3).all(|a| c[a] >= k && c[a] + k < self.dims[a]) {
+            let centre = self.index(c) as isize;
+            for &(delta, g) in &self.deltas {
+                if g >= gap {
+                    break;
+                }
+                let mut id = self.head[(centre + delta) as usize];
+                while id != NONE {
+                    if !visit(id) {
+                        return;
+                    }
+                    id = self.next[id as usize];
+                }
+            }
+            return;
+        }
         let c = c.map(|v| v as i32);
         let dims = self.dims.map(|v| v as i32);
         for &(o, g) in &self.offsets {
@@ -394,16 +422,6 @@ fn box_probes(lo: DVec3, s: f64) -> impl Iterator<Item = DVec3> {
         .chain([lo + DVec3::splat(0.5 * s)])
 }
 
-/// Squared distances along one axis from `q` to the far side of each of N slabs of edge `s`
-/// from `lo`.
-fn far_squared<const N: usize>(q: f64, lo: f64, s: f64) -> [f64; N] {
-    std::array::from_fn(|i| {
-        let a = lo + i as f64 * s;
-        let d = (q - a).abs().max((q - a - s).abs());
-        d * d
-    })
-}
-
 /// Bit i + 3j + 9k set when the disk of radius `r` around `q` covers the sub-cell (i, j, k)
 /// of edge `s` of the 3 × 3 × 3 block at `lo` entirely.
 #[inline]
@@ -416,17 +434,21 @@ fn cover27(q: DVec3, r: f64, lo: DVec3, s: f64) -> u32 {
     if least.length_squared() >= r2 {
         return 0;
     }
-    let (fx, fy, fz) =
-        (far_squared::<3>(q.x, lo.x, s), far_squared::<3>(q.y, lo.y, s), far_squared::<3>(q.z, lo.z, s));
+    // Four lanes at once, in f32 relative to the block (an error of 1e-7 r only decides
+    // whether a sliver of that width is left to darts).
+    let d = q - lo;
+    let far = |c: f64| {
+        let a = Vec4::new(c as f32, (c - s) as f32, (c - 2.0 * s) as f32, (c - 3.0 * s) as f32).abs();
+        let m = Vec4::new(a.x.max(a.y), a.y.max(a.z), a.z.max(a.w), f32::INFINITY);
+        m * m
+    };
+    let (fx, fy, fz) = (far(d.x), far(d.y), far(d.z));
+    let below = Vec4::splat(r2 as f32);
     let mut m = 0;
-    let mut bit = 0;
-    for z in fz {
-        for y in fy {
-            let yz = y + z;
-            for x in fx {
-                m |= ((x + yz < r2) as u32) << bit;
-                bit += 1;
-            }
+    for k in 0..3 {
+        for j in 0..3 {
+            let yz = fy[j] + fz[k];
+            m |= ((fx + Vec4::splat(yz)).cmplt(below).bitmask() & 7) << (3 * (j + 3 * k));
         }
     }
     m
