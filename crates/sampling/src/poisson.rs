@@ -331,7 +331,6 @@ impl<'a> Sampler<'a> {
     }
 
     /// Fills cell `c` up to a vanishing uncovered part (see the module's documentation).
-    #[allow(clippy::too_many_arguments)]
     fn saturate(
         &self,
         c: [usize; 3],
@@ -350,7 +349,7 @@ impl<'a> Sampler<'a> {
             return;
         }
         let boundary = probes < 9;
-        let touches = |lo: DVec3, s: f64| !boundary || box_probes(lo, s).any(|p| region(p));
+        let touches = |lo: DVec3, s: f64| !boundary || box_probes(lo, s).any(region);
         // Every point x of the cell has r(x) ≥ floor.
         let floor = self.constant.unwrap_or_else(|| self.field.min_in(corner, corner + DVec3::splat(h)));
         let near = &mut scratch.near;

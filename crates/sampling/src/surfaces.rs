@@ -1,13 +1,15 @@
 //! Sampling on the surfaces themselves (Paris et al. 2021 §4.1: samples on the inception
 //! horizons let paths run exactly along them; KarstNSim §1.1 does the same on water tables).
 //!
-//! A surface is cut into patches that map the unit square onto it: a plane into square cells
-//! of the background grid's size in its own (strike, dip) frame, centred on the point of the
-//! plane nearest the domain's centre and covering the domain's diagonal (patches that miss the
-//! domain are dropped); a TIN into
-//! ⌈area/h²⌉ slots per triangle, mapped uniformly onto it. Every patch gets one dart per pass
-//! and retires after `attempts` consecutive failures, as in the volume. A dart lies on the
-//! surface (up to rounding), so surface samples are exactly on their horizon or water table.
+//! A surface is cut into patches that map the unit square onto it: a plane into squares of
+//! edge h (the patch size the stage gives) in its own (strike, dip) frame, centred on the point
+//! of the plane nearest the domain's centre and covering the domain's diagonal (patches that
+//! miss the domain are dropped); a TIN into ⌈area/h²⌉ slots per triangle, mapped uniformly onto
+//! it. Patches are computed from their index, not stored. Every patch gets one dart per pass
+//! and retires after `attempts` consecutive failures, when the disk of the sample that rejects
+//! a dart covers it entirely, or, for squares whose diagonal is below the smallest radius,
+//! once it holds its one sample. A dart lies on the surface (up to rounding), so surface
+//! samples are exactly on their horizon or water table.
 
 use glam::DVec3;
 
