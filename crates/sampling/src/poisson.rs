@@ -21,8 +21,10 @@
 //! its disk covers (a one-level, cell-local version of Ebeida et al. 2011's refinement), for
 //! `ROUNDS` rounds of one dart per live sub-cell. Sub-cells covered by the union of several
 //! disks but by none alone stay live and take darts in vain; what is left uncovered after the
-//! rounds is small (the set has a few % more samples than the previous sampler's with 8
-//! consecutive failed darts per cell).
+//! rounds is small: with one round, 0.16 % of the bedrock is farther than r from every sample
+//! on the 100k benchmark (as many samples as the previous sampler's 8 consecutive failed darts
+//! per cell, 0.07 %); a second round brings it to 0.08 % with 4 % more samples for 23 % more
+//! instructions.
 //!
 //! Key points are inserted first as they are, even when closer than r to each other; surface
 //! samples are darts on the surfaces themselves (see `surfaces.rs`) and go in before the
@@ -38,8 +40,8 @@ const NONE: u32 = u32::MAX;
 /// Passes of one dart per cell before the saturation pass.
 const WARM_PASSES: u32 = 2;
 /// Refinement levels of the saturation pass: elements of edge h/3, h/6, h/12.
-/// Rounds of one dart per live sub-cell in the saturation pass.
-const ROUNDS: u32 = 2;
+/// Rounds of one dart per live sub-cell in the saturation pass (see the module's documentation).
+const ROUNDS: u32 = 1;
 
 /// A cheap counter-based random stream (splitmix64 steps from a hashed seed); each cell of
 /// each pass has its own, so the darts do not depend on the processing order.
@@ -360,23 +362,22 @@ impl<'a> Sampler<'a> {
         });
         let cell = self.index(c) as u32;
         // Throws a dart at `p`: the sample that rejects it, or the new sample.
+        // (The neighbours first: most darts are rejected, and the region costs more.)
         let mut dart = |p: DVec3, near: &mut Vec<(DVec3, f64)>| -> Option<(DVec3, f64)> {
-            if !region(p) {
-                return None;
-            }
             let r = self.radius_at(p);
             let blocker = near.iter().find(|(q, rq)| {
                 let m = r.min(*rq);
                 q.distance_squared(p) < m * m
             });
-            Some(match blocker {
-                Some(&b) => b,
-                None => {
+            match blocker {
+                Some(&b) => Some(b),
+                None if region(p) => {
                     out.push((cell, p, r as f32));
                     near.push((p, r));
-                    (p, r)
+                    Some((p, r))
                 }
-            })
+                None => None,
+            }
         };
         // The 27 sub-cells, as a bit set.
         let s1 = h / 3.0;
