@@ -6,7 +6,7 @@
 //! CI diff is readable.
 
 use std::fs;
-use std::io::{BufRead, BufReader, Read};
+use std::io::{BufRead, BufReader, Read, Write};
 use std::path::Path;
 
 use serde::de::DeserializeOwned;
@@ -117,12 +117,27 @@ pub trait Payload: Serialize + DeserializeOwned {
 }
 
 /// Encodes `payload`, then atomically writes header and payload to `path`.
+///
+/// Postcard payloads are encoded twice, streaming: once into a hasher (for the header's length
+/// and digest), then into the file, so that no copy of a large payload is ever held in memory.
 pub fn write_artifact<P: Payload>(
     path: &Path,
     provenance: &Provenance,
     payload: &P,
 ) -> Result<Header, Error> {
-    let bytes = encode(payload)?;
+    let err = |e: String| Error::Encode { kind: P::KIND.name().into(), detail: e };
+    let (bytes, payload_len, payload_blake3) = match P::KIND.encoding() {
+        Encoding::Postcard => {
+            let mut sink = HashSink { hasher: blake3::Hasher::new(), len: 0 };
+            postcard::to_io(payload, &mut sink).map_err(|e| err(e.to_string()))?;
+            (None, sink.len, sink.hasher.finalize().to_hex().to_string())
+        }
+        Encoding::Json => {
+            let bytes = encode(payload)?;
+            let (len, digest) = (bytes.len() as u64, hash::hex(&bytes));
+            (Some(bytes), len, digest)
+        }
+    };
     let stage = crate::pipeline::Stage::of_kind(P::KIND);
     let key = crate::pipeline::stage_key(
         stage,
@@ -140,18 +155,38 @@ pub fn write_artifact<P: Payload>(
         key,
         inputs: provenance.inputs.clone(),
         params: provenance.params.clone(),
-        payload_len: bytes.len() as u64,
-        payload_blake3: hash::hex(&bytes),
+        payload_len,
+        payload_blake3,
     };
-    let line = serde_json::to_string(&header)
-        .map_err(|e| Error::Encode { kind: P::KIND.name().into(), detail: e.to_string() })?;
+    let line = serde_json::to_string(&header).map_err(|e| err(e.to_string()))?;
     atomic::write_with(path, |w| {
         w.write_all(line.as_bytes())?;
         w.write_all(b"\n")?;
-        w.write_all(&bytes)
+        match &bytes {
+            Some(bytes) => w.write_all(bytes),
+            None => postcard::to_io(payload, w).map(|_| ()).map_err(std::io::Error::other),
+        }
     })
     .map_err(|source| Error::Write { path: path.to_path_buf(), source })?;
     Ok(header)
+}
+
+/// A writer that only hashes and counts what it is given.
+struct HashSink {
+    hasher: blake3::Hasher,
+    len: u64,
+}
+
+impl Write for HashSink {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.hasher.update(buf);
+        self.len += buf.len() as u64;
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
 }
 
 /// Reads and checks only the header of an artifact of any kind.
@@ -285,6 +320,18 @@ mod tests {
         assert_eq!(back, pts);
         assert_eq!(read_back_header, header);
         assert_eq!(read_header(&path).unwrap(), header);
+    }
+
+    #[test]
+    fn streamed_payload_is_the_encoded_payload() {
+        let path = scratch("stream.bin");
+        let pts = Points((0..5000).map(|i| [i as f64, 0.5 * i as f64, -1.25]).collect());
+        let header = write_artifact(&path, &provenance(), &pts).unwrap();
+        let bytes = fs::read(&path).unwrap();
+        let payload = &bytes[bytes.iter().position(|b| *b == b'\n').unwrap() + 1..];
+        assert_eq!(payload, postcard::to_stdvec(&pts).unwrap().as_slice());
+        assert_eq!(header.payload_len, payload.len() as u64);
+        assert_eq!(header.payload_blake3, hash::hex(payload));
     }
 
     #[test]

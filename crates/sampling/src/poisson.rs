@@ -1,51 +1,111 @@
-//! Variable-radius Poisson-disk sampling in 3D by dart throwing over a background grid.
+//! Variable-radius Poisson-disk sampling in 3D: parallel, deterministic dart throwing over a
+//! background grid.
 //!
-//! Two samples p, q must be at least min(r(p), r(q)) apart, r the tabulated radius field: a
-//! candidate p therefore only needs the samples within r(p), found in the background grid
-//! (cell h = the field's smallest radius, each cell a linked list of its samples).
+//! Two samples p, q must be at least min(r(p), r(q)) apart, r the tabulated radius field.
+//! The background grid has cells of edge h (the volume's base radius), each a linked list of
+//! its samples; a point only conflicts with samples of the cells whose gap to its own cell is
+//! below the field's largest radius (`reach` cells per axis).
 //!
-//! Bridson's algorithm grows one front sample at a time and is hard to make fast; here every
-//! grid cell (edge r_min/√3, so that it holds at most one sample) gets one uniform dart per
-//! pass, cells visited in eight interleaved parity classes so that no scan direction is
-//! favoured (Wei 2008's phase groups). Darts go into the cell's child octants not yet known to
-//! be covered: each rejecting sample removes the octants its disk covers entirely. A cell
-//! retires when it takes a sample, when all its octants are covered, or after `attempts`
-//! consecutive failed darts (it is then covered up to a vanishing fraction). Darts
-//! come from one seeded stream in a fixed order: the result is deterministic. Key points are
-//! inserted first as they are, even when closer than r to each other; surface samples are darts
-//! on the surfaces themselves (see `surfaces.rs`) and go in before the volume's.
+//! Phase groups (Wei 2008): cells are coloured by their coordinates modulo reach + 1, so that
+//! two cells of one colour are more than the largest radius apart and can never conflict.
+//! The cells of one colour are processed in parallel; each reads only the samples already in
+//! the grid (left by earlier colours) and its own new ones, and draws its darts from a random
+//! stream of its own, derived from (seed, pass, cell) by a counter-based generator. The new
+//! samples are appended in cell order after each colour: the result does not depend on the
+//! number of threads.
+//!
+//! `WARM_PASSES` passes throw one dart per cell (so that the bulk of the samples is spread
+//! without a scan order), then one saturation pass fills every cell: of its 27 sub-cells of
+//! edge h/3, those that no single neighbouring disk covers entirely are live; darts go into
+//! random live sub-cells, and each sample that accepts or rejects a dart removes the sub-cells
+//! its disk covers (a one-level, cell-local version of Ebeida et al. 2011's refinement), for
+//! `ROUNDS` rounds of one dart per live sub-cell. Sub-cells covered by the union of several
+//! disks but by none alone stay live and take darts in vain; what is left uncovered after the
+//! rounds is small: with one round, 0.16 % of the bedrock is farther than r from every sample
+//! on the 100k benchmark (as many samples as the previous sampler's 8 consecutive failed darts
+//! per cell, 0.07 %); a second round brings it to 0.08 % with 4 % more samples for 23 % more
+//! instructions.
+//!
+//! Key points are inserted first as they are, even when closer than r to each other; surface
+//! samples are darts on the surfaces themselves (see `surfaces.rs`) and go in before the
+//! volume's, sequentially.
 
-use glam::DVec3;
-
-use karst_geology::rng::Random;
+use glam::{DVec3, Vec4};
+use rayon::prelude::*;
 
 use crate::radius::RadiusField;
 
 const NONE: u32 = u32::MAX;
 
-/// Offset (0 or 1 per axis) of child octant `k`.
-fn octant(k: u32) -> DVec3 {
-    DVec3::new((k & 1) as f64, (k >> 1 & 1) as f64, (k >> 2 & 1) as f64)
+/// Passes of one dart per cell before the saturation pass.
+const WARM_PASSES: u32 = 2;
+/// Refinement levels of the saturation pass: elements of edge h/3, h/6, h/12.
+/// Rounds of one dart per live sub-cell in the saturation pass (see the module's documentation).
+const ROUNDS: u32 = 1;
+
+/// A cheap counter-based random stream (splitmix64 steps from a hashed seed); each cell of
+/// each pass has its own, so the darts do not depend on the processing order.
+struct CellRng(u64);
+
+fn mix(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
 }
 
-/// The state of a cell that takes no more darts.
-const RETIRED: u8 = u8::MAX;
+impl CellRng {
+    fn new(key: u64, pass: u32, cell: usize) -> Self {
+        CellRng(mix(key ^ mix((cell as u64) << 8 | pass as u64)))
+    }
+
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        mix(self.0)
+    }
+
+    /// Uniform in [0, 1), 53 bits.
+    fn uniform(&mut self) -> f64 {
+        (self.next() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    fn unit_cube(&mut self) -> DVec3 {
+        DVec3::new(self.uniform(), self.uniform(), self.uniform())
+    }
+
+    /// Integer in 0..n (multiply-shift; the bias is below 2⁻⁴⁰ for the small n used here).
+    fn below(&mut self, n: usize) -> usize {
+        ((self.next() as u128 * n as u128) >> 64) as usize
+    }
+}
+
+/// Per-thread scratch space of the saturation pass (reused from cell to cell).
+#[derive(Default)]
+struct Scratch {
+    /// Samples that may conflict with a point of the cell: (position, radius).
+    near: Vec<(DVec3, f64)>,
+}
 
 /// The growing sample set and its background grid.
 pub struct Sampler<'a> {
     field: &'a RadiusField,
-    /// The field's smallest radius.
-    r_min: f64,
     /// The radius when the field is constant (no interpolation needed).
     constant: Option<f64>,
     lo: DVec3,
     cell: f64,
     dims: [usize; 3],
+    /// The field's smallest and largest radii.
+    r_min: f64,
+    r_max: f64,
+    /// Colour period: cells `reach` + 1 apart along an axis never conflict.
+    period: usize,
     head: Vec<u32>,
     next: Vec<u32>,
     /// Neighbour cell offsets, nearest first, with the smallest distance between a point of
-    /// the centre cell and a point of that cell.
+    /// the centre cell and a point of that cell (below the field's largest radius).
     offsets: Vec<([i32; 3], f64)>,
+    /// The same offsets as index deltas, for cells at least `reach` cells from the border.
+    deltas: Vec<(isize, f64)>,
+    reach: usize,
     pub points: Vec<DVec3>,
     radii: Vec<f32>,
 }
@@ -69,13 +129,23 @@ impl<'a> Sampler<'a> {
             }
         }
         offsets.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+        let deltas = offsets
+            .iter()
+            .map(|([x, y, z], g)| {
+                (*x as isize + dims[0] as isize * (*y as isize + dims[1] as isize * *z as isize), *g)
+            })
+            .collect();
         Sampler {
+            deltas,
+            reach: reach as usize,
             field,
-            r_min: field.min(),
             constant: (field.min() == field.max()).then(|| field.min()),
             lo,
             cell,
             dims,
+            r_min: field.min(),
+            r_max: field.max(),
+            period: reach as usize + 1,
             offsets,
             head: vec![NONE; dims[0] * dims[1] * dims[2]],
             next: Vec::new(),
@@ -84,8 +154,14 @@ impl<'a> Sampler<'a> {
         }
     }
 
-    pub fn cells(&self) -> usize {
-        self.head.len()
+    /// The field's smallest radius.
+    pub fn min_radius(&self) -> f64 {
+        self.r_min
+    }
+
+    /// Units of work of `fill_volume` (cells times passes), for a progress bar.
+    pub fn work(&self) -> usize {
+        self.head.len() * (WARM_PASSES as usize + 1)
     }
 
     fn coords(&self, p: DVec3) -> [usize; 3] {
@@ -97,37 +173,77 @@ impl<'a> Sampler<'a> {
         ]
     }
 
-    /// Inserts `p` whatever its neighbours (key points).
+    fn index(&self, [x, y, z]: [usize; 3]) -> usize {
+        (z * self.dims[1] + y) * self.dims[0] + x
+    }
+
     fn radius_at(&self, p: DVec3) -> f64 {
         self.constant.unwrap_or_else(|| self.field.at(p))
     }
 
-    pub fn force(&mut self, p: DVec3) {
-        let r = self.radius_at(p) as f32;
-        let [x, y, z] = self.coords(p);
-        let c = (z * self.dims[1] + y) * self.dims[0] + x;
+    fn push(&mut self, c: usize, p: DVec3, r: f32) {
         self.next.push(self.head[c]);
         self.head[c] = self.points.len() as u32;
         self.points.push(p);
         self.radii.push(r);
     }
 
-    /// Inserts `p` when no sample lies closer than min(r(p), r(q)); returns whether it did.
-    pub fn try_insert(&mut self, p: DVec3) -> bool {
-        let r = self.radius_at(p);
-        if self.blocker(p, r).is_none() {
-            self.force(p);
-            return true;
-        }
-        false
+    /// Inserts `p` whatever its neighbours (key points).
+    pub fn force(&mut self, p: DVec3) {
+        let r = self.radius_at(p) as f32;
+        let c = self.index(self.coords(p));
+        self.push(c, p, r);
     }
 
-    /// A sample closer to `p` than min(r, its radius), nearest cells first.
-    fn blocker(&self, p: DVec3, r: f64) -> Option<u32> {
-        let c = self.coords(p).map(|v| v as i32);
+    /// Inserts `p` when no sample lies closer than min(r(p), r(q)); returns whether it did.
+    pub fn try_insert(&mut self, p: DVec3) -> bool {
+        self.insert_or_blocker(p).is_ok()
+    }
+
+    /// Inserts `p` when no sample q lies closer than min(r(p), r(q)), else returns such a q
+    /// and its radius.
+    pub fn insert_or_blocker(&mut self, p: DVec3) -> Result<(), (DVec3, f64)> {
+        let r = self.radius_at(p);
+        let mut hit = None;
+        self.neighbours(self.coords(p), r, |id| {
+            let (q, rq) = (self.points[id as usize], self.radii[id as usize] as f64);
+            let m = r.min(rq);
+            if q.distance_squared(p) < m * m {
+                hit = Some((q, rq));
+            }
+            hit.is_none()
+        });
+        if let Some(b) = hit {
+            return Err(b);
+        }
+        let c = self.index(self.coords(p));
+        self.push(c, p, r as f32);
+        Ok(())
+    }
+
+    /// The samples of the cells around cell `c` (coordinates) closer than `gap` to it.
+    fn neighbours(&self, c: [usize; 3], gap: f64, mut visit: impl FnMut(u32) -> bool) {
+        let k = self.reach;
+        if (0..3).all(|a| c[a] >= k && c[a] + k < self.dims[a]) {
+            let centre = self.index(c) as isize;
+            for &(delta, g) in &self.deltas {
+                if g >= gap {
+                    break;
+                }
+                let mut id = self.head[(centre + delta) as usize];
+                while id != NONE {
+                    if !visit(id) {
+                        return;
+                    }
+                    id = self.next[id as usize];
+                }
+            }
+            return;
+        }
+        let c = c.map(|v| v as i32);
         let dims = self.dims.map(|v| v as i32);
-        for &(o, gap) in &self.offsets {
-            if gap >= r {
+        for &(o, g) in &self.offsets {
+            if g >= gap {
                 break;
             }
             let (x, y, z) = (c[0] + o[0], c[1] + o[1], c[2] + o[2]);
@@ -136,117 +252,212 @@ impl<'a> Sampler<'a> {
             }
             let mut id = self.head[((z * dims[1] + y) * dims[0] + x) as usize];
             while id != NONE {
-                let q = self.points[id as usize];
-                let m = r.min(self.radii[id as usize] as f64);
-                if q.distance_squared(p) < m * m {
-                    return Some(id);
+                if !visit(id) {
+                    return;
                 }
                 id = self.next[id as usize];
             }
         }
-        None
     }
 
-    /// Fills `region` with darts, one per live cell per pass, until every cell is occupied,
-    /// covered by one sample's disk, or has failed `attempts` times in a row.
-    /// `retired(n)` hears how many cells have retired after each pass (for a progress bar).
-    pub fn fill_volume(
-        &mut self,
-        attempts: u32,
-        rng: &mut Random,
-        region: impl Fn(DVec3) -> bool,
-        retired: impl Fn(u64),
-    ) {
-        // misses[c]: consecutive failed darts of cell c; RETIRED once it is done. One byte per
-        // cell is all the state: each pass walks the cells in parity order.
-        let mut misses = vec![0u8; self.head.len()];
-        let mut children = vec![u8::MAX; self.head.len()];
-        let limit = attempts.min(254) as u8;
+    /// True when a sample of the grid lies closer to `p` than min(r, its radius).
+    fn blocked(&self, p: DVec3, r: f64) -> bool {
+        let mut hit = false;
+        self.neighbours(self.coords(p), r, |id| {
+            let m = r.min(self.radii[id as usize] as f64);
+            hit = self.points[id as usize].distance_squared(p) < m * m;
+            !hit
+        });
+        hit
+    }
+
+    /// Fills `region` with samples: `WARM_PASSES` passes of one dart per cell, then one pass
+    /// that saturates every cell (see the module's documentation). `key` seeds every cell's
+    /// random stream. `done(n)` hears how many units of `work()` are done.
+    pub fn fill_volume(&mut self, key: u64, region: impl Fn(DVec3) -> bool + Sync, done: impl Fn(u64)) {
         let [nx, ny, nz] = self.dims;
-        let mut remaining = self.head.len();
-        while remaining > 0 {
-            for parity in 0..8usize {
-                for z in (parity >> 2 & 1..nz).step_by(2) {
-                    for y in (parity >> 1 & 1..ny).step_by(2) {
-                        for x in (parity & 1..nx).step_by(2) {
-                            let c = (z * ny + y) * nx + x;
-                            if misses[c] == RETIRED {
-                                continue;
+        let k = self.period;
+        let mut finished = 0u64;
+        for pass in 0..=WARM_PASSES {
+            let saturate = pass == WARM_PASSES;
+            for colour in 0..k * k * k {
+                let (cx, cy, cz) = (colour % k, colour / k % k, colour / (k * k));
+                let rows: Vec<(usize, usize)> =
+                    (cz..nz).step_by(k).flat_map(|z| (cy..ny).step_by(k).map(move |y| (z, y))).collect();
+                let this = &*self;
+                let found: Vec<Vec<(u32, DVec3, f32)>> = rows
+                    .par_iter()
+                    .map_init(Scratch::default, |scratch, &(z, y)| {
+                        let mut out = Vec::new();
+                        for x in (cx..nx).step_by(k) {
+                            let c = [x, y, z];
+                            let mut rng = CellRng::new(key, pass, this.index(c));
+                            if saturate {
+                                this.saturate(c, &mut rng, &region, scratch, &mut out);
+                            } else {
+                                this.warm_dart(c, &mut rng, &region, &mut out);
                             }
-                            let corner = self.lo + DVec3::new(x as f64, y as f64, z as f64) * self.cell;
-                            if !self.dart(corner, &mut children[c], rng, &region) {
-                                misses[c] += 1;
-                                if misses[c] < limit {
-                                    continue;
-                                }
-                            }
-                            misses[c] = RETIRED;
-                            remaining -= 1;
                         }
-                    }
+                        out
+                    })
+                    .collect();
+                for (c, p, r) in found.into_iter().flatten() {
+                    self.push(c as usize, p, r);
+                }
+                finished += (rows.len() * nx.saturating_sub(cx).div_ceil(k)) as u64;
+                done(finished);
+            }
+        }
+    }
+
+    fn corner(&self, [x, y, z]: [usize; 3]) -> DVec3 {
+        self.lo + DVec3::new(x as f64, y as f64, z as f64) * self.cell
+    }
+
+    /// One uniform dart in cell `c`.
+    fn warm_dart(
+        &self,
+        c: [usize; 3],
+        rng: &mut CellRng,
+        region: &impl Fn(DVec3) -> bool,
+        out: &mut Vec<(u32, DVec3, f32)>,
+    ) {
+        let p = self.corner(c) + rng.unit_cube() * self.cell;
+        if !region(p) {
+            return;
+        }
+        let r = self.radius_at(p);
+        if !self.blocked(p, r) {
+            out.push((self.index(c) as u32, p, r as f32));
+        }
+    }
+
+    /// Fills cell `c` up to a vanishing uncovered part (see the module's documentation).
+    fn saturate(
+        &self,
+        c: [usize; 3],
+        rng: &mut CellRng,
+        region: &impl Fn(DVec3) -> bool,
+        scratch: &mut Scratch,
+        out: &mut Vec<(u32, DVec3, f32)>,
+    ) {
+        let h = self.cell;
+        let corner = self.corner(c);
+        // The region is resolved to the cell: a cell none of whose corners and centre is in
+        // the region is skipped; in a cell where some are not, every live sub-cell must have
+        // one of its own in the region.
+        let probes = box_probes(corner, h).filter(|p| region(*p)).count();
+        if probes == 0 {
+            return;
+        }
+        let boundary = probes < 9;
+        let touches = |lo: DVec3, s: f64| !boundary || box_probes(lo, s).any(region);
+        // Every point x of the cell has r(x) ≥ floor.
+        let floor = self.constant.unwrap_or_else(|| self.field.min_in(corner, corner + DVec3::splat(h)));
+        let near = &mut scratch.near;
+        near.clear();
+        self.neighbours(c, self.r_max, |id| {
+            near.push((self.points[id as usize], self.radii[id as usize] as f64));
+            true
+        });
+        let cell = self.index(c) as u32;
+        // Throws a dart at `p`: the sample that rejects it, or the new sample.
+        // (The neighbours first: most darts are rejected, and the region costs more.)
+        let mut dart = |p: DVec3, near: &mut Vec<(DVec3, f64)>| -> Option<(DVec3, f64)> {
+            let r = self.radius_at(p);
+            let blocker = near.iter().find(|(q, rq)| {
+                let m = r.min(*rq);
+                q.distance_squared(p) < m * m
+            });
+            match blocker {
+                Some(&b) => Some(b),
+                None if region(p) => {
+                    out.push((cell, p, r as f32));
+                    near.push((p, r));
+                    Some((p, r))
+                }
+                None => None,
+            }
+        };
+        // The 27 sub-cells, as a bit set.
+        let s1 = h / 3.0;
+        let sub = |k: u32| corner + DVec3::new((k % 3) as f64, (k / 3 % 3) as f64, (k / 9) as f64) * s1;
+        let mut mask: u32 = (1 << 27) - 1;
+        for &(q, rq) in near.iter() {
+            mask &= !cover27(q, rq.min(floor), corner, s1);
+        }
+        if boundary {
+            for k in 0..27 {
+                if mask >> k & 1 == 1 && !touches(sub(k), s1) {
+                    mask &= !(1 << k);
                 }
             }
-            retired((self.head.len() - remaining) as u64);
+        }
+        // Where the radius is below the sub-cells' diagonal (near surfaces with a small
+        // `surface_radius`), no disk covers a sub-cell and a sub-cell holds several samples:
+        // more rounds, in proportion to how many fit.
+        let crowd = (s1 * 3f64.sqrt() / floor).powi(3).ceil().clamp(1.0, 64.0) as u32;
+        for _ in 0..ROUNDS * crowd {
+            for _ in 0..mask.count_ones() {
+                if mask == 0 {
+                    return;
+                }
+                let mut m = mask;
+                for _ in 0..rng.below(mask.count_ones() as usize) {
+                    m &= m - 1;
+                }
+                let p = sub(m.trailing_zeros()) + rng.unit_cube() * s1;
+                if let Some((q, rq)) = dart(p, near) {
+                    mask &= !cover27(q, rq.min(floor), corner, s1);
+                }
+            }
         }
     }
+}
 
-    /// Throws one dart in a live child octant of the cell at `corner`; false when it failed
-    /// and the cell may still take a sample, true when the cell is done (a sample went in, or
-    /// every child is covered). The sample that rejects a dart removes the children its disk
-    /// covers entirely (a one-level version of Ebeida et al. 2011's refinement that uses no
-    /// search beyond the dart's own).
-    fn dart(
-        &mut self,
-        corner: DVec3,
-        children: &mut u8,
-        rng: &mut Random,
-        region: &impl Fn(DVec3) -> bool,
-    ) -> bool {
-        let half = 0.5 * self.cell;
-        let nth = rng.index(children.count_ones() as usize);
-        let child = (0..8u32).filter(|k| *children >> k & 1 == 1).nth(nth).unwrap_or(0);
-        let p = corner + (octant(child) + DVec3::new(rng.uniform(), rng.uniform(), rng.uniform())) * half;
-        if !region(p) {
-            return false;
-        }
-        match self.blocker(p, self.radius_at(p)) {
-            None => {
-                self.force(p);
-                true
-            }
-            Some(q) => {
-                *children &= !self.covered_children(q, corner);
-                *children == 0
-            }
-        }
-    }
+/// The eight corners and the centre of the box of edge `s` at `lo`.
+fn box_probes(lo: DVec3, s: f64) -> impl Iterator<Item = DVec3> {
+    (0..8)
+        .map(move |k| lo + DVec3::new((k & 1) as f64, (k >> 1 & 1) as f64, (k >> 2 & 1) as f64) * s)
+        .chain([lo + DVec3::splat(0.5 * s)])
+}
 
-    /// Bit k set when sample `q` covers child octant k of the cell at `corner` entirely: every
-    /// point p of it is closer to q than min(r(p), r(q)), r(p) bounded below by the field's
-    /// smallest radius (or its smallest node value around the cell).
-    fn covered_children(&self, q: u32, corner: DVec3) -> u8 {
-        let half = 0.5 * self.cell;
-        let qp = self.points[q as usize];
-        let rq = self.radii[q as usize] as f64;
-        let mut reach = rq.min(self.r_min);
-        let mut mask = 0u8;
-        for k in 0..8u32 {
-            let lo = corner + octant(k) * half;
-            let far = (qp - lo).abs().max((qp - lo - DVec3::splat(half)).abs()).length();
-            if far >= reach && far < rq && reach < rq {
-                reach = rq.min(self.field.min_in(corner, corner + self.cell));
-            }
-            if far < reach {
-                mask |= 1 << k;
-            }
-        }
-        mask
+/// Bit i + 3j + 9k set when the disk of radius `r` around `q` covers the sub-cell (i, j, k)
+/// of edge `s` of the 3 × 3 × 3 block at `lo` entirely.
+#[inline]
+fn cover27(q: DVec3, r: f64, lo: DVec3, s: f64) -> u32 {
+    let r2 = r * r;
+    // Along each axis, the far side of any sub-cell is at least the gap to the block plus s,
+    // or s/2 when q is within the block's slab.
+    let gap = (lo - q).max(q - lo - DVec3::splat(3.0 * s));
+    let least = DVec3::select(gap.cmpgt(DVec3::ZERO), gap + DVec3::splat(s), DVec3::splat(0.5 * s));
+    if least.length_squared() >= r2 {
+        return 0;
     }
+    // Four lanes at once, in f32 relative to the block (an error of 1e-7 r only decides
+    // whether a sliver of that width is left to darts).
+    let d = q - lo;
+    let far = |c: f64| {
+        let a = Vec4::new(c as f32, (c - s) as f32, (c - 2.0 * s) as f32, (c - 3.0 * s) as f32).abs();
+        let m = Vec4::new(a.x.max(a.y), a.y.max(a.z), a.z.max(a.w), f32::INFINITY);
+        m * m
+    };
+    let (fx, fy, fz) = (far(d.x), far(d.y), far(d.z));
+    let below = Vec4::splat(r2 as f32);
+    let mut m = 0;
+    for k in 0..3 {
+        for j in 0..3 {
+            let yz = fy[j] + fz[k];
+            m |= ((fx + Vec4::splat(yz)).cmplt(below).bitmask() & 7) << (3 * (j + 3 * k));
+        }
+    }
+    m
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use karst_geology::rng::Random;
 
     fn field(values: impl Fn(DVec3) -> f32) -> RadiusField {
         let size = [13u32, 9, 5];
@@ -263,11 +474,10 @@ mod tests {
     }
 
     fn run(f: &RadiusField, seed: u64) -> Vec<DVec3> {
-        let mut rng = Random::stream(seed, "test", "poisson");
         let mut s = Sampler::new(f, DVec3::ZERO, DVec3::new(60.0, 40.0, 20.0), f.min());
         s.force(DVec3::new(5.0, 5.0, 5.0));
         s.force(DVec3::new(5.5, 5.0, 5.0));
-        s.fill_volume(12, &mut rng, |p| p.z < 20.0 - 0.2 * p.x, |_| {});
+        s.fill_volume(seed, |p| p.z < 20.0 - 0.2 * p.x, |_| {});
         s.points
     }
 

@@ -48,7 +48,7 @@ pub struct Samples {
 
 impl Payload for Samples {
     const KIND: Kind = Kind::Samples;
-    const SCHEMA: u32 = 2;
+    const SCHEMA: u32 = 3;
 }
 
 impl Samples {

@@ -25,20 +25,21 @@ type SurfaceList<'a> = (&'a [Surface], fn(u32) -> Tag, &'static str);
 pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     let field = RadiusField::of_scene(scene);
     let d = &scene.domain;
-    // Cells of r/√3 for the volume's base radius: where r is smaller a cell may hold several
-    // samples (linked lists), where r is at least the base radius one sample covers its cell.
+    // Background cells of the volume's base radius (a few samples each, linked lists).
     let base = scene.sampling.radius * crate::radius::unit_scale(scene);
-    let cell = field.min().max(base) / 3f64.sqrt();
+    let cell = field.min().max(base);
     let mut sampler = Sampler::new(&field, d.min(), d.max(), cell);
-    let mut tags: Vec<Tag> = Vec::new();
+    // Runs of equal tags (the tags themselves are built once the grid is freed).
+    let mut runs: Vec<(Tag, usize)> = Vec::new();
     for (i, k) in scene.keypoints.iter().enumerate() {
         sampler.force(k.point());
-        tags.push(Tag::KeyPoint(i as u32));
+        runs.push((Tag::KeyPoint(i as u32), 1));
     }
     let region =
         |p: DVec3| d.contains(p) && p.z < scene.terrain.height(p.x, p.y) && !scene.geology.in_no_karst(p);
     let attempts = scene.sampling.attempts;
-    let frame = (d.min(), d.max(), cell);
+    // Surface patches of r/√3, so that one sample covers its patch.
+    let frame = (d.min(), d.max(), cell / 3f64.sqrt());
     let g = &scene.geology;
     let lists: [SurfaceList; 3] = [
         (&g.water_tables, Tag::WaterTable, "water tables"),
@@ -48,15 +49,17 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     for (surfaces, tag, purpose) in lists {
         for (i, s) in surfaces.iter().enumerate() {
             let mut rng = Random::stream(scene.seed, "sampling", &format!("{purpose} {i}"));
+            let before = sampler.points.len();
             fill_surface(&mut sampler, s, frame, attempts, &mut rng, region);
-            tags.resize(sampler.points.len(), tag(i as u32));
+            runs.push((tag(i as u32), sampler.points.len() - before));
         }
     }
-    let mut rng = Random::stream(scene.seed, "sampling", "volume");
-    let bar = progress::bar(sampler.cells() as u64, "sampling");
-    sampler.fill_volume(attempts, &mut rng, region, |n| bar.set_position(n));
+    let key = Random::stream(scene.seed, "sampling", "volume").uniform().to_bits();
+    let bar = progress::bar(sampler.work() as u64, "sampling");
+    sampler.fill_volume(key, region, |n| bar.set_position(n));
     bar.finish_and_clear();
-    tags.resize(sampler.points.len(), Tag::Volume);
+    let volume = sampler.points.len() - runs.iter().map(|r| r.1).sum::<usize>();
+    runs.push((Tag::Volume, volume));
     if sampler.points.len() == scene.keypoints.len() {
         return Err(StageError::input(format!(
             "sampling.radius: no sample fits in the bedrock: the domain below the terrain and outside the no-karst volumes is empty or thinner than the radius ({} m at the smallest, sampling.radius = {})",
@@ -69,7 +72,15 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     let points = std::mem::take(&mut sampler.points);
     drop(sampler);
     let positions = points.into_iter().map(|p| p.to_array()).collect();
+    let mut tags = Vec::with_capacity(sampler_len(&runs));
+    for (tag, n) in runs {
+        tags.resize(tags.len() + n, tag);
+    }
     Ok(Samples { positions, tags, radius: field.min(), radius_field: field })
+}
+
+fn sampler_len(runs: &[(Tag, usize)]) -> usize {
+    runs.iter().map(|r| r.1).sum()
 }
 
 /// `karst-sampling run`.

@@ -41,6 +41,8 @@ fn bad_scenes_exit_2_naming_file_line_and_field() {
         ("surface_radius_zero.toml", "sampling.surface_radius: must be > 0, got 0"),
         ("nan_in_horizon.toml", "geology.horizons[0].elevation: NaN is not a finite number"),
         ("nothing_to_sample.toml", "sampling.radius: no sample fits in the bedrock"),
+        ("radius_negative.toml", ":41: sampling.radius: must be > 0, got -4"),
+        ("tsurf_nan.toml", "nan.ts:7: coordinate NaN is not a finite number"),
     ];
     let out = scratch("bad");
     for (file, expected) in cases {

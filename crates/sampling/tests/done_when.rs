@@ -113,3 +113,100 @@ fn no_sample_in_a_no_karst_volume_or_above_the_terrain() {
     });
     assert!(near.count() > 10);
 }
+
+#[test]
+fn the_same_samples_whatever_the_thread_count() {
+    let scene = scene("fixtures/scenes/layered.toml");
+    let with = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| sample_scene(&scene).unwrap())
+    };
+    let one = with(1);
+    assert_eq!(one, with(2));
+    assert_eq!(one, with(3));
+}
+
+#[test]
+fn the_volume_is_filled_up_to_small_holes() {
+    // Constant radius (no surfaces): a point of the bedrock farther than r from every sample
+    // could still take one. The saturation pass leaves only a small volume of such holes.
+    let mut scene = scene("fixtures/scenes/tiny.toml");
+    scene.geology.water_tables.clear();
+    scene.geology.horizons.clear();
+    scene.geology.faults.clear();
+    scene.geology.layers.clear();
+    scene.geology.potential.clear();
+    scene.keypoints.retain(|k| k.water_table.is_none());
+    let s = sample_scene(&scene).unwrap();
+    let r = s.radius;
+    let points: Vec<DVec3> = s.positions.iter().map(|p| DVec3::from_array(*p)).collect();
+    let (lo, hi) = (scene.domain.min(), scene.domain.max());
+    let mut rng = karst_geology::rng::Random::stream(3, "test", "holes");
+    let (mut inside, mut holes) = (0, 0);
+    for _ in 0..4000 {
+        let p = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
+        if p.z >= scene.terrain.height(p.x, p.y) || scene.geology.in_no_karst(p) {
+            continue;
+        }
+        inside += 1;
+        if points.iter().all(|q| q.distance(p) >= r) {
+            holes += 1;
+        }
+    }
+    assert!(inside > 1000);
+    eprintln!("{holes} holes in {inside} probes, {} samples", s.len());
+    assert!(holes * 100 < inside, "{holes} holes in {inside} probes");
+}
+
+#[test]
+fn tsurf_horizon_samples_lie_on_it_and_cover_it() {
+    // Paths can run along a TSurf horizon only if its samples are on it and leave no gap on it
+    // where another sample would fit.
+    let scene = scene("fixtures/scenes/default.toml");
+    let horizon = &scene.geology.horizons[0];
+    let mesh = horizon.mesh().expect("the default horizon is a TSurf");
+    let s = sample_scene(&scene).unwrap();
+    let f = &s.radius_field;
+    let points: Vec<DVec3> = s.positions.iter().map(|p| DVec3::from_array(*p)).collect();
+    for (p, t) in points.iter().zip(&s.tags) {
+        if *t == Tag::Horizon(0) {
+            assert!(horizon.distance(*p) < 1e-6, "{p} is {} m off the horizon", horizon.distance(*p));
+        }
+    }
+    // Uniform probes on the triangles, area-weighted, inside the sampled region.
+    let areas: Vec<f64> = (0..mesh.triangles.len())
+        .map(|t| {
+            let [a, b, c] = mesh.triangle(t);
+            0.5 * (b - a).cross(c - a).length()
+        })
+        .collect();
+    let total: f64 = areas.iter().sum();
+    let mut rng = karst_geology::rng::Random::stream(4, "test", "tin probes");
+    let (mut inside, mut holes) = (0, 0);
+    while inside < 1500 {
+        let mut pick = rng.uniform() * total;
+        let t = areas.iter().position(|a| {
+            pick -= a;
+            pick < 0.0
+        });
+        let [a, b, c] = mesh.triangle(t.unwrap_or(areas.len() - 1));
+        let (u, v) = (rng.uniform().sqrt(), rng.uniform());
+        let p = a * (1.0 - u) + b * (u * (1.0 - v)) + c * (u * v);
+        let d = &scene.domain;
+        if !d.contains(p) || p.z >= scene.terrain.height(p.x, p.y) || scene.geology.in_no_karst(p) {
+            continue;
+        }
+        inside += 1;
+        // The horizon is filled after the key points and the water tables, before the volume.
+        let r = f.at(p);
+        let earlier = points
+            .iter()
+            .zip(&s.tags)
+            .filter(|(_, t)| matches!(t, Tag::KeyPoint(_) | Tag::WaterTable(_) | Tag::Horizon(0)));
+        if earlier.map(|(q, _)| q).all(|q| q.distance(p) >= r.min(f.at(*q))) {
+            holes += 1;
+        }
+    }
+    eprintln!("{holes} holes in {inside} probes on the TSurf horizon");
+    assert!(holes * 50 < inside, "{holes} holes in {inside} probes on the TSurf horizon");
+}
