@@ -74,6 +74,9 @@ enum Task {
         /// Only the cost-graph budget cases (100k samples at k = 50, 1M at k = 30).
         #[arg(long)]
         costgraph: bool,
+        /// Only the mesher's synthetic budget cases (issue 8).
+        #[arg(long, conflicts_with = "costgraph")]
+        mesher: bool,
     },
     /// Run N seeds of SCENE in parallel: every realization's metrics in one CSV, their summary and
     /// the conduit probability grid (EXR slices and a top-view PNG).
@@ -121,7 +124,7 @@ fn main() -> ExitCode {
         Task::Run { scene, out, from, only, force } => run(scene, out, Selection { from, only, force }),
         Task::Diff { a, b, tol } => return diff_command(&a, &b, tol),
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph } => bench_command(runs, costgraph),
+        Task::Bench { runs, costgraph, mesher } => bench_command(runs, costgraph, mesher),
         Task::Test { args } => return test(&args),
         Task::Ensemble { scene, n, cell, out } => ensemble_command(scene, n, cell, out),
         Task::MetricsTable { write } => metrics_table_command(write),
@@ -202,8 +205,12 @@ fn bless() -> Result<(), StageError> {
 /// Conduits of the synthetic sdf benchmark network (about 30k primitives).
 const SDF_BENCH_CONDUITS: usize = 100;
 
-fn bench_command(runs: usize, costgraph_only: bool) -> Result<(), StageError> {
+fn bench_command(runs: usize, costgraph_only: bool, mesher_only: bool) -> Result<(), StageError> {
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
+    if mesher_only {
+        mesher_bench(runs);
+        return Ok(());
+    }
     let scenes = if costgraph_only { &[][..] } else { BENCH_SCENES };
     for scene in scenes {
         println!("\n{scene}");
@@ -244,6 +251,17 @@ fn bench_command(runs: usize, costgraph_only: bool) -> Result<(), StageError> {
     sdf_bench(runs)
 }
 
+/// The mesher's budget cases (issue 8) on a synthetic model of 30k capsules.
+fn mesher_bench(runs: usize) {
+    println!("\nmesher, synthetic 30k capsules (issue 8)");
+    for case in bench::synthetic::run(runs) {
+        println!(
+            "{:<45} {:>8.3} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB",
+            case.name, case.seconds, case.triangles, case.evaluations_per_vertex, case.peak_mb
+        );
+    }
+}
+
 /// The sdf budgets (issue 7) on a synthetic network of about 30k primitives.
 fn sdf_bench(runs: usize) -> Result<(), StageError> {
     let b = bench::sdf_network(SDF_BENCH_CONDUITS, runs)?;
@@ -266,13 +284,7 @@ fn sdf_bench(runs: usize) -> Result<(), StageError> {
         per(b.artifact_bytes as f64)
     );
 
-    println!("\nmesher, synthetic 30k capsules (issue 8)");
-    for case in bench::synthetic::run(runs) {
-        println!(
-            "{:<45} {:>8.3} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB",
-            case.name, case.seconds, case.triangles, case.evaluations_per_vertex, case.peak_mb
-        );
-    }
+    mesher_bench(runs);
 
     println!("\nnetwork statistics (karstnet: load and metrics, Python start-up excluded)");
     println!(

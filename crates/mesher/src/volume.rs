@@ -33,8 +33,8 @@ impl Volume for CarvedTerrain {
         CarvedTerrain::eval(self, p)
     }
 
-    fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
-        CarvedTerrain::bound(self, lo, hi)
+    fn eval_within(&self, p: DVec3, reach: f64) -> f64 {
+        CarvedTerrain::eval_within(self, p, reach)
     }
 
     fn extent(&self) -> (DVec3, DVec3) {

@@ -106,6 +106,51 @@ impl Bvh {
         best
     }
 
+    /// Appends to `out` (in tree order) the primitives whose boxes come closer than `margin` to
+    /// the box [lo, hi]: every primitive whose value can be below `margin` somewhere in that
+    /// box (a value is at least the distance to the primitive's box, at least the distance
+    /// between the boxes). For p in the box and limit ≤ margin, [`Bvh::min_value_among`] over
+    /// them equals [`Bvh::min_value`] bit for bit: both are min(limit, the exact values below
+    /// it), whatever the order of the visits.
+    pub fn near_box(&self, lo: DVec3, hi: DVec3, margin: f64, out: &mut Vec<u32>) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let gap = |a: DVec3, b: DVec3| (a - hi).max(lo - b).max(DVec3::ZERO).length();
+        let mut stack = [0u32; 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let n = stack[top] as usize;
+            let node = &self.nodes[n];
+            if gap(node.lo.as_dvec3(), node.hi.as_dvec3()) >= margin {
+                continue;
+            }
+            if node.count > 0 {
+                for i in node.first..node.first + node.count {
+                    let (a, b) = self.primitives[i as usize].bounds();
+                    if gap(a, b) < margin {
+                        out.push(i);
+                    }
+                }
+            } else {
+                // Left child pushed last, so visited first: the list stays in tree order.
+                stack[top] = node.first;
+                stack[top + 1] = (n + 1) as u32;
+                top += 2;
+            }
+        }
+    }
+
+    /// min(limit, min over the primitives `among` of their value at p).
+    pub fn min_value_among(&self, among: &[u32], p: DVec3, limit: f64, ctx: &Context) -> f64 {
+        let mut best = limit;
+        for &i in among {
+            best = best.min(self.primitives[i as usize].value(p, best, ctx));
+        }
+        best
+    }
+
     /// Bytes held by the tree and its primitives (the sweeps' and chambers' boxed parts too).
     pub fn memory(&self) -> usize {
         use std::mem::size_of;
