@@ -307,6 +307,10 @@ pub mod synthetic {
             self.inner.eval_within(p, reach)
         }
 
+        fn eval_block(&self, lo: DVec3, hi: DVec3, reach: f64, points: &[DVec3], out: &mut Vec<f64>) {
+            self.inner.eval_block(lo, hi, reach, points, out)
+        }
+
         fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
             self.inner.bound(lo, hi)
         }

@@ -16,6 +16,7 @@
 pub mod build;
 pub mod cleanup;
 pub mod components;
+pub mod cubes;
 pub mod export;
 pub mod lattice;
 pub mod mesh;
@@ -25,7 +26,6 @@ pub mod polygonize;
 pub mod render;
 pub mod simplify;
 pub mod stage;
-pub mod tetra;
 pub mod volume;
 pub mod watertight;
 
