@@ -340,19 +340,7 @@ pub mod synthetic {
             start.elapsed().as_secs_f64()
         );
         let (lo, hi) = (DVec3::new(437.5, 437.5, 0.0), DVec3::new(562.5, 562.5, 400.0));
-        struct Full<'a>(&'a CarvedTerrain);
-        impl Volume for Full<'_> {
-            fn eval(&self, p: DVec3) -> f64 {
-                self.0.eval(p)
-            }
-            fn extent(&self) -> (DVec3, DVec3) {
-                Volume::extent(self.0)
-            }
-        }
         vec![
-            time("TEMP full eval, carved terrain, 0.5 m", runs, || {
-                polygonize(&Tile { inner: Full(&field), lo, hi }, 0.5)
-            }),
             time("tile 125x125x400 m, carved terrain, 0.5 m", runs, || {
                 polygonize(&Tile { inner: &field, lo, hi }, 0.5)
             }),

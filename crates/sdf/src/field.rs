@@ -41,6 +41,8 @@ pub struct CarvedTerrain {
     water: Bvh,
     /// The terrain leaf's 1/√(1 + λ²), computed once rather than at every evaluation.
     terrain_scale: f64,
+    /// The detail noise's gradient bound, likewise.
+    detail_gradient: f64,
 }
 
 impl CarvedTerrain {
@@ -48,7 +50,8 @@ impl CarvedTerrain {
         let caves = Bvh::build(karst_leaves(&model));
         let water = Bvh::build(water_leaves(&model));
         let terrain_scale = model.terrain.scale();
-        CarvedTerrain { model, caves, water, terrain_scale }
+        let detail_gradient = model.detail_noise.gradient_bound();
+        CarvedTerrain { model, caves, water, terrain_scale, detail_gradient }
     }
 
     pub fn model(&self) -> &SdfModel {
@@ -56,7 +59,8 @@ impl CarvedTerrain {
     }
 
     fn context(&self) -> Context<'_> {
-        Context::new(&self.model.detail_noise, &self.model.chamber_noise, self.model.chamber_bias)
+        let m = &self.model;
+        Context::with_gradient(&m.detail_noise, self.detail_gradient, &m.chamber_noise, m.chamber_bias)
     }
 
     /// Rock before the caves: below the terrain and inside the domain (negative inside).

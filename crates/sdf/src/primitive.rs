@@ -45,7 +45,12 @@ pub struct Context<'a> {
 
 impl<'a> Context<'a> {
     pub fn new(detail: &'a WaveNoise, chamber: &'a WaveNoise, bias: f64) -> Self {
-        Context { detail, detail_gradient: detail.gradient_bound(), chamber, bias, noise_at: Cell::new(None) }
+        Self::with_gradient(detail, detail.gradient_bound(), chamber, bias)
+    }
+
+    /// [`Context::new`] with the detail noise's gradient bound computed beforehand.
+    pub fn with_gradient(detail: &'a WaveNoise, detail_gradient: f64, chamber: &'a WaveNoise, bias: f64) -> Self {
+        Context { detail, detail_gradient, chamber, bias, noise_at: Cell::new(None) }
     }
 
     fn noise(&self, p: DVec3) -> f64 {
