@@ -1,4 +1,4 @@
-//! The mesh artifact: the carved terrain and the cave alone, each a closed surface.
+//! The mesh artifact: the carved terrain, the cave alone and the water, each a closed surface.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -16,11 +16,20 @@ pub struct Mesh {
     pub terrain: Surface,
     /// The karst volume alone: normals point out of the cave, into the rock.
     pub cave: Surface,
+    /// The water standing or flowing in the conduits: normals point out of the water.
+    pub water: Surface,
+}
+
+impl Mesh {
+    /// The surfaces with their names: terrain, cave, water.
+    pub fn surfaces(&self) -> [(&'static str, &Surface); 3] {
+        [("terrain", &self.terrain), ("cave", &self.cave), ("water", &self.water)]
+    }
 }
 
 impl Payload for Mesh {
     const KIND: Kind = Kind::Mesh;
-    const SCHEMA: u32 = 2;
+    const SCHEMA: u32 = 3;
 }
 
 /// An indexed triangle mesh; triangles are counter-clockwise seen from outside the solid.

@@ -36,16 +36,17 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Mesher)), &mesh)?;
     export::write_all(&args.out, &mesh)
         .map_err(|e| StageError::failure(format!("{}: cannot write the exports: {e}", args.out.display())))?;
-    let (t, c) = (&mesh.terrain, &mesh.cave);
+    let (t, c, w) = (&mesh.terrain, &mesh.cave, &mesh.water);
     Ok(format!(
-        "terrain {} triangles, cave {} triangles; removed {} islands and {} pockets; \
-         {:.1} evaluations per vertex in {:.2} s",
+        "terrain {} triangles, cave {} triangles, water {} triangles; removed {} islands and {} \
+         pockets; {:.1} evaluations per vertex in {:.2} s",
         t.triangles.len(),
         c.triangles.len(),
+        w.triangles.len(),
         t.removed.islands + c.removed.islands,
         t.removed.pockets + c.removed.pockets,
-        (t.field_evaluations + c.field_evaluations) as f64
-            / (t.vertices.len() + c.vertices.len()).max(1) as f64,
+        (t.field_evaluations + c.field_evaluations + w.field_evaluations) as f64
+            / (t.vertices.len() + c.vertices.len() + w.vertices.len()).max(1) as f64,
         start.elapsed().as_secs_f64()
     ))
 }
@@ -74,7 +75,7 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     let (header, mesh) = read_artifact::<Mesh>(&args.file)?;
     println!("{}: mesh, schema {}, by {}", args.file.display(), header.schema, header.producer);
     println!("  cell size    {} m", mesh.cell_size);
-    for (name, surface) in [("terrain", &mesh.terrain), ("cave", &mesh.cave)] {
+    for (name, surface) in mesh.surfaces() {
         summary(name, surface);
     }
     Ok(())
@@ -107,7 +108,7 @@ pub struct RenderArgs {
     /// The PNG to write.
     #[arg(long)]
     pub png: PathBuf,
-    /// Which surface: `cave` or `terrain`.
+    /// Which surface: `cave`, `terrain` or `water`.
     #[arg(long, default_value = "cave")]
     pub surface: String,
     /// Picture width and height, pixels.
@@ -123,8 +124,11 @@ pub fn render(args: &RenderArgs) -> Result<(), StageError> {
     let surface = match args.surface.as_str() {
         "cave" => &mesh.cave,
         "terrain" => &mesh.terrain,
+        "water" => &mesh.water,
         other => {
-            return Err(StageError::input(format!("--surface {other}: expected `cave` or `terrain`")));
+            return Err(StageError::input(format!(
+                "--surface {other}: expected `cave`, `terrain` or `water`"
+            )));
         }
     };
     if !(16..=8192).contains(&args.width) || !(16..=8192).contains(&args.height) {
