@@ -10,8 +10,10 @@ use crate::cleanup::Removed;
 /// The artifact `mesh.bin`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Mesh {
-    /// Lattice cell size used, metres.
+    /// Lattice cell size of the carved terrain, metres.
     pub cell_size: f64,
+    /// Lattice cell size of the cave alone and the water, metres.
+    pub cave_cell_size: f64,
     /// The carved rock: normals point from rock to air.
     pub terrain: Surface,
     /// The karst volume alone: normals point out of the cave, into the rock.

@@ -291,3 +291,30 @@ fn random_signs_give_a_closed_oriented_manifold() {
     let two = with_threads(2, || polygonize(&RandomSigns, 1.0));
     assert_eq!(surface, two);
 }
+
+#[test]
+fn thin_conduits_are_meshed_whole_at_the_automatic_cave_cell() {
+    // A 1.6 m wide conduit, winding across a domain meshed at 4 m: at 4 m its cave mesh breaks
+    // into pieces (or vanishes), at the automatic cave cell it is one closed tube.
+    let (r, a, b, c) = (0.8, [5.3, 20.1, 10.2], [45.7, 21.3, 9.1], [75.2, 48.9, 11.4]);
+    let model = SdfModel {
+        capsules: vec![Capsule { a, b, radius: r }, Capsule { a: b, b: c, radius: r }],
+        ..SdfModel::new(
+            Domain { min: [0.0, 0.0, 0.0], max: [80.0, 60.0, 20.0] },
+            TerrainField::Plane { elevation: 18.0, origin: [0.0, 0.0], gradient: [0.0, 0.0] },
+        )
+    };
+    let cave_cell = karst_mesher::build::cave_cell(&model, 4.0, 0.0);
+    assert_eq!(cave_cell, r);
+    let field = CarvedTerrain::new(model);
+    let coarse = polygonize(&Cave(&field), 4.0);
+    assert!(components::count(&coarse) != 1, "a 4 m lattice should miss parts of it");
+    let mesh = karst_mesher::build::build_with(&field, 4.0, cave_cell, &[DVec3::from_array(a)]);
+    assert_watertight("cave", &mesh.cave);
+    assert_eq!(components::count(&mesh.cave), 1);
+    let length = DVec3::from_array(a).distance(DVec3::from_array(b)) + DVec3::from_array(b).distance(DVec3::from_array(c));
+    let volume = PI * r * r * length;
+    // One cell per radius: marching cubes' chords keep about 80 % of the tube.
+    let ratio = mesh.cave.enclosed_volume() / volume;
+    assert!(ratio > 0.7 && ratio < 1.0, "{} vs {volume}", mesh.cave.enclosed_volume());
+}

@@ -134,12 +134,19 @@ impl Bvh {
                     }
                 }
             } else {
-                // Left child pushed last, so visited first: the list stays in tree order.
                 stack[top] = node.first;
                 stack[top + 1] = (n + 1) as u32;
                 top += 2;
             }
         }
+        // Nearest to the box's centre first, so that the running minimum drops early and the
+        // farther leaves stop at their box test.
+        let centre = (lo + hi) * 0.5;
+        let key = |i: u32| {
+            let (a, b) = self.primitives[i as usize].bounds();
+            signed_box_distance(a, b, centre)
+        };
+        out.sort_by(|&x, &y| key(x).total_cmp(&key(y)).then(x.cmp(&y)));
     }
 
     /// min(limit, min over the primitives `among` of their value at p).

@@ -113,14 +113,26 @@ impl CarvedTerrain {
         -ops::smooth_union(-rock, caves, blend)
     }
 
-    /// The leaves (karst and water) that can matter for [`CarvedTerrain::eval_near`],
-    /// [`CarvedTerrain::cave_below_ground_near`] and [`CarvedTerrain::water_near`] at points of
-    /// the box [lo, hi] with a reach at most `reach`.
+    /// The karst leaves that can matter for [`CarvedTerrain::eval_near`] at points of the box
+    /// [lo, hi] with a reach at most `reach`.
     pub fn near(&self, lo: DVec3, hi: DVec3, reach: f64) -> Near {
+        self.gather(lo, hi, reach, reach.min(REACH) + self.model.blend.max(0.0), false)
+    }
+
+    /// The leaves (karst and water) that can matter for
+    /// [`CarvedTerrain::cave_below_ground_near`] and [`CarvedTerrain::water_near`] at points of
+    /// the box [lo, hi] with a reach at most `reach` (no blend: a smaller margin than
+    /// [`CarvedTerrain::near`]).
+    pub fn near_cave(&self, lo: DVec3, hi: DVec3, reach: f64) -> Near {
+        self.gather(lo, hi, reach, reach.min(REACH), true)
+    }
+
+    fn gather(&self, lo: DVec3, hi: DVec3, reach: f64, margin: f64, water: bool) -> Near {
         let mut near = Near { reach, caves: Vec::new(), water: Vec::new() };
-        let margin = reach.min(REACH) + self.model.blend.max(0.0);
         self.caves.near_box(lo, hi, margin, &mut near.caves);
-        self.water.near_box(lo, hi, margin, &mut near.water);
+        if water {
+            self.water.near_box(lo, hi, margin, &mut near.water);
+        }
         near
     }
 
@@ -290,13 +302,13 @@ mod tests {
             let lo = DVec3::new(random.range(0.0, 95.0), random.range(0.0, 95.0), random.range(0.0, 45.0));
             let hi = lo + DVec3::splat(random.range(0.5, 5.0));
             let reach = random.range(0.2, 10.0);
-            let near = f.near(lo, hi, reach);
+            let (near, near_cave) = (f.near(lo, hi, reach), f.near_cave(lo, hi, reach));
             for _ in 0..20 {
                 let p = lo + (hi - lo) * DVec3::new(random.range(0.0, 1.0), random.range(0.0, 1.0), random.range(0.0, 1.0));
                 let r = reach * random.range(0.5, 1.0);
                 assert_eq!(f.eval_near(&near, p, r).to_bits(), f.eval_within(p, r).to_bits());
-                assert_eq!(f.cave_below_ground_near(&near, p, r).to_bits(), f.cave_below_ground(p, r).to_bits());
-                assert_eq!(f.water_near(&near, p, r).to_bits(), f.water_within(p, r).to_bits());
+                assert_eq!(f.cave_below_ground_near(&near_cave, p, r).to_bits(), f.cave_below_ground(p, r).to_bits());
+                assert_eq!(f.water_near(&near_cave, p, r).to_bits(), f.water_within(p, r).to_bits());
             }
         }
     }
