@@ -59,9 +59,7 @@ struct BrickPart {
 pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
     let (lo, hi) = field.extent();
     let lattice = Lattice::around(lo, hi, cell_size);
-    let t0 = std::time::Instant::now();
     let (bricks, octree_evaluations) = octree::active_bricks(field, &lattice);
-    let t1 = t0.elapsed().as_secs_f64();
     // A cell edge is one cell long, so both values of a rock–air edge lie within a cell of zero
     // (1-Lipschitz): beyond that only the sign matters, and vertices are those of exact values.
     let reach = lattice.cell * 1.5;
@@ -74,7 +72,6 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
             values
         })
         .collect();
-    let t2 = t0.elapsed().as_secs_f64();
     let parts: Vec<BrickPart> = (0..bricks.len())
         .into_par_iter()
         .map(|b| {
@@ -86,13 +83,7 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
     bar.finish_and_clear();
     let own_evaluations: u64 = own.iter().map(|v| v.iter().filter(|x| !x.is_nan()).count() as u64).sum();
     drop(own);
-    let t3 = t0.elapsed().as_secs_f64();
-    let missing: u64 = parts.iter().map(|p| p.evaluations).sum();
-    let out = weld(parts, octree_evaluations + own_evaluations);
-    if std::env::var_os("TRACE").is_some() {
-        eprintln!("TRACE octree {t1:.3} ({octree_evaluations}) own {:.3} ({own_evaluations}) bricks {:.3} ({missing}) weld {:.3}; {} bricks, {} vertices", t2 - t1, t3 - t2, t0.elapsed().as_secs_f64() - t3, bricks.len(), out.vertices.len());
-    }
-    out
+    weld(parts, octree_evaluations + own_evaluations)
 }
 
 fn local(i: usize, j: usize, k: usize) -> usize {
