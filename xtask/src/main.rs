@@ -255,8 +255,9 @@ fn bench_command(runs: usize, costgraph_only: bool, mesher_only: bool) -> Result
 fn mesher_bench(runs: usize) {
     println!("\nmesher, synthetic 30k capsules (issue 8)");
     for case in bench::synthetic::run(runs) {
+        let cpu = case.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}"));
         println!(
-            "{:<45} {:>8.3} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB",
+            "{:<45} {:>8.3} s  CPU {cpu:>6} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB",
             case.name, case.seconds, case.triangles, case.evaluations_per_vertex, case.peak_mb
         );
     }

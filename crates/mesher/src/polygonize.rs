@@ -252,12 +252,20 @@ fn weld(parts: Vec<BrickPart>, evaluations: u64) -> Surface {
         let rank = parts[owner].slots.binary_search(&slot).expect("the owner made the vertex");
         base[owner] + rank as u32
     };
-    let per_brick: Vec<Vec<[u32; 3]>> = (0..parts.len())
-        .into_par_iter()
-        .map(|b| parts[b].triangles.iter().map(|t| t.map(|r| resolve(b, r))).collect())
-        .collect();
-    let triangles: Vec<[u32; 3]> = per_brick.concat();
-    drop(per_brick);
+    // Each brick resolves its triangles into its own range of the output.
+    let mut triangles = vec![[0u32; 3]; parts.iter().map(|p| p.triangles.len()).sum()];
+    let mut ranges = Vec::with_capacity(parts.len());
+    let mut rest = triangles.as_mut_slice();
+    for part in &parts {
+        let (range, tail) = rest.split_at_mut(part.triangles.len());
+        ranges.push(range);
+        rest = tail;
+    }
+    ranges.into_par_iter().enumerate().for_each(|(b, range)| {
+        for (out, t) in range.iter_mut().zip(&parts[b].triangles) {
+            *out = t.map(|r| resolve(b, r));
+        }
+    });
     let field_evaluations = evaluations + parts.iter().map(|p| p.evaluations).sum::<u64>();
     let mut vertices = Vec::with_capacity(*base.last().unwrap() as usize);
     for part in parts {

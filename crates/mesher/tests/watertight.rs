@@ -147,13 +147,17 @@ fn a_capsule_matches_its_analytic_area_and_volume() {
 fn one_or_two_threads_write_the_same_files() {
     let runs: Vec<_> = [1, 2]
         .map(|threads| {
-            let mesh = with_threads(threads, || mesh_of(random_model(), 1.0));
+            let mesh = with_threads(threads, || {
+                let field = CarvedTerrain::new(random_model());
+                // Cave and water finer than the terrain, as the stage's automatic cave cell does.
+                karst_mesher::build::build_with(&field, 1.0, 0.6, &[])
+            });
             let dir = std::env::temp_dir().join(format!("karst-mesher-{}-{threads}", std::process::id()));
             let files = export::write_all(&dir, &mesh).unwrap();
             (dir, files)
         })
         .to_vec();
-    assert_eq!(runs[0].1.len(), 6, "mesh.obj and five exports");
+    assert_eq!(runs[0].1.len(), 9, "mesh.obj and eight exports");
     for (one, two) in runs[0].1.iter().zip(&runs[1].1) {
         let (a, b) = (std::fs::read(one).unwrap(), std::fs::read(two).unwrap());
         assert!(a == b, "{} differs between 1 and 2 threads", one.display());
