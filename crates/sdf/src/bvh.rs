@@ -22,6 +22,14 @@ struct Node {
     count: u32,
 }
 
+/// A primitive gathered by [`Bvh::near_box`], with its box.
+#[derive(Debug, Clone, Copy)]
+pub struct Candidate {
+    index: u32,
+    lo: DVec3,
+    hi: DVec3,
+}
+
 /// The hierarchy and its primitives, in tree order.
 #[derive(Debug, Clone, Default)]
 pub struct Bvh {
@@ -112,7 +120,7 @@ impl Bvh {
     /// between the boxes). For p in the box and limit ≤ margin, [`Bvh::min_value_among`] over
     /// them equals [`Bvh::min_value`] bit for bit: both are min(limit, the exact values below
     /// it), whatever the order of the visits.
-    pub fn near_box(&self, lo: DVec3, hi: DVec3, margin: f64, out: &mut Vec<u32>) {
+    pub fn near_box(&self, lo: DVec3, hi: DVec3, margin: f64, out: &mut Vec<Candidate>) {
         if self.nodes.is_empty() {
             return;
         }
@@ -130,7 +138,7 @@ impl Bvh {
                 for i in node.first..node.first + node.count {
                     let (a, b) = self.primitives[i as usize].bounds();
                     if gap(a, b) < margin {
-                        out.push(i);
+                        out.push(Candidate { index: i, lo: a, hi: b });
                     }
                 }
             } else {
@@ -142,18 +150,19 @@ impl Bvh {
         // Nearest to the box's centre first, so that the running minimum drops early and the
         // farther leaves stop at their box test.
         let centre = (lo + hi) * 0.5;
-        let key = |i: u32| {
-            let (a, b) = self.primitives[i as usize].bounds();
-            signed_box_distance(a, b, centre)
-        };
-        out.sort_by(|&x, &y| key(x).total_cmp(&key(y)).then(x.cmp(&y)));
+        let key = |c: &Candidate| signed_box_distance(c.lo, c.hi, centre);
+        out.sort_by(|x, y| key(x).total_cmp(&key(y)).then(x.index.cmp(&y.index)));
     }
 
     /// min(limit, min over the primitives `among` of their value at p).
-    pub fn min_value_among(&self, among: &[u32], p: DVec3, limit: f64, ctx: &Context) -> f64 {
+    /// A leaf's value is at least its box's signed distance, so leaves whose box is no closer
+    /// than the running minimum are skipped without being evaluated.
+    pub fn min_value_among(&self, among: &[Candidate], p: DVec3, limit: f64, ctx: &Context) -> f64 {
         let mut best = limit;
-        for &i in among {
-            best = best.min(self.primitives[i as usize].value(p, best, ctx));
+        for c in among {
+            if signed_box_distance(c.lo, c.hi, p) < best {
+                best = best.min(self.primitives[c.index as usize].value(p, best, ctx));
+            }
         }
         best
     }

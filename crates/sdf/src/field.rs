@@ -13,7 +13,7 @@
 
 use glam::DVec3;
 
-use crate::bvh::Bvh;
+use crate::bvh::{Bvh, Candidate};
 use crate::chamber::Chamber;
 use crate::model::detail_factor;
 use crate::primitive::{Context, Primitive};
@@ -29,8 +29,8 @@ pub const REACH: f64 = 8.0;
 #[derive(Debug, Clone, Default)]
 pub struct Near {
     reach: f64,
-    caves: Vec<u32>,
-    water: Vec<u32>,
+    caves: Vec<Candidate>,
+    water: Vec<Candidate>,
 }
 
 /// The carved terrain's signed-distance bound, ready to evaluate.
