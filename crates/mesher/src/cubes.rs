@@ -158,9 +158,8 @@ fn triangles(case: u8) -> Case {
         // neighbouring cube may draw the same diagonal: such loops (through both segments of
         // an ambiguous face) get a centre vertex instead of a fan.
         let len = ring.len();
-        let in_face_diagonal = (0..len).any(|i| {
-            (i + 2..len).any(|j| !(i == 0 && j == len - 1) && share_a_face(ring[i], ring[j]))
-        });
+        let in_face_diagonal = (0..len)
+            .any(|i| (i + 2..len).any(|j| !(i == 0 && j == len - 1) && share_a_face(ring[i], ring[j])));
         if in_face_diagonal {
             let centre = 12 + out.centres.len() as u8;
             for k in 0..len {
@@ -193,7 +192,8 @@ mod tests {
     fn a_vertex_on_every_crossed_edge_and_only_there() {
         for case in 0..=255u8 {
             let t = &table()[case as usize].triangles;
-            let used: std::collections::BTreeSet<u8> = t.iter().flatten().copied().filter(|&e| e < 12).collect();
+            let used: std::collections::BTreeSet<u8> =
+                t.iter().flatten().copied().filter(|&e| e < 12).collect();
             let crossed: std::collections::BTreeSet<u8> = (0..12u8)
                 .filter(|&e| {
                     let (a, b) = EDGES[e as usize];
@@ -212,16 +212,17 @@ mod tests {
             let bit = 1usize << axis;
             let upper: Vec<_> = (0..=255u8).map(|case| face_segments(case, axis, true)).collect();
             let lower: Vec<_> = (0..=255u8).map(|case| face_segments(case, axis, false)).collect();
-            for case in 0..256usize {
-                for other in 0..256usize {
+            for (case, ours) in upper.iter().enumerate() {
+                for (other, theirs) in lower.iter().enumerate() {
                     // `other`'s lower face has the signs of `case`'s upper face.
-                    let agrees = (0..8).filter(|c| c & bit == 0).all(|c| (case >> (c | bit) & 1) == (other >> c & 1));
+                    let agrees =
+                        (0..8).filter(|c| c & bit == 0).all(|c| (case >> (c | bit) & 1) == (other >> c & 1));
                     if !agrees {
                         continue;
                     }
-                    let mut reversed: Vec<_> = lower[other].iter().map(|&(a, b)| (b, a)).collect();
+                    let mut reversed: Vec<_> = theirs.iter().map(|&(a, b)| (b, a)).collect();
                     reversed.sort();
-                    assert_eq!(upper[case], reversed, "axis {axis}, cases {case} and {other}");
+                    assert_eq!(*ours, reversed, "axis {axis}, cases {case} and {other}");
                 }
             }
         }

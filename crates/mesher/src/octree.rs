@@ -29,7 +29,13 @@ pub fn active_bricks<V: Volume>(field: &V, lattice: &Lattice) -> (Vec<[u64; 3]>,
 /// Nodes at least this many cells wide split their children across threads.
 const PARALLEL: u64 = 8 * BRICK;
 
-fn visit<V: Volume>(field: &V, lattice: &Lattice, cells: [u64; 3], at: [u64; 3], size: u64) -> (Vec<[u64; 3]>, u64) {
+fn visit<V: Volume>(
+    field: &V,
+    lattice: &Lattice,
+    cells: [u64; 3],
+    at: [u64; 3],
+    size: u64,
+) -> (Vec<[u64; 3]>, u64) {
     if (0..3).any(|a| at[a] >= cells[a]) {
         return (Vec::new(), 0);
     }

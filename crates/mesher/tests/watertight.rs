@@ -262,7 +262,8 @@ impl Volume for RandomSigns {
             return 1.0;
         }
         let [i, j, k] = p.round().as_ivec3().to_array();
-        let mut h = (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ (j as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f);
+        let mut h =
+            (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ (j as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f);
         h ^= (k as u64).wrapping_mul(0x1656_67b1_9e37_79f9);
         h ^= h >> 29;
         h = h.wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -316,7 +317,8 @@ fn thin_conduits_are_meshed_whole_at_the_automatic_cave_cell() {
     let mesh = karst_mesher::build::build_with(&field, 4.0, cave_cell, &[DVec3::from_array(a)]);
     assert_watertight("cave", &mesh.cave);
     assert_eq!(components::count(&mesh.cave), 1);
-    let length = DVec3::from_array(a).distance(DVec3::from_array(b)) + DVec3::from_array(b).distance(DVec3::from_array(c));
+    let length = DVec3::from_array(a).distance(DVec3::from_array(b))
+        + DVec3::from_array(b).distance(DVec3::from_array(c));
     let volume = PI * r * r * length;
     // One cell per radius: marching cubes' chords keep about 80 % of the tube.
     let ratio = mesh.cave.enclosed_volume() / volume;

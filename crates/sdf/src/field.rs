@@ -275,7 +275,8 @@ mod tests {
         let f = CarvedTerrain::new(model);
         let mut random = karst_geology::rng::Random::stream(3, "sdf", "eval_within");
         for _ in 0..20_000 {
-            let p = DVec3::new(random.range(-5.0, 105.0), random.range(-5.0, 105.0), random.range(-5.0, 55.0));
+            let p =
+                DVec3::new(random.range(-5.0, 105.0), random.range(-5.0, 105.0), random.range(-5.0, 55.0));
             let exact = f.eval(p);
             for reach in [0.3, 1.0, 2.0, 5.0, 50.0] {
                 let v = f.eval_within(p, reach);
@@ -294,7 +295,11 @@ mod tests {
         model.blend = 1.0;
         for i in 0..40 {
             let x = 10.0 + i as f64 * 2.0;
-            model.capsules.push(Capsule { a: [x, 30.0, 15.0], b: [x + 3.0, 70.0, 30.0 + i as f64], radius: 1.5 });
+            model.capsules.push(Capsule {
+                a: [x, 30.0, 15.0],
+                b: [x + 3.0, 70.0, 30.0 + i as f64],
+                radius: 1.5,
+            });
         }
         let f = CarvedTerrain::new(model);
         let mut random = karst_geology::rng::Random::stream(4, "sdf", "near");
@@ -304,10 +309,15 @@ mod tests {
             let reach = random.range(0.2, 10.0);
             let (near, near_cave) = (f.near(lo, hi, reach), f.near_cave(lo, hi, reach));
             for _ in 0..20 {
-                let p = lo + (hi - lo) * DVec3::new(random.range(0.0, 1.0), random.range(0.0, 1.0), random.range(0.0, 1.0));
+                let p = lo
+                    + (hi - lo)
+                        * DVec3::new(random.range(0.0, 1.0), random.range(0.0, 1.0), random.range(0.0, 1.0));
                 let r = reach * random.range(0.5, 1.0);
                 assert_eq!(f.eval_near(&near, p, r).to_bits(), f.eval_within(p, r).to_bits());
-                assert_eq!(f.cave_below_ground_near(&near_cave, p, r).to_bits(), f.cave_below_ground(p, r).to_bits());
+                assert_eq!(
+                    f.cave_below_ground_near(&near_cave, p, r).to_bits(),
+                    f.cave_below_ground(p, r).to_bits()
+                );
                 assert_eq!(f.water_near(&near_cave, p, r).to_bits(), f.water_within(p, r).to_bits());
             }
         }

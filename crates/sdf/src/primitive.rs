@@ -49,7 +49,12 @@ impl<'a> Context<'a> {
     }
 
     /// [`Context::new`] with the detail noise's gradient bound computed beforehand.
-    pub fn with_gradient(detail: &'a WaveNoise, detail_gradient: f64, chamber: &'a WaveNoise, bias: f64) -> Self {
+    pub fn with_gradient(
+        detail: &'a WaveNoise,
+        detail_gradient: f64,
+        chamber: &'a WaveNoise,
+        bias: f64,
+    ) -> Self {
         Context { detail, detail_gradient, chamber, bias, noise_at: Cell::new(None) }
     }
 
