@@ -74,8 +74,8 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
         .collect();
     let parts: Vec<BrickPart> = (0..bricks.len())
         .into_par_iter()
-        .map(|b| {
-            let part = brick(field, &lattice, &bricks, &own, b, reach);
+        .map_init(Scratch::default, |scratch, b| {
+            let part = brick(field, &lattice, &bricks, &own, b, reach, scratch);
             bar.inc(1);
             part
         })
@@ -116,6 +116,15 @@ fn own_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3], reach: f64)
     out
 }
 
+/// Buffers a thread reuses from brick to brick (every brick overwrites what it reads).
+#[derive(Default)]
+struct Scratch {
+    values: Vec<f64>,
+    made: Vec<bool>,
+    missing: Vec<(usize, usize, usize)>,
+    positions: Vec<(u16, [f32; 3])>,
+}
+
 fn brick<V: Volume>(
     field: &V,
     lattice: &Lattice,
@@ -123,6 +132,7 @@ fn brick<V: Volume>(
     own: &[Vec<f64>],
     b: usize,
     reach: f64,
+    scratch: &mut Scratch,
 ) -> BrickPart {
     let at = bricks[b];
     let n = N;
@@ -133,8 +143,10 @@ fn brick<V: Volume>(
         find([0, 1, 2].map(|a| at[a] + BRICK * (bits >> a & 1) as u64))
     });
     let index = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
-    let mut values = vec![f64::NAN; n * n * n];
-    let mut missing = Vec::new();
+    let Scratch { values, made, missing, positions: positions_by_slot } = scratch;
+    values.clear();
+    values.resize(n * n * n, f64::NAN);
+    missing.clear();
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
@@ -167,8 +179,9 @@ fn brick<V: Volume>(
     // is crossed by the surface, so its brick is active and makes the vertex; relative to any
     // other cell of the edge it is this brick or an upper neighbour.
     let last = [0, 1, 2].map(|a| lattice.dims[a] - 1);
-    let mut made = vec![false; SLOTS];
-    let mut positions_by_slot: Vec<(u16, [f32; 3])> = Vec::new();
+    made.clear();
+    made.resize(SLOTS, false);
+    positions_by_slot.clear();
     let mut triangles = Vec::new();
     let cases = table();
     for k in 0..size[2].saturating_sub(1) {
@@ -232,7 +245,7 @@ fn brick<V: Volume>(
     positions_by_slot.sort_unstable_by_key(|&(slot, _)| slot);
     BrickPart {
         slots: positions_by_slot.iter().map(|&(s, _)| s).collect(),
-        positions: positions_by_slot.into_iter().map(|(_, p)| p).collect(),
+        positions: positions_by_slot.iter().map(|&(_, p)| p).collect(),
         triangles,
         neighbours: neighbours.map(|o| o.map_or(u32::MAX, |o| o as u32)),
         evaluations,
