@@ -77,6 +77,9 @@ enum Task {
         /// Only the sdf budgets (synthetic network and looping preset).
         #[arg(long, conflicts_with = "costgraph")]
         sdf: bool,
+        /// Only the mesher's synthetic budget cases (issue 8).
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
+        mesher: bool,
     },
     /// Run N seeds of SCENE in parallel: every realization's metrics in one CSV, their summary and
     /// the conduit probability grid (EXR slices and a top-view PNG).
@@ -124,7 +127,7 @@ fn main() -> ExitCode {
         Task::Run { scene, out, from, only, force } => run(scene, out, Selection { from, only, force }),
         Task::Diff { a, b, tol } => return diff_command(&a, &b, tol),
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf } => bench_command(runs, costgraph, sdf),
+        Task::Bench { runs, costgraph, sdf, mesher } => bench_command(runs, costgraph, sdf, mesher),
         Task::Test { args } => return test(&args),
         Task::Ensemble { scene, n, cell, out } => ensemble_command(scene, n, cell, out),
         Task::MetricsTable { write } => metrics_table_command(write),
@@ -205,14 +208,19 @@ fn bless() -> Result<(), StageError> {
 /// Conduits of the synthetic sdf benchmark network (about 30k primitives).
 const SDF_BENCH_CONDUITS: usize = 100;
 
-fn bench_command(runs: usize, costgraph_only: bool, sdf_only: bool) -> Result<(), StageError> {
+fn bench_command(
+    runs: usize,
+    costgraph_only: bool,
+    sdf_only: bool,
+    mesher_only: bool,
+) -> Result<(), StageError> {
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
-    if sdf_only {
-        let synthetic = bench::sdf_network(SDF_BENCH_CONDUITS, runs)?;
-        print_sdf_bench(&format!("synthetic network of {SDF_BENCH_CONDUITS} conduits"), &synthetic);
-        let looping = bench::sdf_preset(Path::new("fixtures/scenes/looping.toml"), runs)?;
-        print_sdf_bench("looping preset", &looping);
+    if mesher_only {
+        mesher_bench(runs);
         return Ok(());
+    }
+    if sdf_only {
+        return sdf_bench(runs);
     }
     let scenes = if costgraph_only { &[][..] } else { BENCH_SCENES };
     for scene in scenes {
@@ -251,7 +259,20 @@ fn bench_command(runs: usize, costgraph_only: bool, sdf_only: bool) -> Result<()
         println!("{case:<45} {samples:>7} samples {seconds:>8.4} s");
     }
 
-    sdf_bench(runs)
+    sdf_bench(runs)?;
+    mesher_and_network_bench(runs)
+}
+
+/// The mesher's budget cases (issue 8) on a synthetic model of 30k capsules.
+fn mesher_bench(runs: usize) {
+    println!("\nmesher, synthetic 30k capsules (issue 8)");
+    for case in bench::synthetic::run(runs) {
+        let cpu = case.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}"));
+        println!(
+            "{:<45} {:>8.3} s  CPU {cpu:>6} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB",
+            case.name, case.seconds, case.triangles, case.evaluations_per_vertex, case.peak_mb
+        );
+    }
 }
 
 /// The sdf budgets (issue 7) on a synthetic network of about 30k primitives and on the
@@ -261,7 +282,7 @@ fn sdf_bench(runs: usize) -> Result<(), StageError> {
     print_sdf_bench(&format!("synthetic network of {SDF_BENCH_CONDUITS} conduits"), &synthetic);
     let looping = bench::sdf_preset(Path::new("fixtures/scenes/looping.toml"), runs)?;
     print_sdf_bench("looping preset", &looping);
-    mesher_and_network_bench(runs)
+    Ok(())
 }
 
 fn print_sdf_bench(name: &str, b: &bench::SdfBench) {
@@ -288,13 +309,7 @@ fn print_sdf_bench(name: &str, b: &bench::SdfBench) {
 }
 
 fn mesher_and_network_bench(runs: usize) -> Result<(), StageError> {
-    println!("\nmesher, synthetic 30k capsules (issue 8)");
-    for case in bench::synthetic::run(runs) {
-        println!(
-            "{:<45} {:>8.3} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB",
-            case.name, case.seconds, case.triangles, case.evaluations_per_vertex, case.peak_mb
-        );
-    }
+    mesher_bench(runs);
 
     println!("\nnetwork statistics (karstnet: load and metrics, Python start-up excluded)");
     println!(

@@ -1,35 +1,69 @@
-//! Meshing a model: the carved terrain and the cave alone, each polygonized and cleaned.
+//! Meshing a model: the carved terrain and the cave alone, each polygonized and cleaned, and
+//! the water in the conduits.
 
 use glam::DVec3;
 
-use karst_sdf::CarvedTerrain;
+use karst_sdf::{CarvedTerrain, SdfModel};
 
 use crate::Mesh;
 use crate::cleanup::{Solid, clean};
 use crate::polygonize::polygonize;
 use crate::simplify::simplify;
-use crate::volume::Cave;
+use crate::volume::{Cave, Water};
 
-/// Both surfaces of `field` at `cell_size`; `anchors` (sinks and springs) keep the air around
-/// them even when it is sealed in rock.
+/// The three surfaces of `field`, all at `cell_size`; `anchors` (sinks and springs) keep the
+/// air around them even when it is sealed in rock.
 pub fn build(field: &CarvedTerrain, cell_size: f64, anchors: &[DVec3]) -> Mesh {
+    build_with(field, cell_size, cell_size, anchors)
+}
+
+/// [`build`] with the cave alone and the water at `cave_cell_size`.
+pub fn build_with(field: &CarvedTerrain, cell_size: f64, cave_cell_size: f64, anchors: &[DVec3]) -> Mesh {
     let mut terrain = polygonize(field, cell_size);
     clean(&mut terrain, Solid::Rock, field.model(), anchors, cell_size);
-    let mut cave = polygonize(&Cave(field), cell_size);
-    clean(&mut cave, Solid::Cave, field.model(), anchors, cell_size);
-    Mesh { cell_size, terrain, cave }
+    let mut cave = polygonize(&Cave(field), cave_cell_size);
+    clean(&mut cave, Solid::Cave, field.model(), anchors, cave_cell_size);
+    let water = polygonize(&Water(field), cave_cell_size);
+    Mesh { cell_size, cave_cell_size, terrain, cave, water }
 }
+
+/// The cell of the cave alone and the water: `requested` when positive, else the half-thickness
+/// of the thinnest karst leaf (capsule or sphere radius, half the smaller side of a sweep's
+/// section, chamber radius), at most `cell_size` and at least `cell_size` / [`CAVE_REFINE`].
+/// Every point of space is within √3/2 cells of a lattice point, so a conduit at least a cell
+/// thick always holds lattice points: it cannot fall between them.
+pub fn cave_cell(model: &SdfModel, cell_size: f64, requested: f64) -> f64 {
+    if requested > 0.0 {
+        return requested;
+    }
+    let section = |s: &karst_sdf::sweep::SectionSpec| (s.shape.radius * s.shape.ratio.min(1.0)) as f64;
+    let thinnest = model
+        .capsules
+        .iter()
+        .map(|c| c.radius)
+        .chain(model.spheres.iter().flat_map(|g| g.spheres.iter().map(|s| s[3] as f64)))
+        .chain(model.sweeps.iter().flat_map(|s| [section(&s.sweep.start), section(&s.sweep.end)]))
+        .chain(model.chambers.iter().map(|c| c.radius as f64))
+        .filter(|r| *r > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    thinnest.clamp(cell_size / CAVE_REFINE, cell_size)
+}
+
+/// The automatic cave cell is at most this many times finer than the terrain's (the cost grows
+/// as its square).
+pub const CAVE_REFINE: f64 = 8.0;
 
 /// [`build`], then each surface simplified to at most `target_triangles` (0: not simplified).
 pub fn build_simplified(
     field: &CarvedTerrain,
     cell_size: f64,
+    cave_cell_size: f64,
     anchors: &[DVec3],
     target_triangles: u64,
 ) -> Mesh {
-    let mut mesh = build(field, cell_size, anchors);
+    let mut mesh = build_with(field, cell_size, cave_cell_size, anchors);
     if target_triangles > 0 {
-        for surface in [&mut mesh.terrain, &mut mesh.cave] {
+        for surface in [&mut mesh.terrain, &mut mesh.cave, &mut mesh.water] {
             simplify(surface, target_triangles as usize);
         }
     }

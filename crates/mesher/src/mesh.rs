@@ -1,4 +1,4 @@
-//! The mesh artifact: the carved terrain and the cave alone, each a closed surface.
+//! The mesh artifact: the carved terrain, the cave alone and the water, each a closed surface.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -10,17 +10,28 @@ use crate::cleanup::Removed;
 /// The artifact `mesh.bin`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Mesh {
-    /// Lattice cell size used, metres.
+    /// Lattice cell size of the carved terrain, metres.
     pub cell_size: f64,
+    /// Lattice cell size of the cave alone and the water, metres.
+    pub cave_cell_size: f64,
     /// The carved rock: normals point from rock to air.
     pub terrain: Surface,
     /// The karst volume alone: normals point out of the cave, into the rock.
     pub cave: Surface,
+    /// The water standing or flowing in the conduits: normals point out of the water.
+    pub water: Surface,
+}
+
+impl Mesh {
+    /// The surfaces with their names: terrain, cave, water.
+    pub fn surfaces(&self) -> [(&'static str, &Surface); 3] {
+        [("terrain", &self.terrain), ("cave", &self.cave), ("water", &self.water)]
+    }
 }
 
 impl Payload for Mesh {
     const KIND: Kind = Kind::Mesh;
-    const SCHEMA: u32 = 2;
+    const SCHEMA: u32 = 3;
 }
 
 /// An indexed triangle mesh; triangles are counter-clockwise seen from outside the solid.

@@ -4,6 +4,8 @@
 //! the surface cannot cross it and the whole subtree is skipped; otherwise it is split into
 //! eight until the brick size is reached. The field is 1-Lipschitz, so skipping is exact.
 
+use rayon::prelude::*;
+
 use crate::lattice::Lattice;
 use crate::volume::Volume;
 
@@ -11,19 +13,21 @@ use crate::volume::Volume;
 pub const BRICK: u64 = 4;
 
 /// Lattice cell coordinates of the first cell of every brick the surface may cross, in
-/// (z, y, x) order, and the number of field evaluations spent finding them.
+/// (z, y, x) order, and the number of field evaluations spent finding them. Subtrees are
+/// visited in parallel; the sort makes the result independent of the thread count.
 pub fn active_bricks<V: Volume>(field: &V, lattice: &Lattice) -> (Vec<[u64; 3]>, u64) {
     let cells = lattice.dims.map(|d| d - 1);
     let mut size = BRICK;
     while size < cells.into_iter().max().unwrap_or(0) {
         size *= 2;
     }
-    let mut bricks = Vec::new();
-    let mut evaluations = 0;
-    visit(field, lattice, cells, [0; 3], size, &mut bricks, &mut evaluations);
+    let (mut bricks, evaluations) = visit(field, lattice, cells, [0; 3], size);
     bricks.sort_unstable_by_key(|b| [b[2], b[1], b[0]]);
     (bricks, evaluations)
 }
+
+/// Nodes at least this many cells wide split their children across threads.
+const PARALLEL: u64 = 8 * BRICK;
 
 fn visit<V: Volume>(
     field: &V,
@@ -31,29 +35,31 @@ fn visit<V: Volume>(
     cells: [u64; 3],
     at: [u64; 3],
     size: u64,
-    bricks: &mut Vec<[u64; 3]>,
-    evaluations: &mut u64,
-) {
+) -> (Vec<[u64; 3]>, u64) {
     if (0..3).any(|a| at[a] >= cells[a]) {
-        return;
+        return (Vec::new(), 0);
     }
     let end = [0, 1, 2].map(|a| (at[a] + size).min(cells[a]));
     let lo = lattice.point(at);
     let hi = lattice.point(end);
-    *evaluations += 1;
     if field.bound(lo, hi) > 0.0 {
-        return;
+        return (Vec::new(), 1);
     }
     if size <= BRICK {
-        bricks.push(at);
-        return;
+        return (vec![at], 1);
     }
     let half = size / 2;
-    for dz in [0, half] {
-        for dy in [0, half] {
-            for dx in [0, half] {
-                visit(field, lattice, cells, [at[0] + dx, at[1] + dy, at[2] + dz], half, bricks, evaluations);
-            }
-        }
-    }
+    let children: Vec<[u64; 3]> = (0..8u64).map(|c| [0, 1, 2].map(|a| at[a] + half * (c >> a & 1))).collect();
+    let merge = |mut acc: (Vec<[u64; 3]>, u64), (b, e): (Vec<[u64; 3]>, u64)| {
+        acc.0.extend(b);
+        acc.1 += e;
+        acc
+    };
+    let visit_child = |&child: &[u64; 3]| visit(field, lattice, cells, child, half);
+    let (bricks, evaluations) = if size >= PARALLEL {
+        children.par_iter().map(visit_child).reduce(|| (Vec::new(), 0), merge)
+    } else {
+        children.iter().map(visit_child).fold((Vec::new(), 0), merge)
+    };
+    (bricks, evaluations + 1)
 }

@@ -18,7 +18,7 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let scene = Scene::load(&args.scene)?;
     let mut run = StageRun::new(Stage::Mesher, &args.out);
     let model: SdfModel = run.read_input(Stage::Sdf)?;
-    check_lattice(&args.scene, &model, scene.mesher.cell_size)?;
+    check_lattice(&args.scene, &model, "mesher.cell_size", scene.mesher.cell_size)?;
     let start = Instant::now();
     let anchors: Vec<_> = scene
         .keypoints
@@ -27,25 +27,29 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
         .map(|k| k.point())
         .collect();
     let params = &scene.mesher;
+    let cave_cell = build::cave_cell(&model, params.cell_size, params.cave_cell_size);
+    check_lattice(&args.scene, &model, "mesher.cave_cell_size", cave_cell)?;
     let mesh = build::build_simplified(
         &CarvedTerrain::new(model),
         params.cell_size,
+        cave_cell,
         &anchors,
         params.target_triangles,
     );
     write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Mesher)), &mesh)?;
     export::write_all(&args.out, &mesh)
         .map_err(|e| StageError::failure(format!("{}: cannot write the exports: {e}", args.out.display())))?;
-    let (t, c) = (&mesh.terrain, &mesh.cave);
+    let (t, c, w) = (&mesh.terrain, &mesh.cave, &mesh.water);
     Ok(format!(
-        "terrain {} triangles, cave {} triangles; removed {} islands and {} pockets; \
-         {:.1} evaluations per vertex in {:.2} s",
+        "terrain {} triangles, cave {} triangles, water {} triangles; removed {} islands and {} \
+         pockets; {:.1} evaluations per vertex in {:.2} s",
         t.triangles.len(),
         c.triangles.len(),
+        w.triangles.len(),
         t.removed.islands + c.removed.islands,
         t.removed.pockets + c.removed.pockets,
-        (t.field_evaluations + c.field_evaluations) as f64
-            / (t.vertices.len() + c.vertices.len()).max(1) as f64,
+        (t.field_evaluations + c.field_evaluations + w.field_evaluations) as f64
+            / (t.vertices.len() + c.vertices.len() + w.vertices.len()).max(1) as f64,
         start.elapsed().as_secs_f64()
     ))
 }
@@ -54,11 +58,16 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
 const MAX_CELLS_PER_AXIS: f64 = (1u64 << 21) as f64;
 
 /// Refuses a cell size that would overflow the lattice's point ids.
-fn check_lattice(scene: &std::path::Path, model: &SdfModel, cell_size: f64) -> Result<(), StageError> {
+fn check_lattice(
+    scene: &std::path::Path,
+    model: &SdfModel,
+    field: &str,
+    cell_size: f64,
+) -> Result<(), StageError> {
     let cells = (model.domain.size() / cell_size).max_element() + 2.0;
     if cells > MAX_CELLS_PER_AXIS {
         return Err(StageError::input(format!(
-            "{}: mesher.cell_size = {cell_size} gives {cells:.0} cells along the domain's longest axis; \
+            "{}: {field} = {cell_size} gives {cells:.0} cells along the domain's longest axis; \
              at most {MAX_CELLS_PER_AXIS} are possible",
             scene.display()
         )));
@@ -73,8 +82,8 @@ pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
     }
     let (header, mesh) = read_artifact::<Mesh>(&args.file)?;
     println!("{}: mesh, schema {}, by {}", args.file.display(), header.schema, header.producer);
-    println!("  cell size    {} m", mesh.cell_size);
-    for (name, surface) in [("terrain", &mesh.terrain), ("cave", &mesh.cave)] {
+    println!("  cell size    {} m (terrain), {} m (cave and water)", mesh.cell_size, mesh.cave_cell_size);
+    for (name, surface) in mesh.surfaces() {
         summary(name, surface);
     }
     Ok(())
@@ -107,7 +116,7 @@ pub struct RenderArgs {
     /// The PNG to write.
     #[arg(long)]
     pub png: PathBuf,
-    /// Which surface: `cave` or `terrain`.
+    /// Which surface: `cave`, `terrain` or `water`.
     #[arg(long, default_value = "cave")]
     pub surface: String,
     /// Picture width and height, pixels.
@@ -123,8 +132,11 @@ pub fn render(args: &RenderArgs) -> Result<(), StageError> {
     let surface = match args.surface.as_str() {
         "cave" => &mesh.cave,
         "terrain" => &mesh.terrain,
+        "water" => &mesh.water,
         other => {
-            return Err(StageError::input(format!("--surface {other}: expected `cave` or `terrain`")));
+            return Err(StageError::input(format!(
+                "--surface {other}: expected `cave`, `terrain` or `water`"
+            )));
         }
     };
     if !(16..=8192).contains(&args.width) || !(16..=8192).contains(&args.height) {
@@ -133,7 +145,8 @@ pub fn render(args: &RenderArgs) -> Result<(), StageError> {
             args.width, args.height
         )));
     }
-    let caption = format!("{}: {} triangles at {} m", args.surface, surface.triangles.len(), mesh.cell_size);
+    let cell = if args.surface == "terrain" { mesh.cell_size } else { mesh.cave_cell_size };
+    let caption = format!("{}: {} triangles at {} m", args.surface, surface.triangles.len(), cell);
     let canvas = render::render(surface, args.width, args.height, &caption);
     canvas
         .write_png(&args.png)

@@ -17,6 +17,13 @@ pub trait Volume: Sync {
         self.eval(p)
     }
 
+    /// [`Volume::eval_within`] at `points`, all inside the box [lo, hi], appended to `out`.
+    /// Fields that search for their nearest primitive gather the candidates of the box once.
+    fn eval_block(&self, lo: DVec3, hi: DVec3, reach: f64, points: &[DVec3], out: &mut Vec<f64>) {
+        let _ = (lo, hi);
+        out.extend(points.iter().map(|&p| self.eval_within(p, reach)));
+    }
+
     /// A lower bound of |f| over the box [lo, hi] (0 when the surface may cross it).
     fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
         let half_diagonal = (hi - lo).length() * 0.5;
@@ -33,8 +40,13 @@ impl Volume for CarvedTerrain {
         CarvedTerrain::eval(self, p)
     }
 
-    fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
-        CarvedTerrain::bound(self, lo, hi)
+    fn eval_within(&self, p: DVec3, reach: f64) -> f64 {
+        CarvedTerrain::eval_within(self, p, reach)
+    }
+
+    fn eval_block(&self, lo: DVec3, hi: DVec3, reach: f64, points: &[DVec3], out: &mut Vec<f64>) {
+        let near = self.near(lo, hi, reach);
+        out.extend(points.iter().map(|&p| self.eval_near(&near, p, reach)));
     }
 
     fn extent(&self) -> (DVec3, DVec3) {
@@ -56,6 +68,35 @@ impl Volume for Cave<'_> {
         self.0.cave_below_ground(p, reach)
     }
 
+    fn eval_block(&self, lo: DVec3, hi: DVec3, reach: f64, points: &[DVec3], out: &mut Vec<f64>) {
+        let near = self.0.near_cave(lo, hi, reach);
+        out.extend(points.iter().map(|&p| self.0.cave_below_ground_near(&near, p, reach)));
+    }
+
+    fn extent(&self) -> (DVec3, DVec3) {
+        self.0.extent()
+    }
+}
+
+/// The water: inside is the water held in the conduits (`CarvedTerrain::water`, which stays
+/// inside the karst volume).
+#[derive(Debug, Clone, Copy)]
+pub struct Water<'a>(pub &'a CarvedTerrain);
+
+impl Volume for Water<'_> {
+    fn eval(&self, p: DVec3) -> f64 {
+        self.0.water(p)
+    }
+
+    fn eval_within(&self, p: DVec3, reach: f64) -> f64 {
+        self.0.water_within(p, reach)
+    }
+
+    fn eval_block(&self, lo: DVec3, hi: DVec3, reach: f64, points: &[DVec3], out: &mut Vec<f64>) {
+        let near = self.0.near_cave(lo, hi, reach);
+        out.extend(points.iter().map(|&p| self.0.water_near(&near, p, reach)));
+    }
+
     fn extent(&self) -> (DVec3, DVec3) {
         self.0.extent()
     }
@@ -69,6 +110,10 @@ impl<V: Volume + ?Sized> Volume for &V {
 
     fn eval_within(&self, p: DVec3, reach: f64) -> f64 {
         (**self).eval_within(p, reach)
+    }
+
+    fn eval_block(&self, lo: DVec3, hi: DVec3, reach: f64, points: &[DVec3], out: &mut Vec<f64>) {
+        (**self).eval_block(lo, hi, reach, points, out)
     }
 
     fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {

@@ -109,15 +109,17 @@ fn sealed_pocket_is_removed_unless_it_holds_a_spring() {
     let field = CarvedTerrain::new(model());
     let mesh = build(&field, 0.5, &[]);
     let pocket = PI * 4.0 * 4.0 + 4.0 / 3.0 * PI * 8.0;
+    // Marching cubes' chords cut inside a convex surface: a capsule of 2 m radius at 0.5 m
+    // loses about 2 % of its volume.
     for removed in [mesh.terrain.removed, mesh.cave.removed] {
         assert_eq!((removed.islands, removed.pockets), (0, 1));
-        assert!((removed.pocket_volume / pocket - 1.0).abs() < 0.02, "{removed:?}");
+        assert!((removed.pocket_volume / pocket - 1.0).abs() < 0.03, "{removed:?}");
     }
     let spring = DVec3::new(42.0, 8.0, 5.0);
     let kept = build(&field, 0.5, &[spring]);
     assert_eq!(kept.terrain.removed.pockets + kept.cave.removed.pockets, 0);
     let gained = kept.cave.enclosed_volume() - mesh.cave.enclosed_volume();
-    assert!((gained / pocket - 1.0).abs() < 0.02, "{gained}");
+    assert!((gained / pocket - 1.0).abs() < 0.03, "{gained}");
 }
 
 #[test]
@@ -145,13 +147,17 @@ fn a_capsule_matches_its_analytic_area_and_volume() {
 fn one_or_two_threads_write_the_same_files() {
     let runs: Vec<_> = [1, 2]
         .map(|threads| {
-            let mesh = with_threads(threads, || mesh_of(random_model(), 1.0));
+            let mesh = with_threads(threads, || {
+                let field = CarvedTerrain::new(random_model());
+                // Cave and water finer than the terrain, as the stage's automatic cave cell does.
+                karst_mesher::build::build_with(&field, 1.0, 0.6, &[])
+            });
             let dir = std::env::temp_dir().join(format!("karst-mesher-{}-{threads}", std::process::id()));
             let files = export::write_all(&dir, &mesh).unwrap();
             (dir, files)
         })
         .to_vec();
-    assert_eq!(runs[0].1.len(), 6, "mesh.obj and five exports");
+    assert_eq!(runs[0].1.len(), 9, "mesh.obj and eight exports");
     for (one, two) in runs[0].1.iter().zip(&runs[1].1) {
         let (a, b) = (std::fs::read(one).unwrap(), std::fs::read(two).unwrap());
         assert!(a == b, "{} differs between 1 and 2 threads", one.display());
@@ -161,10 +167,10 @@ fn one_or_two_threads_write_the_same_files() {
     }
 }
 
-/// The cave field with every value exact (no reach-limited search).
-struct ExactCave<'a>(Cave<'a>);
+/// A field with every value exact (no reach-limited search).
+struct Exact<V>(V);
 
-impl Volume for ExactCave<'_> {
+impl<V: Volume> Volume for Exact<V> {
     fn eval(&self, p: DVec3) -> f64 {
         self.0.eval(p)
     }
@@ -178,7 +184,11 @@ impl Volume for ExactCave<'_> {
 fn reach_limited_values_give_the_exact_mesh() {
     let field = CarvedTerrain::new(random_model());
     let limited = polygonize(&Cave(&field), 0.8);
-    let exact = polygonize(&ExactCave(Cave(&field)), 0.8);
+    let exact = polygonize(&Exact(Cave(&field)), 0.8);
+    assert!(!limited.triangles.is_empty());
+    assert_eq!(limited, exact);
+    let limited = polygonize(&field, 0.8);
+    let exact = polygonize(&Exact(&field), 0.8);
     assert!(!limited.triangles.is_empty());
     assert_eq!(limited, exact);
 }
@@ -187,7 +197,7 @@ fn reach_limited_values_give_the_exact_mesh() {
 fn simplification_keeps_the_promises() {
     let mesh = mesh_of(random_model(), 0.7);
     for (name, surface) in [("terrain", &mesh.terrain), ("cave", &mesh.cave)] {
-        let target = surface.triangles.len() / 4;
+        let target = surface.triangles.len() / 2;
         let mut simple = surface.clone();
         karst_mesher::simplify::simplify(&mut simple, target);
         assert!(simple.triangles.len() <= target, "{name}: {} > {target}", simple.triangles.len());
@@ -239,4 +249,78 @@ fn rock_island_in_cave_air_is_removed_from_both_surfaces() {
         assert_eq!(components::count(&surface), 1);
         assert_watertight(&format!("{solid:?} without the island"), &surface);
     }
+}
+
+/// Random signs on the lattice points of a box (air outside it): every marching-cubes case,
+/// ambiguous faces included, in every neighbourhood. Not a distance field, so nothing is
+/// pruned.
+struct RandomSigns;
+
+impl Volume for RandomSigns {
+    fn eval(&self, p: DVec3) -> f64 {
+        if p.min_element() < 0.5 || p.max_element() > 11.5 {
+            return 1.0;
+        }
+        let [i, j, k] = p.round().as_ivec3().to_array();
+        let mut h =
+            (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ (j as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f);
+        h ^= (k as u64).wrapping_mul(0x1656_67b1_9e37_79f9);
+        h ^= h >> 29;
+        h = h.wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        h ^= h >> 32;
+        // Values in (−1, 1) away from 0, so that vertices are spread along their edges.
+        let u = (h >> 11) as f64 / (1u64 << 53) as f64;
+        if u < 0.5 { -0.1 - u } else { u - 0.4 }
+    }
+
+    fn bound(&self, _lo: DVec3, _hi: DVec3) -> f64 {
+        0.0
+    }
+
+    fn extent(&self) -> (DVec3, DVec3) {
+        (DVec3::ZERO, DVec3::splat(12.0))
+    }
+}
+
+#[test]
+fn random_signs_give_a_closed_oriented_manifold() {
+    let surface = polygonize(&RandomSigns, 1.0);
+    assert!(surface.triangles.len() > 1000, "{}", surface.triangles.len());
+    if let Err(defect) = watertight::check(&surface) {
+        panic!("{defect}");
+    }
+    // Every vertex lies on one lattice edge: no two coincide.
+    let mut positions: Vec<[u32; 3]> = surface.vertices.iter().map(|v| v.map(f32::to_bits)).collect();
+    positions.sort_unstable();
+    assert!(positions.windows(2).all(|w| w[0] != w[1]));
+    let two = with_threads(2, || polygonize(&RandomSigns, 1.0));
+    assert_eq!(surface, two);
+}
+
+#[test]
+fn thin_conduits_are_meshed_whole_at_the_automatic_cave_cell() {
+    // A 1.6 m wide conduit, winding across a domain meshed at 4 m: at 4 m its cave mesh breaks
+    // into pieces (or vanishes), at the automatic cave cell it is one closed tube.
+    let (r, a, b, c) = (0.8, [5.3, 20.1, 10.2], [45.7, 21.3, 9.1], [75.2, 48.9, 11.4]);
+    let model = SdfModel {
+        capsules: vec![Capsule { a, b, radius: r }, Capsule { a: b, b: c, radius: r }],
+        ..SdfModel::new(
+            Domain { min: [0.0, 0.0, 0.0], max: [80.0, 60.0, 20.0] },
+            TerrainField::Plane { elevation: 18.0, origin: [0.0, 0.0], gradient: [0.0, 0.0] },
+        )
+    };
+    let cave_cell = karst_mesher::build::cave_cell(&model, 4.0, 0.0);
+    assert_eq!(cave_cell, r);
+    let field = CarvedTerrain::new(model);
+    let coarse = polygonize(&Cave(&field), 4.0);
+    assert!(components::count(&coarse) != 1, "a 4 m lattice should miss parts of it");
+    let mesh = karst_mesher::build::build_with(&field, 4.0, cave_cell, &[DVec3::from_array(a)]);
+    assert_watertight("cave", &mesh.cave);
+    assert_eq!(components::count(&mesh.cave), 1);
+    let length = DVec3::from_array(a).distance(DVec3::from_array(b))
+        + DVec3::from_array(b).distance(DVec3::from_array(c));
+    let volume = PI * r * r * length;
+    // One cell per radius: marching cubes' chords keep about 80 % of the tube.
+    let ratio = mesh.cave.enclosed_volume() / volume;
+    assert!(ratio > 0.7 && ratio < 1.0, "{} vs {volume}", mesh.cave.enclosed_volume());
 }

@@ -21,7 +21,7 @@ use crate::Capsule;
 use crate::chamber::Chamber;
 use crate::primitive::{
     CAPSULE, CHAMBER, Context, Leaf, SPHERE, SWEEP, WATER, WaterLeaf, capsule_value, chamber_value,
-    sphere_value, sweep_floor, sweep_value, water_value,
+    signed_box_distance, sphere_value, sweep_floor, sweep_value, water_value,
 };
 use crate::sweep::SweepLeaf;
 
@@ -49,6 +49,15 @@ struct Wide {
     hi: [[f32; 4]; 3],
     child: [u32; 4],
     count: [u32; 4],
+}
+
+/// A leaf node gathered by [`Bvh::near_box`]: its range of leaves (as in [`Wide`]) and its box.
+#[derive(Debug, Clone, Copy)]
+pub struct Candidate {
+    first: u32,
+    count: u32,
+    lo: DVec3,
+    hi: DVec3,
 }
 
 /// The hierarchy and its leaves, by kind, in tree order.
@@ -331,6 +340,54 @@ impl Bvh {
                 }
             }
             _ => unreachable!("leaf kinds are built by Leaf::kind"),
+        }
+        best
+    }
+
+    /// Appends to `out` the leaf nodes whose boxes come closer than `margin` to the box
+    /// [lo, hi]: every leaf whose value can be below `margin` somewhere in that box (a value is
+    /// at least the distance to its leaf node's box, at least the distance between the boxes).
+    /// For p in the box and limit ≤ margin, [`Bvh::min_value_among`] over them equals
+    /// [`Bvh::min_value`] bit for bit: both are min(limit, the exact values below it), whatever
+    /// the order of the visits. The mesher gathers once per brick and evaluates its points
+    /// against the short list instead of walking the hierarchy at every point.
+    pub fn near_box(&self, lo: DVec3, hi: DVec3, margin: f64, out: &mut Vec<Candidate>) {
+        if self.wide.is_empty() {
+            return;
+        }
+        // The f32 boxes are rounded outwards, so the gap from them is never too large.
+        let gap = |a: DVec3, b: DVec3| (a - hi).max(lo - b).max(DVec3::ZERO).length();
+        let mut stack = vec![0u32];
+        while let Some(n) = stack.pop() {
+            let node = &self.wide[n as usize];
+            for slot in 0..4 {
+                let a = DVec3::new(node.lo[0][slot] as f64, node.lo[1][slot] as f64, node.lo[2][slot] as f64);
+                let b = DVec3::new(node.hi[0][slot] as f64, node.hi[1][slot] as f64, node.hi[2][slot] as f64);
+                // Empty slots have an inverted (infinite) box and never pass.
+                if !(a.cmple(b).all() && gap(a, b) < margin) {
+                    continue;
+                }
+                match node.count[slot] {
+                    0 => stack.push(node.child[slot]),
+                    count => out.push(Candidate { first: node.child[slot], count, lo: a, hi: b }),
+                }
+            }
+        }
+        // Nearest to the box's centre first, so that the running minimum drops early and the
+        // farther leaf nodes stop at their box test.
+        let centre = (lo + hi) * 0.5;
+        let key = |c: &Candidate| signed_box_distance(c.lo, c.hi, centre);
+        out.sort_by(|x, y| key(x).total_cmp(&key(y)).then(x.count.cmp(&y.count)).then(x.first.cmp(&y.first)));
+    }
+
+    /// min(limit, min over the leaves of the leaf nodes `among` of their value at p). A leaf
+    /// node whose box is no closer than the running minimum is skipped without being opened.
+    pub fn min_value_among(&self, among: &[Candidate], p: DVec3, limit: f64, ctx: &Context) -> f64 {
+        let mut best = limit;
+        for c in among {
+            if signed_box_distance(c.lo, c.hi, p) < best {
+                best = self.leaf_min(c.first, c.count, p, best, ctx);
+            }
         }
         best
     }

@@ -13,7 +13,7 @@
 
 use glam::DVec3;
 
-use crate::bvh::Bvh;
+use crate::bvh::{Bvh, Candidate};
 use crate::chamber::Chamber;
 use crate::model::detail_factor;
 use crate::primitive::{Context, Leaf, WaterLeaf};
@@ -25,6 +25,14 @@ use karst_skeleton::ConduitType;
 /// the Lipschitz bound (a smaller |f| is still a distance bound), and spares eval every leaf
 /// farther away: a point deep in rock visits only the leaves within REACH.
 pub const REACH: f64 = 8.0;
+
+/// The leaves that can matter within a box: see [`CarvedTerrain::near`].
+#[derive(Debug, Clone, Default)]
+pub struct Near {
+    reach: f64,
+    caves: Vec<Candidate>,
+    water: Vec<Candidate>,
+}
 
 /// The carved terrain's signed-distance bound, ready to evaluate.
 #[derive(Debug, Clone)]
@@ -38,6 +46,8 @@ pub struct CarvedTerrain {
     amplitude: [f64; 8],
     /// The terrain leaf's 1/√(1 + λ²), computed once rather than at every evaluation.
     terrain_scale: f64,
+    /// The detail noise's gradient bound, likewise.
+    detail_gradient: f64,
 }
 
 impl CarvedTerrain {
@@ -49,12 +59,14 @@ impl CarvedTerrain {
         let mut sweeps = SweepTable::default();
         let karst = karst_leaves(&model, &mut sweeps);
         let water = water_leaves(&model, &mut sweeps);
+        let detail_gradient = model.detail_noise.gradient_bound();
+        let (m, gradient) = (&model, detail_gradient);
         let ctx =
-            Context::new(&model.detail_noise, &model.chamber_noise, model.chamber_bias, &sweeps, &amplitude);
+            Context::new(&m.detail_noise, gradient, &m.chamber_noise, m.chamber_bias, &sweeps, &amplitude);
         let caves = Bvh::build(karst, &ctx);
         let water = Bvh::build(water, &ctx);
         let terrain_scale = model.terrain.scale();
-        CarvedTerrain { model, caves, water, sweeps, amplitude, terrain_scale }
+        CarvedTerrain { model, caves, water, sweeps, amplitude, terrain_scale, detail_gradient }
     }
 
     pub fn model(&self) -> &SdfModel {
@@ -62,10 +74,12 @@ impl CarvedTerrain {
     }
 
     fn context(&self) -> Context<'_> {
+        let m = &self.model;
         Context::new(
-            &self.model.detail_noise,
-            &self.model.chamber_noise,
-            self.model.chamber_bias,
+            &m.detail_noise,
+            self.detail_gradient,
+            &m.chamber_noise,
+            m.chamber_bias,
             &self.sweeps,
             &self.amplitude,
         )
@@ -84,6 +98,64 @@ impl CarvedTerrain {
         // The smooth union equals −rock wherever the caves stay above −rock + blend.
         let caves = self.caves.min_value(p, (-rock + blend).min(REACH), &self.context());
         -ops::smooth_union(-rock, caves, blend)
+    }
+
+    /// [`CarvedTerrain::eval`] where |f(p)| < `reach`; elsewhere a value of the same sign and
+    /// magnitude at least `reach`. The search for the nearest conduit stops at `reach` + blend
+    /// instead of the depth below the ground, so that a point deep in the rock (the domain's
+    /// floor lies hundreds of metres down) costs a search of a few metres.
+    ///
+    /// Why it is enough: eval ≥ rock always (the smooth union is below −rock), so rock ≥ reach
+    /// settles the sign and the magnitude. Otherwise the caves are searched up to
+    /// L = min(−rock + blend, REACH, reach + blend). When the nearest cave value is below L it is
+    /// exact and so is the result. When it is at least L = −rock + blend the smooth union is
+    /// −rock, exact as in `eval`. When it is at least L = reach + blend < −rock + blend, both
+    /// operands of the smooth union are at least reach and the one at reach + d (d ≥ 0) lies
+    /// within the blend of the other by at most blend − d: the union is at least
+    /// reach + d − d²/(4 blend) ≥ reach whether the true or the clamped value is used, so both
+    /// results are ≤ −reach.
+    pub fn eval_within(&self, p: DVec3, reach: f64) -> f64 {
+        self.carved(p, reach, |limit| self.caves.min_value(p, limit, &self.context()))
+    }
+
+    /// [`CarvedTerrain::eval_within`] for a point of the box `near` was gathered for, with a
+    /// reach at most its reach: the same value, bit for bit, without walking the hierarchy.
+    pub fn eval_near(&self, near: &Near, p: DVec3, reach: f64) -> f64 {
+        debug_assert!(reach <= near.reach);
+        self.carved(p, reach, |limit| self.caves.min_value_among(&near.caves, p, limit, &self.context()))
+    }
+
+    fn carved(&self, p: DVec3, reach: f64, caves: impl FnOnce(f64) -> f64) -> f64 {
+        let rock = self.uncarved(p);
+        if rock >= reach {
+            return rock;
+        }
+        let blend = self.model.blend;
+        let caves = caves((-rock + blend).min(REACH).min(reach + blend));
+        -ops::smooth_union(-rock, caves, blend)
+    }
+
+    /// The karst leaves that can matter for [`CarvedTerrain::eval_near`] at points of the box
+    /// [lo, hi] with a reach at most `reach`.
+    pub fn near(&self, lo: DVec3, hi: DVec3, reach: f64) -> Near {
+        self.gather(lo, hi, reach, reach.min(REACH) + self.model.blend.max(0.0), false)
+    }
+
+    /// The leaves (karst and water) that can matter for
+    /// [`CarvedTerrain::cave_below_ground_near`] and [`CarvedTerrain::water_near`] at points of
+    /// the box [lo, hi] with a reach at most `reach` (no blend: a smaller margin than
+    /// [`CarvedTerrain::near`]).
+    pub fn near_cave(&self, lo: DVec3, hi: DVec3, reach: f64) -> Near {
+        self.gather(lo, hi, reach, reach.min(REACH), true)
+    }
+
+    fn gather(&self, lo: DVec3, hi: DVec3, reach: f64, margin: f64, water: bool) -> Near {
+        let mut near = Near { reach, caves: Vec::new(), water: Vec::new() };
+        self.caves.near_box(lo, hi, margin, &mut near.caves);
+        if water {
+            self.water.near_box(lo, hi, margin, &mut near.water);
+        }
+        near
     }
 
     /// The karst volume alone: negative inside the conduits and chambers; 1-Lipschitz.
@@ -114,6 +186,32 @@ impl CarvedTerrain {
             return rock;
         }
         self.caves.min_value(p, reach.min(REACH), &self.context()).max(rock)
+    }
+
+    /// [`CarvedTerrain::cave_below_ground`] for a point of the box `near` was gathered for.
+    pub fn cave_below_ground_near(&self, near: &Near, p: DVec3, reach: f64) -> f64 {
+        debug_assert!(reach <= near.reach);
+        let rock = self.uncarved(p);
+        if rock >= reach {
+            return rock;
+        }
+        self.caves.min_value_among(&near.caves, p, reach.min(REACH), &self.context()).max(rock)
+    }
+
+    /// [`CarvedTerrain::water`] where |w(p)| < `reach`; elsewhere a value of the same sign and
+    /// magnitude at least min(`reach`, REACH) (both operands of the max are searched up to it).
+    pub fn water_within(&self, p: DVec3, reach: f64) -> f64 {
+        let limit = reach.min(REACH);
+        let pieces = self.water.min_value(p, limit, &self.context());
+        pieces.max(self.caves.min_value(p, limit, &self.context()))
+    }
+
+    /// [`CarvedTerrain::water_within`] for a point of the box `near` was gathered for.
+    pub fn water_near(&self, near: &Near, p: DVec3, reach: f64) -> f64 {
+        debug_assert!(reach <= near.reach);
+        let limit = reach.min(REACH);
+        let pieces = self.water.min_value_among(&near.water, p, limit, &self.context());
+        pieces.max(self.caves.min_value_among(&near.caves, p, limit, &self.context()))
     }
 
     /// A guaranteed lower bound of |f| over the box [lo, hi] (0 when the surface may cross it).
@@ -182,6 +280,63 @@ mod tests {
         assert!(f.eval(DVec3::new(50.0, 20.0, 20.0)) < 0.0, "in rock");
         assert!(f.eval(DVec3::new(50.0, 20.0, 49.0)) > 0.0, "above the ground");
         assert!(f.eval(DVec3::new(-1.0, 20.0, 20.0)) > 0.0, "outside the domain");
+    }
+
+    #[test]
+    fn eval_within_is_exact_near_the_surface_and_keeps_sign_and_reach_elsewhere() {
+        // A shaft through the ground, so that the blend where it opens matters.
+        let mut model = field().model().clone();
+        model.blend = 1.5;
+        model.capsules.push(Capsule { a: [50.0, 80.0, 20.0], b: [50.0, 80.0, 60.0], radius: 2.0 });
+        let f = CarvedTerrain::new(model);
+        let mut random = karst_geology::rng::Random::stream(3, "sdf", "eval_within");
+        for _ in 0..20_000 {
+            let p =
+                DVec3::new(random.range(-5.0, 105.0), random.range(-5.0, 105.0), random.range(-5.0, 55.0));
+            let exact = f.eval(p);
+            for reach in [0.3, 1.0, 2.0, 5.0, 50.0] {
+                let v = f.eval_within(p, reach);
+                if exact.abs() < reach {
+                    assert_eq!(v, exact, "{p} reach {reach}");
+                } else {
+                    assert!(v.signum() == exact.signum() && v.abs() >= reach, "{p} {reach}: {v} vs {exact}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn gathered_leaves_give_the_same_bits_as_the_hierarchy() {
+        let mut model = field().model().clone();
+        model.blend = 1.0;
+        for i in 0..40 {
+            let x = 10.0 + i as f64 * 2.0;
+            model.capsules.push(Capsule {
+                a: [x, 30.0, 15.0],
+                b: [x + 3.0, 70.0, 30.0 + i as f64],
+                radius: 1.5,
+            });
+        }
+        let f = CarvedTerrain::new(model);
+        let mut random = karst_geology::rng::Random::stream(4, "sdf", "near");
+        for _ in 0..300 {
+            let lo = DVec3::new(random.range(0.0, 95.0), random.range(0.0, 95.0), random.range(0.0, 45.0));
+            let hi = lo + DVec3::splat(random.range(0.5, 5.0));
+            let reach = random.range(0.2, 10.0);
+            let (near, near_cave) = (f.near(lo, hi, reach), f.near_cave(lo, hi, reach));
+            for _ in 0..20 {
+                let p = lo
+                    + (hi - lo)
+                        * DVec3::new(random.range(0.0, 1.0), random.range(0.0, 1.0), random.range(0.0, 1.0));
+                let r = reach * random.range(0.5, 1.0);
+                assert_eq!(f.eval_near(&near, p, r).to_bits(), f.eval_within(p, r).to_bits());
+                assert_eq!(
+                    f.cave_below_ground_near(&near_cave, p, r).to_bits(),
+                    f.cave_below_ground(p, r).to_bits()
+                );
+                assert_eq!(f.water_near(&near_cave, p, r).to_bits(), f.water_within(p, r).to_bits());
+            }
+        }
     }
 
     #[test]

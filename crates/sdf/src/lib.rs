@@ -32,6 +32,6 @@ pub mod water;
 mod testing;
 
 pub use capsule::Capsule;
-pub use field::CarvedTerrain;
+pub use field::{CarvedTerrain, Near};
 pub use model::SdfModel;
 pub use terrain::TerrainField;

@@ -104,22 +104,17 @@ pub struct Context<'a> {
 }
 
 impl<'a> Context<'a> {
+    /// A context for one point; `detail_gradient` is `detail.gradient_bound()`, computed once
+    /// per field rather than per point.
     pub fn new(
         detail: &'a WaveNoise,
+        detail_gradient: f64,
         chamber: &'a WaveNoise,
         bias: f64,
         sweeps: &'a SweepTable,
         amplitude: &'a [f64; 8],
     ) -> Self {
-        Context {
-            detail,
-            detail_gradient: detail.gradient_bound(),
-            chamber,
-            bias,
-            sweeps,
-            amplitude,
-            noise_at: Cell::new(None),
-        }
+        Context { detail, detail_gradient, chamber, bias, sweeps, amplitude, noise_at: Cell::new(None) }
     }
 
     fn noise(&self, p: DVec3) -> f64 {

@@ -11,16 +11,21 @@ pub struct MesherParams {
     pub cell_size: f64,
     /// Simplify each surface to at most this many triangles (0: no simplification).
     pub target_triangles: u64,
+    /// Edge of the cells of the cave alone and the water, metres; 0 (the default): the
+    /// thinnest conduit's half-thickness, at most `cell_size`, so that no conduit falls between
+    /// lattice points.
+    pub cave_cell_size: f64,
 }
 
 impl Default for MesherParams {
     fn default() -> Self {
-        MesherParams { cell_size: 2.0, target_triangles: 0 }
+        MesherParams { cell_size: 2.0, target_triangles: 0, cave_cell_size: 0.0 }
     }
 }
 
 impl MesherParams {
     pub(crate) fn check(&self, c: &mut Checks) {
         c.positive("mesher.cell_size", self.cell_size);
+        c.non_negative("mesher.cave_cell_size", self.cave_cell_size);
     }
 }

@@ -1,6 +1,6 @@
 //! Exports of the meshes for other tools: Wavefront OBJ, binary PLY and binary glTF (.glb),
 //! each with vertex normals. The carved terrain's OBJ is `mesh.obj` in the output folder; the
-//! rest go under `export/`: `terrain.{ply,glb}` and `cave.{obj,ply,glb}`.
+//! rest go under `export/`: `terrain.{ply,glb}`, `cave.{obj,ply,glb}` and `water.{obj,ply,glb}`.
 
 pub mod glb;
 pub mod obj;
@@ -24,6 +24,7 @@ pub fn write_all(dir: &Path, mesh: &Mesh) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(&folder)?;
     let mut written = write_surface(&mesh.terrain, Some(dir.join(OBJ_NAME)), &folder, "terrain")?;
     written.extend(write_surface(&mesh.cave, Some(folder.join("cave.obj")), &folder, "cave")?);
+    written.extend(write_surface(&mesh.water, Some(folder.join("water.obj")), &folder, "water")?);
     Ok(written)
 }
 
