@@ -4,6 +4,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
+use glam::DVec3;
 
 use karst_artifact::cli::{InspectArgs, RunArgs, StageRun, print_json};
 use karst_artifact::{Stage, StageError, read_artifact, write_artifact};
@@ -13,6 +14,17 @@ use karst_sdf::{CarvedTerrain, SdfModel};
 use crate::mesh::Surface;
 use crate::{Mesh, build, components, export, render, watertight};
 
+/// The sinks and springs of `scene`: the cleanup keeps the air around them even when it is
+/// sealed in rock.
+pub fn anchors(scene: &Scene) -> Vec<DVec3> {
+    scene
+        .keypoints
+        .iter()
+        .filter(|k| matches!(k.kind, KeyPointKind::Sink | KeyPointKind::Spring))
+        .map(|k| k.point())
+        .collect()
+}
+
 /// `karst-mesher run`.
 pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let scene = Scene::load(&args.scene)?;
@@ -20,12 +32,7 @@ pub fn run(args: &RunArgs) -> Result<String, StageError> {
     let model: SdfModel = run.read_input(Stage::Sdf)?;
     check_lattice(&args.scene, &model, "mesher.cell_size", scene.mesher.cell_size)?;
     let start = Instant::now();
-    let anchors: Vec<_> = scene
-        .keypoints
-        .iter()
-        .filter(|k| matches!(k.kind, KeyPointKind::Sink | KeyPointKind::Spring))
-        .map(|k| k.point())
-        .collect();
+    let anchors = anchors(&scene);
     let params = &scene.mesher;
     let cave_cell = build::cave_cell(&model, params.cell_size, params.cave_cell_size);
     check_lattice(&args.scene, &model, "mesher.cave_cell_size", cave_cell)?;

@@ -5,8 +5,9 @@
 //!   negative in the karst volume K;
 //! - eval(p) = −smooth_union(−rock(p), cave(p), blend): the terrain minus K, rounded by `blend`
 //!   where conduits open to the surface; negative in rock, positive in air;
-//! - water(p) = max(min(REACH, min over water pieces), cave(p)): negative in the water, which
-//!   stays inside K.
+//! - water(p) = max(min(REACH, min over water pieces), cave(p), rock(p)): negative in the
+//!   water, which stays inside K and, like the cave mesh, inside the domain and under the
+//!   ground (a spring on the domain's side would otherwise leave the water surface open there).
 //!
 //! All are 1-Lipschitz (see [`crate::ops`]). The union over leaves runs through the BVH and only
 //! needs the leaves that can go below −rock + blend; everything else cannot change eval.
@@ -169,10 +170,11 @@ impl CarvedTerrain {
         self.caves.min_without_bvh(p, REACH, &self.context())
     }
 
-    /// The water volume: negative in the water inside the conduits; 1-Lipschitz.
+    /// The water volume: negative in the water inside the conduits, under the ground and in the
+    /// domain; 1-Lipschitz.
     pub fn water(&self, p: DVec3) -> f64 {
         let pieces = self.water.min_value(p, REACH, &self.context());
-        pieces.max(self.cave(p))
+        pieces.max(self.cave(p)).max(self.uncarved(p))
     }
 
     /// The cave alone: the karst volume clipped to the rock under the terrain and inside the
@@ -203,7 +205,7 @@ impl CarvedTerrain {
     pub fn water_within(&self, p: DVec3, reach: f64) -> f64 {
         let limit = reach.min(REACH);
         let pieces = self.water.min_value(p, limit, &self.context());
-        pieces.max(self.caves.min_value(p, limit, &self.context()))
+        pieces.max(self.caves.min_value(p, limit, &self.context())).max(self.uncarved(p))
     }
 
     /// [`CarvedTerrain::water_within`] for a point of the box `near` was gathered for.
@@ -211,7 +213,7 @@ impl CarvedTerrain {
         debug_assert!(reach <= near.reach);
         let limit = reach.min(REACH);
         let pieces = self.water.min_value_among(&near.water, p, limit, &self.context());
-        pieces.max(self.caves.min_value_among(&near.caves, p, limit, &self.context()))
+        pieces.max(self.caves.min_value_among(&near.caves, p, limit, &self.context())).max(self.uncarved(p))
     }
 
     /// A guaranteed lower bound of |f| over the box [lo, hi] (0 when the surface may cross it).

@@ -1,0 +1,95 @@
+//! Every scene of fixtures/scenes, run through the upstream stages and meshed: its carved
+//! terrain, cave and water are closed, 2-manifold, consistently oriented, free of degenerate
+//! triangles and enclose a positive volume. The cells are coarser than the scenes' own (the
+//! terrain at its scene's cell, the cave and water at 1 m) to keep the test short; the lattice
+//! and the polygonizer are the same at every resolution.
+
+use std::path::{Path, PathBuf};
+
+use karst_artifact::cli::RunArgs;
+use karst_artifact::read_artifact;
+use karst_geology::Scene;
+use karst_mesher::build::build_with;
+use karst_mesher::stage::anchors;
+use karst_mesher::{Surface, watertight};
+use karst_sdf::{CarvedTerrain, SdfModel};
+
+/// The cell of the cave alone and of the water in this test, metres.
+const CAVE_CELL: f64 = 1.0;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The scene's sdf model, its upstream stages run into a scratch folder.
+fn preset_model(name: &str) -> (Scene, SdfModel) {
+    let scene = root().join(format!("fixtures/scenes/{name}.toml"));
+    let out = std::env::temp_dir().join(format!("karst-mesher-{name}-{}", std::process::id()));
+    let args = RunArgs { scene: scene.clone(), out: out.clone() };
+    karst_sampling::stage::run(&args).unwrap();
+    karst_costgraph::stage::run(&args).unwrap();
+    karst_skeleton::stage::run(&args).unwrap();
+    karst_hydro::stage::run(&args).unwrap();
+    karst_sdf::stage::run(&args).unwrap();
+    let (_, model): (_, SdfModel) = read_artifact(&out.join("sdf.bin")).unwrap();
+    let _ = std::fs::remove_dir_all(&out);
+    (Scene::load(&scene).unwrap(), model)
+}
+
+fn defects(name: &str, surface: &Surface) -> Option<String> {
+    if surface.triangles.is_empty() {
+        return Some(format!("{name}: empty"));
+    }
+    if let Err(defect) = watertight::check(surface) {
+        return Some(format!("{name}: {defect}"));
+    }
+    let volume = surface.enclosed_volume();
+    (volume <= 0.0).then(|| format!("{name}: enclosed volume {volume}"))
+}
+
+fn check_preset(name: &str) {
+    let (scene, model) = preset_model(name);
+    let field = CarvedTerrain::new(model);
+    let mesh = build_with(&field, scene.mesher.cell_size, CAVE_CELL, &anchors(&scene));
+    let failures: Vec<String> = [("terrain", &mesh.terrain), ("cave", &mesh.cave), ("water", &mesh.water)]
+        .into_iter()
+        .filter_map(|(surface, s)| defects(&format!("{name} {surface}"), s))
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+macro_rules! preset_tests {
+    ($($test:ident: $name:literal;)*) => {
+        $(
+            #[test]
+            fn $test() {
+                check_preset($name);
+            }
+        )*
+
+        /// Every fixtures/scenes/*.toml scene has its test above.
+        #[test]
+        fn every_scene_is_meshed() {
+            let tested = [$($name),*];
+            for entry in std::fs::read_dir(root().join("fixtures/scenes")).unwrap() {
+                let path = entry.unwrap().path();
+                if path.extension().is_some_and(|e| e == "toml") {
+                    let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+                    assert!(tested.contains(&stem.as_str()), "scene {stem} has no mesh test");
+                }
+            }
+        }
+    };
+}
+
+preset_tests! {
+    tiny_meshes_are_watertight: "tiny";
+    default_meshes_are_watertight: "default";
+    layered_meshes_are_watertight: "layered";
+    branchwork_meshes_are_watertight: "branchwork";
+    looping_meshes_are_watertight: "looping";
+    rectilinear_meshes_are_watertight: "rectilinear";
+    superimposed_meshes_are_watertight: "superimposed";
+    karstnsim_meshes_are_watertight: "karstnsim";
+    karstnsim_2phase_meshes_are_watertight: "karstnsim-2phase";
+}
