@@ -45,7 +45,7 @@ const ROUNDS: u32 = 1;
 
 /// A cheap counter-based random stream (splitmix64 steps from a hashed seed); each cell of
 /// each pass has its own, so the darts do not depend on the processing order.
-struct CellRng(u64);
+pub(crate) struct CellRng(u64);
 
 fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -54,7 +54,7 @@ fn mix(mut z: u64) -> u64 {
 }
 
 impl CellRng {
-    fn new(key: u64, pass: u32, cell: usize) -> Self {
+    pub(crate) fn new(key: u64, pass: u32, cell: usize) -> Self {
         CellRng(mix(key ^ mix((cell as u64) << 8 | pass as u64)))
     }
 
@@ -64,7 +64,7 @@ impl CellRng {
     }
 
     /// Uniform in [0, 1), 53 bits.
-    fn uniform(&mut self) -> f64 {
+    pub(crate) fn uniform(&mut self) -> f64 {
         (self.next() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
     }
 
@@ -177,7 +177,12 @@ impl<'a> Sampler<'a> {
         (z * self.dims[1] + y) * self.dims[0] + x
     }
 
-    fn radius_at(&self, p: DVec3) -> f64 {
+    /// The field's largest radius.
+    pub fn max_radius(&self) -> f64 {
+        self.r_max
+    }
+
+    pub(crate) fn radius_at(&self, p: DVec3) -> f64 {
         self.constant.unwrap_or_else(|| self.field.at(p))
     }
 
@@ -193,6 +198,32 @@ impl<'a> Sampler<'a> {
         let r = self.radius_at(p) as f32;
         let c = self.index(self.coords(p));
         self.push(c, p, r);
+    }
+
+    /// Appends the samples of the cells that meet the box lo–hi grown by the largest radius,
+    /// as (position, radius): every sample that may conflict with a point of the box.
+    pub(crate) fn gather(&self, lo: DVec3, hi: DVec3, out: &mut Vec<(DVec3, f64)>) {
+        let grow = DVec3::splat(self.r_max);
+        let (a, b) = (self.coords(lo - grow), self.coords(hi + grow));
+        for z in a[2]..=b[2] {
+            for y in a[1]..=b[1] {
+                for x in a[0]..=b[0] {
+                    let mut id = self.head[self.index([x, y, z])];
+                    while id != NONE {
+                        out.push((self.points[id as usize], self.radii[id as usize] as f64));
+                        id = self.next[id as usize];
+                    }
+                }
+            }
+        }
+    }
+
+    /// Inserts samples found elsewhere (already checked against the grid), in order.
+    pub(crate) fn extend(&mut self, found: impl IntoIterator<Item = (DVec3, f32)>) {
+        for (p, r) in found {
+            let c = self.index(self.coords(p));
+            self.push(c, p, r);
+        }
     }
 
     /// Inserts `p` when no sample lies closer than min(r(p), r(q)); returns whether it did.
