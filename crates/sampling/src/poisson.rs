@@ -38,7 +38,7 @@ use crate::radius::RadiusField;
 const NONE: u32 = u32::MAX;
 
 /// Passes of one dart per cell before the saturation pass.
-const WARM_PASSES: u32 = 2;
+const WARM_PASSES: u32 = 1;
 /// Refinement levels of the saturation pass: elements of edge h/3, h/6, h/12.
 /// Rounds of one dart per live sub-cell in the saturation pass (see the module's documentation).
 const ROUNDS: u32 = 1;
@@ -115,14 +115,15 @@ impl<'a> Sampler<'a> {
     pub fn new(field: &'a RadiusField, lo: DVec3, hi: DVec3, cell: f64) -> Self {
         let n = ((hi - lo) / cell).ceil().max(DVec3::ONE);
         let dims = [n.x as usize, n.y as usize, n.z as usize];
-        let reach = (field.max() / cell).ceil() as i32;
+        let (r_min, r_max) = (field.min(), field.max());
+        let reach = (r_max / cell).ceil() as i32;
         let mut offsets = Vec::new();
         for z in -reach..=reach {
             for y in -reach..=reach {
                 for x in -reach..=reach {
                     let gap = |d: i32| (d.abs() - 1).max(0) as f64 * cell;
                     let d = (gap(x).powi(2) + gap(y).powi(2) + gap(z).powi(2)).sqrt();
-                    if d < field.max() {
+                    if d < r_max {
                         offsets.push(([x, y, z], d));
                     }
                 }
@@ -139,12 +140,12 @@ impl<'a> Sampler<'a> {
             deltas,
             reach: reach as usize,
             field,
-            constant: (field.min() == field.max()).then(|| field.min()),
+            constant: (r_min == r_max).then_some(r_min),
             lo,
             cell,
             dims,
-            r_min: field.min(),
-            r_max: field.max(),
+            r_min,
+            r_max,
             period: reach as usize + 1,
             offsets,
             head: vec![NONE; dims[0] * dims[1] * dims[2]],
@@ -309,6 +310,7 @@ impl<'a> Sampler<'a> {
         let [nx, ny, nz] = self.dims;
         let k = self.period;
         let mut finished = 0u64;
+        let inside = self.region_bits(&region);
         for pass in 0..=WARM_PASSES {
             let saturate = pass == WARM_PASSES;
             for colour in 0..k * k * k {
@@ -324,8 +326,8 @@ impl<'a> Sampler<'a> {
                             let c = [x, y, z];
                             let mut rng = CellRng::new(key, pass, this.index(c));
                             if saturate {
-                                this.saturate(c, &mut rng, &region, scratch, &mut out);
-                            } else {
+                                this.saturate(c, &mut rng, &region, &inside, scratch, &mut out);
+                            } else if inside.probes(c) > 0 {
                                 this.warm_dart(c, &mut rng, &region, &mut out);
                             }
                         }
@@ -339,6 +341,34 @@ impl<'a> Sampler<'a> {
                 done(finished);
             }
         }
+    }
+
+    /// The region at every grid vertex and cell centre, tested once each (in parallel).
+    fn region_bits(&self, region: &(impl Fn(DVec3) -> bool + Sync)) -> RegionBits {
+        let v = self.dims.map(|n| n + 1);
+        let layers: Vec<Vec<u8>> = (0..v[2])
+            .into_par_iter()
+            .map(|z| {
+                let mut layer = Vec::with_capacity(v[0] * v[1]);
+                for y in 0..v[1] {
+                    for x in 0..v[0] {
+                        let c = [x, y, z];
+                        let corner = self.corner(c);
+                        let centre = (0..3).all(|a| c[a] < self.dims[a])
+                            && region(corner + DVec3::splat(0.5 * self.cell));
+                        layer.push(region(corner) as u8 | (centre as u8) << 1);
+                    }
+                }
+                layer
+            })
+            .collect();
+        let n = v[0] * v[1] * v[2];
+        let mut bits = RegionBits { vertex: vec![0; n.div_ceil(64)], centre: vec![0; n.div_ceil(64)], v };
+        for (i, b) in layers.into_iter().flatten().enumerate() {
+            bits.vertex[i / 64] |= ((b & 1) as u64) << (i % 64);
+            bits.centre[i / 64] |= ((b >> 1) as u64) << (i % 64);
+        }
+        bits
     }
 
     fn corner(&self, [x, y, z]: [usize; 3]) -> DVec3 {
@@ -369,6 +399,7 @@ impl<'a> Sampler<'a> {
         c: [usize; 3],
         rng: &mut CellRng,
         region: &impl Fn(DVec3) -> bool,
+        inside: &RegionBits,
         scratch: &mut Scratch,
         out: &mut Vec<(u32, DVec3, f32)>,
     ) {
@@ -377,7 +408,7 @@ impl<'a> Sampler<'a> {
         // The region is resolved to the cell: a cell none of whose corners and centre is in
         // the region is skipped; in a cell where some are not, every live sub-cell must have
         // one of its own in the region.
-        let probes = box_probes(corner, h).filter(|p| region(*p)).count();
+        let probes = inside.probes(c);
         if probes == 0 {
             return;
         }
@@ -392,20 +423,21 @@ impl<'a> Sampler<'a> {
             true
         });
         let cell = self.index(c) as u32;
-        // Throws a dart at `p`: the sample that rejects it, or the new sample.
-        // (The neighbours first: most darts are rejected, and the region costs more.)
-        let mut dart = |p: DVec3, near: &mut Vec<(DVec3, f64)>| -> Option<(DVec3, f64)> {
+        // Throws a dart at `p`: the index in `near` of the sample that rejects it, or of the
+        // new sample. (The neighbours first: most darts are rejected, and the region costs
+        // more.)
+        let mut dart = |p: DVec3, near: &mut Vec<(DVec3, f64)>| -> Option<usize> {
             let r = self.radius_at(p);
-            let blocker = near.iter().find(|(q, rq)| {
+            let blocker = near.iter().position(|(q, rq)| {
                 let m = r.min(*rq);
                 q.distance_squared(p) < m * m
             });
             match blocker {
-                Some(&b) => Some(b),
+                Some(b) => Some(b),
                 None if region(p) => {
                     out.push((cell, p, r as f32));
                     near.push((p, r));
-                    Some((p, r))
+                    Some(near.len() - 1)
                 }
                 None => None,
             }
@@ -414,6 +446,7 @@ impl<'a> Sampler<'a> {
         let s1 = h / 3.0;
         let sub = |k: u32| corner + DVec3::new((k % 3) as f64, (k / 3 % 3) as f64, (k / 9) as f64) * s1;
         let mut mask: u32 = (1 << 27) - 1;
+        let gathered = near.len();
         for &(q, rq) in near.iter() {
             mask &= !cover27(q, rq.min(floor), corner, s1);
         }
@@ -438,11 +471,39 @@ impl<'a> Sampler<'a> {
                     m &= m - 1;
                 }
                 let p = sub(m.trailing_zeros()) + rng.unit_cube() * s1;
-                if let Some((q, rq)) = dart(p, near) {
+                // The disks of the samples gathered first are already out of the mask.
+                if let Some(b) = dart(p, near).filter(|&b| b >= gathered) {
+                    let (q, rq) = near[b];
                     mask &= !cover27(q, rq.min(floor), corner, s1);
                 }
             }
         }
+    }
+}
+
+/// Whether each vertex of the background grid, and each cell's centre, is in the region (one
+/// bit each, indexed by the vertex, a cell by its lowest vertex).
+struct RegionBits {
+    vertex: Vec<u64>,
+    centre: Vec<u64>,
+    /// Vertices per axis.
+    v: [usize; 3],
+}
+
+impl RegionBits {
+    fn bit(words: &[u64], i: usize) -> usize {
+        (words[i / 64] >> (i % 64) & 1) as usize
+    }
+
+    /// How many of cell `c`'s 8 corners and centre are in the region.
+    fn probes(&self, [x, y, z]: [usize; 3]) -> usize {
+        let [vx, vy, _] = self.v;
+        let first = (z * vy + y) * vx + x;
+        let mut n = Self::bit(&self.centre, first);
+        for k in 0..8 {
+            n += Self::bit(&self.vertex, first + (k & 1) + vx * ((k >> 1 & 1) + vy * (k >> 2)));
+        }
+        n
     }
 }
 
