@@ -327,7 +327,7 @@ impl<'a> Sampler<'a> {
                             let mut rng = CellRng::new(key, pass, this.index(c));
                             if saturate {
                                 this.saturate(c, &mut rng, &region, &inside, scratch, &mut out);
-                            } else if inside.probes(c) > 0 {
+                            } else if inside.some(this.index(c)) {
                                 this.warm_dart(c, &mut rng, &region, &mut out);
                             }
                         }
@@ -343,30 +343,47 @@ impl<'a> Sampler<'a> {
         }
     }
 
-    /// The region at every grid vertex and cell centre, tested once each (in parallel).
+    /// Which cells have some or all of their 8 corners and centre in the region: each grid
+    /// vertex and cell centre is tested once (in parallel by layers of cells), not once per
+    /// cell that shares it.
     fn region_bits(&self, region: &(impl Fn(DVec3) -> bool + Sync)) -> RegionBits {
-        let v = self.dims.map(|n| n + 1);
-        let layers: Vec<Vec<u8>> = (0..v[2])
+        let [nx, ny, nz] = self.dims;
+        let vertices = |z: usize| -> Vec<bool> {
+            let mut layer = Vec::with_capacity((nx + 1) * (ny + 1));
+            for y in 0..=ny {
+                for x in 0..=nx {
+                    layer.push(region(self.corner([x, y, z])));
+                }
+            }
+            layer
+        };
+        let vertex: Vec<Vec<bool>> = (0..=nz).into_par_iter().map(vertices).collect();
+        // Per layer of cells: bit 0 some probe inside, bit 1 all of them.
+        let layers: Vec<Vec<u8>> = (0..nz)
             .into_par_iter()
             .map(|z| {
-                let mut layer = Vec::with_capacity(v[0] * v[1]);
-                for y in 0..v[1] {
-                    for x in 0..v[0] {
-                        let c = [x, y, z];
-                        let corner = self.corner(c);
-                        let centre = (0..3).all(|a| c[a] < self.dims[a])
-                            && region(corner + DVec3::splat(0.5 * self.cell));
-                        layer.push(region(corner) as u8 | (centre as u8) << 1);
+                let (below, above) = (&vertex[z], &vertex[z + 1]);
+                let mut classes = Vec::with_capacity(nx * ny);
+                for y in 0..ny {
+                    for x in 0..nx {
+                        let v = |l: &[bool], dx: usize, dy: usize| l[(y + dy) * (nx + 1) + x + dx] as usize;
+                        let centre = self.corner([x, y, z]) + DVec3::splat(0.5 * self.cell);
+                        let n = region(centre) as usize
+                            + [below, above]
+                                .iter()
+                                .map(|l| v(l, 0, 0) + v(l, 1, 0) + v(l, 0, 1) + v(l, 1, 1))
+                                .sum::<usize>();
+                        classes.push((n > 0) as u8 | ((n == 9) as u8) << 1);
                     }
                 }
-                layer
+                classes
             })
             .collect();
-        let n = v[0] * v[1] * v[2];
-        let mut bits = RegionBits { vertex: vec![0; n.div_ceil(64)], centre: vec![0; n.div_ceil(64)], v };
+        let n = nx * ny * nz;
+        let mut bits = RegionBits { some: vec![0; n.div_ceil(64)], all: vec![0; n.div_ceil(64)] };
         for (i, b) in layers.into_iter().flatten().enumerate() {
-            bits.vertex[i / 64] |= ((b & 1) as u64) << (i % 64);
-            bits.centre[i / 64] |= ((b >> 1) as u64) << (i % 64);
+            bits.some[i / 64] |= ((b & 1) as u64) << (i % 64);
+            bits.all[i / 64] |= ((b >> 1) as u64) << (i % 64);
         }
         bits
     }
@@ -408,11 +425,11 @@ impl<'a> Sampler<'a> {
         // The region is resolved to the cell: a cell none of whose corners and centre is in
         // the region is skipped; in a cell where some are not, every live sub-cell must have
         // one of its own in the region.
-        let probes = inside.probes(c);
-        if probes == 0 {
+        let ci = self.index(c);
+        if !inside.some(ci) {
             return;
         }
-        let boundary = probes < 9;
+        let boundary = !inside.all(ci);
         let touches = |lo: DVec3, s: f64| !boundary || box_probes(lo, s).any(region);
         // Every point x of the cell has r(x) ≥ floor.
         let floor = self.constant.unwrap_or_else(|| self.field.min_in(corner, corner + DVec3::splat(h)));
@@ -481,29 +498,19 @@ impl<'a> Sampler<'a> {
     }
 }
 
-/// Whether each vertex of the background grid, and each cell's centre, is in the region (one
-/// bit each, indexed by the vertex, a cell by its lowest vertex).
+/// Per cell (by index), whether some or all of its 8 corners and centre are in the region.
 struct RegionBits {
-    vertex: Vec<u64>,
-    centre: Vec<u64>,
-    /// Vertices per axis.
-    v: [usize; 3],
+    some: Vec<u64>,
+    all: Vec<u64>,
 }
 
 impl RegionBits {
-    fn bit(words: &[u64], i: usize) -> usize {
-        (words[i / 64] >> (i % 64) & 1) as usize
+    fn some(&self, i: usize) -> bool {
+        self.some[i / 64] >> (i % 64) & 1 == 1
     }
 
-    /// How many of cell `c`'s 8 corners and centre are in the region.
-    fn probes(&self, [x, y, z]: [usize; 3]) -> usize {
-        let [vx, vy, _] = self.v;
-        let first = (z * vy + y) * vx + x;
-        let mut n = Self::bit(&self.centre, first);
-        for k in 0..8 {
-            n += Self::bit(&self.vertex, first + (k & 1) + vx * ((k >> 1 & 1) + vy * (k >> 2)));
-        }
-        n
+    fn all(&self, i: usize) -> bool {
+        self.all[i / 64] >> (i % 64) & 1 == 1
     }
 }
 
