@@ -331,6 +331,7 @@ impl<'a> Sampler<'a> {
                                 this.warm_dart(c, &mut rng, &region, &mut out);
                             }
                         }
+                        out.shrink_to_fit();
                         out
                     })
                     .collect();

@@ -143,47 +143,46 @@ pub fn fill_surface(
 ) {
     let (centre, half_diagonal) = ((lo + hi) * 0.5, 0.5 * (hi - lo).length());
     let patches = Patches::new(surface, centre, half_diagonal, cell);
-    // (patch, lower corner of its bounding box) of the patches that may meet the domain.
-    let mut extent = 0f64;
-    let live: Vec<(u32, DVec3)> = (0..patches.len() as u32)
-        .filter_map(|i| {
-            let (l, h) = patches.get(i as usize).bounds();
-            (l.cmple(hi).all() && h.cmpge(lo).all()).then(|| {
-                extent = extent.max((h - l).max_element());
-                (i, l)
-            })
-        })
-        .collect();
-    if live.is_empty() {
+    // The bounding boxes of the patches that may meet the domain: their largest extent and
+    // the lowest corner (a first pass, so that no list of corners is kept).
+    let meets = |i: usize| {
+        let (l, h) = patches.get(i).bounds();
+        (l.cmple(hi).all() && h.cmpge(lo).all()).then_some((l, h))
+    };
+    let (extent, origin) = (0..patches.len())
+        .into_par_iter()
+        .filter_map(meets)
+        .map(|(l, h)| ((h - l).max_element(), l))
+        .reduce(|| (0.0, DVec3::INFINITY), |a, b| (a.0.max(b.0), a.1.min(b.1)));
+    if extent == 0.0 && origin == DVec3::INFINITY {
         return;
     }
     let bin = (extent + sampler.max_radius()) * (1.0 + 1e-9) + 1e-9;
-    let origin = live.iter().fold(live[0].1, |m, (_, l)| m.min(*l));
     let coords = |l: DVec3| ((l - origin) / bin).floor().as_uvec3();
-    let dims = live.iter().fold(glam::UVec3::ZERO, |m, (_, l)| m.max(coords(*l))) + 1;
-    // Bins as (colour, bin index, patch), sorted: colours in order, bins in order in a colour.
-    let mut order: Vec<(u32, u64, u32)> = live
-        .iter()
-        .map(|&(i, l)| {
-            let c = coords(l);
-            let colour = (c.x & 1) | (c.y & 1) << 1 | (c.z & 1) << 2;
-            let index = c.x as u64 + dims.x as u64 * (c.y as u64 + dims.y as u64 * c.z as u64);
-            (colour, index, i)
+    let dims = (((hi - origin) / bin).floor().max(DVec3::ZERO).as_uvec3() + 1).as_u64vec3();
+    // (colour << 61 | bin index, patch), sorted: colours in order, bins in order in a colour.
+    let mut order: Vec<(u64, u32)> = (0..patches.len())
+        .into_par_iter()
+        .filter_map(|i| {
+            let c = coords(meets(i)?.0).min((dims - 1).as_uvec3());
+            let colour = ((c.x & 1) | (c.y & 1) << 1 | (c.z & 1) << 2) as u64;
+            let c = c.as_u64vec3();
+            Some((colour << 61 | (c.x + dims.x * (c.y + dims.y * c.z)), i as u32))
         })
         .collect();
-    order.sort_unstable();
+    order.par_sort_unstable();
     let attempts = attempts.min(255) as u8;
     // A square patch whose diagonal is below the smallest radius holds one sample at most.
     let single = matches!(patches, Patches::Plane { .. }) && cell * 2f64.sqrt() < sampler.min_radius();
     let mut start = 0;
     while start < order.len() {
-        let colour = order[start].0;
-        let end = start + order[start..].partition_point(|o| o.0 == colour);
+        let colour = order[start].0 >> 61;
+        let end = start + order[start..].partition_point(|o| o.0 >> 61 == colour);
         // The bins of this colour: ranges of `order`.
         let mut bins = Vec::new();
         let mut b = start;
         while b < end {
-            let e = b + order[b..end].partition_point(|o| o.1 == order[b].1);
+            let e = b + order[b..end].partition_point(|o| o.0 == order[b].0);
             bins.push(b..e);
             b = e;
         }
@@ -192,7 +191,7 @@ pub fn fill_surface(
             .par_iter()
             .map(|range| {
                 let group = &order[range.clone()];
-                let mut rng = CellRng::new(key, 0, group[0].1 as usize);
+                let mut rng = CellRng::new(key, 0, group[0].0 as usize);
                 fill_bin(this, &patches, group, attempts, single, &mut rng, &region)
             })
             .collect();
@@ -206,13 +205,13 @@ pub fn fill_surface(
 fn fill_bin(
     sampler: &Sampler,
     patches: &Patches,
-    group: &[(u32, u64, u32)],
+    group: &[(u64, u32)],
     attempts: u8,
     single: bool,
     rng: &mut CellRng,
     region: &impl Fn(DVec3) -> bool,
 ) -> Vec<(DVec3, f32)> {
-    let list: Vec<Patch> = group.iter().map(|o| patches.get(o.2 as usize)).collect();
+    let list: Vec<Patch> = group.iter().map(|o| patches.get(o.1 as usize)).collect();
     let (mut l, mut h) = list[0].bounds();
     for p in &list[1..] {
         let (a, b) = p.bounds();
