@@ -15,10 +15,12 @@ pub struct Domain {
 }
 
 impl Domain {
+    #[inline]
     pub fn min(&self) -> Point {
         Point::from_array(self.min)
     }
 
+    #[inline]
     pub fn max(&self) -> Point {
         Point::from_array(self.max)
     }
@@ -32,6 +34,7 @@ impl Domain {
     }
 
     /// True when `p` is inside the box or on its boundary.
+    #[inline]
     pub fn contains(&self, p: Point) -> bool {
         p.cmpge(self.min()).all() && p.cmple(self.max()).all()
     }

@@ -86,6 +86,7 @@ impl Geology {
     }
 
     /// True when `p` lies in a no-karst volume.
+    #[inline]
     pub fn in_no_karst(&self, p: crate::Point) -> bool {
         self.no_karst.iter().any(|v| v.shape().is_some_and(|s| s.signed_distance(p, self) <= 0.0))
     }

@@ -82,6 +82,7 @@ fn three() -> u32 {
 
 impl Terrain {
     /// Elevation of the ground at (x, y).
+    #[inline]
     pub fn height(&self, x: f64, y: f64) -> f64 {
         match self {
             Terrain::Plane { elevation, origin, gradient } => {

@@ -14,21 +14,22 @@
 //! samples are appended in cell order after each colour: the result does not depend on the
 //! number of threads.
 //!
-//! `WARM_PASSES` passes throw one dart per cell (so that the bulk of the samples is spread
-//! without a scan order), then one saturation pass fills every cell: of its 27 sub-cells of
-//! edge h/3, those that no single neighbouring disk covers entirely are live; darts go into
-//! random live sub-cells, and each sample that accepts or rejects a dart removes the sub-cells
-//! its disk covers (a one-level, cell-local version of Ebeida et al. 2011's refinement), for
-//! `ROUNDS` rounds of one dart per live sub-cell. Sub-cells covered by the union of several
-//! disks but by none alone stay live and take darts in vain; what is left uncovered after the
-//! rounds is small: with one round, 0.16 % of the bedrock is farther than r from every sample
-//! on the 100k benchmark (as many samples as the previous sampler's 8 consecutive failed darts
-//! per cell, 0.07 %); a second round brings it to 0.08 % with 4 % more samples for 23 % more
-//! instructions.
+//! The region (domain, terrain, no-karst volumes) is tested once per grid vertex and cell
+//! centre before the passes: cells with none of their corners and centre inside are skipped.
+//! `WARM_PASSES` (one) pass throws one dart per cell (so that the bulk of the samples is
+//! spread without a scan order), then one saturation pass fills every cell: of its 27 sub-cells
+//! of edge h/3, those that no single neighbouring disk covers entirely are live; darts go into
+//! random live sub-cells, and each new sample removes the sub-cells its disk covers (a
+//! one-level, cell-local version of Ebeida et al. 2011's refinement), for `ROUNDS` rounds of
+//! one dart per live sub-cell. Sub-cells covered by the union of several disks but by none alone
+//! stay live and take darts in vain; what is left uncovered after the rounds is small: with one
+//! round, 0.14 % of the bedrock is farther than r from every sample on the 100k benchmark (the
+//! previous sampler's 8 consecutive failed darts per cell left 0.07 %); a second round halves
+//! it with 4 % more samples for about a quarter more instructions.
 //!
 //! Key points are inserted first as they are, even when closer than r to each other; surface
-//! samples are darts on the surfaces themselves (see `surfaces.rs`) and go in before the
-//! volume's, sequentially.
+//! samples are darts on the surfaces themselves, in phase groups of their own (see
+//! `surfaces.rs`), and go in before the volume's.
 
 use glam::{DVec3, Vec4};
 use rayon::prelude::*;
@@ -37,15 +38,15 @@ use crate::radius::RadiusField;
 
 const NONE: u32 = u32::MAX;
 
-/// Passes of one dart per cell before the saturation pass.
-const WARM_PASSES: u32 = 2;
-/// Refinement levels of the saturation pass: elements of edge h/3, h/6, h/12.
+/// Passes of one dart per cell before the saturation pass (a second one costs 6 % more
+/// instructions on the 100k benchmark and leaves as many holes).
+const WARM_PASSES: u32 = 1;
 /// Rounds of one dart per live sub-cell in the saturation pass (see the module's documentation).
 const ROUNDS: u32 = 1;
 
 /// A cheap counter-based random stream (splitmix64 steps from a hashed seed); each cell of
 /// each pass has its own, so the darts do not depend on the processing order.
-struct CellRng(u64);
+pub(crate) struct CellRng(u64);
 
 fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -54,7 +55,7 @@ fn mix(mut z: u64) -> u64 {
 }
 
 impl CellRng {
-    fn new(key: u64, pass: u32, cell: usize) -> Self {
+    pub(crate) fn new(key: u64, pass: u32, cell: usize) -> Self {
         CellRng(mix(key ^ mix((cell as u64) << 8 | pass as u64)))
     }
 
@@ -64,7 +65,7 @@ impl CellRng {
     }
 
     /// Uniform in [0, 1), 53 bits.
-    fn uniform(&mut self) -> f64 {
+    pub(crate) fn uniform(&mut self) -> f64 {
         (self.next() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
     }
 
@@ -115,14 +116,15 @@ impl<'a> Sampler<'a> {
     pub fn new(field: &'a RadiusField, lo: DVec3, hi: DVec3, cell: f64) -> Self {
         let n = ((hi - lo) / cell).ceil().max(DVec3::ONE);
         let dims = [n.x as usize, n.y as usize, n.z as usize];
-        let reach = (field.max() / cell).ceil() as i32;
+        let (r_min, r_max) = (field.min(), field.max());
+        let reach = (r_max / cell).ceil() as i32;
         let mut offsets = Vec::new();
         for z in -reach..=reach {
             for y in -reach..=reach {
                 for x in -reach..=reach {
                     let gap = |d: i32| (d.abs() - 1).max(0) as f64 * cell;
                     let d = (gap(x).powi(2) + gap(y).powi(2) + gap(z).powi(2)).sqrt();
-                    if d < field.max() {
+                    if d < r_max {
                         offsets.push(([x, y, z], d));
                     }
                 }
@@ -139,12 +141,12 @@ impl<'a> Sampler<'a> {
             deltas,
             reach: reach as usize,
             field,
-            constant: (field.min() == field.max()).then(|| field.min()),
+            constant: (r_min == r_max).then_some(r_min),
             lo,
             cell,
             dims,
-            r_min: field.min(),
-            r_max: field.max(),
+            r_min,
+            r_max,
             period: reach as usize + 1,
             offsets,
             head: vec![NONE; dims[0] * dims[1] * dims[2]],
@@ -177,7 +179,12 @@ impl<'a> Sampler<'a> {
         (z * self.dims[1] + y) * self.dims[0] + x
     }
 
-    fn radius_at(&self, p: DVec3) -> f64 {
+    /// The field's largest radius.
+    pub fn max_radius(&self) -> f64 {
+        self.r_max
+    }
+
+    pub(crate) fn radius_at(&self, p: DVec3) -> f64 {
         self.constant.unwrap_or_else(|| self.field.at(p))
     }
 
@@ -193,6 +200,32 @@ impl<'a> Sampler<'a> {
         let r = self.radius_at(p) as f32;
         let c = self.index(self.coords(p));
         self.push(c, p, r);
+    }
+
+    /// Appends the samples of the cells that meet the box lo–hi grown by the largest radius,
+    /// as (position, radius): every sample that may conflict with a point of the box.
+    pub(crate) fn gather(&self, lo: DVec3, hi: DVec3, out: &mut Vec<(DVec3, f64)>) {
+        let grow = DVec3::splat(self.r_max);
+        let (a, b) = (self.coords(lo - grow), self.coords(hi + grow));
+        for z in a[2]..=b[2] {
+            for y in a[1]..=b[1] {
+                for x in a[0]..=b[0] {
+                    let mut id = self.head[self.index([x, y, z])];
+                    while id != NONE {
+                        out.push((self.points[id as usize], self.radii[id as usize] as f64));
+                        id = self.next[id as usize];
+                    }
+                }
+            }
+        }
+    }
+
+    /// Inserts samples found elsewhere (already checked against the grid), in order.
+    pub(crate) fn extend(&mut self, found: impl IntoIterator<Item = (DVec3, f32)>) {
+        for (p, r) in found {
+            let c = self.index(self.coords(p));
+            self.push(c, p, r);
+        }
     }
 
     /// Inserts `p` when no sample lies closer than min(r(p), r(q)); returns whether it did.
@@ -278,6 +311,7 @@ impl<'a> Sampler<'a> {
         let [nx, ny, nz] = self.dims;
         let k = self.period;
         let mut finished = 0u64;
+        let inside = self.region_bits(&region);
         for pass in 0..=WARM_PASSES {
             let saturate = pass == WARM_PASSES;
             for colour in 0..k * k * k {
@@ -293,11 +327,12 @@ impl<'a> Sampler<'a> {
                             let c = [x, y, z];
                             let mut rng = CellRng::new(key, pass, this.index(c));
                             if saturate {
-                                this.saturate(c, &mut rng, &region, scratch, &mut out);
-                            } else {
+                                this.saturate(c, &mut rng, &region, &inside, scratch, &mut out);
+                            } else if inside.some(this.index(c)) {
                                 this.warm_dart(c, &mut rng, &region, &mut out);
                             }
                         }
+                        out.shrink_to_fit();
                         out
                     })
                     .collect();
@@ -308,6 +343,51 @@ impl<'a> Sampler<'a> {
                 done(finished);
             }
         }
+    }
+
+    /// Which cells have some or all of their 8 corners and centre in the region: each grid
+    /// vertex and cell centre is tested once (in parallel by layers of cells), not once per
+    /// cell that shares it.
+    fn region_bits(&self, region: &(impl Fn(DVec3) -> bool + Sync)) -> RegionBits {
+        let [nx, ny, nz] = self.dims;
+        let vertices = |z: usize| -> Vec<bool> {
+            let mut layer = Vec::with_capacity((nx + 1) * (ny + 1));
+            for y in 0..=ny {
+                for x in 0..=nx {
+                    layer.push(region(self.corner([x, y, z])));
+                }
+            }
+            layer
+        };
+        let vertex: Vec<Vec<bool>> = (0..=nz).into_par_iter().map(vertices).collect();
+        // Per layer of cells: bit 0 some probe inside, bit 1 all of them.
+        let layers: Vec<Vec<u8>> = (0..nz)
+            .into_par_iter()
+            .map(|z| {
+                let (below, above) = (&vertex[z], &vertex[z + 1]);
+                let mut classes = Vec::with_capacity(nx * ny);
+                for y in 0..ny {
+                    for x in 0..nx {
+                        let v = |l: &[bool], dx: usize, dy: usize| l[(y + dy) * (nx + 1) + x + dx] as usize;
+                        let centre = self.corner([x, y, z]) + DVec3::splat(0.5 * self.cell);
+                        let n = region(centre) as usize
+                            + [below, above]
+                                .iter()
+                                .map(|l| v(l, 0, 0) + v(l, 1, 0) + v(l, 0, 1) + v(l, 1, 1))
+                                .sum::<usize>();
+                        classes.push((n > 0) as u8 | ((n == 9) as u8) << 1);
+                    }
+                }
+                classes
+            })
+            .collect();
+        let n = nx * ny * nz;
+        let mut bits = RegionBits { some: vec![0; n.div_ceil(64)], all: vec![0; n.div_ceil(64)] };
+        for (i, b) in layers.into_iter().flatten().enumerate() {
+            bits.some[i / 64] |= ((b & 1) as u64) << (i % 64);
+            bits.all[i / 64] |= ((b >> 1) as u64) << (i % 64);
+        }
+        bits
     }
 
     fn corner(&self, [x, y, z]: [usize; 3]) -> DVec3 {
@@ -338,6 +418,7 @@ impl<'a> Sampler<'a> {
         c: [usize; 3],
         rng: &mut CellRng,
         region: &impl Fn(DVec3) -> bool,
+        inside: &RegionBits,
         scratch: &mut Scratch,
         out: &mut Vec<(u32, DVec3, f32)>,
     ) {
@@ -346,43 +427,51 @@ impl<'a> Sampler<'a> {
         // The region is resolved to the cell: a cell none of whose corners and centre is in
         // the region is skipped; in a cell where some are not, every live sub-cell must have
         // one of its own in the region.
-        let probes = box_probes(corner, h).filter(|p| region(*p)).count();
-        if probes == 0 {
+        let ci = self.index(c);
+        if !inside.some(ci) {
             return;
         }
-        let boundary = probes < 9;
+        let boundary = !inside.all(ci);
         let touches = |lo: DVec3, s: f64| !boundary || box_probes(lo, s).any(region);
         // Every point x of the cell has r(x) ≥ floor.
         let floor = self.constant.unwrap_or_else(|| self.field.min_in(corner, corner + DVec3::splat(h)));
         let near = &mut scratch.near;
         near.clear();
+        // Only the samples nearer the cell than their own radius can reject a dart in it or
+        // cover part of it (about a quarter of the 27 cells' samples are farther).
+        let far = corner + DVec3::splat(h);
         self.neighbours(c, self.r_max, |id| {
-            near.push((self.points[id as usize], self.radii[id as usize] as f64));
+            let (q, rq) = (self.points[id as usize], self.radii[id as usize] as f64);
+            if (corner - q).max(q - far).max(DVec3::ZERO).length_squared() < rq * rq {
+                near.push((q, rq));
+            }
             true
         });
         let cell = self.index(c) as u32;
-        // Throws a dart at `p`: the sample that rejects it, or the new sample.
-        // (The neighbours first: most darts are rejected, and the region costs more.)
-        let mut dart = |p: DVec3, near: &mut Vec<(DVec3, f64)>| -> Option<(DVec3, f64)> {
+        // Throws a dart at `p`: the index in `near` of the sample that rejects it, or of the
+        // new sample. (The neighbours first: most darts are rejected, and the region costs
+        // more.)
+        let mut dart = |p: DVec3, near: &mut Vec<(DVec3, f64)>| -> Option<usize> {
             let r = self.radius_at(p);
-            let blocker = near.iter().find(|(q, rq)| {
+            let blocker = near.iter().position(|(q, rq)| {
                 let m = r.min(*rq);
                 q.distance_squared(p) < m * m
             });
             match blocker {
-                Some(&b) => Some(b),
+                Some(b) => Some(b),
                 None if region(p) => {
                     out.push((cell, p, r as f32));
                     near.push((p, r));
-                    Some((p, r))
+                    Some(near.len() - 1)
                 }
                 None => None,
             }
         };
         // The 27 sub-cells, as a bit set.
         let s1 = h / 3.0;
-        let sub = |k: u32| corner + DVec3::new((k % 3) as f64, (k / 3 % 3) as f64, (k / 9) as f64) * s1;
+        let sub = |k: u32| corner + SUB27[k as usize] * s1;
         let mut mask: u32 = (1 << 27) - 1;
+        let gathered = near.len();
         for &(q, rq) in near.iter() {
             mask &= !cover27(q, rq.min(floor), corner, s1);
         }
@@ -407,13 +496,43 @@ impl<'a> Sampler<'a> {
                     m &= m - 1;
                 }
                 let p = sub(m.trailing_zeros()) + rng.unit_cube() * s1;
-                if let Some((q, rq)) = dart(p, near) {
+                // The disks of the samples gathered first are already out of the mask.
+                if let Some(b) = dart(p, near).filter(|&b| b >= gathered) {
+                    let (q, rq) = near[b];
                     mask &= !cover27(q, rq.min(floor), corner, s1);
                 }
             }
         }
     }
 }
+
+/// Per cell (by index), whether some or all of its 8 corners and centre are in the region.
+struct RegionBits {
+    some: Vec<u64>,
+    all: Vec<u64>,
+}
+
+impl RegionBits {
+    fn some(&self, i: usize) -> bool {
+        self.some[i / 64] >> (i % 64) & 1 == 1
+    }
+
+    fn all(&self, i: usize) -> bool {
+        self.all[i / 64] >> (i % 64) & 1 == 1
+    }
+}
+
+/// Sub-cell k of a 3 × 3 × 3 block is at (k mod 3, ⌊k/3⌋ mod 3, ⌊k/9⌋) sub-cell edges from the
+/// block's corner (a table: the divisions cost more than the dart they place).
+const SUB27: [DVec3; 27] = {
+    let mut t = [DVec3::ZERO; 27];
+    let mut k = 0;
+    while k < 27 {
+        t[k] = DVec3::new((k % 3) as f64, (k / 3 % 3) as f64, (k / 9) as f64);
+        k += 1;
+    }
+    t
+};
 
 /// The eight corners and the centre of the box of edge `s` at `lo`.
 fn box_probes(lo: DVec3, s: f64) -> impl Iterator<Item = DVec3> {

@@ -12,12 +12,19 @@ use glam::DVec3;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use karst_geology::Scene;
 use karst_geology::params::RadiusUnit;
+use karst_geology::{Geometry, Scene, Surface};
 
 /// The field uses at most this many nodes per expected sample at the base radius (and at
 /// least 32³ nodes): it is smooth, so a coarser table loses nothing the sampler needs.
 const NODES_PER_SAMPLE: f64 = 2.0;
+
+/// A surface as the radius field measures distances to it.
+enum Near<'a> {
+    /// Unit normal and a point of a plane.
+    Plane(DVec3, DVec3),
+    Other(&'a Surface),
+}
 
 /// A radius field on the nodes origin + (i, j, k)·cell.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -54,17 +61,28 @@ impl RadiusField {
         let cell = smallest.max((volume / nodes).cbrt());
         let n = (size / cell).ceil().as_uvec3() + 1;
         let origin = scene.domain.min();
-        let surfaces: Vec<_> = scene
+        // Planes keep their normal (a sin/cos per call of `Surface::normal`) and a point:
+        // the same arithmetic as `Surface::distance_within`, once per surface.
+        let surfaces: Vec<Near> = scene
             .geology
             .water_tables
             .iter()
             .chain(&scene.geology.horizons)
             .chain(&scene.geology.faults)
+            .map(|s| match &s.geometry {
+                Geometry::Plane { elevation, origin, .. } => {
+                    Near::Plane(s.normal(), DVec3::new(origin[0], origin[1], *elevation))
+                }
+                Geometry::Tin { .. } => Near::Other(s),
+            })
             .collect();
         let at = |p: DVec3| -> f32 {
             let layer = scene.geology.layer_at(p).and_then(|l| l.radius).map_or(radius, |r| r * scale);
             let volume = layer * (1.0 + (s.potential_factor - 1.0) * scene.geology.potential(p));
-            let d = surfaces.iter().fold(surface_distance, |d, w| w.distance_within(p, d));
+            let d = surfaces.iter().fold(surface_distance, |d, w| match w {
+                Near::Plane(n, o) => n.dot(p - *o).abs().min(d),
+                Near::Other(s) => s.distance_within(p, d),
+            });
             let t = (d / surface_distance).clamp(0.0, 1.0);
             (surface_radius + (volume - surface_radius) * t * t * (3.0 - 2.0 * t)) as f32
         };

@@ -48,9 +48,9 @@ pub fn sample_scene(scene: &Scene) -> Result<Samples, StageError> {
     ];
     for (surfaces, tag, purpose) in lists {
         for (i, s) in surfaces.iter().enumerate() {
-            let mut rng = Random::stream(scene.seed, "sampling", &format!("{purpose} {i}"));
+            let key = Random::stream(scene.seed, "sampling", &format!("{purpose} {i}")).uniform().to_bits();
             let before = sampler.points.len();
-            fill_surface(&mut sampler, s, frame, attempts, &mut rng, region);
+            fill_surface(&mut sampler, s, frame, attempts, key, region);
             runs.push((tag(i as u32), sampler.points.len() - before));
         }
     }
