@@ -83,6 +83,18 @@ pub fn print_json<P: Payload + Serialize>(path: &Path) -> Result<(), StageError>
     Ok(())
 }
 
+/// Lets the process end quietly when its output is closed early (`karst-mesher inspect ... |
+/// head`), as command-line tools do, instead of panicking in `println!` on a broken pipe:
+/// Rust ignores SIGPIPE by default, so a write to a closed pipe is an error that `println!`
+/// turns into a panic. Call it first in `main`.
+pub fn default_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: restoring a signal's default disposition at start-up, before any thread exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 /// Turns a stage result into the process exit code, printing the error on stderr.
 pub fn finish(result: Result<(), StageError>) -> ExitCode {
     match result {

@@ -4,7 +4,7 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use karst_artifact::cli::{InspectArgs, RunArgs, finish};
+use karst_artifact::cli::{InspectArgs, RunArgs, default_sigpipe, finish};
 use karst_costgraph::stage;
 
 /// k-nearest-neighbour graph with geology-driven edge costs (karstgen stage 2).
@@ -18,6 +18,7 @@ enum Cli {
 }
 
 fn main() -> ExitCode {
+    default_sigpipe();
     finish(match Cli::parse() {
         Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
         Cli::Inspect(args) => stage::inspect(&args),

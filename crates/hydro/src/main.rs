@@ -5,7 +5,7 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use karst_artifact::cli::{InspectArgs, RunArgs, finish};
+use karst_artifact::cli::{InspectArgs, RunArgs, default_sigpipe, finish};
 use karst_hydro::stage;
 
 /// Underground hydrology: flows, water types and water geometry (karstgen stage 4).
@@ -21,6 +21,7 @@ enum Cli {
 }
 
 fn main() -> ExitCode {
+    default_sigpipe();
     finish(match Cli::parse() {
         Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
         Cli::Render(args) => stage::render(&args),

@@ -5,7 +5,7 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use karst_artifact::cli::{InspectArgs, RunArgs, finish};
+use karst_artifact::cli::{InspectArgs, RunArgs, default_sigpipe, finish};
 use karst_mesher::stage;
 
 /// Sparse polygonization of the carved terrain and its caves (karstgen stage 6).
@@ -21,6 +21,7 @@ enum Cli {
 }
 
 fn main() -> ExitCode {
+    default_sigpipe();
     finish(match Cli::parse() {
         Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
         Cli::Inspect(args) => stage::inspect(&args),

@@ -13,7 +13,7 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 use karst_artifact::StageError;
-use karst_artifact::cli::{InspectArgs, RunArgs, finish};
+use karst_artifact::cli::{InspectArgs, RunArgs, default_sigpipe, finish};
 use karst_metrics::ranges::{self, Compared};
 use karst_metrics::{Metrics, Network, ReadError, characterize, readers, stage};
 use serde::Serialize;
@@ -55,6 +55,7 @@ struct NetworkFile {
 }
 
 fn main() -> ExitCode {
+    default_sigpipe();
     let cli = Cli::parse();
     finish(match cli.command {
         Some(Command::Run(args)) => stage::run(&args).map(|headline| println!("{headline}")),

@@ -81,3 +81,27 @@ fn run_then_inspect_json() {
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("garbage.bin: not a karstgen artifact"));
 }
+
+#[test]
+fn inspect_into_a_closed_pipe_ends_quietly() {
+    let out = scratch("pipe");
+    assert!(
+        sampling(&["run", &root().join("fixtures/scenes/tiny.toml").to_string_lossy()], &out)
+            .status
+            .success()
+    );
+    // `inspect --json` prints far more than a pipe holds; the reader reads one byte and closes.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_karst-sampling"))
+        .args(["inspect", "--json"])
+        .arg(out.join("samples.bin"))
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdout = child.stdout.take().unwrap();
+    std::io::Read::read_exact(&mut stdout, &mut [0u8; 1]).unwrap();
+    drop(stdout);
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

@@ -6,7 +6,7 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use karst_artifact::cli::{InspectArgs, RunArgs, finish};
+use karst_artifact::cli::{InspectArgs, RunArgs, default_sigpipe, finish};
 use karst_sdf::stage;
 
 /// The signed-distance model of the carved terrain (karstgen stage 5).
@@ -24,6 +24,7 @@ enum Cli {
 }
 
 fn main() -> ExitCode {
+    default_sigpipe();
     finish(match Cli::parse() {
         Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
         Cli::Inspect(args) => stage::inspect(&args),
