@@ -278,9 +278,10 @@ impl Bvh {
         };
         let (dx, dy, dz) = (axis(0, p32.x), axis(1, p32.y), axis(2, p32.z));
         let (ox, oy, oz) = (dx.max(Vec4::ZERO), dy.max(Vec4::ZERO), dz.max(Vec4::ZERO));
-        let outside = (ox * ox + oy * oy + oz * oz).to_array();
-        let inside = dx.max(dy).max(dz).min(Vec4::ZERO).to_array();
-        let d = |i: usize| (outside[i] as f64).sqrt() + inside[i] as f64 - self.slack;
+        // The root and the sum in f32 too (one sqrtps): their rounding errors are among those
+        // the slack covers.
+        let d = ((ox * ox + oy * oy + oz * oz).sqrt() + dx.max(dy).max(dz).min(Vec4::ZERO)).to_array();
+        let d = |i: usize| d[i] as f64 - self.slack;
         let mut out = [(d(0), 0), (d(1), 1), (d(2), 2), (d(3), 3)];
         // Sorting network, farthest first (ties by slot, for a fixed order).
         let swap = |o: &mut [(f64, usize); 4], a: usize, b: usize| {
