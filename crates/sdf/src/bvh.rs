@@ -278,22 +278,33 @@ impl Bvh {
         };
         let (dx, dy, dz) = (axis(0, p32.x), axis(1, p32.y), axis(2, p32.z));
         let (ox, oy, oz) = (dx.max(Vec4::ZERO), dy.max(Vec4::ZERO), dz.max(Vec4::ZERO));
-        let outside = (ox * ox + oy * oy + oz * oz).to_array();
-        let inside = dx.max(dy).max(dz).min(Vec4::ZERO).to_array();
-        let d = |i: usize| (outside[i] as f64).sqrt() + inside[i] as f64 - self.slack;
-        let mut out = [(d(0), 0), (d(1), 1), (d(2), 2), (d(3), 3)];
-        // Sorting network, farthest first (ties by slot, for a fixed order).
-        let swap = |o: &mut [(f64, usize); 4], a: usize, b: usize| {
-            if (o[a].0, o[b].1) < (o[b].0, o[a].1) {
-                o.swap(a, b);
-            }
+        // The root and the sum in f32 too (one sqrtps): their rounding errors are among those
+        // the slack covers.
+        let d = ((ox * ox + oy * oy + oz * oz).sqrt() + dx.max(dy).max(dz).min(Vec4::ZERO)).to_array();
+        // Sorted farthest first without branches (their outcome is random, so they were
+        // mispredicted): each distance's f32 bits mapped to an order-preserving integer, the
+        // slot in the two low bits, and a sorting network of max/min.
+        let key = |i: usize| {
+            let b = d[i].to_bits();
+            let ordered = if b >> 31 == 1 { !b } else { b | 1 << 31 };
+            (ordered as u64) << 2 | i as u64
         };
-        swap(&mut out, 0, 1);
-        swap(&mut out, 2, 3);
-        swap(&mut out, 0, 2);
-        swap(&mut out, 1, 3);
-        swap(&mut out, 1, 2);
-        out
+        let mut k = [key(0), key(1), key(2), key(3)];
+        let order = |k: &mut [u64; 4], a: usize, b: usize| {
+            let (x, y) = (k[a], k[b]);
+            k[a] = x.max(y);
+            k[b] = x.min(y);
+        };
+        order(&mut k, 0, 1);
+        order(&mut k, 2, 3);
+        order(&mut k, 0, 2);
+        order(&mut k, 1, 3);
+        order(&mut k, 1, 2);
+        k.map(|k| {
+            let b = (k >> 2) as u32;
+            let bits = if b >> 31 == 1 { b & !(1 << 31) } else { !b };
+            (f32::from_bits(bits) as f64 - self.slack, (k & 3) as usize)
+        })
     }
 
     /// The minimum of `best` and the values of a leaf node's leaves.
