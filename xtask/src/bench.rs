@@ -232,22 +232,7 @@ fn sdf_tree(
         karst_artifact::write_artifact(&dir.join("sdf.bin"), &run.provenance("bench"), field.model())?;
     let _ = std::fs::remove_dir_all(&dir);
 
-    let mut state = 12345u64;
-    let mut unit = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let d = &field.model().domain;
-    let (lo, hi) = (DVec3::from_array(d.min), DVec3::from_array(d.max));
-    let uniform: Vec<DVec3> =
-        (0..200_000).map(|_| lo + (hi - lo) * DVec3::new(unit(), unit(), unit())).collect();
-    let anchors: Vec<DVec3> = skeleton.nodes.iter().map(|n| DVec3::from_array(n.position)).collect();
-    let near: Vec<DVec3> = (0..200_000)
-        .map(|_| {
-            let a = anchors[(unit() * anchors.len() as f64) as usize % anchors.len()];
-            a + (DVec3::new(unit(), unit(), unit()) - 0.5) * 12.0
-        })
-        .collect();
+    let [uniform, near] = karst_sdf::synthetic::eval_points(&field, skeleton, 200_000);
     let time = |points: &[DVec3]| {
         let (mut wall, mut cpu) = (Vec::new(), Vec::new());
         for _ in 0..runs.max(1) {

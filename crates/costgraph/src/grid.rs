@@ -32,17 +32,23 @@ pub struct Grid<'a> {
     margin: f64,
 }
 
+/// The smallest box [lo, hi] holding `points` (inverted, ±∞, when there are none).
+pub fn bounds(points: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for axis in 0..3 {
+            lo[axis] = lo[axis].min(p[axis]);
+            hi[axis] = hi[axis].max(p[axis]);
+        }
+    }
+    (lo, hi)
+}
+
 impl<'a> Grid<'a> {
     /// Buckets `points` for queries of `k` neighbours.
     pub fn new(points: &'a [[f64; 3]]) -> Self {
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for p in points {
-            for axis in 0..3 {
-                lo[axis] = lo[axis].min(p[axis]);
-                hi[axis] = hi[axis].max(p[axis]);
-            }
-        }
+        let (lo, hi) = bounds(points);
         let span: [f64; 3] = std::array::from_fn(|a| (hi[a] - lo[a]).max(0.0));
         let wanted_cells = (points.len() as f64 / POINTS_PER_CELL).max(1.0);
         let cell = cell_size(span, wanted_cells);

@@ -122,14 +122,7 @@ pub fn scatter<'a, T: Copy + 'a>(
 /// The nodes in Morton (Z-curve) order of their position: consecutive nodes are close in
 /// space, so a chunk of them shares its neighbours and their data stays in cache.
 pub fn spatial_order(points: &[[f64; 3]]) -> Vec<u32> {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for axis in 0..3 {
-            lo[axis] = lo[axis].min(p[axis]);
-            hi[axis] = hi[axis].max(p[axis]);
-        }
-    }
+    let (lo, hi) = grid::bounds(points);
     let cell = |p: &[f64; 3], axis: usize| {
         let span = (hi[axis] - lo[axis]).max(f64::MIN_POSITIVE);
         (((p[axis] - lo[axis]) / span) * 1023.0) as u64

@@ -2,7 +2,6 @@
 //! skeleton node. `cargo run --release -p karst-sdf --example evalbench -- DIR [RUNS] [uniform|near]`.
 //! Times are the process's CPU time (/proc/self/schedstat, nanoseconds); the hash of the
 //! values' bits shows whether a change kept every value.
-use glam::DVec3;
 use karst_artifact::read_artifact;
 use karst_sdf::{CarvedTerrain, SdfModel};
 use karst_skeleton::Skeleton;
@@ -22,22 +21,7 @@ fn main() {
         (read_artifact(&dir.join("sdf.bin")).unwrap().1, read_artifact(&dir.join("skeleton.json")).unwrap().1)
     };
     let field = CarvedTerrain::new(model);
-    let mut state = 12345u64;
-    let mut unit = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let d = &field.model().domain;
-    let (lo, hi) = (DVec3::from_array(d.min), DVec3::from_array(d.max));
-    let uniform: Vec<DVec3> =
-        (0..200_000).map(|_| lo + (hi - lo) * DVec3::new(unit(), unit(), unit())).collect();
-    let anchors: Vec<DVec3> = skeleton.nodes.iter().map(|n| DVec3::from_array(n.position)).collect();
-    let near: Vec<DVec3> = (0..200_000)
-        .map(|_| {
-            let a = anchors[(unit() * anchors.len() as f64) as usize % anchors.len()];
-            a + (DVec3::new(unit(), unit(), unit()) - 0.5) * 12.0
-        })
-        .collect();
+    let [uniform, near] = karst_sdf::synthetic::eval_points(&field, &skeleton, 200_000);
     let mut check = 0.0;
     let mut hash = 0xcbf29ce484222325u64;
     let only = args.get(3).map(String::as_str);

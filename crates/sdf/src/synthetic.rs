@@ -131,3 +131,27 @@ fn segment_water(skeleton: &Skeleton, ends: &[u32], flow: f64) -> SegmentWater {
         fall: None,
     }
 }
+
+/// The evaluation benchmark's points, from a fixed seed: `count` uniform in the domain of
+/// `field`, and `count` within 6 m (per axis) of the nodes of `skeleton`, where the tree is
+/// intricate. Shared by `cargo xtask bench` and the `evalbench` example, so that both time the
+/// same points.
+pub fn eval_points(field: &crate::CarvedTerrain, skeleton: &Skeleton, count: usize) -> [Vec<DVec3>; 2] {
+    let mut state = 12345u64;
+    let mut unit = move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let d = &field.model().domain;
+    let (lo, hi) = (DVec3::from_array(d.min), DVec3::from_array(d.max));
+    let uniform: Vec<DVec3> =
+        (0..count).map(|_| lo + (hi - lo) * DVec3::new(unit(), unit(), unit())).collect();
+    let anchors: Vec<DVec3> = skeleton.nodes.iter().map(|n| DVec3::from_array(n.position)).collect();
+    let near: Vec<DVec3> = (0..count)
+        .map(|_| {
+            let a = anchors[(unit() * anchors.len() as f64) as usize % anchors.len()];
+            a + (DVec3::new(unit(), unit(), unit()) - 0.5) * 12.0
+        })
+        .collect();
+    [uniform, near]
+}
