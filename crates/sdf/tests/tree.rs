@@ -83,6 +83,36 @@ fn check_tree(field: &CarvedTerrain, n: usize) {
     assert_lipschitz("eval", |p| field.eval(p), field, n);
     assert_lipschitz("cave", |p| field.cave(p), field, n);
     assert_lipschitz("water", |p| field.water(p), field, n);
+    check_gathered(field, n / 20);
+}
+
+/// The leaf nodes the mesher gathers for a brick give, at every point of the brick, the same
+/// bits as the hierarchy: boxes of 1–4 m around points near the leaves, 10 points each.
+fn check_gathered(field: &CarvedTerrain, boxes: usize) {
+    let mut rng = Lcg(5);
+    for lo in points(field, boxes, 23) {
+        let hi = lo + DVec3::splat(1.0 + 3.0 * rng.unit());
+        let reach = 0.3 + 6.0 * rng.unit();
+        let (near, near_cave) = (field.near(lo, hi, reach), field.near_cave(lo, hi, reach));
+        for _ in 0..10 {
+            let p = lo + (hi - lo) * DVec3::new(rng.unit(), rng.unit(), rng.unit());
+            let r = reach * (0.5 + 0.5 * rng.unit());
+            let at = format!("{p} reach {r}");
+            assert_eq!(
+                field.eval_near(&near, p, r).to_bits(),
+                field.eval_within(p, r).to_bits(),
+                "eval {at}"
+            );
+            let (cave, cave_near) =
+                (field.cave_below_ground(p, r), field.cave_below_ground_near(&near_cave, p, r));
+            assert_eq!(cave_near.to_bits(), cave.to_bits(), "cave {at}");
+            assert_eq!(
+                field.water_near(&near_cave, p, r).to_bits(),
+                field.water_within(p, r).to_bits(),
+                "water {at}"
+            );
+        }
+    }
 }
 
 #[test]
