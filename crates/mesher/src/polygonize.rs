@@ -55,6 +55,33 @@ struct BrickPart {
     evaluations: u64,
 }
 
+/// A seed value of magnitude above this many cells proves the eight cells around it uniform:
+/// their corners are at most √3 cells away and the field is 1-Lipschitz.
+const DIAGONAL: f64 = 1.7321;
+/// Seeds are exact up to this many cells (beyond, any value of the same sign and at least as
+/// large), enough to decide [`DIAGONAL`].
+const SEED_REACH: f64 = 1.75;
+/// Seeds of a brick: its points of even local coordinates, x + 2y + 4z (NaN beyond the lattice).
+type Seeds = [f64; 8];
+
+/// The values a brick evaluated among the points it owns: bit `local(i, j, k)` of `mask` set
+/// for each, `values` in the order of those bits.
+#[derive(Default)]
+struct Own {
+    mask: u64,
+    values: Vec<f64>,
+}
+
+impl Own {
+    fn get(&self, l: usize) -> Option<f64> {
+        (self.mask >> l & 1 == 1).then(|| self.values[(self.mask & ((1u64 << l) - 1)).count_ones() as usize])
+    }
+}
+
+/// Indices (in the brick list) of a brick's neighbours, by offset bits − 1 (x + 2y + 4z, each
+/// bit a step of BRICK up or down); `u32::MAX` when that brick is inactive.
+type Neighbours = [u32; 7];
+
 /// Polygonizes the boundary f = 0 of `field` at `cell_size` over its extent.
 pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
     let (lo, hi) = field.extent();
@@ -63,97 +90,233 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
     // A cell edge is one cell long, so both values of a rock–air edge lie within a cell of zero
     // (1-Lipschitz): beyond that only the sign matters, and vertices are those of exact values.
     let reach = lattice.cell * 1.5;
-    let bar = karst_artifact::progress::bar(2 * bricks.len() as u64, "mesher");
-    let own: Vec<Vec<f64>> = bricks
+    let bar = karst_artifact::progress::bar(3 * bricks.len() as u64, "mesher");
+    let find = |q: [u64; 3]| bricks.binary_search_by_key(&[q[2], q[1], q[0]], |c| [c[2], c[1], c[0]]).ok();
+    let up: Vec<Neighbours> = bricks
         .par_iter()
         .map(|&at| {
-            let values = own_values(field, &lattice, at, reach);
+            std::array::from_fn(|o| {
+                let bits = o + 1;
+                find([0, 1, 2].map(|a| at[a] + BRICK * (bits >> a & 1) as u64)).map_or(u32::MAX, |n| n as u32)
+            })
+        })
+        .collect();
+    let mut down = vec![[u32::MAX; 7]; bricks.len()];
+    for (b, ups) in up.iter().enumerate() {
+        for (o, &n) in ups.iter().enumerate() {
+            if n != u32::MAX {
+                down[n as usize][o] = b as u32;
+            }
+        }
+    }
+    let seeds: Vec<Seeds> = bricks
+        .par_iter()
+        .map(|&at| {
+            let values = seed_values(field, &lattice, at);
             bar.inc(1);
             values
         })
         .collect();
+    let ctx = Context { field, lattice: &lattice, bricks: &bricks, up: &up, down: &down, seeds: &seeds, reach };
+    let own: Vec<Own> = (0..bricks.len())
+        .into_par_iter()
+        .map(|b| {
+            let values = own_values(&ctx, b);
+            bar.inc(1);
+            values
+        })
+        .collect();
+    let seed_evaluations: u64 = seeds.iter().flatten().filter(|v| !v.is_nan()).count() as u64;
+    let own_evaluations: u64 =
+        own.iter().zip(&seeds).map(|(o, s)| o.values.len() as u64 - s.iter().filter(|v| !v.is_nan()).count() as u64).sum();
     let parts: Vec<BrickPart> = (0..bricks.len())
         .into_par_iter()
         .map_init(Scratch::default, |scratch, b| {
-            let part = brick(field, &lattice, &bricks, &own, b, reach, scratch);
+            let part = brick(&ctx, &own, b, scratch);
             bar.inc(1);
             part
         })
         .collect();
     bar.finish_and_clear();
-    let own_evaluations: u64 = own.iter().map(|v| v.iter().filter(|x| !x.is_nan()).count() as u64).sum();
     drop(own);
-    weld(parts, octree_evaluations + own_evaluations)
+    drop(seeds);
+    drop(up);
+    weld(parts, octree_evaluations + seed_evaluations + own_evaluations)
+}
+
+/// What the passes over the bricks share.
+struct Context<'a, V> {
+    field: &'a V,
+    lattice: &'a Lattice,
+    bricks: &'a [[u64; 3]],
+    up: &'a [Neighbours],
+    down: &'a [Neighbours],
+    seeds: &'a [Seeds],
+    reach: f64,
+}
+
+impl<V> Context<'_, V> {
+    /// The brick at offset `bits` above brick `b` (0: b itself), if active.
+    fn above(&self, b: usize, bits: usize) -> Option<usize> {
+        if bits == 0 { Some(b) } else { Some(self.up[b][bits - 1]).filter(|&n| n != u32::MAX).map(|n| n as usize) }
+    }
+
+    /// Whether the seed of the cell at `c` (lattice cell coordinates, the cell of brick `b` or
+    /// of a brick above it) proves it uniform. The seed is the cell's corner of even
+    /// coordinates, owned by b or a brick above it; an inactive owner proves nothing.
+    fn uniform(&self, b: usize, c: [u64; 3]) -> bool {
+        let at = self.bricks[b];
+        let e = c.map(|x| x + (x & 1));
+        let bits = (0..3).fold(0, |m, a| m | (((e[a] - at[a]) / BRICK) as usize) << a);
+        let Some(owner) = self.above(b, bits) else { return false };
+        let s = (0..3).fold(0, |m, a| m | ((e[a] % BRICK / 2) as usize) << a);
+        self.seeds[owner][s].abs() > DIAGONAL * self.lattice.cell
+    }
 }
 
 fn local(i: usize, j: usize, k: usize) -> usize {
     (k * B + j) * B + i
 }
 
-/// The values at the points brick `at` owns (NaN beyond the lattice).
-fn own_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3], reach: f64) -> Vec<f64> {
-    let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - at[a]) as usize);
-    let mut points = Vec::with_capacity(OWN);
-    for k in 0..size[2] {
-        for j in 0..size[1] {
-            for i in 0..size[0] {
-                points.push(lattice.point([at[0] + i as u64, at[1] + j as u64, at[2] + k as u64]));
-            }
+/// The seeds of brick `at`: the field at its points of even local coordinates.
+fn seed_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3]) -> Seeds {
+    let mut out = [f64::NAN; 8];
+    let mut points = Vec::with_capacity(8);
+    let mut slots = Vec::with_capacity(8);
+    for s in 0..8 {
+        let q = [0, 1, 2].map(|a| at[a] + 2 * (s >> a & 1) as u64);
+        if (0..3).all(|a| q[a] < lattice.dims[a]) {
+            points.push(lattice.point(q));
+            slots.push(s);
         }
     }
-    let mut values = Vec::with_capacity(points.len());
-    let end = [0, 1, 2].map(|a| at[a] + size[a] as u64 - 1);
-    field.eval_block(lattice.point(at), lattice.point(end), reach, &points, &mut values);
-    let mut out = vec![f64::NAN; OWN];
-    let mut next = values.into_iter();
-    for k in 0..size[2] {
-        for j in 0..size[1] {
-            for i in 0..size[0] {
-                out[local(i, j, k)] = next.next().expect("one value per point");
-            }
-        }
+    let end = [0, 1, 2].map(|a| (at[a] + 2).min(lattice.dims[a] - 1));
+    let mut values = Vec::with_capacity(8);
+    field.eval_block(lattice.point(at), lattice.point(end), SEED_REACH * lattice.cell, &points, &mut values);
+    for (s, v) in slots.into_iter().zip(values) {
+        out[s] = v;
     }
     out
+}
+
+/// The values brick `b` needs among the points it owns, [at, at + 4)³: its seeds, and every
+/// corner of a cell that the octree keeps (its brick is active) and no seed proves uniform.
+/// Any brick polygonizing such a cell finds these values here.
+fn own_values<V: Volume>(ctx: &Context<'_, V>, b: usize) -> Own {
+    let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
+    let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - at[a]) as usize);
+    let cells = lattice.dims.map(|d| d - 1);
+    let mut mask = 0u64;
+    let mut points = Vec::new();
+    for k in 0..size[2] {
+        for j in 0..size[1] {
+            for i in 0..size[0] {
+                let l = [i, j, k];
+                if l.iter().all(|x| x % 2 == 0) {
+                    continue;
+                }
+                let p = [0, 1, 2].map(|a| at[a] + l[a] as u64);
+                let needed = (0..8usize).any(|d| {
+                    let step = |a: usize| (d >> a & 1) as u64;
+                    if (0..3).any(|a| p[a] < step(a) || p[a] - step(a) >= cells[a]) {
+                        return false;
+                    }
+                    let c = [0, 1, 2].map(|a| p[a] - step(a));
+                    // The cell's brick: b, or one below it where the cell leaves b.
+                    let below = (0..3).fold(0, |m, a| m | ((c[a] < at[a]) as usize) << a);
+                    let cell_brick = if below == 0 {
+                        b
+                    } else {
+                        match ctx.down[b][below - 1] {
+                            u32::MAX => return false,
+                            n => n as usize,
+                        }
+                    };
+                    !ctx.uniform(cell_brick, c)
+                });
+                if needed {
+                    mask |= 1 << local(i, j, k);
+                    points.push(lattice.point(p));
+                }
+            }
+        }
+    }
+    let mut found = Vec::with_capacity(points.len());
+    if !points.is_empty() {
+        let end = [0, 1, 2].map(|a| at[a] + size[a] as u64 - 1);
+        ctx.field.eval_block(lattice.point(at), lattice.point(end), ctx.reach, &points, &mut found);
+    }
+    // Merge the seeds in, in bit order.
+    let seeds = &ctx.seeds[b];
+    let mut next = found.into_iter();
+    let mut values = Vec::new();
+    for l in 0..OWN {
+        let (i, j, k) = (l % B, l / B % B, l / (B * B));
+        if i % 2 == 0 && j % 2 == 0 && k % 2 == 0 {
+            let v = seeds[i / 2 | (j / 2) << 1 | (k / 2) << 2];
+            if !v.is_nan() {
+                mask |= 1 << l;
+                values.push(v);
+            }
+        } else if mask >> l & 1 == 1 {
+            values.push(next.next().expect("one value per point"));
+        }
+    }
+    Own { mask, values }
 }
 
 /// Buffers a thread reuses from brick to brick (every brick overwrites what it reads).
 #[derive(Default)]
 struct Scratch {
     values: Vec<f64>,
+    live: Vec<bool>,
+    needed: Vec<bool>,
     made: Vec<bool>,
     missing: Vec<(usize, usize, usize)>,
+    points: Vec<DVec3>,
+    found: Vec<f64>,
     positions: Vec<(u16, [f32; 3])>,
 }
 
-fn brick<V: Volume>(
-    field: &V,
-    lattice: &Lattice,
-    bricks: &[[u64; 3]],
-    own: &[Vec<f64>],
-    b: usize,
-    reach: f64,
-    scratch: &mut Scratch,
-) -> BrickPart {
-    let at = bricks[b];
+fn brick<V: Volume>(ctx: &Context<'_, V>, own: &[Own], b: usize, scratch: &mut Scratch) -> BrickPart {
+    let (field, lattice, at) = (ctx.field, ctx.lattice, ctx.bricks[b]);
     let n = N;
     let size = [0, 1, 2].map(|a| (BRICK + 1).min(lattice.dims[a] - at[a]) as usize);
-    let find = |q: [u64; 3]| bricks.binary_search_by_key(&[q[2], q[1], q[0]], |c| [c[2], c[1], c[0]]).ok();
-    let neighbours: [Option<usize>; 7] = std::array::from_fn(|o| {
-        let bits = o + 1;
-        find([0, 1, 2].map(|a| at[a] + BRICK * (bits >> a & 1) as u64))
-    });
     let index = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
-    let Scratch { values, made, missing, positions: positions_by_slot } = scratch;
+    let Scratch { values, live, needed, made, missing, points, found, positions: positions_by_slot } = scratch;
+    // The cells no seed proves uniform, and their corners.
+    live.clear();
+    live.resize(B * B * B, false);
+    needed.clear();
+    needed.resize(n * n * n, false);
+    for k in 0..size[2].saturating_sub(1) {
+        for j in 0..size[1].saturating_sub(1) {
+            for i in 0..size[0].saturating_sub(1) {
+                let c = [at[0] + i as u64, at[1] + j as u64, at[2] + k as u64];
+                if !ctx.uniform(b, c) {
+                    live[local(i, j, k)] = true;
+                    for d in 0..8 {
+                        needed[index(i + (d & 1), j + (d >> 1 & 1), k + (d >> 2 & 1))] = true;
+                    }
+                }
+            }
+        }
+    }
     values.clear();
     values.resize(n * n * n, f64::NAN);
     missing.clear();
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
+                if !needed[index(i, j, k)] {
+                    continue;
+                }
                 let bits = (i / B) | (j / B) << 1 | (k / B) << 2;
-                let owner = if bits == 0 { Some(b) } else { neighbours[bits - 1] };
-                match owner {
-                    Some(o) => values[index(i, j, k)] = own[o][local(i % B, j % B, k % B)],
+                match ctx.above(b, bits) {
+                    Some(o) => {
+                        values[index(i, j, k)] =
+                            own[o].get(local(i % B, j % B, k % B)).expect("the owner evaluated a needed point")
+                    }
                     None => missing.push((i, j, k)),
                 }
             }
@@ -161,14 +324,14 @@ fn brick<V: Volume>(
     }
     let mut evaluations = 0;
     if !missing.is_empty() {
-        let points: Vec<DVec3> = missing
-            .iter()
-            .map(|&(i, j, k)| lattice.point([at[0] + i as u64, at[1] + j as u64, at[2] + k as u64]))
-            .collect();
+        points.clear();
+        points.extend(
+            missing.iter().map(|&(i, j, k)| lattice.point([at[0] + i as u64, at[1] + j as u64, at[2] + k as u64])),
+        );
         let end = [0, 1, 2].map(|a| at[a] + size[a] as u64 - 1);
-        let mut found = Vec::with_capacity(points.len());
-        field.eval_block(lattice.point(at), lattice.point(end), reach, &points, &mut found);
-        for (&(i, j, k), v) in missing.iter().zip(found) {
+        found.clear();
+        field.eval_block(lattice.point(at), lattice.point(end), ctx.reach, points, found);
+        for (&(i, j, k), &v) in missing.iter().zip(found.iter()) {
             values[index(i, j, k)] = v;
         }
         evaluations = missing.len() as u64;
@@ -187,6 +350,9 @@ fn brick<V: Volume>(
     for k in 0..size[2].saturating_sub(1) {
         for j in 0..size[1].saturating_sub(1) {
             for i in 0..size[0].saturating_sub(1) {
+                if !live[local(i, j, k)] {
+                    continue;
+                }
                 let corner = |c: usize| [i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1)];
                 let v: [f64; 8] = std::array::from_fn(|c| {
                     let [x, y, z] = corner(c);
@@ -247,7 +413,7 @@ fn brick<V: Volume>(
         slots: positions_by_slot.iter().map(|&(s, _)| s).collect(),
         positions: positions_by_slot.iter().map(|&(_, p)| p).collect(),
         triangles,
-        neighbours: neighbours.map(|o| o.map_or(u32::MAX, |o| o as u32)),
+        neighbours: ctx.up[b],
         evaluations,
     }
 }
