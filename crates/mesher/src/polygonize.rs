@@ -55,13 +55,18 @@ struct BrickPart {
     evaluations: u64,
 }
 
-/// A seed value of magnitude above this many cells proves the eight cells around it uniform:
-/// their corners are at most √3 cells away and the field is 1-Lipschitz.
+/// Every cell has one corner of even coordinates (its seed) and the opposite one, of odd
+/// coordinates (its centre: the centre of a 2³ block of cells). The field is 1-Lipschitz, so a
+/// corner whose value exceeds in magnitude the distance to another corner gives that corner
+/// its sign; the other corners are 1, √2 or √3 cells from each. In cells, with a margin:
+const EDGE: f64 = 1.0001;
+const FACE: f64 = 1.41422;
 const DIAGONAL: f64 = 1.7321;
-/// Seeds are exact up to this many cells (beyond, any value of the same sign and at least as
-/// large), enough to decide [`DIAGONAL`].
+/// Seeds and centres are exact up to this many cells (beyond, any value of the same sign and at
+/// least as large), enough to decide [`DIAGONAL`].
 const SEED_REACH: f64 = 1.75;
-/// Seeds of a brick: its points of even local coordinates, x + 2y + 4z (NaN beyond the lattice).
+/// Seeds (or centres) of a brick: its points of even (odd) local coordinates, by x + 2y + 4z
+/// (NaN beyond the lattice, or a centre that no cell needed).
 type Seeds = [f64; 8];
 
 /// The values a brick evaluated among the points it owns: bit `local(i, j, k)` of `mask` set
@@ -90,7 +95,7 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
     // A cell edge is one cell long, so both values of a rock–air edge lie within a cell of zero
     // (1-Lipschitz): beyond that only the sign matters, and vertices are those of exact values.
     let reach = lattice.cell * 1.5;
-    let bar = karst_artifact::progress::bar(3 * bricks.len() as u64, "mesher");
+    let bar = karst_artifact::progress::bar(4 * bricks.len() as u64, "mesher");
     let find = |q: [u64; 3]| bricks.binary_search_by_key(&[q[2], q[1], q[0]], |c| [c[2], c[1], c[0]]).ok();
     let up: Vec<Neighbours> = bricks
         .par_iter()
@@ -117,7 +122,17 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
             values
         })
         .collect();
-    let ctx = Context { field, lattice: &lattice, bricks: &bricks, up: &up, down: &down, seeds: &seeds, reach };
+    let mut ctx =
+        Context { field, lattice: &lattice, bricks: &bricks, up: &up, down: &down, seeds: &seeds, centres: &[], reach };
+    let centres: Vec<Seeds> = (0..bricks.len())
+        .into_par_iter()
+        .map(|b| {
+            let values = centre_values(&ctx, b);
+            bar.inc(1);
+            values
+        })
+        .collect();
+    ctx.centres = &centres;
     let own: Vec<Own> = (0..bricks.len())
         .into_par_iter()
         .map(|b| {
@@ -126,9 +141,8 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
             values
         })
         .collect();
-    let seed_evaluations: u64 = seeds.iter().flatten().filter(|v| !v.is_nan()).count() as u64;
-    let own_evaluations: u64 =
-        own.iter().zip(&seeds).map(|(o, s)| o.values.len() as u64 - s.iter().filter(|v| !v.is_nan()).count() as u64).sum();
+    // Seeds and centres are in `own` too.
+    let own_evaluations: u64 = own.iter().map(|o| o.values.len() as u64).sum();
     let parts: Vec<BrickPart> = (0..bricks.len())
         .into_par_iter()
         .map_init(Scratch::default, |scratch, b| {
@@ -139,9 +153,10 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
         .collect();
     bar.finish_and_clear();
     drop(own);
+    drop(centres);
     drop(seeds);
     drop(up);
-    weld(parts, octree_evaluations + seed_evaluations + own_evaluations)
+    weld(parts, octree_evaluations + own_evaluations)
 }
 
 /// What the passes over the bricks share.
@@ -152,6 +167,7 @@ struct Context<'a, V> {
     up: &'a [Neighbours],
     down: &'a [Neighbours],
     seeds: &'a [Seeds],
+    centres: &'a [Seeds],
     reach: f64,
 }
 
@@ -161,16 +177,46 @@ impl<V> Context<'_, V> {
         if bits == 0 { Some(b) } else { Some(self.up[b][bits - 1]).filter(|&n| n != u32::MAX).map(|n| n as usize) }
     }
 
-    /// Whether the seed of the cell at `c` (lattice cell coordinates, the cell of brick `b` or
-    /// of a brick above it) proves it uniform. The seed is the cell's corner of even
-    /// coordinates, owned by b or a brick above it; an inactive owner proves nothing.
-    fn uniform(&self, b: usize, c: [u64; 3]) -> bool {
+    /// The seed of the cell at `c` (lattice cell coordinates, a cell of brick `b` or of a brick
+    /// above it): its corner of even coordinates, owned by b or a brick above it (None when that
+    /// brick is inactive).
+    fn seed(&self, b: usize, c: [u64; 3]) -> Option<f64> {
         let at = self.bricks[b];
         let e = c.map(|x| x + (x & 1));
         let bits = (0..3).fold(0, |m, a| m | (((e[a] - at[a]) / BRICK) as usize) << a);
-        let Some(owner) = self.above(b, bits) else { return false };
-        let s = (0..3).fold(0, |m, a| m | ((e[a] % BRICK / 2) as usize) << a);
-        self.seeds[owner][s].abs() > DIAGONAL * self.lattice.cell
+        let owner = self.above(b, bits)?;
+        Some(self.seeds[owner][(0..3).fold(0, |m, a| m | ((e[a] % BRICK / 2) as usize) << a)])
+    }
+
+    /// Whether the seed alone proves the cell at `c` uniform.
+    fn seed_proves(&self, b: usize, c: [u64; 3]) -> bool {
+        self.seed(b, c).is_some_and(|v| v.abs() > DIAGONAL * self.lattice.cell)
+    }
+
+    /// Whether the seed and the centre of the cell at `c` (a cell of brick `b`, which owns its
+    /// centre) prove it uniform: each of the six other corners gets its sign from the seed or
+    /// the centre, and those agree.
+    fn uniform(&self, b: usize, c: [u64; 3]) -> bool {
+        if self.seed_proves(b, c) {
+            return true;
+        }
+        let at = self.bricks[b];
+        let o = c.map(|x| x + ((x & 1) ^ 1));
+        let centre = self.centres[b][(0..3).fold(0, |m, a| m | (((o[a] - at[a]) / 2) as usize) << a)];
+        let cell = self.lattice.cell;
+        if centre.is_nan() {
+            return false;
+        }
+        if centre.abs() > DIAGONAL * cell {
+            return true;
+        }
+        let Some(seed) = self.seed(b, c) else { return false };
+        if (seed < 0.0) != (centre < 0.0) {
+            return false;
+        }
+        // Corners one cell from the seed are √2 from the centre, and the other way round.
+        let (s, t) = (seed.abs() / cell, centre.abs() / cell);
+        s > FACE || t > FACE || (s > EDGE && t > EDGE)
     }
 }
 
@@ -199,6 +245,39 @@ fn seed_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3]) -> Seeds {
     out
 }
 
+/// The centres of brick `b`, where the seed of some cell around them does not prove it uniform
+/// (the cells around a centre are all cells of `b`).
+fn centre_values<V: Volume>(ctx: &Context<'_, V>, b: usize) -> Seeds {
+    let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
+    let mut out = [f64::NAN; 8];
+    let mut points = Vec::with_capacity(8);
+    let mut slots = Vec::with_capacity(8);
+    for s in 0..8 {
+        let q = [0, 1, 2].map(|a| at[a] + 1 + 2 * (s >> a & 1) as u64);
+        if (0..3).any(|a| q[a] >= lattice.dims[a]) {
+            continue;
+        }
+        let needed = (0..8usize).any(|d| {
+            let c = [0, 1, 2].map(|a| q[a] - (d >> a & 1) as u64);
+            (0..3).all(|a| c[a] + 1 < lattice.dims[a]) && !ctx.seed_proves(b, c)
+        });
+        if needed {
+            points.push(lattice.point(q));
+            slots.push(s);
+        }
+    }
+    if points.is_empty() {
+        return out;
+    }
+    let end = [0, 1, 2].map(|a| (at[a] + 3).min(lattice.dims[a] - 1));
+    let mut values = Vec::with_capacity(8);
+    ctx.field.eval_block(lattice.point(at), lattice.point(end), SEED_REACH * lattice.cell, &points, &mut values);
+    for (s, v) in slots.into_iter().zip(values) {
+        out[s] = v;
+    }
+    out
+}
+
 /// The values brick `b` needs among the points it owns, [at, at + 4)³: its seeds, and every
 /// corner of a cell that the octree keeps (its brick is active) and no seed proves uniform.
 /// Any brick polygonizing such a cell finds these values here.
@@ -212,7 +291,7 @@ fn own_values<V: Volume>(ctx: &Context<'_, V>, b: usize) -> Own {
         for j in 0..size[1] {
             for i in 0..size[0] {
                 let l = [i, j, k];
-                if l.iter().all(|x| x % 2 == 0) {
+                if l.iter().all(|x| x % 2 == 0) || l.iter().all(|x| x % 2 == 1) {
                     continue;
                 }
                 let p = [0, 1, 2].map(|a| at[a] + l[a] as u64);
@@ -247,13 +326,19 @@ fn own_values<V: Volume>(ctx: &Context<'_, V>, b: usize) -> Own {
         ctx.field.eval_block(lattice.point(at), lattice.point(end), ctx.reach, &points, &mut found);
     }
     // Merge the seeds in, in bit order.
-    let seeds = &ctx.seeds[b];
+    let (seeds, centres) = (&ctx.seeds[b], &ctx.centres[b]);
     let mut next = found.into_iter();
     let mut values = Vec::new();
     for l in 0..OWN {
         let (i, j, k) = (l % B, l / B % B, l / (B * B));
         if i % 2 == 0 && j % 2 == 0 && k % 2 == 0 {
             let v = seeds[i / 2 | (j / 2) << 1 | (k / 2) << 2];
+            if !v.is_nan() {
+                mask |= 1 << l;
+                values.push(v);
+            }
+        } else if i % 2 == 1 && j % 2 == 1 && k % 2 == 1 {
+            let v = centres[i / 2 | (j / 2) << 1 | (k / 2) << 2];
             if !v.is_nan() {
                 mask |= 1 << l;
                 values.push(v);
