@@ -114,25 +114,24 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
             }
         }
     }
-    let seeds: Vec<Seeds> = bricks
+    let (seeds, centres): (Vec<Seeds>, Vec<Seeds>) = bricks
         .par_iter()
         .map(|&at| {
             let values = seed_values(field, &lattice, at);
-            bar.inc(1);
+            bar.inc(2);
             values
         })
-        .collect();
-    let mut ctx =
-        Context { field, lattice: &lattice, bricks: &bricks, up: &up, down: &down, seeds: &seeds, centres: &[], reach };
-    let centres: Vec<Seeds> = (0..bricks.len())
-        .into_par_iter()
-        .map(|b| {
-            let values = centre_values(&ctx, b);
-            bar.inc(1);
-            values
-        })
-        .collect();
-    ctx.centres = &centres;
+        .unzip();
+    let ctx = Context {
+        field,
+        lattice: &lattice,
+        bricks: &bricks,
+        up: &up,
+        down: &down,
+        seeds: &seeds,
+        centres: &centres,
+        reach,
+    };
     let own: Vec<Own> = (0..bricks.len())
         .into_par_iter()
         .map(|b| {
@@ -224,58 +223,27 @@ fn local(i: usize, j: usize, k: usize) -> usize {
     (k * B + j) * B + i
 }
 
-/// The seeds of brick `at`: the field at its points of even local coordinates.
-fn seed_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3]) -> Seeds {
-    let mut out = [f64::NAN; 8];
-    let mut points = Vec::with_capacity(8);
-    let mut slots = Vec::with_capacity(8);
-    for s in 0..8 {
-        let q = [0, 1, 2].map(|a| at[a] + 2 * (s >> a & 1) as u64);
-        if (0..3).all(|a| q[a] < lattice.dims[a]) {
-            points.push(lattice.point(q));
-            slots.push(s);
+/// The seeds and the centres of brick `at` (one search for the leaves near both).
+fn seed_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3]) -> (Seeds, Seeds) {
+    let mut out = [[f64::NAN; 8]; 2];
+    let mut points = Vec::with_capacity(16);
+    let mut slots = Vec::with_capacity(16);
+    for (kind, first) in [0, 1].into_iter().enumerate() {
+        for s in 0..8 {
+            let q = [0, 1, 2].map(|a| at[a] + first + 2 * (s >> a & 1) as u64);
+            if (0..3).all(|a| q[a] < lattice.dims[a]) {
+                points.push(lattice.point(q));
+                slots.push((kind, s));
+            }
         }
-    }
-    let end = [0, 1, 2].map(|a| (at[a] + 2).min(lattice.dims[a] - 1));
-    let mut values = Vec::with_capacity(8);
-    field.eval_block(lattice.point(at), lattice.point(end), SEED_REACH * lattice.cell, &points, &mut values);
-    for (s, v) in slots.into_iter().zip(values) {
-        out[s] = v;
-    }
-    out
-}
-
-/// The centres of brick `b`, where the seed of some cell around them does not prove it uniform
-/// (the cells around a centre are all cells of `b`).
-fn centre_values<V: Volume>(ctx: &Context<'_, V>, b: usize) -> Seeds {
-    let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
-    let mut out = [f64::NAN; 8];
-    let mut points = Vec::with_capacity(8);
-    let mut slots = Vec::with_capacity(8);
-    for s in 0..8 {
-        let q = [0, 1, 2].map(|a| at[a] + 1 + 2 * (s >> a & 1) as u64);
-        if (0..3).any(|a| q[a] >= lattice.dims[a]) {
-            continue;
-        }
-        let needed = (0..8usize).any(|d| {
-            let c = [0, 1, 2].map(|a| q[a] - (d >> a & 1) as u64);
-            (0..3).all(|a| c[a] + 1 < lattice.dims[a]) && !ctx.seed_proves(b, c)
-        });
-        if needed {
-            points.push(lattice.point(q));
-            slots.push(s);
-        }
-    }
-    if points.is_empty() {
-        return out;
     }
     let end = [0, 1, 2].map(|a| (at[a] + 3).min(lattice.dims[a] - 1));
-    let mut values = Vec::with_capacity(8);
-    ctx.field.eval_block(lattice.point(at), lattice.point(end), SEED_REACH * lattice.cell, &points, &mut values);
-    for (s, v) in slots.into_iter().zip(values) {
-        out[s] = v;
+    let mut values = Vec::with_capacity(16);
+    field.eval_block(lattice.point(at), lattice.point(end), SEED_REACH * lattice.cell, &points, &mut values);
+    for ((kind, s), v) in slots.into_iter().zip(values) {
+        out[kind][s] = v;
     }
-    out
+    (out[0], out[1])
 }
 
 /// The values brick `b` needs among the points it owns, [at, at + 4)³: its seeds, and every
