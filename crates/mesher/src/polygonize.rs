@@ -132,10 +132,12 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
         centres: &centres,
         reach,
     };
+    // The cells of each brick that the seeds and centres do not prove uniform, bit local(i, j, k).
+    let live: Vec<u64> = (0..bricks.len()).into_par_iter().map(|b| live_cells(&ctx, b)).collect();
     let own: Vec<Own> = (0..bricks.len())
         .into_par_iter()
         .map(|b| {
-            let values = own_values(&ctx, b);
+            let values = own_values(&ctx, &live, b);
             bar.inc(1);
             values
         })
@@ -145,7 +147,7 @@ pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
     let parts: Vec<BrickPart> = (0..bricks.len())
         .into_par_iter()
         .map_init(Scratch::default, |scratch, b| {
-            let part = brick(&ctx, &own, b, scratch);
+            let part = brick(&ctx, &own, live[b], b, scratch);
             bar.inc(1);
             part
         })
@@ -246,10 +248,27 @@ fn seed_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3]) -> (Seeds,
     (out[0], out[1])
 }
 
+/// The cells of brick `b` that its seeds and centres do not prove uniform, bit local(i, j, k).
+fn live_cells<V>(ctx: &Context<'_, V>, b: usize) -> u64 {
+    let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
+    let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - 1 - at[a]) as usize);
+    let mut live = 0u64;
+    for k in 0..size[2] {
+        for j in 0..size[1] {
+            for i in 0..size[0] {
+                if !ctx.uniform(b, [at[0] + i as u64, at[1] + j as u64, at[2] + k as u64]) {
+                    live |= 1 << local(i, j, k);
+                }
+            }
+        }
+    }
+    live
+}
+
 /// The values brick `b` needs among the points it owns, [at, at + 4)³: its seeds, and every
 /// corner of a cell that the octree keeps (its brick is active) and no seed proves uniform.
 /// Any brick polygonizing such a cell finds these values here.
-fn own_values<V: Volume>(ctx: &Context<'_, V>, b: usize) -> Own {
+fn own_values<V: Volume>(ctx: &Context<'_, V>, live: &[u64], b: usize) -> Own {
     let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
     let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - at[a]) as usize);
     let cells = lattice.dims.map(|d| d - 1);
@@ -268,9 +287,8 @@ fn own_values<V: Volume>(ctx: &Context<'_, V>, b: usize) -> Own {
                     if (0..3).any(|a| p[a] < step(a) || p[a] - step(a) >= cells[a]) {
                         return false;
                     }
-                    let c = [0, 1, 2].map(|a| p[a] - step(a));
                     // The cell's brick: b, or one below it where the cell leaves b.
-                    let below = (0..3).fold(0, |m, a| m | ((c[a] < at[a]) as usize) << a);
+                    let below = (0..3).fold(0, |m, a| m | ((l[a] < step(a) as usize) as usize) << a);
                     let cell_brick = if below == 0 {
                         b
                     } else {
@@ -279,7 +297,8 @@ fn own_values<V: Volume>(ctx: &Context<'_, V>, b: usize) -> Own {
                             n => n as usize,
                         }
                     };
-                    !ctx.uniform(cell_brick, c)
+                    let c = [0, 1, 2].map(|a| (l[a] + B - step(a) as usize) % B);
+                    live[cell_brick] >> local(c[0], c[1], c[2]) & 1 == 1
                 });
                 if needed {
                     mask |= 1 << local(i, j, k);
@@ -322,7 +341,6 @@ fn own_values<V: Volume>(ctx: &Context<'_, V>, b: usize) -> Own {
 #[derive(Default)]
 struct Scratch {
     values: Vec<f64>,
-    live: Vec<bool>,
     needed: Vec<bool>,
     made: Vec<bool>,
     missing: Vec<(usize, usize, usize)>,
@@ -331,23 +349,19 @@ struct Scratch {
     positions: Vec<(u16, [f32; 3])>,
 }
 
-fn brick<V: Volume>(ctx: &Context<'_, V>, own: &[Own], b: usize, scratch: &mut Scratch) -> BrickPart {
+fn brick<V: Volume>(ctx: &Context<'_, V>, own: &[Own], live: u64, b: usize, scratch: &mut Scratch) -> BrickPart {
     let (field, lattice, at) = (ctx.field, ctx.lattice, ctx.bricks[b]);
     let n = N;
     let size = [0, 1, 2].map(|a| (BRICK + 1).min(lattice.dims[a] - at[a]) as usize);
     let index = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
-    let Scratch { values, live, needed, made, missing, points, found, positions: positions_by_slot } = scratch;
-    // The cells no seed proves uniform, and their corners.
-    live.clear();
-    live.resize(B * B * B, false);
+    let Scratch { values, needed, made, missing, points, found, positions: positions_by_slot } = scratch;
+    // The corners of the live cells.
     needed.clear();
     needed.resize(n * n * n, false);
     for k in 0..size[2].saturating_sub(1) {
         for j in 0..size[1].saturating_sub(1) {
             for i in 0..size[0].saturating_sub(1) {
-                let c = [at[0] + i as u64, at[1] + j as u64, at[2] + k as u64];
-                if !ctx.uniform(b, c) {
-                    live[local(i, j, k)] = true;
+                if live >> local(i, j, k) & 1 == 1 {
                     for d in 0..8 {
                         needed[index(i + (d & 1), j + (d >> 1 & 1), k + (d >> 2 & 1))] = true;
                     }
@@ -403,7 +417,7 @@ fn brick<V: Volume>(ctx: &Context<'_, V>, own: &[Own], b: usize, scratch: &mut S
     for k in 0..size[2].saturating_sub(1) {
         for j in 0..size[1].saturating_sub(1) {
             for i in 0..size[0].saturating_sub(1) {
-                if !live[local(i, j, k)] {
+                if live >> local(i, j, k) & 1 == 0 {
                     continue;
                 }
                 let corner = |c: usize| [i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1)];
