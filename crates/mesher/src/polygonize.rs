@@ -335,13 +335,13 @@ fn own_values<V: Volume>(ctx: &Context<'_, V>, live: &[u64], b: usize) -> Own {
     for l in 0..OWN {
         let (i, j, k) = (l % B, l / B % B, l / (B * B));
         if i % 2 == 0 && j % 2 == 0 && k % 2 == 0 {
-            let v = seeds[i / 2 | (j / 2) << 1 | (k / 2) << 2];
+            let v = seeds[(i / 2) | ((j / 2) << 1) | ((k / 2) << 2)];
             if !v.is_nan() {
                 mask |= 1 << l;
                 values.push(v);
             }
         } else if i % 2 == 1 && j % 2 == 1 && k % 2 == 1 {
-            let v = centres[i / 2 | (j / 2) << 1 | (k / 2) << 2];
+            let v = centres[(i / 2) | ((j / 2) << 1) | ((k / 2) << 2)];
             if !v.is_nan() {
                 mask |= 1 << l;
                 values.push(v);
