@@ -363,6 +363,7 @@ struct Scratch {
     points: Vec<DVec3>,
     found: Vec<f64>,
     positions: Vec<(u16, [f32; 3])>,
+    triangles: Vec<[VertexRef; 3]>,
 }
 
 fn brick<V: Volume>(
@@ -376,7 +377,8 @@ fn brick<V: Volume>(
     let n = N;
     let size = [0, 1, 2].map(|a| (BRICK + 1).min(lattice.dims[a] - at[a]) as usize);
     let index = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
-    let Scratch { values, needed, made, missing, points, found, positions: positions_by_slot } = scratch;
+    let Scratch { values, needed, made, missing, points, found, positions: positions_by_slot, triangles } =
+        scratch;
     // The corners of the live cells.
     needed.clear();
     needed.resize(n * n * n, false);
@@ -437,7 +439,7 @@ fn brick<V: Volume>(
     made.clear();
     made.resize(SLOTS, false);
     positions_by_slot.clear();
-    let mut triangles = Vec::new();
+    triangles.clear();
     let cases = table();
     for k in 0..size[2].saturating_sub(1) {
         for j in 0..size[1].saturating_sub(1) {
@@ -504,7 +506,8 @@ fn brick<V: Volume>(
     BrickPart {
         slots: positions_by_slot.iter().map(|&(s, _)| s).collect(),
         positions: positions_by_slot.iter().map(|&(_, p)| p).collect(),
-        triangles,
+        // Exactly sized: the parts of all bricks are alive together.
+        triangles: triangles.to_vec(),
         neighbours: ctx.up[b],
         evaluations,
     }
