@@ -1,15 +1,18 @@
 //! Polygonizing the active bricks by marching cubes and welding their vertices into one mesh.
 //!
-//! Three parallel passes over the active bricks (in (z, y, x) order), none of which depends on
-//! the number of threads:
+//! Parallel passes over the active bricks (in (z, y, x) order), none of which depends on the
+//! number of threads:
 //!
-//! 1. each brick evaluates the field at the lattice points it owns, [at, at + BRICK)³;
-//! 2. each brick assembles the (BRICK + 1)³ corner values of its cells from its own and its
-//!    active neighbours' points (evaluating only those of inactive neighbours), runs marching
-//!    cubes ([`crate::cubes`]) and names every vertex by its lattice edge: the edge belongs to
-//!    the brick that owns its lower point, always an active brick since the surface crosses
-//!    its box;
-//! 3. vertices are numbered brick by brick (a brick's own vertices in edge order), and every
+//! 1. each brick evaluates its seeds and centres (its points of even and of odd coordinates);
+//! 2. each brick marks its live cells, those its seeds and centres do not prove uniform;
+//! 3. each brick evaluates the other points it owns, [at, at + BRICK)³, that are corners of a
+//!    live cell (its own or a lower neighbour's);
+//! 4. each brick assembles the corner values of its live cells from its own and its active
+//!    upper neighbours' points (evaluating only those of inactive neighbours), runs marching
+//!    cubes ([`crate::cubes`]) and names every vertex by its lattice edge: the vertex belongs
+//!    to the brick of the edge's canonical cell, always an active brick with that cell live
+//!    since the surface crosses it;
+//! 5. vertices are numbered brick by brick (a brick's own vertices in edge order), and every
 //!    triangle's edges are resolved to those numbers.
 //!
 //! No hash map, no seam: a vertex shared by up to four bricks exists once, computed by its
@@ -77,9 +80,36 @@ struct Own {
     values: Vec<f64>,
 }
 
-impl Own {
-    fn get(&self, l: usize) -> Option<f64> {
-        (self.mask >> l & 1 == 1).then(|| self.values[(self.mask & ((1u64 << l) - 1)).count_ones() as usize])
+/// The [`Own`] values of all bricks in one allocation (returned to the system when dropped,
+/// unlike millions of small ones).
+struct OwnValues {
+    masks: Vec<u64>,
+    starts: Vec<u64>,
+    values: Vec<f64>,
+}
+
+impl OwnValues {
+    fn new(own: Vec<Own>) -> Self {
+        let mut starts = Vec::with_capacity(own.len());
+        let mut total = 0u64;
+        for o in &own {
+            starts.push(total);
+            total += o.values.len() as u64;
+        }
+        let mut values = Vec::with_capacity(total as usize);
+        let mut masks = Vec::with_capacity(own.len());
+        for o in own {
+            masks.push(o.mask);
+            values.extend(o.values);
+        }
+        OwnValues { masks, starts, values }
+    }
+
+    /// Brick b's value at its local point l, if it evaluated it.
+    fn get(&self, b: usize, l: usize) -> Option<f64> {
+        let mask = self.masks[b];
+        (mask >> l & 1 == 1)
+            .then(|| self.values[self.starts[b] as usize + (mask & ((1u64 << l) - 1)).count_ones() as usize])
     }
 }
 
@@ -149,8 +179,9 @@ fn polygonize_with<V: Volume>(field: &V, cell_size: f64, lazy: bool) -> Surface 
             values
         })
         .collect();
+    let own = OwnValues::new(own);
     // Seeds and centres are in `own` too.
-    let own_evaluations: u64 = own.iter().map(|o| o.values.len() as u64).sum();
+    let own_evaluations = own.values.len() as u64;
     let parts: Vec<BrickPart> = (0..bricks.len())
         .into_par_iter()
         .map_init(Scratch::default, |scratch, b| {
@@ -368,7 +399,7 @@ struct Scratch {
 
 fn brick<V: Volume>(
     ctx: &Context<'_, V>,
-    own: &[Own],
+    own: &OwnValues,
     live: u64,
     b: usize,
     scratch: &mut Scratch,
@@ -405,8 +436,8 @@ fn brick<V: Volume>(
                 let bits = (i / B) | (j / B) << 1 | (k / B) << 2;
                 match ctx.above(b, bits) {
                     Some(o) => {
-                        values[index(i, j, k)] = own[o]
-                            .get(local(i % B, j % B, k % B))
+                        values[index(i, j, k)] = own
+                            .get(o, local(i % B, j % B, k % B))
                             .expect("the owner evaluated a needed point")
                     }
                     None => missing.push((i, j, k)),
