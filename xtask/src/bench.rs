@@ -345,6 +345,8 @@ pub mod synthetic {
         pub triangles: usize,
         pub evaluations_per_vertex: f64,
         pub peak_mb: f64,
+        /// FNV-1a of the vertices' and triangles' bytes: equal hashes, equal meshes.
+        pub hash: u64,
     }
 
     /// Times the synthetic cases, `runs` times each.
@@ -389,9 +391,17 @@ pub mod synthetic {
             triangles: surface.triangles.len(),
             evaluations_per_vertex: surface.evaluations_per_vertex(),
             peak_mb: peak_memory_mb(),
+            hash: mesh_hash(&surface),
         };
         eprintln!("{name}: {:.3} s", case.seconds);
         case
+    }
+
+    /// FNV-1a over the vertex coordinates' bits and the triangles' indices.
+    fn mesh_hash(surface: &Surface) -> u64 {
+        let words = surface.vertices.iter().flat_map(|v| v.map(f32::to_bits));
+        let words = words.chain(surface.triangles.iter().flatten().copied());
+        words.fold(0xcbf2_9ce4_8422_2325, |h, w| (h ^ w as u64).wrapping_mul(0x0100_0000_01b3))
     }
 
     /// Resets the kernel's peak resident set of this process (Linux; ignored elsewhere).

@@ -269,8 +269,8 @@ fn mesher_bench(runs: usize) {
     for case in bench::synthetic::run(runs) {
         let cpu = case.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}"));
         println!(
-            "{:<45} {:>8.3} s  CPU {cpu:>6} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB",
-            case.name, case.seconds, case.triangles, case.evaluations_per_vertex, case.peak_mb
+            "{:<45} {:>8.3} s  CPU {cpu:>6} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB  mesh {:016x}",
+            case.name, case.seconds, case.triangles, case.evaluations_per_vertex, case.peak_mb, case.hash
         );
     }
 }

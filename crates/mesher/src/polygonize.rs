@@ -1,15 +1,18 @@
 //! Polygonizing the active bricks by marching cubes and welding their vertices into one mesh.
 //!
-//! Three parallel passes over the active bricks (in (z, y, x) order), none of which depends on
-//! the number of threads:
+//! Parallel passes over the active bricks (in (z, y, x) order), none of which depends on the
+//! number of threads:
 //!
-//! 1. each brick evaluates the field at the lattice points it owns, [at, at + BRICK)³;
-//! 2. each brick assembles the (BRICK + 1)³ corner values of its cells from its own and its
-//!    active neighbours' points (evaluating only those of inactive neighbours), runs marching
-//!    cubes ([`crate::cubes`]) and names every vertex by its lattice edge: the edge belongs to
-//!    the brick that owns its lower point, always an active brick since the surface crosses
-//!    its box;
-//! 3. vertices are numbered brick by brick (a brick's own vertices in edge order), and every
+//! 1. each brick evaluates its seeds and centres (its points of even and of odd coordinates);
+//! 2. each brick marks its live cells, those its seeds and centres do not prove uniform;
+//! 3. each brick evaluates the other points it owns, [at, at + BRICK)³, that are corners of a
+//!    live cell (its own or a lower neighbour's);
+//! 4. each brick assembles the corner values of its live cells from its own and its active
+//!    upper neighbours' points (evaluating only those of inactive neighbours), runs marching
+//!    cubes ([`crate::cubes`]) and names every vertex by its lattice edge: the vertex belongs
+//!    to the brick of the edge's canonical cell, always an active brick with that cell live
+//!    since the surface crosses it;
+//! 5. vertices are numbered brick by brick (a brick's own vertices in edge order), and every
 //!    triangle's edges are resolved to those numbers.
 //!
 //! No hash map, no seam: a vertex shared by up to four bricks exists once, computed by its
@@ -55,105 +58,388 @@ struct BrickPart {
     evaluations: u64,
 }
 
+/// Every cell has one corner of even coordinates (its seed) and the opposite one, of odd
+/// coordinates (its centre: the centre of a 2³ block of cells). The field is 1-Lipschitz, so a
+/// corner whose value exceeds in magnitude the distance to another corner gives that corner
+/// its sign; the other corners are 1, √2 or √3 cells from each. In cells, with a margin:
+const EDGE: f64 = 1.0001;
+const FACE: f64 = 1.41422;
+const DIAGONAL: f64 = 1.7321;
+/// Seeds and centres are exact up to this many cells (beyond, any value of the same sign and at
+/// least as large), enough to decide [`DIAGONAL`].
+const SEED_REACH: f64 = 1.75;
+/// Seeds (or centres) of a brick: its points of even (odd) local coordinates, by x + 2y + 4z
+/// (NaN beyond the lattice, or a centre that no cell needed).
+type Seeds = [f64; 8];
+
+/// The values a brick evaluated among the points it owns: bit `local(i, j, k)` of `mask` set
+/// for each, `values` in the order of those bits.
+#[derive(Default)]
+struct Own {
+    mask: u64,
+    values: Vec<f64>,
+}
+
+/// The [`Own`] values of all bricks in one allocation (returned to the system when dropped,
+/// unlike millions of small ones).
+struct OwnValues {
+    masks: Vec<u64>,
+    starts: Vec<u64>,
+    values: Vec<f64>,
+}
+
+impl OwnValues {
+    fn new(own: Vec<Own>) -> Self {
+        let mut starts = Vec::with_capacity(own.len());
+        let mut total = 0u64;
+        for o in &own {
+            starts.push(total);
+            total += o.values.len() as u64;
+        }
+        let mut values = Vec::with_capacity(total as usize);
+        let mut masks = Vec::with_capacity(own.len());
+        for o in own {
+            masks.push(o.mask);
+            values.extend(o.values);
+        }
+        OwnValues { masks, starts, values }
+    }
+
+    /// Brick b's value at its local point l, if it evaluated it.
+    fn get(&self, b: usize, l: usize) -> Option<f64> {
+        let mask = self.masks[b];
+        (mask >> l & 1 == 1)
+            .then(|| self.values[self.starts[b] as usize + (mask & ((1u64 << l) - 1)).count_ones() as usize])
+    }
+}
+
+/// Indices (in the brick list) of a brick's neighbours, by offset bits − 1 (x + 2y + 4z, each
+/// bit a step of BRICK up or down); `u32::MAX` when that brick is inactive.
+type Neighbours = [u32; 7];
+
 /// Polygonizes the boundary f = 0 of `field` at `cell_size` over its extent.
 pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
+    polygonize_with(field, cell_size, true)
+}
+
+/// [`polygonize`]; with `lazy` false every corner of the active bricks is evaluated (tests
+/// compare both).
+fn polygonize_with<V: Volume>(field: &V, cell_size: f64, lazy: bool) -> Surface {
     let (lo, hi) = field.extent();
     let lattice = Lattice::around(lo, hi, cell_size);
     let (bricks, octree_evaluations) = octree::active_bricks(field, &lattice);
     // A cell edge is one cell long, so both values of a rock–air edge lie within a cell of zero
     // (1-Lipschitz): beyond that only the sign matters, and vertices are those of exact values.
     let reach = lattice.cell * 1.5;
-    let bar = karst_artifact::progress::bar(2 * bricks.len() as u64, "mesher");
-    let own: Vec<Vec<f64>> = bricks
+    let bar = karst_artifact::progress::bar(4 * bricks.len() as u64, "mesher");
+    let find = |q: [u64; 3]| bricks.binary_search_by_key(&[q[2], q[1], q[0]], |c| [c[2], c[1], c[0]]).ok();
+    let up: Vec<Neighbours> = bricks
         .par_iter()
         .map(|&at| {
-            let values = own_values(field, &lattice, at, reach);
+            std::array::from_fn(|o| {
+                let bits = o + 1;
+                find([0, 1, 2].map(|a| at[a] + BRICK * (bits >> a & 1) as u64)).map_or(u32::MAX, |n| n as u32)
+            })
+        })
+        .collect();
+    let mut down = vec![[u32::MAX; 7]; bricks.len()];
+    for (b, ups) in up.iter().enumerate() {
+        for (o, &n) in ups.iter().enumerate() {
+            if n != u32::MAX {
+                down[n as usize][o] = b as u32;
+            }
+        }
+    }
+    let (seeds, centres): (Vec<Seeds>, Vec<Seeds>) = bricks
+        .par_iter()
+        .map(|&at| {
+            let values = seed_values(field, &lattice, at);
+            bar.inc(2);
+            values
+        })
+        .unzip();
+    let ctx = Context {
+        field,
+        lattice: &lattice,
+        bricks: &bricks,
+        up: &up,
+        down: &down,
+        seeds: &seeds,
+        centres: &centres,
+        reach,
+        lazy,
+    };
+    // The cells of each brick that the seeds and centres do not prove uniform, bit local(i, j, k).
+    let live: Vec<u64> = (0..bricks.len()).into_par_iter().map(|b| live_cells(&ctx, b)).collect();
+    let own: Vec<Own> = (0..bricks.len())
+        .into_par_iter()
+        .map(|b| {
+            let values = own_values(&ctx, &live, b);
             bar.inc(1);
             values
         })
         .collect();
+    let own = OwnValues::new(own);
+    // Seeds and centres are in `own` too.
+    let own_evaluations = own.values.len() as u64;
     let parts: Vec<BrickPart> = (0..bricks.len())
         .into_par_iter()
         .map_init(Scratch::default, |scratch, b| {
-            let part = brick(field, &lattice, &bricks, &own, b, reach, scratch);
+            let part = brick(&ctx, &own, live[b], b, scratch);
             bar.inc(1);
             part
         })
         .collect();
     bar.finish_and_clear();
-    let own_evaluations: u64 = own.iter().map(|v| v.iter().filter(|x| !x.is_nan()).count() as u64).sum();
     drop(own);
+    drop(centres);
+    drop(seeds);
+    drop(up);
     weld(parts, octree_evaluations + own_evaluations)
+}
+
+/// What the passes over the bricks share.
+struct Context<'a, V> {
+    field: &'a V,
+    lattice: &'a Lattice,
+    bricks: &'a [[u64; 3]],
+    up: &'a [Neighbours],
+    down: &'a [Neighbours],
+    seeds: &'a [Seeds],
+    centres: &'a [Seeds],
+    reach: f64,
+    /// False: no cell is proven uniform (every corner evaluated).
+    lazy: bool,
+}
+
+impl<V> Context<'_, V> {
+    /// The brick at offset `bits` above brick `b` (0: b itself), if active.
+    fn above(&self, b: usize, bits: usize) -> Option<usize> {
+        if bits == 0 {
+            Some(b)
+        } else {
+            Some(self.up[b][bits - 1]).filter(|&n| n != u32::MAX).map(|n| n as usize)
+        }
+    }
+
+    /// The seed of the cell at `c` (lattice cell coordinates, a cell of brick `b` or of a brick
+    /// above it): its corner of even coordinates, owned by b or a brick above it (None when that
+    /// brick is inactive).
+    fn seed(&self, b: usize, c: [u64; 3]) -> Option<f64> {
+        let at = self.bricks[b];
+        let e = c.map(|x| x + (x & 1));
+        let bits = (0..3).fold(0, |m, a| m | (((e[a] - at[a]) / BRICK) as usize) << a);
+        let owner = self.above(b, bits)?;
+        Some(self.seeds[owner][(0..3).fold(0, |m, a| m | ((e[a] % BRICK / 2) as usize) << a)])
+    }
+
+    /// Whether the seed alone proves the cell at `c` uniform.
+    fn seed_proves(&self, b: usize, c: [u64; 3]) -> bool {
+        self.lazy && self.seed(b, c).is_some_and(|v| v.abs() > DIAGONAL * self.lattice.cell)
+    }
+
+    /// Whether the seed and the centre of the cell at `c` (a cell of brick `b`, which owns its
+    /// centre) prove it uniform: each of the six other corners gets its sign from the seed or
+    /// the centre, and those agree.
+    fn uniform(&self, b: usize, c: [u64; 3]) -> bool {
+        if !self.lazy {
+            return false;
+        }
+        if self.seed_proves(b, c) {
+            return true;
+        }
+        let at = self.bricks[b];
+        let o = c.map(|x| x + ((x & 1) ^ 1));
+        let centre = self.centres[b][(0..3).fold(0, |m, a| m | (((o[a] - at[a]) / 2) as usize) << a)];
+        let cell = self.lattice.cell;
+        if centre.is_nan() {
+            return false;
+        }
+        if centre.abs() > DIAGONAL * cell {
+            return true;
+        }
+        let Some(seed) = self.seed(b, c) else { return false };
+        if (seed < 0.0) != (centre < 0.0) {
+            return false;
+        }
+        // Corners one cell from the seed are √2 from the centre, and the other way round.
+        let (s, t) = (seed.abs() / cell, centre.abs() / cell);
+        s > FACE || t > FACE || (s > EDGE && t > EDGE)
+    }
 }
 
 fn local(i: usize, j: usize, k: usize) -> usize {
     (k * B + j) * B + i
 }
 
-/// The values at the points brick `at` owns (NaN beyond the lattice).
-fn own_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3], reach: f64) -> Vec<f64> {
+/// The seeds and the centres of brick `at` (one search for the leaves near both).
+fn seed_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3]) -> (Seeds, Seeds) {
+    let mut out = [[f64::NAN; 8]; 2];
+    let mut points = Vec::with_capacity(16);
+    let mut slots = Vec::with_capacity(16);
+    for (kind, first) in [0, 1].into_iter().enumerate() {
+        for s in 0..8 {
+            let q = [0, 1, 2].map(|a| at[a] + first + 2 * (s >> a & 1) as u64);
+            if (0..3).all(|a| q[a] < lattice.dims[a]) {
+                points.push(lattice.point(q));
+                slots.push((kind, s));
+            }
+        }
+    }
+    let end = [0, 1, 2].map(|a| (at[a] + 3).min(lattice.dims[a] - 1));
+    let mut values = Vec::with_capacity(16);
+    field.eval_block(lattice.point(at), lattice.point(end), SEED_REACH * lattice.cell, &points, &mut values);
+    for ((kind, s), v) in slots.into_iter().zip(values) {
+        out[kind][s] = v;
+    }
+    (out[0], out[1])
+}
+
+/// The cells of brick `b` that its seeds and centres do not prove uniform, bit local(i, j, k).
+fn live_cells<V>(ctx: &Context<'_, V>, b: usize) -> u64 {
+    let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
+    let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - 1 - at[a]) as usize);
+    let mut live = 0u64;
+    for k in 0..size[2] {
+        for j in 0..size[1] {
+            for i in 0..size[0] {
+                if !ctx.uniform(b, [at[0] + i as u64, at[1] + j as u64, at[2] + k as u64]) {
+                    live |= 1 << local(i, j, k);
+                }
+            }
+        }
+    }
+    live
+}
+
+/// The values brick `b` needs among the points it owns, [at, at + 4)³: its seeds, and every
+/// corner of a cell that the octree keeps (its brick is active) and no seed proves uniform.
+/// Any brick polygonizing such a cell finds these values here.
+fn own_values<V: Volume>(ctx: &Context<'_, V>, live: &[u64], b: usize) -> Own {
+    let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
     let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - at[a]) as usize);
-    let mut points = Vec::with_capacity(OWN);
+    let cells = lattice.dims.map(|d| d - 1);
+    let mut mask = 0u64;
+    let mut points = Vec::new();
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
-                points.push(lattice.point([at[0] + i as u64, at[1] + j as u64, at[2] + k as u64]));
+                let l = [i, j, k];
+                if l.iter().all(|x| x % 2 == 0) || l.iter().all(|x| x % 2 == 1) {
+                    continue;
+                }
+                let p = [0, 1, 2].map(|a| at[a] + l[a] as u64);
+                let needed = (0..8usize).any(|d| {
+                    let step = |a: usize| (d >> a & 1) as u64;
+                    if (0..3).any(|a| p[a] < step(a) || p[a] - step(a) >= cells[a]) {
+                        return false;
+                    }
+                    // The cell's brick: b, or one below it where the cell leaves b.
+                    let below = (0..3).fold(0, |m, a| m | ((l[a] < step(a) as usize) as usize) << a);
+                    let cell_brick = if below == 0 {
+                        b
+                    } else {
+                        match ctx.down[b][below - 1] {
+                            u32::MAX => return false,
+                            n => n as usize,
+                        }
+                    };
+                    let c = [0, 1, 2].map(|a| (l[a] + B - step(a) as usize) % B);
+                    live[cell_brick] >> local(c[0], c[1], c[2]) & 1 == 1
+                });
+                if needed {
+                    mask |= 1 << local(i, j, k);
+                    points.push(lattice.point(p));
+                }
             }
         }
     }
-    let mut values = Vec::with_capacity(points.len());
-    let end = [0, 1, 2].map(|a| at[a] + size[a] as u64 - 1);
-    field.eval_block(lattice.point(at), lattice.point(end), reach, &points, &mut values);
-    let mut out = vec![f64::NAN; OWN];
-    let mut next = values.into_iter();
-    for k in 0..size[2] {
-        for j in 0..size[1] {
-            for i in 0..size[0] {
-                out[local(i, j, k)] = next.next().expect("one value per point");
+    let mut found = Vec::with_capacity(points.len());
+    if !points.is_empty() {
+        let end = [0, 1, 2].map(|a| at[a] + size[a] as u64 - 1);
+        ctx.field.eval_block(lattice.point(at), lattice.point(end), ctx.reach, &points, &mut found);
+    }
+    // Merge the seeds in, in bit order.
+    let (seeds, centres) = (&ctx.seeds[b], &ctx.centres[b]);
+    let mut next = found.into_iter();
+    let mut values = Vec::new();
+    for l in 0..OWN {
+        let (i, j, k) = (l % B, l / B % B, l / (B * B));
+        if i % 2 == 0 && j % 2 == 0 && k % 2 == 0 {
+            let v = seeds[(i / 2) | ((j / 2) << 1) | ((k / 2) << 2)];
+            if !v.is_nan() {
+                mask |= 1 << l;
+                values.push(v);
             }
+        } else if i % 2 == 1 && j % 2 == 1 && k % 2 == 1 {
+            let v = centres[(i / 2) | ((j / 2) << 1) | ((k / 2) << 2)];
+            if !v.is_nan() {
+                mask |= 1 << l;
+                values.push(v);
+            }
+        } else if mask >> l & 1 == 1 {
+            values.push(next.next().expect("one value per point"));
         }
     }
-    out
+    Own { mask, values }
 }
 
 /// Buffers a thread reuses from brick to brick (every brick overwrites what it reads).
 #[derive(Default)]
 struct Scratch {
     values: Vec<f64>,
+    needed: Vec<bool>,
     made: Vec<bool>,
     missing: Vec<(usize, usize, usize)>,
+    points: Vec<DVec3>,
+    found: Vec<f64>,
     positions: Vec<(u16, [f32; 3])>,
+    triangles: Vec<[VertexRef; 3]>,
 }
 
 fn brick<V: Volume>(
-    field: &V,
-    lattice: &Lattice,
-    bricks: &[[u64; 3]],
-    own: &[Vec<f64>],
+    ctx: &Context<'_, V>,
+    own: &OwnValues,
+    live: u64,
     b: usize,
-    reach: f64,
     scratch: &mut Scratch,
 ) -> BrickPart {
-    let at = bricks[b];
+    let (field, lattice, at) = (ctx.field, ctx.lattice, ctx.bricks[b]);
     let n = N;
     let size = [0, 1, 2].map(|a| (BRICK + 1).min(lattice.dims[a] - at[a]) as usize);
-    let find = |q: [u64; 3]| bricks.binary_search_by_key(&[q[2], q[1], q[0]], |c| [c[2], c[1], c[0]]).ok();
-    let neighbours: [Option<usize>; 7] = std::array::from_fn(|o| {
-        let bits = o + 1;
-        find([0, 1, 2].map(|a| at[a] + BRICK * (bits >> a & 1) as u64))
-    });
     let index = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
-    let Scratch { values, made, missing, positions: positions_by_slot } = scratch;
+    let Scratch { values, needed, made, missing, points, found, positions: positions_by_slot, triangles } =
+        scratch;
+    // The corners of the live cells.
+    needed.clear();
+    needed.resize(n * n * n, false);
+    for k in 0..size[2].saturating_sub(1) {
+        for j in 0..size[1].saturating_sub(1) {
+            for i in 0..size[0].saturating_sub(1) {
+                if live >> local(i, j, k) & 1 == 1 {
+                    for d in 0..8 {
+                        needed[index(i + (d & 1), j + (d >> 1 & 1), k + (d >> 2 & 1))] = true;
+                    }
+                }
+            }
+        }
+    }
     values.clear();
     values.resize(n * n * n, f64::NAN);
     missing.clear();
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
+                if !needed[index(i, j, k)] {
+                    continue;
+                }
                 let bits = (i / B) | (j / B) << 1 | (k / B) << 2;
-                let owner = if bits == 0 { Some(b) } else { neighbours[bits - 1] };
-                match owner {
-                    Some(o) => values[index(i, j, k)] = own[o][local(i % B, j % B, k % B)],
+                match ctx.above(b, bits) {
+                    Some(o) => {
+                        values[index(i, j, k)] = own
+                            .get(o, local(i % B, j % B, k % B))
+                            .expect("the owner evaluated a needed point")
+                    }
                     None => missing.push((i, j, k)),
                 }
             }
@@ -161,14 +447,16 @@ fn brick<V: Volume>(
     }
     let mut evaluations = 0;
     if !missing.is_empty() {
-        let points: Vec<DVec3> = missing
-            .iter()
-            .map(|&(i, j, k)| lattice.point([at[0] + i as u64, at[1] + j as u64, at[2] + k as u64]))
-            .collect();
+        points.clear();
+        points.extend(
+            missing
+                .iter()
+                .map(|&(i, j, k)| lattice.point([at[0] + i as u64, at[1] + j as u64, at[2] + k as u64])),
+        );
         let end = [0, 1, 2].map(|a| at[a] + size[a] as u64 - 1);
-        let mut found = Vec::with_capacity(points.len());
-        field.eval_block(lattice.point(at), lattice.point(end), reach, &points, &mut found);
-        for (&(i, j, k), v) in missing.iter().zip(found) {
+        found.clear();
+        field.eval_block(lattice.point(at), lattice.point(end), ctx.reach, points, found);
+        for (&(i, j, k), &v) in missing.iter().zip(found.iter()) {
             values[index(i, j, k)] = v;
         }
         evaluations = missing.len() as u64;
@@ -182,11 +470,14 @@ fn brick<V: Volume>(
     made.clear();
     made.resize(SLOTS, false);
     positions_by_slot.clear();
-    let mut triangles = Vec::new();
+    triangles.clear();
     let cases = table();
     for k in 0..size[2].saturating_sub(1) {
         for j in 0..size[1].saturating_sub(1) {
             for i in 0..size[0].saturating_sub(1) {
+                if live >> local(i, j, k) & 1 == 0 {
+                    continue;
+                }
                 let corner = |c: usize| [i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1)];
                 let v: [f64; 8] = std::array::from_fn(|c| {
                     let [x, y, z] = corner(c);
@@ -246,8 +537,9 @@ fn brick<V: Volume>(
     BrickPart {
         slots: positions_by_slot.iter().map(|&(s, _)| s).collect(),
         positions: positions_by_slot.iter().map(|&(_, p)| p).collect(),
-        triangles,
-        neighbours: neighbours.map(|o| o.map_or(u32::MAX, |o| o as u32)),
+        // Exactly sized: the parts of all bricks are alive together.
+        triangles: triangles.to_vec(),
+        neighbours: ctx.up[b],
         evaluations,
     }
 }
@@ -285,4 +577,50 @@ fn weld(parts: Vec<BrickPart>, evaluations: u64) -> Surface {
         vertices.extend(part.positions);
     }
     Surface { vertices, triangles, field_evaluations, removed: Default::default() }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A union of spheres (exact distance, 1-Lipschitz) with surfaces at every angle and some
+    /// thinner than a cell.
+    struct Spheres(Vec<(DVec3, f64)>);
+
+    impl Volume for Spheres {
+        fn eval(&self, p: DVec3) -> f64 {
+            self.0.iter().map(|&(c, r)| (p - c).length() - r).fold(f64::INFINITY, f64::min)
+        }
+
+        fn extent(&self) -> (DVec3, DVec3) {
+            (DVec3::ZERO, DVec3::splat(20.0))
+        }
+    }
+
+    #[test]
+    fn lazy_corners_give_the_mesh_of_all_corners_with_fewer_evaluations() {
+        let mut state = 7u64;
+        let mut next = || {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let spheres: Vec<(DVec3, f64)> = (0..40)
+            .map(|_| (DVec3::new(next(), next(), next()) * 16.0 + DVec3::splat(2.0), 0.2 + 2.5 * next()))
+            .collect();
+        let field = Spheres(spheres);
+        for cell in [0.5, 0.37] {
+            let lazy = polygonize_with(&field, cell, true);
+            let all = polygonize_with(&field, cell, false);
+            assert!(lazy.triangles.len() > 1000);
+            assert_eq!(lazy.vertices, all.vertices);
+            assert_eq!(lazy.triangles, all.triangles);
+            assert!(
+                lazy.field_evaluations * 3 < all.field_evaluations * 2,
+                "{} vs {}",
+                lazy.field_evaluations,
+                all.field_evaluations
+            );
+            assert!(lazy.evaluations_per_vertex() < 4.5, "{}", lazy.evaluations_per_vertex());
+        }
+    }
 }
