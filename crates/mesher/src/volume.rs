@@ -93,7 +93,7 @@ impl Volume for Water<'_> {
     }
 
     fn eval_block(&self, lo: DVec3, hi: DVec3, reach: f64, points: &[DVec3], out: &mut Vec<f64>) {
-        let near = self.0.near_cave(lo, hi, reach);
+        let near = self.0.near_water(lo, hi, reach);
         out.extend(points.iter().map(|&p| self.0.water_near(&near, p, reach)));
     }
 

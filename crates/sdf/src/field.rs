@@ -142,11 +142,16 @@ impl CarvedTerrain {
         self.gather(lo, hi, reach, reach.min(REACH) + self.model.blend.max(0.0), false)
     }
 
-    /// The leaves (karst and water) that can matter for
-    /// [`CarvedTerrain::cave_below_ground_near`] and [`CarvedTerrain::water_near`] at points of
-    /// the box [lo, hi] with a reach at most `reach` (no blend: a smaller margin than
+    /// The karst leaves that can matter for [`CarvedTerrain::cave_below_ground_near`] at points
+    /// of the box [lo, hi] with a reach at most `reach` (no blend: a smaller margin than
     /// [`CarvedTerrain::near`]).
     pub fn near_cave(&self, lo: DVec3, hi: DVec3, reach: f64) -> Near {
+        self.gather(lo, hi, reach, reach.min(REACH), false)
+    }
+
+    /// The leaves (karst and water) that can matter for [`CarvedTerrain::water_near`] at points
+    /// of the box [lo, hi] with a reach at most `reach`.
+    pub fn near_water(&self, lo: DVec3, hi: DVec3, reach: f64) -> Near {
         self.gather(lo, hi, reach, reach.min(REACH), true)
     }
 
@@ -173,8 +178,7 @@ impl CarvedTerrain {
     /// The water volume: negative in the water inside the conduits, under the ground and in the
     /// domain; 1-Lipschitz.
     pub fn water(&self, p: DVec3) -> f64 {
-        let pieces = self.water.min_value(p, REACH, &self.context());
-        pieces.max(self.cave(p)).max(self.uncarved(p))
+        self.water_within(p, f64::INFINITY)
     }
 
     /// The cave alone: the karst volume clipped to the rock under the terrain and inside the
@@ -201,19 +205,24 @@ impl CarvedTerrain {
     }
 
     /// [`CarvedTerrain::water`] where |w(p)| < `reach`; elsewhere a value of the same sign and
-    /// magnitude at least min(`reach`, REACH) (both operands of the max are searched up to it).
+    /// magnitude at least min(`reach`, REACH). The water lies inside the cave, so where the cave
+    /// alone is already at least `reach` away (deep in rock) the water pieces are not searched.
     pub fn water_within(&self, p: DVec3, reach: f64) -> f64 {
-        let limit = reach.min(REACH);
-        let pieces = self.water.min_value(p, limit, &self.context());
-        pieces.max(self.caves.min_value(p, limit, &self.context())).max(self.uncarved(p))
+        let cave = self.cave_below_ground(p, reach);
+        if cave >= reach {
+            return cave;
+        }
+        self.water.min_value(p, reach.min(REACH), &self.context()).max(cave)
     }
 
-    /// [`CarvedTerrain::water_within`] for a point of the box `near` was gathered for.
+    /// [`CarvedTerrain::water_within`] for a point of the box `near` (from
+    /// [`CarvedTerrain::near_water`]) was gathered for.
     pub fn water_near(&self, near: &Near, p: DVec3, reach: f64) -> f64 {
-        debug_assert!(reach <= near.reach);
-        let limit = reach.min(REACH);
-        let pieces = self.water.min_value_among(&near.water, p, limit, &self.context());
-        pieces.max(self.caves.min_value_among(&near.caves, p, limit, &self.context())).max(self.uncarved(p))
+        let cave = self.cave_below_ground_near(near, p, reach);
+        if cave >= reach {
+            return cave;
+        }
+        self.water.min_value_among(&near.water, p, reach.min(REACH), &self.context()).max(cave)
     }
 
     /// A guaranteed lower bound of |f| over the box [lo, hi] (0 when the surface may cross it).
@@ -326,6 +335,7 @@ mod tests {
             let hi = lo + DVec3::splat(random.range(0.5, 5.0));
             let reach = random.range(0.2, 10.0);
             let (near, near_cave) = (f.near(lo, hi, reach), f.near_cave(lo, hi, reach));
+            let near_water = f.near_water(lo, hi, reach);
             for _ in 0..20 {
                 let p = lo
                     + (hi - lo)
@@ -336,7 +346,7 @@ mod tests {
                     f.cave_below_ground_near(&near_cave, p, r).to_bits(),
                     f.cave_below_ground(p, r).to_bits()
                 );
-                assert_eq!(f.water_near(&near_cave, p, r).to_bits(), f.water_within(p, r).to_bits());
+                assert_eq!(f.water_near(&near_water, p, r).to_bits(), f.water_within(p, r).to_bits());
             }
         }
     }

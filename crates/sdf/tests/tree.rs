@@ -94,6 +94,7 @@ fn check_gathered(field: &CarvedTerrain, boxes: usize) {
         let hi = lo + DVec3::splat(1.0 + 3.0 * rng.unit());
         let reach = 0.3 + 6.0 * rng.unit();
         let (near, near_cave) = (field.near(lo, hi, reach), field.near_cave(lo, hi, reach));
+        let near_water = field.near_water(lo, hi, reach);
         for _ in 0..10 {
             let p = lo + (hi - lo) * DVec3::new(rng.unit(), rng.unit(), rng.unit());
             let r = reach * (0.5 + 0.5 * rng.unit());
@@ -107,7 +108,7 @@ fn check_gathered(field: &CarvedTerrain, boxes: usize) {
                 (field.cave_below_ground(p, r), field.cave_below_ground_near(&near_cave, p, r));
             assert_eq!(cave_near.to_bits(), cave.to_bits(), "cave {at}");
             assert_eq!(
-                field.water_near(&near_cave, p, r).to_bits(),
+                field.water_near(&near_water, p, r).to_bits(),
                 field.water_within(p, r).to_bits(),
                 "water {at}"
             );
