@@ -324,17 +324,22 @@ fn flow_is_conserved_with_user_weights_at_pools() {
     assert!(checked > 80, "only {checked} networks were checked");
 }
 
-#[test]
-fn a_vertical_shaft_with_water_is_a_free_fall_with_its_parabola() {
-    let nodes = vec![
+/// A sink at z 100, a short slope, a 55 m vertical shaft (nodes 1 → 2), then two phreatic
+/// nodes down to the spring.
+fn shaft_nodes() -> Vec<Node> {
+    vec![
         node([0.0, 0.0, 100.0], Zone::Vadose),
         node([50.0, 0.0, 95.0], Zone::Vadose),
         node([50.0, 0.0, 40.0], Zone::Vadose),
         node([150.0, 0.0, 20.0], Zone::Phreatic),
         node([250.0, 0.0, 10.0], Zone::Phreatic),
-    ];
+    ]
+}
+
+#[test]
+fn a_vertical_shaft_with_water_is_a_free_fall_with_its_parabola() {
     let skeleton = Skeleton {
-        nodes,
+        nodes: shaft_nodes(),
         conduits: vec![conduit(vec![0, 1, 2, 3, 4])],
         routes: vec![route("a", "s", 1.0, 0, 4)],
     };
@@ -429,14 +434,8 @@ fn the_csv_export_loads_back_as_nodes_and_links() {
 #[test]
 fn the_picture_colours_every_segment_by_its_water_type() {
     use karst_hydro::render::{colour, picture};
-    let nodes = vec![
-        node([0.0, 0.0, 100.0], Zone::Vadose),
-        node([50.0, 0.0, 95.0], Zone::Vadose),
-        node([50.0, 0.0, 40.0], Zone::Vadose),
-        node([150.0, 0.0, 20.0], Zone::Phreatic),
-        node([250.0, 0.0, 10.0], Zone::Phreatic),
-        node([50.0, 80.0, 60.0], Zone::Vadose),
-    ];
+    let mut nodes = shaft_nodes();
+    nodes.push(node([50.0, 80.0, 60.0], Zone::Vadose));
     let skeleton = Skeleton {
         nodes,
         conduits: vec![conduit(vec![0, 1, 2, 3, 4]), conduit(vec![2, 5])],
