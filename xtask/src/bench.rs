@@ -443,10 +443,10 @@ pub struct NetworkTiming {
     pub karstnet: Option<f64>,
 }
 
-/// Times `characterize` on Sakany and Monachou (from `../shared/data/caves`, when present) and on
+/// Times `characterize` on Sakany and Monachou (from `fixtures/caves`) and on
 /// generated networks of about 7,000 and 10,000 nodes; karstnet too when `KARSTNET_PYTHON` is set.
 pub fn time_networks(runs: usize) -> Result<Vec<NetworkTiming>, StageError> {
-    let caves = Path::new("../shared/data/caves");
+    let caves = Path::new("fixtures/caves");
     let scratch = scratch_dir(Path::new("networks"));
     std::fs::create_dir_all(&scratch)
         .map_err(|e| StageError::failure(format!("{}: {e}", scratch.display())))?;

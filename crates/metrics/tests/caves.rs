@@ -1,4 +1,4 @@
-//! The two CC0 caves of `shared/data/caves` against karstnet 1.2.5's values
+//! The two CC0 caves of `fixtures/caves` against karstnet 1.2.5's values
 //! (`expected-metrics.json`): every key within 1e-9 relative.
 
 mod common;

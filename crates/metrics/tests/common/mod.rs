@@ -8,9 +8,9 @@ use std::path::{Path, PathBuf};
 
 use karst_metrics::{Metrics, Network};
 
-/// `/work/shared/data/caves`, beside the repository.
+/// `fixtures/caves`: the two real surveyed caves (CC0) and their expected metrics.
 pub fn caves_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/caves")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/caves")
 }
 
 /// Metrics as a key → value map.
