@@ -4,7 +4,8 @@
 //! - [`diff`]: compare two artifacts of the same kind semantically;
 //! - [`bench`]: time every stage on the benchmark scenes;
 //! - [`ensemble`]: run many seeds of a scene and gather their statistics;
-//! - [`metrics_table`]: table every scene's metrics against the real caves.
+//! - [`metrics_table`]: table every scene's metrics against the real caves;
+//! - [`tools`]: install the outside programs the tests check outputs with.
 
 pub mod bench;
 pub mod diff;
@@ -12,3 +13,4 @@ pub mod ensemble;
 pub mod executor;
 pub mod metrics_table;
 pub mod pipeline;
+pub mod tools;

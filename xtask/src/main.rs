@@ -9,6 +9,7 @@ use karst_artifact::{Stage, StageError};
 use karst_geology::Scene;
 use xtask::executor::{Binaries, InProcess};
 use xtask::pipeline::{self, Selection};
+use xtask::tools::Tools;
 use xtask::{bench, diff, ensemble, metrics_table};
 
 /// The embedded default scene, run when `cargo xtask run` is given no scene.
@@ -101,8 +102,8 @@ enum Task {
         #[arg(long)]
         write: bool,
     },
-    /// Run the test suite (`cargo test --release --workspace`), after installing the karstnet
-    /// oracle in .venv when it is missing.
+    /// Run the test suite (`cargo test --release --workspace`), after installing the outside
+    /// tools the tests check outputs with (tools/: Python packages, Debian packages, npm).
     Test {
         /// Extra arguments for cargo test.
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
@@ -369,55 +370,17 @@ fn rayon_threads() -> usize {
     std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)
 }
 
-/// The Python that has karstnet 1.2.5, installed into .venv when missing. The path stays a
-/// path into the venv: resolving its symlink would name the base interpreter, without the venv's
-/// packages.
-fn karstnet_python() -> Result<PathBuf, String> {
-    let cwd = std::env::current_dir().map_err(|e| format!("cannot read the current folder: {e}"))?;
-    let python = cwd.join(".venv/bin/python");
-    let has_karstnet = |p: &Path| {
-        Command::new(p)
-            .args(["-c", "import karstnet, importlib.metadata as m; assert m.version('karstnet') == '1.2.5'"])
-            .output()
-            .is_ok_and(|o| o.status.success())
-    };
-    if has_karstnet(&python) {
-        return Ok(python);
-    }
-    eprintln!("installing karstnet==1.2.5 and its dependencies into .venv (the metrics oracle)...");
-    let steps: [&[&str]; 2] = [
-        &["python3", "-m", "venv", ".venv"],
-        &[".venv/bin/pip", "install", "--quiet", "-r", "xtask/karstnet-requirements.txt"],
-    ];
-    for step in steps {
-        let status = Command::new(step[0])
-            .args(&step[1..])
-            .status()
-            .map_err(|e| format!("{}: {e}", step.join(" ")))?;
-        if !status.success() {
-            return Err(format!("`{}` failed", step.join(" ")));
-        }
-    }
-    if !has_karstnet(&python) {
-        return Err("karstnet 1.2.5 is still not importable from .venv/bin/python".into());
-    }
-    Ok(python)
-}
-
 fn test(args: &[String]) -> ExitCode {
-    let python = match karstnet_python() {
-        Ok(p) => p,
+    let tools = match Tools::ensure(&workspace_root()) {
+        Ok(tools) => tools,
         Err(e) => {
-            eprintln!("error: cannot install the karstnet oracle: {e}");
+            eprintln!("error: cannot install the test tools: {e}");
             return ExitCode::from(1);
         }
     };
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let status = Command::new(cargo)
-        .args(["test", "--release", "--workspace"])
-        .args(args)
-        .env("KARSTNET_PYTHON", &python)
-        .status();
+    let status =
+        Command::new(cargo).args(["test", "--release", "--workspace"]).args(args).envs(tools.env()).status();
     match status {
         Ok(s) if s.success() => ExitCode::SUCCESS,
         Ok(_) => ExitCode::from(1),
