@@ -1,14 +1,17 @@
-//! What every stage binary shares: the `run` and `inspect` arguments, reading upstream
-//! artifacts, building the provenance of the artifact it writes, and exit codes.
+//! What every stage binary shares: the `run` and `inspect` subcommands, printing an artifact
+//! as JSON, and exit codes.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use serde::Serialize;
 
-use crate::envelope::{Header, InputRef, Payload, Provenance, read_artifact};
+use karst_artifact::{Header, Payload, read_artifact};
+use karst_geology::Scene;
+
+use crate::contract::Stage;
 use crate::error::StageError;
-use crate::pipeline::{Stage, producer};
+use crate::runner::{self, Job};
 
 /// `karst-<stage> run SCENE [--out DIR]`.
 #[derive(Debug, Clone, clap::Args)]
@@ -30,47 +33,27 @@ pub struct InspectArgs {
     pub json: bool,
 }
 
-/// One run of one stage: where its inputs are and how to label what it writes.
-#[derive(Debug, Clone)]
-pub struct StageRun {
-    pub stage: Stage,
-    pub out_dir: PathBuf,
-    inputs: Vec<InputRef>,
+/// `karst-<stage> run`: runs stage `S` on the scene and prints its headline.
+pub fn run<S: Stage>(args: &RunArgs) -> Result<(), StageError> {
+    let scene = Scene::load(&args.scene)?;
+    let ran = runner::run::<S>(&Job { scene_path: &args.scene, scene: &scene, out: &args.out })?;
+    println!("{} in {:.2} s", ran.headline, ran.seconds);
+    Ok(())
 }
 
-impl StageRun {
-    /// Starts a run of `stage` writing into `out_dir`.
-    pub fn new(stage: Stage, out_dir: &Path) -> Self {
-        StageRun { stage, out_dir: out_dir.to_path_buf(), inputs: Vec::new() }
+/// `karst-<stage> inspect`: the summary, or the whole artifact as JSON with `--json`.
+pub fn inspect<S: Stage>(args: &InspectArgs) -> Result<(), StageError> {
+    if args.json {
+        return print_json::<S::Output>(&args.file);
     }
-
-    /// Path of `stage`'s artifact in the output folder.
-    pub fn path_of(&self, stage: Stage) -> PathBuf {
-        self.out_dir.join(stage.file_name())
+    for line in runner::inspect::<S>(&args.file)? {
+        println!("{line}");
     }
-
-    /// Reads an upstream artifact and records its payload hash for this run's key.
-    pub fn read_input<P: Payload>(&mut self, stage: Stage) -> Result<P, StageError> {
-        debug_assert!(self.stage.inputs().contains(&stage));
-        let (header, payload) = read_artifact::<P>(&self.path_of(stage))?;
-        self.inputs
-            .push(InputRef { name: stage.kind().name().into(), payload_blake3: header.payload_blake3 });
-        Ok(payload)
-    }
-
-    /// The provenance of this run's artifact, given the hash of the scene sections it read.
-    pub fn provenance(&self, params: &str) -> Provenance {
-        Provenance { producer: producer(self.stage), inputs: self.inputs.clone(), params: params.to_string() }
-    }
-
-    /// Path of this run's own artifact.
-    pub fn output_path(&self) -> PathBuf {
-        self.path_of(self.stage)
-    }
+    Ok(())
 }
 
 /// Prints an artifact as JSON: `{"header": …, "payload": …}`.
-pub fn print_json<P: Payload + Serialize>(path: &Path) -> Result<(), StageError> {
+pub fn print_json<P: Payload>(path: &Path) -> Result<(), StageError> {
     let (header, payload) = read_artifact::<P>(path)?;
     #[derive(Serialize)]
     struct Whole<'a, P> {
@@ -95,7 +78,7 @@ pub fn default_sigpipe() {
     }
 }
 
-/// Turns a stage result into the process exit code, printing the error on stderr.
+/// Turns a result into the process exit code, printing the error on stderr.
 pub fn finish(result: Result<(), StageError>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
