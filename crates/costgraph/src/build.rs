@@ -10,19 +10,19 @@ use karst_geology::Scene;
 use karst_sampling::Samples;
 
 use crate::cost::{CostModel, EdgeTerms, NodeFields};
-use crate::graph::{CostGraph, CostSet};
 use crate::knn::{self, CHUNK, Rows};
+use crate::payload::{CostGraph, CostSet};
 use crate::stats::{Histogram, SetStats, Summary, TermStats};
 use crate::{CostGraphError, checks};
 
 /// Builds the cost graph of `samples` under `scene`'s geology, with every input check.
 pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, CostGraphError> {
-    let k = scene.costgraph.k;
+    let k = scene.costgraph().k;
     if k >= samples.len() {
         return Err(CostGraphError::TooFewSamples { k, samples: samples.len() });
     }
     let chunks = samples.len().div_ceil(CHUNK) as u64;
-    let bar = karst_artifact::progress::bar(2 * chunks, "costgraph");
+    let bar = karst_stage::progress::bar(2 * chunks, "costgraph");
     let done = || bar.inc(1);
     let order = knn::spatial_order(&samples.positions);
     let rows = edges(scene, &samples.positions, &order, &done);
@@ -42,7 +42,7 @@ pub fn build_points(scene: &Scene, points: &[[f64; 3]]) -> Result<CostGraph, Cos
 
 /// The edges: k nearest neighbours within the maximum length, symmetrised when asked.
 fn edges(scene: &Scene, points: &[[f64; 3]], order: &[u32], done: &(dyn Fn() + Sync)) -> Rows {
-    let p = &scene.costgraph;
+    let p = scene.costgraph();
     let rows = knn::neighbours(points, order, (p.k, p.max_edge_length), done);
     if p.symmetrise { rows.symmetrised() } else { rows }
 }

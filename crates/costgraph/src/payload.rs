@@ -8,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Kind, Payload};
+use karst_artifact::{Payload, StageId};
 
 use crate::stats::Summary;
 
@@ -34,7 +34,7 @@ pub struct CostSet {
 }
 
 impl Payload for CostGraph {
-    const KIND: Kind = Kind::Costgraph;
+    const STAGE: StageId = StageId::Costgraph;
     const SCHEMA: u32 = 2;
 }
 

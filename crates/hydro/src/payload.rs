@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Kind, Payload};
+use karst_artifact::{Payload, StageId};
 
 use crate::water::{Look, WaterType};
 
@@ -25,7 +25,7 @@ pub struct Hydro {
 }
 
 impl Payload for Hydro {
-    const KIND: Kind = Kind::Hydro;
+    const STAGE: StageId = StageId::Hydro;
     const SCHEMA: u32 = 2;
 }
 

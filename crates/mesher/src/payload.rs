@@ -3,9 +3,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Kind, Payload};
-
-use crate::cleanup::Removed;
+use karst_artifact::{Payload, StageId};
 
 /// The artifact `mesh.bin`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -15,28 +13,28 @@ pub struct Mesh {
     /// Lattice cell size of the cave alone and the water, metres.
     pub cave_cell_size: f64,
     /// The carved rock: normals point from rock to air.
-    pub terrain: Surface,
+    pub terrain: TriMesh,
     /// The karst volume alone: normals point out of the cave, into the rock.
-    pub cave: Surface,
+    pub cave: TriMesh,
     /// The water standing or flowing in the conduits: normals point out of the water.
-    pub water: Surface,
+    pub water: TriMesh,
 }
 
 impl Mesh {
     /// The surfaces with their names: terrain, cave, water.
-    pub fn surfaces(&self) -> [(&'static str, &Surface); 3] {
+    pub fn surfaces(&self) -> [(&'static str, &TriMesh); 3] {
         [("terrain", &self.terrain), ("cave", &self.cave), ("water", &self.water)]
     }
 }
 
 impl Payload for Mesh {
-    const KIND: Kind = Kind::Mesh;
+    const STAGE: StageId = StageId::Mesher;
     const SCHEMA: u32 = 3;
 }
 
 /// An indexed triangle mesh; triangles are counter-clockwise seen from outside the solid.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-pub struct Surface {
+pub struct TriMesh {
     pub vertices: Vec<[f32; 3]>,
     pub triangles: Vec<[u32; 3]>,
     /// Field evaluations spent (octree and bricks).
@@ -45,7 +43,7 @@ pub struct Surface {
     pub removed: Removed,
 }
 
-impl Surface {
+impl TriMesh {
     /// Total area, m².
     pub fn area(&self) -> f64 {
         self.triangles.iter().map(|t| self.normal(t).length() * 0.5).sum()
@@ -76,4 +74,15 @@ impl Surface {
     pub fn evaluations_per_vertex(&self) -> f64 {
         self.field_evaluations as f64 / self.vertices.len().max(1) as f64
     }
+}
+
+/// What the cleanup took away from one surface.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Removed {
+    /// Rock islands floating in cave air, and their total volume, m³.
+    pub islands: u32,
+    pub island_volume: f64,
+    /// Air pockets sealed in rock, and their total volume, m³.
+    pub pockets: u32,
+    pub pocket_volume: f64,
 }

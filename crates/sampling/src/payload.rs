@@ -2,9 +2,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Kind, Payload};
+use karst_artifact::{Payload, StageId};
 
-use crate::radius::RadiusField;
+use crate::spacing::SpacingField;
 
 /// What a sample stands for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -43,11 +43,11 @@ pub struct Samples {
     pub radius: f64,
     /// The radius field used: two samples p, q (not both key points) are at least
     /// min(r(p), r(q)) apart.
-    pub radius_field: RadiusField,
+    pub radius_field: SpacingField,
 }
 
 impl Payload for Samples {
-    const KIND: Kind = Kind::Samples;
+    const STAGE: StageId = StageId::Sampling;
     const SCHEMA: u32 = 3;
 }
 

@@ -28,7 +28,7 @@ enum Near<'a> {
 
 /// A radius field on the nodes origin + (i, j, k)·cell.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct RadiusField {
+pub struct SpacingField {
     pub origin: [f64; 3],
     pub cell: f64,
     pub size: [u32; 3],
@@ -38,37 +38,37 @@ pub struct RadiusField {
 
 /// Scale of `[sampling]` lengths: 1 for metres, the largest domain extent for "domain".
 pub fn unit_scale(scene: &Scene) -> f64 {
-    match scene.sampling.units {
+    match scene.sampling().units {
         RadiusUnit::Metres => 1.0,
-        RadiusUnit::Domain => scene.domain.size().max_element(),
+        RadiusUnit::Domain => scene.domain().size().max_element(),
     }
 }
 
-impl RadiusField {
+impl SpacingField {
     /// Tabulates the scene's radius field.
-    pub fn of_scene(scene: &Scene) -> RadiusField {
-        let s = &scene.sampling;
+    pub fn of_scene(scene: &Scene) -> SpacingField {
+        let s = scene.sampling();
         let scale = unit_scale(scene);
         let radius = s.radius * scale;
         let surface_radius = s.surface_radius.map_or(radius, |r| r * scale);
         let surface_distance = s.surface_distance.map_or(2.0 * radius, |d| d * scale);
         let layer_min =
-            scene.geology.layers.iter().filter_map(|l| l.radius).fold(f64::INFINITY, f64::min) * scale;
+            scene.geology().layers.iter().filter_map(|l| l.radius).fold(f64::INFINITY, f64::min) * scale;
         let smallest = radius.min(surface_radius).min(layer_min).min(radius * s.potential_factor);
-        let size = scene.domain.size();
+        let size = scene.domain().size();
         let volume = size.element_product();
         let nodes = (NODES_PER_SAMPLE * 0.725 * volume / radius.powi(3)).max(32f64.powi(3));
         let cell = smallest.max((volume / nodes).cbrt());
         let n = (size / cell).ceil().as_uvec3() + 1;
-        let origin = scene.domain.min();
+        let origin = scene.domain().min();
         // Planes keep their normal (a sin/cos per call of `Surface::normal`) and a point:
         // the same arithmetic as `Surface::distance_within`, once per surface.
         let surfaces: Vec<Near> = scene
-            .geology
+            .geology()
             .water_tables
             .iter()
-            .chain(&scene.geology.horizons)
-            .chain(&scene.geology.faults)
+            .chain(&scene.geology().horizons)
+            .chain(&scene.geology().faults)
             .map(|s| match &s.geometry {
                 Geometry::Plane { elevation, origin, .. } => {
                     Near::Plane(s.normal(), DVec3::new(origin[0], origin[1], *elevation))
@@ -77,8 +77,8 @@ impl RadiusField {
             })
             .collect();
         let at = |p: DVec3| -> f32 {
-            let layer = scene.geology.layer_at(p).and_then(|l| l.radius).map_or(radius, |r| r * scale);
-            let volume = layer * (1.0 + (s.potential_factor - 1.0) * scene.geology.potential(p));
+            let layer = scene.geology().layer_at(p).and_then(|l| l.radius).map_or(radius, |r| r * scale);
+            let volume = layer * (1.0 + (s.potential_factor - 1.0) * scene.geology().potential(p));
             let d = surfaces.iter().fold(surface_distance, |d, w| match w {
                 Near::Plane(n, o) => n.dot(p - *o).abs().min(d),
                 Near::Other(s) => s.distance_within(p, d),
@@ -94,7 +94,7 @@ impl RadiusField {
                 })
             })
             .collect();
-        RadiusField { origin: origin.to_array(), cell, size: [n.x, n.y, n.z], values }
+        SpacingField { origin: origin.to_array(), cell, size: [n.x, n.y, n.z], values }
     }
 
     /// Trilinear radius at `p`, clamped to the grid.

@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Kind, Payload};
+use karst_artifact::{Payload, StageId};
 use karst_geology::Domain;
 use karst_skeleton::ConduitType;
 
@@ -62,7 +62,7 @@ pub struct SdfModel {
 }
 
 impl Payload for SdfModel {
-    const KIND: Kind = Kind::Sdf;
+    const STAGE: StageId = StageId::Sdf;
     const SCHEMA: u32 = 2;
 }
 

@@ -1,40 +1,52 @@
-//! The skeleton of a scene: the mode ([`karstnsim`] or [`gamma`]) draws the sample paths, the
-//! [`NetworkBuilder`] turns them into the artifact. Shared here: the sinks in their iteration
-//! order and the choice of the springs a sink drains to.
-//!
-//! Sinks are taken by increasing `order`; sinks of equal order are shuffled by the scene seed
-//! (KarstNSim §1.4: "by default, the iteration order ... is randomized"). A sink drains to every
-//! spring its connectivity row marks 1; when the row has no 1, to the cheapest of the springs
-//! marked 2 (uncertain connectivity keeps the closest spring in the cost metric).
+//! The skeleton of a scene, the algorithm's entry: the mode ([`karstnsim`] or [`gamma`]) draws
+//! the sample paths on the cost graph, the key points it did not route are joined, the
+//! network is amplified, and the [`NetworkBuilder`] turns the paths into the artifact.
 
-use karst_artifact::StageError;
 use karst_costgraph::CostGraph;
 use karst_geology::params::SkeletonMode;
-use karst_geology::rng::Random;
-use karst_geology::{KeyPointKind, Link, Scene};
+use karst_geology::{KeyPointKind, Scene};
 use karst_sampling::Samples;
 
 use crate::assemble::NetworkBuilder;
+use crate::ends::{ends, sinks_in_order};
+use crate::error::SkeletonError;
 use crate::karstnsim::PhaseSetup;
+use crate::payload::{Route, Skeleton};
 use crate::search::{CostSetOf, EdgeCosts};
-use crate::{Skeleton, amplify, gamma, karstnsim};
-
-/// A sink or a spring: its row (column) in the connectivity matrix, its scene key point.
-#[derive(Debug, Clone, Copy)]
-pub struct End<'a> {
-    pub row: usize,
-    pub keypoint: usize,
-    pub name: &'a str,
-}
+use crate::{amplify, gamma, karstnsim};
 
 /// Builds the network of `scene` on the cost graph; each spring routes on the cost set of its
 /// water table. Dead-end key points are
 /// closed to the mode's paths and to amplification, then joined once.
-pub fn build(scene: &Scene, samples: &Samples, full: &CostGraph) -> Result<Skeleton, StageError> {
+pub fn build(scene: &Scene, samples: &Samples, full: &CostGraph) -> Result<Skeleton, SkeletonError> {
+    if full.node_count() != samples.len() {
+        return Err(SkeletonError::GraphOfOtherSamples { nodes: full.node_count(), samples: samples.len() });
+    }
     let mut network = NetworkBuilder::default();
     let closed = without_dead_ends(scene, samples, full);
     let graph = closed.as_ref().unwrap_or(full);
-    let routes = match scene.skeleton.mode {
+    let routes = mode_routes(scene, samples, graph, &mut network)?;
+    amplify::join_keypoints(scene, samples, full, &mut network)?;
+    amplify::amplify(scene, samples, graph, &mut network);
+    Ok(network.finish(scene, samples, routes))
+}
+
+/// The least-cost paths of the scene's mode alone (no other key point joined, no amplification,
+/// no conduits): what the skeleton budgets of `cargo xtask bench` time. Returns the number of
+/// routes.
+pub fn mode_paths(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<usize, SkeletonError> {
+    mode_routes(scene, samples, graph, &mut NetworkBuilder::default()).map(|routes| routes.len())
+}
+
+/// The routes of the scene's mode, their paths added to `network`: KarstNSim's routing of every
+/// sink, phase after phase, or the γ-skeleton of the key points.
+fn mode_routes(
+    scene: &Scene,
+    samples: &Samples,
+    graph: &CostGraph,
+    network: &mut NetworkBuilder,
+) -> Result<Vec<(Route, Vec<usize>)>, SkeletonError> {
+    match scene.skeleton().mode {
         SkeletonMode::Karstnsim => {
             // One cost set per spring's water table (KarstNSim §1.3): C_WT differs between them.
             let sets: Vec<CostSetOf> =
@@ -56,13 +68,10 @@ pub fn build(scene: &Scene, samples: &Samples, full: &CostGraph) -> Result<Skele
                 }
                 routes = done.routes;
             }
-            routes
+            Ok(routes)
         }
-        SkeletonMode::Gamma => gamma::network(scene, samples, graph, &mut network)?,
-    };
-    amplify::join_keypoints(scene, samples, full, &mut network)?;
-    amplify::amplify(scene, samples, graph, &mut network);
-    Ok(network.finish(scene, samples, routes))
+        SkeletonMode::Gamma => gamma::network(scene, samples, graph, network),
+    }
 }
 
 /// The cost graph with the edges into or out of dead-end key points closed, so that no path but
@@ -94,12 +103,12 @@ fn without_dead_ends(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Opt
 /// The phases of the scene, oldest first (one with every spring when it lists none); their
 /// inherited edges are filled in as the phases run.
 fn phase_setups<'a>(scene: &'a Scene, graph: &CostGraph) -> Vec<PhaseSetup<'a>> {
-    if scene.phases.is_empty() {
+    if scene.phases().is_empty() {
         return vec![PhaseSetup::single(scene, graph)];
     }
     let springs = ends(scene, KeyPointKind::Spring);
     scene
-        .phases
+        .phases()
         .iter()
         .map(|phase| PhaseSetup {
             springs: springs.iter().filter(|s| phase.springs.iter().any(|n| n == s.name)).copied().collect(),
@@ -108,77 +117,4 @@ fn phase_setups<'a>(scene: &'a Scene, graph: &CostGraph) -> Vec<PhaseSetup<'a>> 
             weights: phase.weights.clone(),
         })
         .collect()
-}
-
-/// The ends of `kind`, in scene order.
-pub fn ends(scene: &Scene, kind: KeyPointKind) -> Vec<End<'_>> {
-    scene
-        .keypoints_of(kind)
-        .enumerate()
-        .map(|(row, (keypoint, k))| End { row, keypoint, name: &k.name })
-        .collect()
-}
-
-/// The sinks by increasing `order`, equal orders shuffled by the seed.
-pub fn sinks_in_order(scene: &Scene) -> Vec<End<'_>> {
-    let mut rng = Random::stream(scene.seed, "skeleton", "sink order");
-    let mut keyed: Vec<(i64, u64, End)> = ends(scene, KeyPointKind::Sink)
-        .into_iter()
-        .map(|s| (scene.keypoints[s.keypoint].order, (rng.uniform() * 2f64.powi(53)) as u64, s))
-        .collect();
-    keyed.sort_by_key(|(order, key, s)| (*order, *key, s.row));
-    keyed.into_iter().map(|(_, _, s)| s).collect()
-}
-
-/// The springs `sink` drains to among `springs`, given the cost of reaching each allowed spring
-/// (infinite when unreachable): every spring marked 1, else the cheapest marked 2; none when
-/// no spring of `springs` is allowed. Errors name the sink and the spring it cannot reach.
-pub fn chosen_springs<'a>(
-    scene: &Scene,
-    sink: &End,
-    springs: &[End<'a>],
-    cost_to: &mut dyn FnMut(&End<'a>) -> Result<f64, StageError>,
-) -> Result<Vec<End<'a>>, StageError> {
-    let allowed: Vec<(End, Link)> =
-        springs.iter().map(|t| (*t, scene.link(sink.row, t.row))).filter(|(_, l)| *l != Link::None).collect();
-    let unreachable = |t: &End| {
-        StageError::input(format!(
-            "sink \"{}\" cannot reach spring \"{}\" through the cost graph (raise costgraph.k or max_edge_length)",
-            sink.name, t.name
-        ))
-    };
-    if allowed.is_empty() {
-        return Ok(Vec::new());
-    }
-    let connected: Vec<End> =
-        allowed.iter().filter(|(_, l)| *l == Link::Connected).map(|(t, _)| *t).collect();
-    if !connected.is_empty() {
-        for t in &connected {
-            if !cost_to(t)?.is_finite() {
-                return Err(unreachable(t));
-            }
-        }
-        return Ok(connected);
-    }
-    let mut best: Option<(f64, End)> = None;
-    for (t, _) in &allowed {
-        let cost = cost_to(t)?;
-        if cost.is_finite() && best.is_none_or(|(b, _)| cost < b) {
-            best = Some((cost, *t));
-        }
-    }
-    match best {
-        Some((_, t)) => Ok(vec![t]),
-        None => Err(unreachable(&allowed[0].0)),
-    }
-}
-
-/// The sample of a key point, or an error naming it.
-pub fn sample_of(samples: &Samples, end: &End) -> Result<usize, StageError> {
-    samples.keypoint_sample(end.keypoint).ok_or_else(|| {
-        StageError::input(format!(
-            "key point \"{}\" is not in samples.bin (the scene changed since sampling: rerun `cargo xtask run --from sampling`)",
-            end.name
-        ))
-    })
 }

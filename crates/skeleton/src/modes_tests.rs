@@ -4,12 +4,15 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
+use crate::build::build;
+use crate::ends::{End, sinks_in_order};
+use crate::error::SkeletonError;
+use crate::karstnsim;
+use crate::payload::Skeleton;
+use crate::search::EdgeCosts;
 use karst_costgraph::CostGraph;
 use karst_geology::Scene;
 use karst_sampling::Samples;
-use karst_skeleton::routing::{self, End};
-use karst_skeleton::search::EdgeCosts;
-use karst_skeleton::{Skeleton, karstnsim};
 
 const SCENE: &str = r#"
 name = "two-springs"
@@ -68,7 +71,7 @@ fn scene(extra: &str) -> Scene {
 }
 
 fn inputs(scene: &Scene) -> (Samples, CostGraph) {
-    let samples = karst_sampling::stage::sample_scene(scene).unwrap();
+    let samples = karst_sampling::build(scene).unwrap();
     let graph = karst_costgraph::build(scene, &samples).unwrap();
     (samples, graph)
 }
@@ -93,7 +96,7 @@ fn route(
 fn every_sink_reaches_the_springs_it_may_reach() {
     let scene = scene("");
     let (samples, graph) = inputs(&scene);
-    let skeleton = routing::build(&scene, &samples, &graph).unwrap();
+    let skeleton = build(&scene, &samples, &graph).unwrap();
     let pairs: BTreeSet<(&str, &str)> =
         skeleton.routes.iter().map(|r| (r.sink.as_str(), r.spring.as_str())).collect();
     let expected_fixed = [("s1", "west"), ("s3", "east"), ("s3", "west"), ("s4", "east")];
@@ -118,7 +121,7 @@ fn linked(s: &Skeleton, a: u32, b: u32) -> bool {
 fn without_cohesion_routes_do_not_depend_on_sink_order() {
     let scene = scene("[skeleton]\ncohesion_vadose = 1.0\ncohesion_phreatic = 1.0\n");
     let (samples, graph) = inputs(&scene);
-    let order = routing::sinks_in_order(&scene);
+    let order = sinks_in_order(&scene);
     let reversed: Vec<End> = order.iter().rev().copied().collect();
     assert_eq!(route(&scene, &samples, &graph, &order), route(&scene, &samples, &graph, &reversed));
 }
@@ -134,7 +137,7 @@ fn cohesion_gathers_conduits_and_depends_on_order() {
     let loose = scene("");
     let tight = scene("[skeleton]\ncohesion_vadose = 0.2\ncohesion_phreatic = 0.2\n");
     let (samples, graph) = inputs(&loose);
-    let order = routing::sinks_in_order(&tight);
+    let order = sinks_in_order(&tight);
     let a = route(&tight, &samples, &graph, &order);
     let free = route(&loose, &samples, &graph, &order);
     assert!(
@@ -149,14 +152,13 @@ fn cohesion_gathers_conduits_and_depends_on_order() {
 fn gamma_mode_joins_every_key_point_and_honours_forced_links() {
     let scene_rng = scene("[skeleton]\nmode = \"gamma\"\ngamma = 60.0\n");
     let (samples, graph) = inputs(&scene_rng);
-    let rng = routing::build(&scene_rng, &samples, &graph).unwrap();
+    let rng = build(&scene_rng, &samples, &graph).unwrap();
     let on_network: BTreeSet<&str> = rng.nodes.iter().filter_map(|n| n.keypoint.as_deref()).collect();
-    assert_eq!(on_network.len(), scene_rng.keypoints.len());
-    let dense =
-        routing::build(&scene("[skeleton]\nmode = \"gamma\"\ngamma = 0.5\n"), &samples, &graph).unwrap();
+    assert_eq!(on_network.len(), scene_rng.keypoints().len());
+    let dense = build(&scene("[skeleton]\nmode = \"gamma\"\ngamma = 0.5\n"), &samples, &graph).unwrap();
     assert!(dense.total_length() > rng.total_length());
     let forced = scene("[skeleton]\nmode = \"gamma\"\ngamma = 60.0\nforced_links = [[\"s1\", \"east\"]]\n");
-    let with_link = routing::build(&forced, &samples, &graph).unwrap();
+    let with_link = build(&forced, &samples, &graph).unwrap();
     assert!(with_link.total_length() > rng.total_length());
     assert!(!with_link.routes.is_empty());
 }
@@ -186,7 +188,7 @@ fn a_smaller_gamma_never_removes_a_conduit_a_larger_gamma_keeps() {
     let build = |gamma: f64| {
         let scene = scene(&format!("{waypoints}[skeleton]\nmode = \"gamma\"\ngamma = {gamma}\n"));
         let (samples, graph) = inputs(&scene);
-        sample_links(&routing::build(&scene, &samples, &graph).unwrap())
+        sample_links(&build(&scene, &samples, &graph).unwrap())
     };
     let gammas = [0.8, 1.2, 1.7, 2.0, 3.0, 60.0];
     let networks: Vec<_> = gammas.iter().map(|&g| build(g)).collect();
@@ -225,12 +227,12 @@ fn route_positions(s: &Skeleton) -> Vec<Vec<[f64; 3]>> {
 fn amplification_adds_dry_branches_dead_ends_and_loops() {
     let base = scene("");
     let (samples, graph) = inputs(&base);
-    let plain = routing::build(&base, &samples, &graph).unwrap();
+    let plain = build(&base, &samples, &graph).unwrap();
     let amplify = |fraction: f64| {
         let extra = format!(
             "[skeleton]\namplification_steps = 2\namplification_points = 4\ndead_end_fraction = {fraction}\n"
         );
-        routing::build(&scene(&extra), &samples, &graph).unwrap()
+        build(&scene(&extra), &samples, &graph).unwrap()
     };
     let dead = amplify(1.0);
     let looped = amplify(0.0);
@@ -255,16 +257,15 @@ fn amplification_adds_dry_branches_dead_ends_and_loops() {
 fn tortuosity_grows_with_theta_and_stays_in_the_bedrock() {
     let base = scene("");
     let (samples, graph) = inputs(&base);
-    let straight = routing::build(&base, &samples, &graph).unwrap();
-    let wiggle = |theta: f64| {
-        routing::build(&scene(&format!("[skeleton]\ntortuosity = {theta}\n")), &samples, &graph).unwrap()
-    };
+    let straight = build(&base, &samples, &graph).unwrap();
+    let wiggle =
+        |theta: f64| build(&scene(&format!("[skeleton]\ntortuosity = {theta}\n")), &samples, &graph).unwrap();
     let (calm, wild) = (wiggle(0.0), wiggle(1.0));
     for s in [&calm, &wild] {
         assert_eq!(s.links().len(), 4 * straight.links().len(), "two levels: four segments per link");
         for n in &s.nodes {
             let p = glam::DVec3::from_array(n.position);
-            assert!(karst_skeleton::amplify::in_bedrock(&base, p), "{p}");
+            assert!(base.in_bedrock(p), "{p}");
         }
         for r in &s.routes {
             assert!(r.nodes.windows(2).all(|w| linked(s, w[0], w[1])), "routes follow the refined links");
@@ -290,7 +291,7 @@ weights = { s2 = 5.0 }
 fn a_later_phase_keeps_the_relict_conduits_and_reuses_them() {
     let scene = scene(TWO_PHASES);
     let (samples, graph) = inputs(&scene);
-    let s = routing::build(&scene, &samples, &graph).unwrap();
+    let s = build(&scene, &samples, &graph).unwrap();
     let phases: BTreeSet<u32> = s.conduits.iter().map(|c| c.phase).collect();
     assert_eq!(phases, BTreeSet::from([0, 1]));
     assert!(s.routes.iter().all(|r| r.spring == "west"), "routes are the last phase's drainage");
@@ -342,11 +343,14 @@ fn unreachable_key_points_are_named() {
     let gamma = scene("[skeleton]\nmode = \"gamma\"\n");
     let (samples, graph) = inputs(&gamma);
     let cut = cut_in_two(&samples, &graph);
-    let e = routing::build(&gamma, &samples, &cut).unwrap_err().to_string();
-    assert!(e.contains("key points \"s1\" and \"s2\" cannot reach each other"), "{e}");
-    let e = routing::build(&scene(""), &samples, &cut).unwrap_err().to_string();
-    let named = ["sink \"s3\" cannot reach spring \"west\"", "sink \"s4\" cannot reach spring \"east\""];
-    assert!(named.iter().any(|n| e.contains(n)), "{e}");
+    let e = build(&gamma, &samples, &cut).unwrap_err();
+    assert_eq!(e, SkeletonError::KeyPointsApart { a: "s1".into(), b: "s2".into() });
+    let e = build(&scene(""), &samples, &cut).unwrap_err();
+    let named = [("s3", "west"), ("s4", "east")].map(|(sink, spring)| SkeletonError::SinkCannotReachSpring {
+        sink: sink.into(),
+        spring: spring.into(),
+    });
+    assert!(named.contains(&e), "{e}");
 }
 
 const WAYPOINT_AND_DEAD_END: &str = r#"
@@ -365,7 +369,7 @@ fn waypoints_and_dead_ends_join_the_network() {
     for mode in ["karstnsim", "gamma"] {
         let scene = scene(&format!("{WAYPOINT_AND_DEAD_END}\n[skeleton]\nmode = \"{mode}\"\n"));
         let (samples, graph) = inputs(&scene);
-        let s = routing::build(&scene, &samples, &graph).unwrap();
+        let s = build(&scene, &samples, &graph).unwrap();
         let node_of = |name: &str| s.nodes.iter().position(|n| n.keypoint.as_deref() == Some(name));
         let degree = |i: usize| s.links().iter().filter(|l| l.contains(&(i as u32))).count();
         let chamber = node_of("chamber").unwrap_or_else(|| panic!("{mode}: dead end missing"));

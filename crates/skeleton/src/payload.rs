@@ -2,9 +2,46 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Kind, Payload};
+use karst_artifact::{Payload, StageId};
 
-use crate::ConduitType;
+/// The type of a conduit segment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ConduitType {
+    Epikarst,
+    Tube,
+    Canyon,
+    Keyhole,
+    Passage,
+    Bed,
+    Chamber,
+}
+
+impl ConduitType {
+    /// Every type, in a fixed order.
+    pub const ALL: [ConduitType; 7] = [
+        ConduitType::Epikarst,
+        ConduitType::Tube,
+        ConduitType::Canyon,
+        ConduitType::Keyhole,
+        ConduitType::Passage,
+        ConduitType::Bed,
+        ConduitType::Chamber,
+    ];
+
+    /// Lowercase name, as in the artifact.
+    pub fn name(self) -> &'static str {
+        match self {
+            ConduitType::Epikarst => "epikarst",
+            ConduitType::Tube => "tube",
+            ConduitType::Canyon => "canyon",
+            ConduitType::Keyhole => "keyhole",
+            ConduitType::Passage => "passage",
+            ConduitType::Bed => "bed",
+            ConduitType::Chamber => "chamber",
+        }
+    }
+}
 
 /// Whether a node lies above (vadose) or below (phreatic) the water table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -67,7 +104,7 @@ pub struct Skeleton {
 }
 
 impl Payload for Skeleton {
-    const KIND: Kind = Kind::Skeleton;
+    const STAGE: StageId = StageId::Skeleton;
     const SCHEMA: u32 = 3;
 }
 
