@@ -11,7 +11,8 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use karst_artifact::{Kind, Payload, StageError, read_artifact, read_header};
+use karst_artifact::{StageId, read_header};
+use karst_stage::StageError;
 
 /// Differences of one top-level field.
 #[derive(Debug, Default, Clone, PartialEq)]
@@ -29,7 +30,7 @@ pub struct FieldDiff {
 /// The comparison of two artifacts.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Report {
-    pub kind: Kind,
+    pub kind: StageId,
     pub fields: BTreeMap<String, FieldDiff>,
 }
 
@@ -63,12 +64,13 @@ pub fn diff(a: &Path, b: &Path, tol: f64) -> Result<Report, StageError> {
         return Err(StageError::input(format!(
             "{} is a {} artifact but {} is a {} artifact",
             a.display(),
-            kind_a.name(),
+            kind_a.row().kind,
             b.display(),
-            kind_b.name()
+            kind_b.row().kind
         )));
     }
-    let (va, vb) = (payload_value(a, kind_a)?, payload_value(b, kind_b)?);
+    let stage = crate::registry::stage(kind_a);
+    let (va, vb) = (stage.payload_value(a)?, stage.payload_value(b)?);
     let mut fields = BTreeMap::new();
     match (&va, &vb) {
         (Value::Object(ma), Value::Object(mb)) => {
@@ -88,22 +90,6 @@ pub fn diff(a: &Path, b: &Path, tol: f64) -> Result<Report, StageError> {
         _ => compare(&va, &vb, "payload", tol, fields.entry("payload".into()).or_default()),
     }
     Ok(Report { kind: kind_a, fields })
-}
-
-fn payload_value(path: &Path, kind: Kind) -> Result<Value, StageError> {
-    fn value<P: Payload>(path: &Path) -> Result<Value, StageError> {
-        let (_, payload) = read_artifact::<P>(path)?;
-        serde_json::to_value(&payload).map_err(|e| StageError::failure(format!("{}: {e}", path.display())))
-    }
-    match kind {
-        Kind::Samples => value::<karst_sampling::Samples>(path),
-        Kind::Costgraph => value::<karst_costgraph::CostGraph>(path),
-        Kind::Skeleton => value::<karst_skeleton::Skeleton>(path),
-        Kind::Hydro => value::<karst_hydro::Hydro>(path),
-        Kind::Sdf => value::<karst_sdf::SdfModel>(path),
-        Kind::Mesh => value::<karst_mesher::Mesh>(path),
-        Kind::Metrics => value::<karst_metrics::stage::MetricsReport>(path),
-    }
 }
 
 fn compare(a: &Value, b: &Value, path: &str, tol: f64, f: &mut FieldDiff) {

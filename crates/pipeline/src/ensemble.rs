@@ -1,4 +1,4 @@
-//! `cargo xtask ensemble SCENE --n 50`: many realizations of one scene, differing only by seed.
+//! `karstgen ensemble SCENE --n 50`: many realizations of one scene, differing only by seed.
 //!
 //! Realization k runs the scene with `seed = scene seed + k` (k = 0..n) through sampling,
 //! costgraph and skeleton, in process and in parallel, and characterises its skeleton as the
@@ -25,14 +25,16 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
 
-use karst_artifact::{Stage, StageError, read_artifact};
+use karst_artifact::{StageId, read_artifact};
 use karst_geology::Scene;
 use karst_metrics::ranges::{CHARACTERIZE_KEYS, real_cave_ranges};
-use karst_metrics::stage::{MetricsReport, report};
+use karst_metrics::{MetricsReport, report};
 use karst_raster::{BLACK, Canvas, WHITE};
 use karst_skeleton::Skeleton;
+use karst_stage::{Job, StageError};
 
-use crate::executor::{Executor, InProcess};
+use crate::registry;
+use crate::scene::SceneFile;
 
 /// What to run.
 #[derive(Debug, Clone)]
@@ -61,21 +63,20 @@ pub fn run(args: &EnsembleArgs) -> Result<String, StageError> {
             args.n, args.cell
         )));
     }
-    let text = std::fs::read_to_string(&args.scene)
-        .map_err(|e| StageError::input(format!("{}: {e}", args.scene.display())))?;
-    let scene = Scene::parse(&text, &args.scene)?;
-    let grid = Grid::new(&scene, args.cell)?;
+    let scene = SceneFile::load(&args.scene)?;
+    let grid = Grid::new(&scene.scene, args.cell)?;
     static RUNS: AtomicUsize = AtomicUsize::new(0);
     let run_id = RUNS.fetch_add(1, Ordering::Relaxed);
     let scratch = std::env::temp_dir().join(format!("karstgen-ensemble-{}-{run_id}", std::process::id()));
-    let bar = karst_artifact::progress::bar(args.n as u64, "ensemble");
+    let bar = karst_stage::progress::bar(args.n as u64, "ensemble");
     let realizations: Result<Vec<Realization>, StageError> = (0..args.n as u64)
         .into_par_iter()
         .map(|k| {
-            let seed = scene.seed.checked_add(k).filter(|s| i64::try_from(*s).is_ok()).ok_or_else(|| {
-                StageError::input(format!("{}: seed {} + {k} is too large", args.scene.display(), scene.seed))
+            let first = scene.scene.seed();
+            let seed = first.checked_add(k).filter(|s| i64::try_from(*s).is_ok()).ok_or_else(|| {
+                StageError::input(format!("{}: seed {first} + {k} is too large", args.scene.display()))
             })?;
-            let r = realize(&text, seed, &scratch.join(format!("seed-{seed}")), &grid);
+            let r = realize(&scene.with_seed(seed), &scratch.join(format!("seed-{seed}")), &grid);
             bar.inc(1);
             r
         })
@@ -94,28 +95,20 @@ pub fn run(args: &EnsembleArgs) -> Result<String, StageError> {
     ))
 }
 
-/// Runs one seed in `dir` (removed afterwards).
-fn realize(text: &str, seed: u64, dir: &Path, grid: &Grid) -> Result<Realization, StageError> {
+/// Runs one realization in `dir` (removed afterwards).
+fn realize(scene: &SceneFile, dir: &Path, grid: &Grid) -> Result<Realization, StageError> {
     let failure = |e: std::io::Error| StageError::failure(format!("{}: {e}", dir.display()));
     std::fs::create_dir_all(dir).map_err(failure)?;
-    let scene_path = dir.join("scene.toml");
-    std::fs::write(&scene_path, with_seed(text, seed)?).map_err(failure)?;
-    for stage in [Stage::Sampling, Stage::Costgraph, Stage::Skeleton] {
-        InProcess.run(stage, &scene_path, dir)?;
+    let job = Job { scene_path: &scene.path, scene: &scene.scene, out: dir };
+    for stage in [StageId::Sampling, StageId::Costgraph, StageId::Skeleton] {
+        registry::stage(stage).run(&job)?;
     }
-    let (_, skeleton) = read_artifact::<Skeleton>(&dir.join(Stage::Skeleton.file_name()))?;
+    let seed = scene.scene.seed();
+    let (_, skeleton) = read_artifact::<Skeleton>(&job.artifact(StageId::Skeleton))?;
     let report = report(&skeleton).map_err(|e| StageError::input(format!("seed {seed}: skeleton: {e}")))?;
     let cells = grid.cells_of(&skeleton);
     std::fs::remove_dir_all(dir).map_err(failure)?;
     Ok(Realization { seed, report, cells })
-}
-
-/// The scene text with its top-level `seed` replaced.
-fn with_seed(text: &str, seed: u64) -> Result<String, StageError> {
-    let mut table: toml::Table = text.parse().map_err(|e| StageError::input(format!("scene: {e}")))?;
-    let seed = i64::try_from(seed).map_err(|_| StageError::input(format!("seed {seed} is too large")))?;
-    table.insert("seed".into(), toml::Value::Integer(seed));
-    Ok(table.to_string())
 }
 
 /// The probability grid over the scene domain.
@@ -127,7 +120,7 @@ struct Grid {
 
 impl Grid {
     fn new(scene: &Scene, cell: f64) -> Result<Self, StageError> {
-        let (min, max) = (scene.domain.min, scene.domain.max);
+        let (min, max) = (scene.domain().min, scene.domain().max);
         let dims = [0, 1, 2].map(|a| ((max[a] - min[a]) / cell).ceil().max(1.0) as usize);
         if dims.iter().product::<usize>() > 50_000_000 {
             return Err(StageError::input(format!(
@@ -324,15 +317,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn seed_is_replaced_and_the_rest_kept() {
-        let text = "name = \"x\"\nseed = 7\n[domain]\nmin = [0.0, 0.0, 0.0]\n";
-        let out: toml::Table = with_seed(text, 42).unwrap().parse().unwrap();
-        assert_eq!(out["seed"].as_integer(), Some(42));
-        assert_eq!(out["name"].as_str(), Some("x"));
-        assert!(out["domain"].get("min").is_some());
-    }
-
-    #[test]
     fn summary_skips_undefined_values_and_counts_inside() {
         let table = Table {
             columns: vec!["seed".into(), "tortuosity".into(), "n_branches".into()],
@@ -346,7 +330,7 @@ mod tests {
     }
 
     fn run_with_threads(threads: usize, out: &Path) -> Vec<(String, Vec<u8>)> {
-        let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/scenes/tiny.toml");
+        let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scenes/tiny.toml");
         let args = EnsembleArgs { scene, n: 3, cell: 20.0, out: out.to_path_buf() };
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| run(&args)).unwrap();
