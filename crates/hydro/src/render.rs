@@ -4,7 +4,7 @@
 use karst_raster::{BLACK, Canvas, Rgb, Scale, WHITE};
 use karst_skeleton::Skeleton;
 
-use crate::artifact::Hydro;
+use crate::payload::Hydro;
 use crate::water::WaterType;
 
 /// Colour of a water type: blues for contact water, warm colours for free falls.

@@ -4,7 +4,7 @@
 use glam::DVec3;
 use karst_raster::{BLACK, Canvas, Rgb};
 
-use crate::mesh::Surface;
+use crate::payload::TriMesh;
 
 /// Where the viewer stands: azimuth and elevation of the view direction, degrees.
 const AZIMUTH: f64 = -60.0;
@@ -14,7 +14,7 @@ const DEEP: DVec3 = DVec3::new(40.0, 70.0, 140.0);
 const SHALLOW: DVec3 = DVec3::new(225.0, 190.0, 130.0);
 
 /// Renders `surface` on a `width` × `height` canvas with a caption.
-pub fn render(surface: &Surface, width: u32, height: u32, caption: &str) -> Canvas {
+pub fn render(surface: &TriMesh, width: u32, height: u32, caption: &str) -> Canvas {
     let mut canvas = Canvas::new(width, height, BACKGROUND);
     let (az, el) = (AZIMUTH.to_radians(), ELEVATION.to_radians());
     let toward_viewer = DVec3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());

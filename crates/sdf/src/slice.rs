@@ -23,7 +23,7 @@ pub enum Plane {
 }
 
 /// A grid of points over the domain (or a window of it) in `plane`, `pixel` metres apart.
-pub struct Grid {
+pub struct SliceGrid {
     pub width: usize,
     pub height: usize,
     /// In-plane ranges: (u0, v1) is the top-left corner.
@@ -33,7 +33,7 @@ pub struct Grid {
     pixel: f64,
 }
 
-impl Grid {
+impl SliceGrid {
     /// `window` = [u0, u1, v0, v1] in the plane's coordinates (x, y for z slices; x, z for y
     /// slices; y, z for x slices); the domain's extent when `None`.
     pub fn new(field: &CarvedTerrain, plane: Plane, pixel: f64, window: Option<[f64; 4]>) -> Self {
@@ -44,7 +44,7 @@ impl Grid {
             Plane::X(_) => [d.min[1], d.max[1], d.min[2], d.max[2]],
         });
         let size = |s: f64| ((s / pixel).ceil().max(1.0) as usize).min(8192);
-        Grid { width: size(u1 - u0), height: size(v1 - v0), u0, v1, plane, pixel }
+        SliceGrid { width: size(u1 - u0), height: size(v1 - v0), u0, v1, plane, pixel }
     }
 
     /// The point of pixel (x, y), y down (north, or up, at the top).
@@ -77,7 +77,7 @@ fn colour(field: &CarvedTerrain, p: DVec3, pixel: f64) -> Rgb {
 }
 
 /// Writes the PNG slice.
-pub fn write_png(field: &CarvedTerrain, grid: &Grid, path: &Path) -> std::io::Result<()> {
+pub fn write_png(field: &CarvedTerrain, grid: &SliceGrid, path: &Path) -> std::io::Result<()> {
     let pixel = grid.pixel;
     let mut canvas = Canvas::new(grid.width as u32, grid.height as u32, [255, 255, 255]);
     for y in 0..grid.height {
@@ -95,7 +95,7 @@ pub fn write_png(field: &CarvedTerrain, grid: &Grid, path: &Path) -> std::io::Re
 }
 
 /// Writes the EXR slice: R = f, G = cave, B = water.
-pub fn write_exr(field: &CarvedTerrain, grid: &Grid, path: &Path) -> Result<(), exr::error::Error> {
+pub fn write_exr(field: &CarvedTerrain, grid: &SliceGrid, path: &Path) -> Result<(), exr::error::Error> {
     exr::prelude::write_rgb_file(path, grid.width, grid.height, |x, y| {
         let p = grid.point(x, y);
         (field.eval(p) as f32, field.cave(p) as f32, field.water(p) as f32)

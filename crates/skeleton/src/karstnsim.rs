@@ -25,13 +25,13 @@
 use std::collections::BTreeMap;
 
 use glam::DVec3;
-use karst_artifact::StageError;
 use karst_costgraph::CostGraph;
 use karst_geology::{KeyPointKind, Scene, Surface};
 use karst_sampling::Samples;
 
 use crate::Route;
-use crate::routing::{End, chosen_springs, ends, sample_of};
+use crate::ends::{End, chosen_springs, ends, sample_of};
+use crate::error::SkeletonError;
 use crate::search::{Cohesive, EdgeCosts, astar, dijkstra_to_set, min_cost_per_metre};
 
 /// The cost set of a water table, by name.
@@ -83,7 +83,7 @@ pub fn route<'g>(
     cost_set: &CostSets<'g>,
     sinks: &[End],
     phase: &PhaseSetup,
-) -> Result<PhaseRoutes, StageError> {
+) -> Result<PhaseRoutes, SkeletonError> {
     let springs = &phase.springs;
     let mut used = vec![false; graph.edge_count()];
     let mut per_metre: BTreeMap<String, f64> = BTreeMap::new();
@@ -116,7 +116,7 @@ pub fn route<'g>(
                     .weights
                     .get(sink.name)
                     .copied()
-                    .unwrap_or(scene.keypoints[sink.keypoint].weight),
+                    .unwrap_or(scene.keypoints()[sink.keypoint].weight),
                 nodes: Vec::new(),
                 cost: leg.cost,
             };
@@ -127,7 +127,7 @@ pub fn route<'g>(
 }
 
 fn water_table_of<'s>(scene: &'s Scene, spring: &End) -> &'s Surface {
-    let name = scene.keypoints[spring.keypoint].water_table.as_deref().unwrap_or_default();
+    let name = scene.keypoints()[spring.keypoint].water_table.as_deref().unwrap_or_default();
     scene.water_table(name).expect("validation: every spring names a defined water table")
 }
 
@@ -143,7 +143,7 @@ fn leg(
     source: usize,
     target: usize,
 ) -> Option<Leg> {
-    let p = &scene.skeleton;
+    let p = scene.skeleton();
     let at = |v: usize| DVec3::from_array(samples.positions[v]);
     let phreatic = |v: usize| table.height_above(at(v)) <= 0.0;
     let vadose_costs = Cohesive { base: costs, used, factor: p.cohesion_vadose };
