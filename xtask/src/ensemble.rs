@@ -315,7 +315,7 @@ fn top_view(grid: &Grid, probabilities: &[f64], n: usize) -> Canvas {
     bar.draw(&mut c, bar_box);
     let title = format!("Conduit probability of {n} realizations, {} m cells", ticks::human(grid.cell));
     text::draw(&mut c, &title, (axes::LEFT, 10.0), text::TITLE, Align::Left, Valign::Top);
-    let caption = "fraction of realizations with a conduit anywhere in each column of cells";
+    let caption = "fraction of realizations with a conduit anywhere in each column of cells (white: none)";
     text::draw(&mut c, caption, (axes::LEFT, 36.0), text::SMALL, Align::Left, Valign::Top);
     c
 }

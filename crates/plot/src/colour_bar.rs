@@ -9,6 +9,8 @@ use crate::ticks;
 /// Width of the bar itself and the room its ticks, labels and title take, pixels.
 pub const BAR_WIDTH: f64 = 16.0;
 const TICK: f64 = 4.0;
+/// Gap between the title and the bar, room for half the top label.
+const TITLE_GAP: f64 = 10.0;
 
 /// Colours at increasing positions in [0, 1], linearly interpolated.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,7 +71,7 @@ impl ColourBar {
 
     /// Room above the bar for the title.
     pub fn title_height() -> f64 {
-        text::measure("M", SMALL.size).1 + 4.0
+        text::measure("M", SMALL.size).1 + TITLE_GAP
     }
 
     fn labels(&self, height: f64) -> Vec<(f64, String)> {
@@ -95,7 +97,7 @@ impl ColourBar {
             canvas.line((bar.x1, y), (bar.x1 + TICK, y), 1.0, INK);
             text::draw(canvas, &label, (bar.x1 + TICK + 3.0, y), SMALL, Align::Left, Valign::Middle);
         }
-        text::draw(canvas, &self.title, (bar.x0, bar.y0 - 4.0), SMALL, Align::Left, Valign::Bottom);
+        text::draw(canvas, &self.title, (bar.x0, bar.y0 - TITLE_GAP), SMALL, Align::Left, Valign::Bottom);
     }
 }
 

@@ -30,12 +30,10 @@ pub fn ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
 
 /// `v` printed with the decimals a step of `step` needs (at most 6), "-0" shown as "0".
 pub fn format(v: f64, step: f64) -> String {
-    let decimals = if step > 0.0 && step.is_finite() {
-        (-(step.log10() + 1e-9).floor()).clamp(0.0, 6.0) as usize
-    } else {
-        0
-    };
-    let decimals = decimals + usize::from(decimals < 6 && is_quarter(step));
+    let power = if step > 0.0 && step.is_finite() { (step.log10() + 1e-9).floor() } else { 0.0 };
+    let decimals = (-power).clamp(0.0, 6.0) as usize;
+    // 2.5 and 0.25 need one digit more than their power shows; 25 and 250 do not.
+    let decimals = decimals + usize::from(decimals < 6 && power < 1.0 && is_quarter(step));
     let text = format!("{v:.decimals$}");
     if text.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
         text.trim_start_matches('-').into()
@@ -57,6 +55,14 @@ pub fn human(v: f64) -> String {
     let decimals = (2.0 - a.log10().floor()).clamp(0.0, 6.0) as usize;
     let text = format!("{v:.decimals$}");
     if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.').into() } else { text }
+}
+
+/// `v` with up to three decimals, trailing zeros dropped: for coordinates and sizes given by
+/// the user (369.7 stays 369.7, 0.10000000000000001 becomes 0.1).
+pub fn plain(v: f64) -> String {
+    let text = format!("{v:.3}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" { "0".into() } else { text.into() }
 }
 
 /// Whether a nice step is 2.5 × 10^k, which needs one more decimal than its power shows.
@@ -99,10 +105,16 @@ mod tests {
         assert_eq!(format(200.0, 100.0), "200");
         assert_eq!(format(0.30000000000000004, 0.1), "0.3");
         assert_eq!(format(2.5, 2.5), "2.5");
+        assert_eq!(format(575.0, 25.0), "575");
+        assert_eq!(format(0.75, 0.25), "0.75");
         assert_eq!(format(-0.0, 1.0), "0");
         assert_eq!(human(10.000000000000002), "10");
         assert_eq!(human(0.123456), "0.123");
         assert_eq!(human(2459.4), "2459");
         assert_eq!(human(f64::NAN), "undefined");
+        assert_eq!(plain(369.7), "369.7");
+        assert_eq!(plain(0.1 + 0.2), "0.3");
+        assert_eq!(plain(120.0), "120");
+        assert_eq!(plain(-0.0001), "0");
     }
 }

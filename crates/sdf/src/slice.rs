@@ -78,9 +78,9 @@ impl Grid {
     /// The plane's caption and the titles of its across and up axes.
     fn names(&self) -> (String, &'static str, &'static str) {
         match self.plane {
-            Plane::Z(z) => (format!("z = {} m", ticks::human(z)), "easting x (m)", "northing y (m)"),
-            Plane::Y(n) => (format!("y = {} m", ticks::human(n)), "easting x (m)", "elevation z (m)"),
-            Plane::X(e) => (format!("x = {} m", ticks::human(e)), "northing y (m)", "elevation z (m)"),
+            Plane::Z(z) => (format!("z = {} m", ticks::plain(z)), "easting x (m)", "northing y (m)"),
+            Plane::Y(n) => (format!("y = {} m", ticks::plain(n)), "easting x (m)", "elevation z (m)"),
+            Plane::X(e) => (format!("x = {} m", ticks::plain(e)), "northing y (m)", "elevation z (m)"),
         }
     }
 }
@@ -118,9 +118,33 @@ fn rock_bar() -> ColourBar {
     }
 }
 
+/// The three fields a slice shows: the model, or an analytic stand-in in the tests.
+trait Fields {
+    /// The carved terrain: negative in the rock.
+    fn rock(&self, p: DVec3) -> f64;
+    /// The karst volume: negative in the conduits.
+    fn cave(&self, p: DVec3) -> f64;
+    /// The water: negative in it.
+    fn water(&self, p: DVec3) -> f64;
+}
+
+impl Fields for CarvedTerrain {
+    fn rock(&self, p: DVec3) -> f64 {
+        self.eval(p)
+    }
+
+    fn cave(&self, p: DVec3) -> f64 {
+        CarvedTerrain::cave(self, p)
+    }
+
+    fn water(&self, p: DVec3) -> f64 {
+        CarvedTerrain::water(self, p)
+    }
+}
+
 /// The class of the pixel centre `p`.
-fn centre_cell(field: &CarvedTerrain, p: DVec3, pixel: f64) -> Cell {
-    let f = field.eval(p);
+fn centre_cell(field: &impl Fields, p: DVec3, pixel: f64) -> Cell {
+    let f = field.rock(p);
     if f < 0.0 {
         return if field.cave(p).abs() < pixel * 0.7 { Cell::Outline } else { Cell::Rock(-f) };
     }
@@ -135,9 +159,9 @@ fn centre_cell(field: &CarvedTerrain, p: DVec3, pixel: f64) -> Cell {
 
 /// Whether water lies inside pixel (x, y) although its centre is dry: the nearest water is
 /// within the pixel's half diagonal and one of its sub-samples is wet.
-fn water_inside(field: &CarvedTerrain, grid: &Grid, x: usize, y: usize) -> bool {
+fn water_inside(field: &impl Fields, grid: &Grid, x: usize, y: usize) -> bool {
     let (p, reach) = (grid.point(x, y), grid.pixel * std::f64::consts::FRAC_1_SQRT_2);
-    if field.eval(p) < -reach || field.water(p) >= reach {
+    if field.rock(p) < -reach || field.water(p) >= reach {
         return false;
     }
     let step = 1.0 / SUBSAMPLES as f64;
@@ -148,7 +172,7 @@ fn water_inside(field: &CarvedTerrain, grid: &Grid, x: usize, y: usize) -> bool 
 }
 
 /// Every pixel's class, thin water found.
-fn cells(field: &CarvedTerrain, grid: &Grid) -> Vec<Cell> {
+fn cells(field: &impl Fields, grid: &Grid) -> Vec<Cell> {
     let (w, h) = (grid.width, grid.height);
     let mut cells: Vec<Cell> =
         (0..w * h).map(|i| centre_cell(field, grid.point(i % w, i / w), grid.pixel)).collect();
@@ -185,15 +209,18 @@ pub fn picture(field: &CarvedTerrain, grid: &Grid) -> Canvas {
     let cells = cells(field, grid);
     let rock = rock_bar();
     let thin = cells.iter().filter(|c| **c == Cell::ThinWater).count();
-    let mut key = vec![
-        Entry::new(Swatch::Patch(CAVE_AIR), "cave air"),
-        Entry::new(Swatch::Patch(WATER), "water"),
-        Entry::new(Swatch::Patch(OUTLINE), "karst outline"),
-        Entry::new(Swatch::Patch(AIR), "air above ground"),
-    ];
-    if thin > 0 {
-        key.insert(2, Entry::new(Swatch::Patch(THIN_WATER), "water thinner than a pixel"));
-    }
+    let shown = |class: Cell| cells.contains(&class);
+    let key: Vec<Entry> = [
+        (Cell::CaveAir, "cave air"),
+        (Cell::Water, "water"),
+        (Cell::ThinWater, "water thinner than a pixel"),
+        (Cell::Outline, "karst outline"),
+        (Cell::Air, "air above ground"),
+    ]
+    .into_iter()
+    .filter(|(class, _)| shown(*class))
+    .map(|(class, name)| Entry::new(Swatch::Patch(colour(class, &rock)), name))
+    .collect();
     let zoom = (MIN_PICTURE / grid.width.max(grid.height) as f64).floor().clamp(1.0, 8.0);
     let frame = Rect::at(axes::LEFT, 44.0, grid.width as f64 * zoom, grid.height as f64 * zoom);
     let (u, v) = grid.window();
@@ -222,7 +249,7 @@ pub fn picture(field: &CarvedTerrain, grid: &Grid) -> Canvas {
         map::draw_panel(&mut canvas, &axes, furniture_at);
     }
     axes.draw(&mut canvas, across, up);
-    let title = format!("Slice at {caption}, {} m pixels", ticks::human(grid.pixel));
+    let title = format!("Slice at {caption}, {} m pixels", ticks::plain(grid.pixel));
     text::draw(&mut canvas, &title, (axes::LEFT, 10.0), TITLE, Align::Left, Valign::Top);
     legend::draw_column(&mut canvas, &key, (panel_x, frame.y0));
     rock.draw(&mut canvas, bar);
@@ -245,7 +272,7 @@ fn thin_water_note(pixels: usize, pixel: f64) -> Option<String> {
         format!(
             "Water thinner than the {} m pixel: {pixels} pixel(s) hold water their centre misses (light blue); \
              a smaller --pixel shows its shape.",
-            ticks::human(pixel)
+            ticks::plain(pixel)
         )
     })
 }
@@ -347,23 +374,41 @@ mod tests {
         assert_eq!(bar.ticks(160.0).last(), Some(&DEEP_ROCK));
     }
 
+    /// A round conduit of radius 3 m along y through the origin, water 0.3 m deep on its floor.
+    struct Stream;
+
+    impl Fields for Stream {
+        fn rock(&self, p: DVec3) -> f64 {
+            -self.cave(p)
+        }
+
+        fn cave(&self, p: DVec3) -> f64 {
+            p.x.hypot(p.z) - 3.0
+        }
+
+        fn water(&self, p: DVec3) -> f64 {
+            self.cave(p).max((p.z + 2.85).abs() - 0.15)
+        }
+    }
+
+    fn across_the_stream(pixel: f64) -> Grid {
+        let size = (10.0 / pixel).round() as usize;
+        Grid { width: size, height: size, u0: -5.0, v1: 5.0, plane: Plane::Y(0.0), pixel }
+    }
+
     #[test]
     fn water_thinner_than_the_pixel_is_found_and_noted() {
-        let field = field();
-        // A coarse vertical slice through the network: its streams are thinner than 6 m pixels.
-        let skeleton = synthetic::network(3, 6, 8).0;
-        let p = skeleton.nodes[skeleton.conduits[0].nodes[1] as usize].position;
-        let coarse = Grid::new(&field, Plane::X(p[0]), 6.0, None);
-        let fine = Grid::new(
-            &field,
-            Plane::X(p[0]),
-            0.25,
-            Some([p[1] - 10.0, p[1] + 10.0, p[2] - 10.0, p[2] + 10.0]),
-        );
-        let count = |g: &Grid, c: Cell| cells(&field, g).iter().filter(|x| **x == c).count();
-        assert!(count(&coarse, Cell::ThinWater) > 0 || count(&fine, Cell::Water) == 0);
-        assert_eq!(thin_water_note(0, 6.0), None);
-        assert!(thin_water_note(3, 6.0).unwrap().contains("6 m pixel"));
+        let count = |pixel: f64, class: Cell| {
+            cells(&Stream, &across_the_stream(pixel)).iter().filter(|c| **c == class).count()
+        };
+        // 1 m pixels: centres at z = −2.5 and −3.5 miss the water between −3 and −2.7.
+        assert_eq!(count(1.0, Cell::Water), 0);
+        assert!(count(1.0, Cell::ThinWater) > 0);
+        // 5 cm pixels: six rows of water, and no pixel of it is taken for thin water.
+        assert!(count(0.05, Cell::Water) > 100);
+        assert_eq!(count(0.05, Cell::ThinWater), 0);
+        assert_eq!(thin_water_note(0, 1.0), None);
+        assert!(thin_water_note(3, 1.0).unwrap().contains("the 1 m pixel: 3 pixel(s)"));
     }
 
     #[test]
