@@ -444,11 +444,17 @@ fn the_picture_colours_every_segment_by_its_water_type() {
     };
     let h = compute(&skeleton, &HydroParams::default(), &Inputs::default()).unwrap();
     let canvas = picture(&skeleton, &h);
-    // The network views only (the legend on the right shows every colour).
-    let drawn: std::collections::HashSet<[u8; 3]> = (0..2 * 600)
-        .flat_map(|x| (0..600).map(move |y| (x, y)))
+    // The legend lists only the water types present, so the whole picture can be searched.
+    let (width, height) = (i64::from(canvas.width()), i64::from(canvas.height()));
+    let drawn: std::collections::HashSet<[u8; 3]> = (0..width)
+        .flat_map(|x| (0..height).map(move |y| (x, y)))
         .filter_map(|(x, y)| canvas.get(x, y))
         .collect();
+    let mut bytes = Vec::new();
+    canvas.encode_png(&mut bytes).unwrap();
+    let (png_width, png_height, colours) = karst_plot::testing::png_summary(&bytes);
+    assert_eq!((i64::from(png_width), i64::from(png_height)), (width, height));
+    assert!(colours > 20, "{colours} colours");
     let used: Vec<WaterType> = h.conduits.iter().flat_map(|c| c.segments.iter().map(|s| s.water)).collect();
     assert!(
         used.contains(&WaterType::Sump)

@@ -29,7 +29,10 @@ use karst_artifact::{StageId, read_artifact};
 use karst_geology::Scene;
 use karst_metrics::ranges::{CHARACTERIZE_KEYS, real_cave_ranges};
 use karst_metrics::{MetricsReport, report};
-use karst_raster::{BLACK, Canvas, WHITE};
+use karst_plot::axes::{self, Axes};
+use karst_plot::colour_bar::{BAR_WIDTH, ColourBar, ColourMap};
+use karst_plot::text::{self, Align, Valign};
+use karst_plot::{Canvas, Rect, WHITE, ticks};
 use karst_skeleton::Skeleton;
 use karst_stage::{Job, StageError};
 
@@ -278,38 +281,45 @@ fn write_exr(path: &Path, width: usize, height: usize, values: &[f32]) -> Result
         .to_file(path)
 }
 
-/// The top-view probability as a picture, north up, with a colour bar.
+/// The top-view probability as a map: cells on axes in metres (north up), a colour bar, a
+/// scale bar and a north arrow.
 fn top_view(grid: &Grid, probabilities: &[f64], n: usize) -> Canvas {
     let [nx, ny, _] = grid.dims;
-    let scale = (600 / nx.max(ny)).max(1);
-    let (map_w, map_h) = (nx * scale, ny * scale);
-    let mut c = Canvas::new(map_w as u32 + 120, map_h as u32 + 40, WHITE);
+    let zoom = (600 / nx.max(ny)).max(1) as f64;
+    let frame = Rect::at(axes::LEFT, 64.0, nx as f64 * zoom, ny as f64 * zoom);
+    let bar = probability_bar();
+    let bar_box =
+        Rect::at(frame.x1 + 24.0, frame.y0 + ColourBar::title_height(), BAR_WIDTH, frame.height().min(240.0));
+    let extent = |a: usize| (grid.min[a], grid.min[a] + grid.dims[a] as f64 * grid.cell);
+    let map = Axes::new(frame, extent(0), extent(1));
+    let furniture_at = (bar_box.x0, bar_box.y1 + 20.0);
+    let (furniture_w, furniture_h) = karst_plot::map::panel_size(&map);
+    let width = bar_box.x0 + bar.width(bar_box.height()).max(furniture_w) + 16.0;
+    let height = (frame.y1 + axes::BOTTOM + 8.0).max(furniture_at.1 + furniture_h + 8.0);
+    let mut c = Canvas::new(width.ceil() as u32, height.ceil() as u32, WHITE);
     for iy in 0..ny {
         for ix in 0..nx {
-            let colour = ramp(probabilities[iy * nx + ix]);
-            let (x0, y0) = ((ix * scale) as f64, ((ny - 1 - iy) * scale + 30) as f64);
-            c.rect((x0, y0), (x0 + scale as f64, y0 + scale as f64), colour);
+            let (x0, y0) = (frame.x0 + ix as f64 * zoom, frame.y0 + (ny - 1 - iy) as f64 * zoom);
+            c.fill_rect(Rect::at(x0, y0, zoom, zoom), bar.colour(probabilities[iy * nx + ix]));
         }
     }
-    c.text((4, 8), &format!("Conduit probability, {n} realizations, {} m cells", grid.cell), 1, BLACK);
-    let bar_x = map_w as f64 + 30.0;
-    for k in 0..=100 {
-        let y = 30.0 + (100 - k) as f64 * 2.0;
-        c.rect((bar_x, y), (bar_x + 20.0, y + 2.0), ramp(k as f64 / 100.0));
-    }
-    c.text((bar_x as i64 + 24, 30), "1", 1, BLACK);
-    c.text((bar_x as i64 + 24, 226), "0", 1, BLACK);
+    karst_plot::map::draw_panel(&mut c, &map, furniture_at);
+    map.draw(&mut c, "easting x (m)", "northing y (m)");
+    bar.draw(&mut c, bar_box);
+    let title = format!("Conduit probability of {n} realizations, {} m cells", ticks::human(grid.cell));
+    text::draw(&mut c, &title, (axes::LEFT, 10.0), text::TITLE, Align::Left, Valign::Top);
+    let caption = "fraction of realizations with a conduit anywhere in each column of cells (white: none)";
+    text::draw(&mut c, caption, (axes::LEFT, 36.0), text::SMALL, Align::Left, Valign::Top);
     c
 }
 
 /// White at 0, then pale yellow through orange to dark red at 1.
-fn ramp(p: f64) -> [u8; 3] {
-    if p <= 0.0 {
-        return WHITE;
+fn probability_bar() -> ColourBar {
+    ColourBar {
+        map: ColourMap::new(&[(0.0, WHITE), (1e-9, [255, 230, 120]), (1.0, [130, 0, 20])]),
+        range: (0.0, 1.0),
+        title: "fraction of realizations".into(),
     }
-    let t = p.clamp(0.0, 1.0);
-    let lerp = |a: f64, b: f64| (a + (b - a) * t).round() as u8;
-    [lerp(255.0, 130.0), lerp(230.0, 0.0), lerp(120.0, 20.0)]
 }
 
 #[cfg(test)]
@@ -327,6 +337,20 @@ mod tests {
         assert!(lines[1].starts_with("\"tortuosity\",1.2,1.6,2,2,"), "{}", lines[1]);
         assert!(lines[1].ends_with(&format!(",{}", 1.0 / 3.0)), "{}", lines[1]);
         assert_eq!(lines[2], "\"n_branches\",3,4,5,3,,,");
+    }
+
+    #[test]
+    fn the_probability_map_decodes_at_its_size() {
+        let grid = Grid { min: [0.0; 3], cell: 10.0, dims: [30, 20, 4] };
+        let p: Vec<f64> = (0..600).map(|i| f64::from(i % 7) / 6.0).collect();
+        let canvas = top_view(&grid, &p, 6);
+        let mut bytes = Vec::new();
+        canvas.encode_png(&mut bytes).unwrap();
+        let (w, h, colours) = karst_plot::testing::png_summary(&bytes);
+        // 20 px per cell: a 600 × 400 px map under the title, axes below it.
+        assert_eq!(h, (64.0 + 400.0 + axes::BOTTOM + 8.0) as u32);
+        assert!(w > 600 + axes::LEFT as u32 && colours > 10, "{w} px, {colours} colours");
+        assert_eq!(canvas.get(axes::LEFT as i64 + 5, 64 + 395), Some(probability_bar().colour(0.0)));
     }
 
     fn run_with_threads(threads: usize, out: &Path) -> Vec<(String, Vec<u8>)> {
