@@ -43,13 +43,14 @@ enum Command {
 #[derive(Args)]
 #[group(multiple = false)]
 struct NetworkFile {
-    /// karstnet's BASE_nodes.dat and BASE_links.dat.
+    /// karstnet's BASE_nodes.dat and BASE_links.dat (BASE, or either file's name).
     #[arg(long, value_name = "BASE")]
     karstnet: Option<PathBuf>,
     /// A GOCAD PLine file.
     #[arg(long, value_name = "FILE.pl")]
     pline: Option<PathBuf>,
-    /// CSV node table (id,x,y,z) and edge table (from,to).
+    /// CSV node table (id,x,y[,z]) and edge table (from,to | from_id,to_id | source,target),
+    /// delimited by `,` or `;`.
     #[arg(long, num_args = 2, value_names = ["NODES", "EDGES"])]
     csv: Option<Vec<PathBuf>>,
 }
