@@ -6,7 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::field::{self, FieldNode, GridSpec, Layer, NoKarst};
 use crate::params::{
-    CostgraphParams, HydroParams, MesherParams, MetricsParams, SamplingParams, SdfParams, SkeletonParams,
+    CostgraphParams, ExportParams, HydroParams, MesherParams, MetricsParams, SamplingParams, SdfParams,
+    SkeletonParams,
 };
 use crate::validate::{self, Problem};
 use crate::{Domain, FractureFamily, KeyPoint, KeyPointKind, Surface, Terrain};
@@ -45,6 +46,8 @@ pub struct Scene {
     pub mesher: MesherParams,
     #[serde(default)]
     pub metrics: MetricsParams,
+    #[serde(default)]
+    pub export: ExportParams,
 }
 
 /// `[geology]`: the surfaces that guide karstification.
