@@ -19,7 +19,7 @@ use karst_skeleton::ConduitType;
 
 use crate::ExportError;
 use crate::frame::Frame;
-use crate::manifest::{Folder, Surfaces};
+use crate::manifest::{Fill, Folder, Surfaces};
 use crate::network::NetworkView;
 
 const MAGIC: &[u8; 4] = b"glTF";
@@ -70,7 +70,7 @@ struct Builder<'a> {
 
 /// How to write one block of the buffer.
 struct Block<'a> {
-    write: Box<dyn Fn(&mut dyn Write) -> io::Result<()> + 'a>,
+    write: Fill<'a>,
 }
 
 impl<'a> Builder<'a> {

@@ -15,6 +15,10 @@ use karst_mesher::{Mesh, Surface};
 
 use crate::ExportError;
 
+/// A deferred writer of some bytes: the writers lay out a file from its counts first, then
+/// stream each block through one of these.
+pub type Fill<'a> = Box<dyn Fn(&mut dyn Write) -> io::Result<()> + 'a>;
+
 /// Every file an export wrote, in writing order.
 #[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Manifest {

@@ -16,8 +16,9 @@
 //!   `SPRING` (an outfall may have one link only, and a spring may have several conduits).
 //! - Sinks get constant inflows equal to karstgen's recharge in m³/s; pools (hydro's ponds,
 //!   chambers) are storage units with the horizontal area of their widest conduit.
-//! - Initial state: conduits carry hydro's discharge and junctions hold hydro's water level,
-//!   so that the run starts near karstgen's steady state.
+//! - Initial state: junctions hold hydro's water level, so that ponds and flooded conduits do
+//!   not have to fill first (initial conduit flows made the engine's continuity worse: left
+//!   at 0).
 
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -162,9 +163,10 @@ fn end_date(days: u64) -> String {
     format!("{:02}/{:02}/2000", month + 1, day + 1)
 }
 
-/// Depth with 4 decimals, never below what SWMM needs to hold the conduits.
+/// Depth with 4 decimals, never below what SWMM needs to hold the conduits: rounded up, plus
+/// 1 mm so that SWMM's own unit conversions never find a crown above it.
 fn up(x: f64) -> f64 {
-    (x.max(0.0) * 1e4).ceil() / 1e4
+    (x.max(0.0) * 1e4).ceil() / 1e4 + 0.001
 }
 
 fn nodes(w: &mut dyn Write, net: &NetworkView, lay: &Layout) -> io::Result<()> {
@@ -242,11 +244,10 @@ fn conduits(w: &mut dyn Write, net: &NetworkView, lay: &Layout, manning: f64) ->
         let [a, b] = l.ends.map(|n| n as usize);
         let offsets =
             [l.inverts[0] - round4(lay.invert[a]), l.inverts[1] - round4(lay.invert[b])].map(|o| o.max(0.0));
-        let flow = if l.segment.wet { l.segment.discharge } else { 0.0 };
         let length = l.segment.length.max(MIN_LENGTH);
         writeln!(
             w,
-            "{} {} {} {length:.4} {manning} {:.4} {:.4} {flow} 0",
+            "{} {} {} {length:.4} {manning} {:.4} {:.4} 0 0",
             l.segment.id,
             a + 1,
             b + 1,
@@ -259,11 +260,10 @@ fn conduits(w: &mut dyn Write, net: &NetworkView, lay: &Layout, manning: f64) ->
         let length = (lay.crown[n] - lay.invert[n]).max(1.0);
         writeln!(
             w,
-            "{}_outlet {} {} {length:.4} {manning} 0 0 {} 0",
+            "{}_outlet {} {} {length:.4} {manning} 0 0 0 0",
             name(&spring.name),
             n + 1,
-            name(&spring.name),
-            spring.discharge
+            name(&spring.name)
         )?;
     }
     writeln!(w, "\n[XSECTIONS]\n;;Link Shape Geom1 Geom2 Geom3 Geom4 Barrels")?;

@@ -13,7 +13,7 @@ use karst_skeleton::{ConduitType, Zone};
 
 use crate::ExportError;
 use crate::frame::Frame;
-use crate::manifest::{Folder, Surfaces};
+use crate::manifest::{Fill, Folder, Surfaces};
 use crate::network::{NetworkView, NodeKind, SegmentZone, code};
 
 /// One data array: its VTK type, name, components, tuples and how to write its values.
@@ -22,7 +22,7 @@ struct Array<'a> {
     kind: Kind,
     components: usize,
     tuples: usize,
-    write: Box<dyn Fn(&mut dyn Write) -> io::Result<()> + 'a>,
+    write: Fill<'a>,
 }
 
 #[derive(Clone, Copy)]
