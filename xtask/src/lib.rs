@@ -2,12 +2,13 @@
 //!
 //! - [`pipeline`]: run the stages in order like make, skipping up-to-date artifacts;
 //! - [`diff`]: compare two artifacts of the same kind semantically;
-//! - [`bench`]: time every stage on the benchmark scenes;
+//! - [`bench`]: time every stage on the benchmark scenes; [`bench_export`]: the export formats;
 //! - [`ensemble`]: run many seeds of a scene and gather their statistics;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
 //! - [`tools`]: install the outside programs the tests check outputs with.
 
 pub mod bench;
+pub mod bench_export;
 pub mod diff;
 pub mod ensemble;
 pub mod executor;

@@ -81,6 +81,9 @@ enum Task {
         /// Only the mesher's synthetic budget cases (issue 8).
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// Only the export formats, on the finished run in this folder (e.g. out/looping).
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        export: Option<PathBuf>,
     },
     /// Run N seeds of SCENE in parallel: every realization's metrics in one CSV, their summary and
     /// the conduit probability grid (EXR slices and a top-view PNG).
@@ -128,7 +131,8 @@ fn main() -> ExitCode {
         Task::Run { scene, out, from, only, force } => run(scene, out, Selection { from, only, force }),
         Task::Diff { a, b, tol } => return diff_command(&a, &b, tol),
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf, mesher } => bench_command(runs, costgraph, sdf, mesher),
+        Task::Bench { export: Some(dir), runs, .. } => export_bench(&dir, runs),
+        Task::Bench { runs, costgraph, sdf, mesher, .. } => bench_command(runs, costgraph, sdf, mesher),
         Task::Test { args } => return test(&args),
         Task::Ensemble { scene, n, cell, out } => ensemble_command(scene, n, cell, out),
         Task::MetricsTable { write } => metrics_table_command(write),
@@ -283,6 +287,15 @@ fn sdf_bench(runs: usize) -> Result<(), StageError> {
     print_sdf_bench(&format!("synthetic network of {SDF_BENCH_CONDUITS} conduits"), &synthetic);
     let looping = bench::sdf_preset(Path::new("fixtures/scenes/looping.toml"), runs)?;
     print_sdf_bench("looping preset", &looping);
+    Ok(())
+}
+
+fn export_bench(dir: &Path, runs: usize) -> Result<(), StageError> {
+    println!("exports of {}, median of {runs} runs", dir.display());
+    println!("{:<14} {:>10} {:>14}", "formats", "seconds", "bytes");
+    for t in xtask::bench_export::time_exports(dir, runs)? {
+        println!("{:<14} {:>10.3} {:>14}", t.case, t.seconds, t.bytes);
+    }
     Ok(())
 }
 
