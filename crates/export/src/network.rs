@@ -378,3 +378,101 @@ fn check_match(skeleton: &Skeleton, hydro: &Hydro) -> Result<(), ExportError> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use karst_hydro::{ConduitWater, NodeWater, SegmentWater};
+    use karst_skeleton::{Conduit, Node};
+
+    use super::*;
+
+    /// A Y: two sinks (0, 1) join at node 2, which drains to the spring 3 through node 4; a dry
+    /// dead end 5 hangs off node 4.
+    fn y_network() -> NetworkView {
+        let node =
+            |x: f64, z: f64| Node { position: [x, 0.0, z], sample: 0, keypoint: None, zone: Zone::Vadose };
+        let nodes = vec![
+            node(0.0, 30.0),
+            node(10.0, 30.0),
+            node(5.0, 20.0),
+            node(5.0, 0.0),
+            node(5.0, 10.0),
+            node(8.0, 10.0),
+        ];
+        let conduit = |nodes: Vec<u32>| Conduit {
+            radius: vec![1.0; nodes.len()],
+            types: vec![ConduitType::Canyon; nodes.len() - 1],
+            nodes,
+            phase: 0,
+            keypoints: Vec::new(),
+        };
+        let skeleton = Skeleton {
+            nodes,
+            conduits: vec![
+                conduit(vec![0, 2]),
+                conduit(vec![1, 2]),
+                conduit(vec![2, 4, 3]),
+                conduit(vec![5, 4]),
+            ],
+            routes: Vec::new(),
+        };
+        let segment = |flow: f64| SegmentWater {
+            downstream: true,
+            flow,
+            discharge: flow / 2.0,
+            water: if flow > 0.0 { WaterType::Stream } else { WaterType::Dry },
+            slope: 0.1,
+            flow_units: 0.0,
+            look: None,
+            speed: 1.0,
+            depth: 0.1,
+            width: 0.5,
+            level: None,
+            fall: None,
+        };
+        let water = |flows: Vec<f64>| ConduitWater {
+            flow: flows.iter().copied().fold(0.0, f64::max),
+            downstream: true,
+            dry: flows.iter().all(|f| *f == 0.0),
+            radius: None,
+            segments: flows.into_iter().map(segment).collect(),
+        };
+        let hydro_json = serde_json::json!({
+            "flow_units": {"min": 1.0, "max": 2.0},
+            "conduits": [],
+            "nodes": [],
+            "sinks": [{"name": "a", "node": 0, "recharge": 1.0, "springs": []}, {"name": "b", "node": 1, "recharge": 1.0, "springs": []}],
+            "springs": [{"name": "s", "node": 3, "flow": 2.0, "sinks": []}],
+        });
+        let mut hydro: Hydro = serde_json::from_value(hydro_json).unwrap();
+        hydro.conduits = vec![water(vec![1.0]), water(vec![1.0]), water(vec![2.0, 2.0]), water(vec![0.0])];
+        hydro.nodes = (0..6).map(|_| NodeWater { role: Role::Branch, inflow: 0.0 }).collect();
+        NetworkView::new(&skeleton, &hydro).unwrap()
+    }
+
+    #[test]
+    fn kinds_orders_and_branches_of_a_y() {
+        let net = y_network();
+        let kinds: Vec<NodeKind> = net.nodes.iter().map(|n| n.kind).collect();
+        use NodeKind::*;
+        assert_eq!(kinds, [Sink, Sink, Junction, Spring, Junction, DeadEnd]);
+        let orders: Vec<u32> = net.segments.iter().map(|s| s.strahler).collect();
+        assert_eq!(orders, [1, 1, 2, 2, 0], "two order-1 streams make an order-2 one; dry is 0");
+        let branches: Vec<u32> = net.segments.iter().map(|s| s.branch).collect();
+        assert_eq!(branches, [1, 2, 3, 4, 5], "every node of the Y has a degree other than 2");
+        assert_eq!(net.sinks[0].discharge, 0.5, "m³/s from the segments' discharge per flow");
+        assert_eq!(net.parts(), vec![0; 6]);
+    }
+
+    #[test]
+    fn artifacts_of_different_runs_are_refused() {
+        let mut skeleton = Skeleton { nodes: Vec::new(), conduits: Vec::new(), routes: Vec::new() };
+        skeleton.nodes.push(Node { position: [0.0; 3], sample: 0, keypoint: None, zone: Zone::Vadose });
+        let hydro: Hydro = serde_json::from_value(serde_json::json!({
+            "flow_units": {"min": 1.0, "max": 1.0}, "conduits": [], "nodes": [], "sinks": [], "springs": []
+        }))
+        .unwrap();
+        let err = NetworkView::new(&skeleton, &hydro).unwrap_err().to_string();
+        assert!(err.contains("hydro.json describes 0 nodes, skeleton.json has 1"), "{err}");
+    }
+}
