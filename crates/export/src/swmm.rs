@@ -178,7 +178,7 @@ fn nodes(w: &mut dyn Write, net: &NetworkView, lay: &Layout) -> io::Result<()> {
     writeln!(w, "\n[JUNCTIONS]\n;;Name Elevation MaxDepth InitDepth SurDepth Aponded")?;
     for n in (0..net.nodes.len()).filter(|&n| used[n] && !storage.contains_key(&n)) {
         let d = depth(n);
-        writeln!(w, "{} {:.4} {d} {:.4} {} 0", n + 1, lay.invert[n], init[n].min(d), surcharge(n))?;
+        writeln!(w, "{} {:.4} {d:.4} {:.4} {:.4} 0", n + 1, lay.invert[n], init[n].min(d), surcharge(n))?;
     }
     writeln!(w, "\n[OUTFALLS]\n;;Name Elevation Type Gated")?;
     for spring in &net.springs {
@@ -189,7 +189,7 @@ fn nodes(w: &mut dyn Write, net: &NetworkView, lay: &Layout) -> io::Result<()> {
         let d = depth(n);
         writeln!(
             w,
-            "{} {:.4} {d} {:.4} FUNCTIONAL 0 0 {area:.4} {} 0",
+            "{} {:.4} {d:.4} {:.4} FUNCTIONAL 0 0 {area:.4} {:.4} 0",
             n + 1,
             lay.invert[n],
             init[n].min(d),
