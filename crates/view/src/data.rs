@@ -53,12 +53,11 @@ pub struct Bounds {
 impl Bounds {
     fn of(points: impl Iterator<Item = [f64; 3]>) -> Option<Bounds> {
         points.fold(None, |b: Option<Bounds>, p| {
-            let mut b = b.unwrap_or(Bounds { min: p, max: p });
-            for a in 0..3 {
-                b.min[a] = b.min[a].min(p[a]);
-                b.max[a] = b.max[a].max(p[a]);
-            }
-            Some(b)
+            let b = b.unwrap_or(Bounds { min: p, max: p });
+            Some(Bounds {
+                min: [0, 1, 2].map(|a| b.min[a].min(p[a])),
+                max: [0, 1, 2].map(|a| b.max[a].max(p[a])),
+            })
         })
     }
 }

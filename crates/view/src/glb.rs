@@ -208,8 +208,8 @@ mod tests {
             let p = positions[i].map(f64::from);
             let t = [0, 1, 2].map(|a| t[a].as_f64().unwrap());
             let world = [p[0] * s + t[0], p[1] * s - t[2], p[2] * s + t[1]];
-            for a in 0..3 {
-                assert!((world[a] - f64::from(v.position[a])).abs() <= q.step, "vertex {i} axis {a}");
+            for (w, x) in world.iter().zip(v.position) {
+                assert!((w - f64::from(x)).abs() <= q.step, "vertex {i}: {world:?} vs {:?}", v.position);
             }
             assert_eq!(normals[i], [0, 76, 102, 0]);
         }
