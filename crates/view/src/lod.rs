@@ -2,7 +2,9 @@
 //! the triangles of the level before, made by meshoptimizer's edge-collapse simplifier
 //! (`meshopt` crate) from the full chunk.
 //!
-//! The vertices on the chunk's border are locked, so that neighbouring chunks shown at
+//! Level k may stray at most 2ᵏ lattice cells from the full chunk (the error limit stops the
+//! simplifier earlier where a coarser copy would lose the shape, e.g. thin sheets of water), so
+//! a chain can end before [`MAX_LEVELS`]. The vertices on the chunk's border are locked, so that neighbouring chunks shown at
 //! different levels still meet without a crack. Each level records its geometric error in
 //! metres (meshoptimizer's estimate of how far the simplified surface strays from the full
 //! one): the page picks, per chunk, the coarsest level whose error projects to less than a
@@ -32,8 +34,8 @@ pub struct Level {
     pub error: f32,
 }
 
-/// The levels of `chunk`, finest first.
-pub fn levels(chunk: &Chunk) -> Vec<Level> {
+/// The levels of `chunk`, meshed at lattice cell `cell_size` metres, finest first.
+pub fn levels(chunk: &Chunk, cell_size: f32) -> Vec<Level> {
     let mut levels = vec![Level { chunk: optimized(chunk, chunk.indices.clone()), error: 0.0 }];
     let bytes = meshopt::typed_to_bytes(&chunk.vertices);
     let adapter =
@@ -46,7 +48,7 @@ pub fn levels(chunk: &Chunk) -> Vec<Level> {
             &chunk.indices,
             &adapter,
             target * 3,
-            f32::MAX,
+            cell_size * (1 << levels.len()) as f32,
             SimplifyOptions::LockBorder | SimplifyOptions::ErrorAbsolute,
             Some(&mut error),
         );
@@ -77,12 +79,13 @@ mod tests {
         let surface = grid(60);
         let normals = vec![[0.0, 0.0, 1.0]; surface.vertices.len()];
         let chunk = split(&surface, &normals, usize::MAX).remove(0);
-        let levels = levels(&chunk);
+        let levels = levels(&chunk, 1.0);
         assert!(levels.len() >= 3, "{} levels", levels.len());
         assert_eq!(levels[0].chunk.indices.len(), chunk.indices.len());
         for pair in levels.windows(2) {
             assert!(pair[1].chunk.indices.len() * 2 < pair[0].chunk.indices.len());
             assert!(pair[1].error >= pair[0].error);
+            assert!(pair[1].error <= 2.0f32.powi(levels.len() as i32), "the error stays within its limit");
         }
         // The border of the square, every unit point of it, is in every level.
         let on_border = |p: &[f32; 3]| p[0] == 0.0 || p[0] == 60.0 || p[1] == 0.0 || p[1] == 60.0;

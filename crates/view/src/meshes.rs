@@ -78,14 +78,20 @@ fn write_surface(
     let chunks = chunks
         .par_iter()
         .enumerate()
-        .map(|(i, chunk)| write_chunk(view_dir, &format!("data/{name}/c{i:03}"), chunk, &q))
+        .map(|(i, chunk)| write_chunk(view_dir, &format!("data/{name}/c{i:03}"), chunk, &q, cell_size as f32))
         .collect::<Result<Vec<_>, _>>()?;
     Ok(MeshView { name: name.into(), cell_size, triangles: surface.triangles.len(), chunks })
 }
 
-fn write_chunk(view_dir: &Path, stem: &str, chunk: &Chunk, q: &Quantization) -> Result<ChunkView, ViewError> {
+fn write_chunk(
+    view_dir: &Path,
+    stem: &str,
+    chunk: &Chunk,
+    q: &Quantization,
+    cell_size: f32,
+) -> Result<ChunkView, ViewError> {
     let (min, max) = chunk.bounds();
-    let levels = lod::levels(chunk)
+    let levels = lod::levels(chunk, cell_size)
         .iter()
         .enumerate()
         .map(|(k, level)| {

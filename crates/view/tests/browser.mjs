@@ -45,14 +45,13 @@ async function open(browser) {
   await cdp.send('Network.enable');
   const traffic = { bytes: 0, requests: 0 };
   cdp.on('Network.loadingFinished', (e) => { traffic.bytes += e.encodedDataLength; traffic.requests += 1; });
-  const start = Date.now();
   await page.goto(url, { waitUntil: 'load' });
+  // Times on the page's clock, from navigation start.
   await page.waitForFunction(() => window.karstView?.ready === true, { timeout: 60_000, polling: 50 });
   const interactive = await page.evaluate(() => window.karstView.readyAt / 1000);
-  const readyWall = (Date.now() - start) / 1000;
-  await page.waitForFunction(() => window.karstView.settled(), { timeout: 120_000, polling: 100 });
-  const settled = (Date.now() - start) / 1000;
-  return { page, problems, traffic, interactive, readyWall, settled };
+  await page.waitForFunction(() => window.karstView.settled(), { timeout: 120_000, polling: 50 });
+  const settled = await page.evaluate(() => performance.now() / 1000);
+  return { page, problems, traffic, interactive, settled };
 }
 
 /** The share of sample points whose colour differs (by more than 24 in a channel) between a and b. */
@@ -185,7 +184,7 @@ async function missing(browser, file) {
 }
 
 async function bench(browser, png) {
-  const { page, problems, traffic, interactive, readyWall, settled } = await open(browser);
+  const { page, problems, traffic, interactive, settled } = await open(browser);
   const triangles = await page.evaluate(() => window.karstView.triangles());
   const marks = await page.evaluate(() => Object.fromEntries(performance.getEntriesByType('mark')
     .map((m) => [m.name.replace('karst:', ''), Math.round(m.startTime) / 1000])));
@@ -194,7 +193,7 @@ async function bench(browser, png) {
     await page.screenshot({ path: png });
   }
   assert.deepEqual(problems, []);
-  return { interactive, readyWall, settled, marks, megabytes: traffic.bytes / 1e6, requests: traffic.requests, triangles };
+  return { interactive, settled, marks, megabytes: traffic.bytes / 1e6, requests: traffic.requests, triangles };
 }
 
 const browser = await puppeteer.launch({ executablePath: CHROMIUM, args: FLAGS, headless: true });

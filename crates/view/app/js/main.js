@@ -73,9 +73,10 @@ async function main() {
   ];
   layerToggles(layers, viewer);
   sectionControls(viewer);
-  const terrain = surfaces.byName('terrain');
+  // The walk shows the cave, the water and the network alone; the layers come back after it.
+  const outside = layers.filter((l) => ['terrain', 'water-tables', 'horizons', 'keypoints'].includes(l.id));
   const walk = new Walk(data, viewer, (walking) => {
-    if (terrain) terrain.group.visible = !walking && document.getElementById('layer-terrain').checked;
+    for (const l of outside) l.set(!walking && document.getElementById(`layer-${l.id}`).checked);
   });
   walkControls(data, walk, viewer, data.run);
   showMetrics(document.getElementById('metrics-body'), data);

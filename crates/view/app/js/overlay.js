@@ -13,7 +13,10 @@ export function overlays(viewer) {
   const bar = document.getElementById('scale-bar');
   const text = document.getElementById('scale-text');
   const arrow = document.getElementById('north-arrow');
+  const scale = document.getElementById('scale');
   viewer.onFrame(() => {
+    // The bar measures at the orbit target: meaningless during a walk.
+    scale.style.display = viewer.controls.enabled ? '' : 'none';
     const mpp = viewer.metresPerPixel();
     const length = roundDown(mpp * 120);
     bar.style.width = `${length / mpp}px`;

@@ -25,7 +25,7 @@ export function buildSurfaces(data, viewer) {
     }
     geometry.computeVertexNormals();
     const material = new THREE.MeshStandardMaterial({
-      color: COLOURS[s.kind] ?? 0x888888, transparent: true, opacity: 0.3, side: THREE.DoubleSide, depthWrite: false,
+      color: COLOURS[s.kind] ?? 0x888888, transparent: true, opacity: 0.18, side: THREE.DoubleSide, depthWrite: false,
       clippingPlanes: [...box, viewer.sectionPlane],
     });
     const mesh = new THREE.Mesh(geometry, material);

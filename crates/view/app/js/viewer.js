@@ -63,13 +63,17 @@ export class Viewer {
     return new THREE.Vector3(...[0, 1, 2].map((a) => (d.min[a] + d.max[a]) / 2));
   }
 
-  /** The camera south-east of the domain, above it, looking at its centre. */
-  home(target) {
-    const c = target ?? this.centre();
+  /** The camera south-east of the domain and above it, looking at its centre, the whole domain in view. */
+  home() {
+    const d = this.domain;
+    const c = this.centre();
     c.z *= this.exaggeration;
-    const s = this.size();
+    const radius = 0.5 * Math.hypot(d.max[0] - d.min[0], d.max[1] - d.min[1], (d.max[2] - d.min[2]) * this.exaggeration);
+    const vertical = THREE.MathUtils.degToRad(this.camera.fov) / 2;
+    const horizontal = Math.atan(Math.tan(vertical) * this.camera.aspect);
+    const distance = 0.95 * radius / Math.sin(Math.min(vertical, horizontal));
     this.controls.target.copy(c);
-    this.camera.position.set(c.x + 0.55 * s, c.y - 0.95 * s, c.z + 0.75 * s);
+    this.camera.position.copy(c).add(new THREE.Vector3(0.45, -0.75, 0.5).normalize().multiplyScalar(distance));
     this.controls.update();
     this.changed();
   }
