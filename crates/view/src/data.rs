@@ -1,7 +1,7 @@
 //! `view/data/run.json`: everything the page shows that is not a mesh, gathered from the run's
 //! artifacts and its scene — the network (skeleton nodes and conduits), the water on every
 //! segment (hydro), the routes from sink to spring, the key points, the water tables and
-//! horizons sampled on a grid, karstnet's metrics, the mesh chunks to load, and the
+//! horizons sampled on a grid, karstnet's metrics, the ensemble probability of every segment, the mesh chunks to load, and the
 //! [`Problem`]s that leave a layer empty.
 //!
 //! The skeleton and the metrics report go in as their artifacts define them (docs/skeleton.md,
@@ -15,6 +15,7 @@ use karst_hydro::{Hydro, Role, WaterType};
 use karst_metrics::stage::MetricsReport;
 use karst_skeleton::Skeleton;
 
+use crate::ensemble::EnsembleView;
 use crate::meshes::MeshView;
 use crate::run::{Problem, Run};
 
@@ -41,6 +42,8 @@ pub struct ViewData<'a> {
     pub surfaces: Vec<SurfaceView>,
     pub meshes: &'a [MeshView],
     pub metrics: Option<&'a MetricsReport>,
+    /// The ensemble probability of every segment, when the run holds an ensemble.
+    pub ensemble: Option<&'a EnsembleView>,
 }
 
 /// An axis-aligned box, metres.
@@ -144,6 +147,7 @@ pub fn view_data<'a>(run: &'a Run, meshes: &'a [MeshView]) -> ViewData<'a> {
         surfaces: run.scene.as_ref().map(surfaces).unwrap_or_default(),
         meshes,
         metrics: run.metrics.as_ref(),
+        ensemble: run.ensemble.as_ref(),
     }
 }
 

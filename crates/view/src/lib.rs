@@ -23,6 +23,7 @@
 pub mod app;
 pub mod chunks;
 pub mod data;
+pub mod ensemble;
 mod error;
 pub mod glb;
 pub mod lod;

@@ -4,7 +4,8 @@
 //! A folder with none of the pipeline's artifacts is not a run (an error). A run that lacks a
 //! stage, or whose artifact cannot be read or no longer matches its inputs, is still shown:
 //! each such artifact becomes a [`Problem`] that the page lists instead of the layers it would
-//! have fed. The scene is `--scene` when given, else the run's own `scene.toml` (the one
+//! have fed. An ensemble's probability grid (`cargo xtask ensemble SCENE --out DIR`) in the
+//! folder adds the ensemble colouring ([`ensemble`]). The scene is `--scene` when given, else the run's own `scene.toml` (the one
 //! `cargo xtask run` writes for the embedded default scene), else absent (a problem too).
 
 use std::path::{Path, PathBuf};
@@ -19,6 +20,7 @@ use karst_metrics::stage::MetricsReport;
 use karst_skeleton::Skeleton;
 
 use crate::ViewError;
+use crate::ensemble::{self, EnsembleView};
 
 /// The scene file `cargo xtask run` writes into the run folder for the embedded default scene.
 pub const RUN_SCENE: &str = "scene.toml";
@@ -42,6 +44,8 @@ pub struct Run {
     pub hydro: Option<Hydro>,
     pub mesh: Option<Mesh>,
     pub metrics: Option<MetricsReport>,
+    /// The ensemble probability of every segment, when the folder holds an ensemble's grid.
+    pub ensemble: Option<EnsembleView>,
     pub problems: Vec<Problem>,
 }
 
@@ -70,6 +74,7 @@ impl Run {
             hydro: None,
             mesh: None,
             metrics: None,
+            ensemble: None,
             problems: Vec::new(),
         };
         run.scene = run.load_scene(scene)?;
@@ -82,6 +87,7 @@ impl Run {
         run.hydro = hydro.map(|(_, h)| h).and_then(|h| run.matching_hydro(h));
         run.mesh = mesh.map(|(_, m)| m);
         run.metrics = metrics.map(|(_, m)| m);
+        run.ensemble = run.load_ensemble();
         Ok(run)
     }
 
@@ -108,6 +114,21 @@ impl Run {
             affects: vec!["water tables".into(), "horizons".into()],
         });
         Ok(None)
+    }
+
+    /// The ensemble probability, or a problem when the folder's ensemble cannot be read.
+    fn load_ensemble(&mut self) -> Option<EnsembleView> {
+        match ensemble::load(&self.dir, self.skeleton.as_ref()?)? {
+            Ok(view) => Some(view),
+            Err(message) => {
+                self.problems.push(Problem {
+                    file: "probability/grid.json".into(),
+                    message: format!("{message}: rerun `cargo xtask ensemble SCENE --out DIR`"),
+                    affects: vec!["ensemble probability".into()],
+                });
+                None
+            }
+        }
     }
 
     /// Reads the artifact of `stage`, or records why it cannot be shown.

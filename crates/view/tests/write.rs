@@ -184,3 +184,30 @@ fn writing_again_replaces_the_view() {
         .collect();
     assert!(leftovers.is_empty());
 }
+
+#[test]
+fn an_ensemble_in_the_run_folder_colours_every_segment() {
+    let dir = tiny_run("ensemble", &[]);
+    let args = xtask::ensemble::EnsembleArgs { scene: tiny_scene(), n: 3, cell: 10.0, out: dir.clone() };
+    xtask::ensemble::run(&args).unwrap();
+    let report = write_view(&dir, Some(&tiny_scene())).unwrap();
+    assert!(report.problems.is_empty(), "{:?}", report.problems);
+    let data = run_json(&dir);
+    assert_eq!(data["ensemble"]["realizations"], 3);
+    let conduits = data["ensemble"]["segments"].as_array().unwrap();
+    assert_eq!(conduits.len(), data["skeleton"]["conduits"].as_array().unwrap().len());
+    for (c, segments) in conduits.iter().enumerate() {
+        let expected = data["skeleton"]["conduits"][c]["nodes"].as_array().unwrap().len() - 1;
+        assert_eq!(segments.as_array().unwrap().len(), expected);
+        for p in segments.as_array().unwrap() {
+            // The run is realization 0 (the scene's own seed): each of its segments counts once.
+            let p = p.as_f64().unwrap();
+            assert!((1.0 / 3.0 - 1e-6..=1.0 + 1e-6).contains(&p), "conduit {c}: probability {p}");
+        }
+    }
+    std::fs::remove_file(dir.join("probability/z-000.exr")).unwrap();
+    let report = write_view(&dir, Some(&tiny_scene())).unwrap();
+    assert_eq!(report.problems.len(), 1);
+    assert!(report.problems[0].message.contains("z-000.exr"), "{}", report.problems[0].message);
+    assert!(run_json(&dir)["ensemble"].is_null());
+}

@@ -1,5 +1,5 @@
 // Colouring of the network: one colour per segment end, by conduit type, water type, flow,
-// phase, zone or elevation, and the legend that explains it.
+// phase, zone, elevation or ensemble probability, and the legend that explains it.
 
 import * as THREE from 'three';
 
@@ -33,6 +33,7 @@ export function modes(data) {
   const m = [['type', 'conduit type']];
   if (data.hydro) m.push(['water', 'water type (Emilien 2015)'], ['flow', 'flow (log scale)']);
   m.push(['phase', 'phase'], ['zone', 'zone (vadose / phreatic)'], ['elevation', 'elevation']);
+  if (data.ensemble) m.push(['probability', `ensemble probability (${data.ensemble.realizations} realizations)`]);
   return m;
 }
 
@@ -50,13 +51,15 @@ export function colouring(mode, data, segments) {
     return new THREE.Color(table[key] ?? DRY);
   };
   let legend;
-  if (mode === 'elevation' || mode === 'flow') {
-    const value = mode === 'elevation'
-      ? (s, end) => sk.nodes[end ? s.b : s.a].position[2]
-      : (s) => data.hydro.conduits[s.conduit].segment_flow[s.index];
+  if (mode === 'elevation' || mode === 'flow' || mode === 'probability') {
+    const value = {
+      elevation: (s, end) => sk.nodes[end ? s.b : s.a].position[2],
+      flow: (s) => data.hydro.conduits[s.conduit].segment_flow[s.index],
+      probability: (s) => data.ensemble.segments[s.conduit][s.index],
+    }[mode];
     const values = segments.flatMap((s) => [value(s, 0), value(s, 1)]).filter((v) => mode !== 'flow' || v > 0);
-    let lo = Math.min(...values);
-    let hi = Math.max(...values);
+    let lo = mode === 'probability' ? 0 : Math.min(...values);
+    let hi = mode === 'probability' ? 1 : Math.max(...values);
     if (!Number.isFinite(lo)) { lo = 0; hi = 1; }
     const scale = mode === 'flow' ? (v) => (Math.log(v) - Math.log(lo)) / ((Math.log(hi) - Math.log(lo)) || 1)
       : (v) => (v - lo) / ((hi - lo) || 1);
@@ -66,7 +69,12 @@ export function colouring(mode, data, segments) {
         put(i, end, mode === 'flow' && !(v > 0) ? new THREE.Color(DRY) : ramp(scale(v)));
       }
     });
-    legend = { title: mode === 'flow' ? 'flow (network units, log scale; grey: dry)' : 'elevation (m)', ramp: rampCss(), lo, hi };
+    const titles = {
+      flow: 'flow (network units, log scale; grey: dry)',
+      elevation: 'elevation (m)',
+      probability: 'fraction of realizations with a conduit there',
+    };
+    legend = { title: titles[mode], ramp: rampCss(), lo, hi };
   } else {
     const table = { type: CONDUIT_TYPES, water: WATER_TYPES, zone: ZONES }[mode];
     segments.forEach((s, i) => {

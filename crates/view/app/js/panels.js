@@ -158,6 +158,9 @@ export function showSelection(data, network, pick, route) {
       list.push(['flow', `${fmt(w.segment_flow[s.index])} units, ${fmt(w.discharge[s.index], ' m³/s')}`],
         ['water', w.water[s.index]], ['water depth', fmt(w.depth[s.index], ' m')]);
     }
+    if (data.ensemble) {
+      list.push(['ensemble probability', `${data.ensemble.segments[s.conduit][s.index].toFixed(2)} of ${data.ensemble.realizations}`]);
+    }
     if (c.keypoints?.length) list.push(['ends at', c.keypoints.join(', ')]);
   } else {
     const n = sk.nodes[pick.node];
