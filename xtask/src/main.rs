@@ -33,6 +33,8 @@ enum Task {
     Run(karstgen::cli::RunArgs),
     /// `karstgen diff`: compare two artifacts of the same kind; exit 1 when they differ.
     Diff(karstgen::cli::DiffArgs),
+    /// `karstgen view`: write (and serve) the web viewer of a run.
+    View(karst_view::cli::ViewArgs),
     /// Regenerate the golden artifacts of the tiny scene and print what changed.
     Bless,
     /// Time every stage of the benchmark scenes (median of RUNS runs).
@@ -86,6 +88,11 @@ fn main() -> ExitCode {
         Task::Diff(args) => {
             let (a, b) = (karstgen::cli::resolve(&here, &args.a), karstgen::cli::resolve(&here, &args.b));
             return karstgen::cli::diff_command(&karstgen::cli::DiffArgs { a, b, tol: args.tol });
+        }
+        Task::View(mut args) => {
+            args.dir = karstgen::cli::resolve(&here, &args.dir);
+            args.scene = args.scene.map(|p| karstgen::cli::resolve(&here, &p));
+            karst_view::cli::view(&args)
         }
         Task::Bless => bless(),
         Task::Bench { runs, costgraph, sdf, mesher, export } => {
