@@ -4,6 +4,7 @@
 //! - [`diff`]: compare two artifacts of the same kind semantically;
 //! - [`bench`]: time every stage on the benchmark scenes;
 //! - [`ensemble`]: run many seeds of a scene and gather their statistics;
+//! - [`peer`]: time the network half beside KarstNSim;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
 //! - [`tools`]: install the outside programs the tests check outputs with.
 
@@ -12,5 +13,6 @@ pub mod diff;
 pub mod ensemble;
 pub mod executor;
 pub mod metrics_table;
+pub mod peer;
 pub mod pipeline;
 pub mod tools;

@@ -81,6 +81,9 @@ enum Task {
         /// Only the mesher's synthetic budget cases (issue 8).
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// Only the network half beside KarstNSim (pykarstnsim in .venv-peer), alternating runs.
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        peer: bool,
     },
     /// Run N seeds of SCENE in parallel: every realization's metrics in one CSV, their summary and
     /// the conduit probability grid (EXR slices and a top-view PNG).
@@ -128,7 +131,8 @@ fn main() -> ExitCode {
         Task::Run { scene, out, from, only, force } => run(scene, out, Selection { from, only, force }),
         Task::Diff { a, b, tol } => return diff_command(&a, &b, tol),
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf, mesher } => bench_command(runs, costgraph, sdf, mesher),
+        Task::Bench { runs, peer: true, .. } => peer_bench(runs),
+        Task::Bench { runs, costgraph, sdf, mesher, .. } => bench_command(runs, costgraph, sdf, mesher),
         Task::Test { args } => return test(&args),
         Task::Ensemble { scene, n, cell, out } => ensemble_command(scene, n, cell, out),
         Task::MetricsTable { write } => metrics_table_command(write),
@@ -262,6 +266,41 @@ fn bench_command(
 
     sdf_bench(runs)?;
     mesher_and_network_bench(runs)
+}
+
+/// karstgen's network half beside KarstNSim on `peer::SCENE` (issue 21), every case.
+fn peer_bench(runs: usize) -> Result<(), StageError> {
+    use xtask::peer;
+    let python = peer::peer_python(&workspace_root())?;
+    let binaries = Binaries::build().map_err(StageError::Failure)?;
+    println!("{} vs KarstNSim (pykarstnsim 2.0.1), {runs} alternating runs each, medians", peer::SCENE);
+    println!(
+        "| case | samples (ours / theirs) | KarstNSim wall / CPU / peak | karstgen wall / CPU / peak | ratio wall / CPU | load |"
+    );
+    println!("|---|---|---|---|---|---|");
+    for case in peer::CASES {
+        let load = peer::load_average();
+        let r = peer::run_case(case, runs, &binaries.dir, &python)?;
+        let (ours, theirs) = r.medians();
+        let show = |u: peer::Usage| {
+            format!("{:.2} s / {:.2} s / {:.0} MB", u.wall, u.cpu, u.peak_bytes as f64 / 1e6)
+        };
+        let load = match (load, peer::load_average()) {
+            (Some(a), Some(b)) => format!("{a:.1}–{b:.1}"),
+            _ => "-".into(),
+        };
+        println!(
+            "| {} | {} / {} | {} | {} | {:.1}× / {:.1}× | {load} |",
+            case.name,
+            r.our_samples,
+            r.their_samples,
+            show(theirs),
+            show(ours),
+            theirs.wall / ours.wall,
+            theirs.cpu / ours.cpu
+        );
+    }
+    Ok(())
 }
 
 /// The mesher's budget cases (issue 8) on a synthetic model of 30k capsules.
