@@ -11,6 +11,7 @@
 //! fails.
 
 pub mod atomic;
+pub mod bulk;
 pub mod cli;
 pub mod envelope;
 pub mod error;

@@ -16,7 +16,9 @@ use crate::stats::Summary;
 /// `targets[offsets[i]..offsets[i + 1]]`, with costs at the same indices in every cost set.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CostGraph {
+    #[serde(with = "karst_artifact::bulk")]
     pub offsets: Vec<u32>,
+    #[serde(with = "karst_artifact::bulk")]
     pub targets: Vec<u32>,
     /// At least one cost set; set 0 is the default.
     pub cost_sets: Vec<CostSet>,
@@ -30,12 +32,13 @@ pub struct CostSet {
     /// The water table whose C_WT these costs use; None for paris2021.
     pub water_table: Option<String>,
     /// One cost per edge, > 0.
+    #[serde(with = "karst_artifact::bulk")]
     pub costs: Vec<f32>,
 }
 
 impl Payload for CostGraph {
     const KIND: Kind = Kind::Costgraph;
-    const SCHEMA: u32 = 2;
+    const SCHEMA: u32 = 3;
 }
 
 impl CostGraph {
