@@ -51,10 +51,11 @@ fn edges(scene: &Scene, points: &[[f64; 3]], order: &[u32], done: &(dyn Fn() + S
 /// sample of an eighth of the edges describes them as well as all do, at an eighth of the cost.
 const STATS_STRIDE: usize = 8;
 
-/// What one chunk of nodes contributes: costs per set row by row, a sample of edge lengths,
-/// the term distributions.
+/// What one chunk of nodes contributes: costs per set row by row, the least cost per metre
+/// per set, a sample of edge lengths, the term distributions.
 struct ChunkCosts {
     costs: Vec<Vec<f32>>,
+    least_per_metre: Vec<f64>,
     lengths: Vec<f64>,
     sets: Vec<SetStats>,
 }
@@ -87,7 +88,12 @@ fn costed(
         .map(|(s, water_table)| {
             let mut costs = vec![0f32; rows.targets.len()];
             knn::scatter(order, &rows.offsets, chunks.iter().map(|c| c.costs[s].as_slice()), &mut costs);
-            CostSet { water_table, costs }
+            let least = chunks.iter().map(|c| c.least_per_metre[s]).fold(f64::INFINITY, f64::min);
+            CostSet {
+                water_table,
+                costs,
+                min_cost_per_metre: Some(if least.is_finite() { least } else { 0.0 }),
+            }
         })
         .collect();
     for chunk in &chunks {
@@ -106,6 +112,7 @@ fn cost_chunk(
     let edges: usize = chunk.iter().map(|&i| rows.row(i as usize).len()).sum();
     let mut out = ChunkCosts {
         costs: vec![Vec::with_capacity(edges); model.set_count()],
+        least_per_metre: vec![f64::INFINITY; model.set_count()],
         lengths: Vec::with_capacity(edges / STATS_STRIDE + 1),
         sets: sets.to_vec(),
     };
@@ -119,8 +126,14 @@ fn cost_chunk(
                 return Err(CostGraphError::CoincidentSamples { a: i.min(j), b: i.max(j), position });
             }
             model.edge(fields, i, j, &mut terms);
-            for (costs, &cost) in out.costs.iter_mut().zip(&terms.cost) {
-                costs.push(cost as f32);
+            for ((costs, least), &cost) in out.costs.iter_mut().zip(&mut out.least_per_metre).zip(&terms.cost)
+            {
+                let stored = cost as f32;
+                costs.push(stored);
+                // As the searches would measure it: the stored cost over the length.
+                if terms.length > 0.0 {
+                    *least = least.min(f64::from(stored) / terms.length);
+                }
             }
             if !i.is_multiple_of(STATS_STRIDE) {
                 continue;

@@ -34,6 +34,11 @@ pub struct CostSet {
     /// One cost per edge, > 0.
     #[serde(with = "karst_artifact::bulk")]
     pub costs: Vec<f32>,
+    /// The least cost per metre (stored cost / length) of the edges between distinct
+    /// positions, the factor of the searches' A* heuristic, recorded while the costs are made
+    /// so that no later stage goes over every edge again to find it; None when not recorded
+    /// (graphs made from lists) or after costs were changed.
+    pub min_cost_per_metre: Option<f64>,
 }
 
 impl Payload for CostGraph {
@@ -95,7 +100,7 @@ impl CostGraph {
         CostGraph {
             offsets,
             targets,
-            cost_sets: vec![CostSet { water_table: None, costs }],
+            cost_sets: vec![CostSet { water_table: None, costs, min_cost_per_metre: None }],
             summary: Summary::default(),
         }
     }
@@ -110,7 +115,11 @@ mod tests {
         let mut g = CostGraph::from_lists(vec![vec![(1, 1.0)], vec![(0, 2.0)]]);
         assert_eq!(g.cost_set_of_water_table("any"), Some(0));
         g.cost_sets[0].water_table = Some("high".into());
-        g.cost_sets.push(CostSet { water_table: Some("low".into()), costs: vec![3.0, 4.0] });
+        g.cost_sets.push(CostSet {
+            water_table: Some("low".into()),
+            costs: vec![3.0, 4.0],
+            min_cost_per_metre: None,
+        });
         assert_eq!(g.cost_set_of_water_table("low"), Some(1));
         assert_eq!(g.cost_set_of_water_table("none"), None);
         assert_eq!(g.out_edges_in(1, 1).collect::<Vec<_>>(), vec![(0, 4.0)]);

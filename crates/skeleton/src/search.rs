@@ -39,6 +39,10 @@ pub trait EdgeCosts: Sync {
     fn direct(&self) -> Option<Direct<'_>> {
         None
     }
+    /// The least cost per metre of the edges, when the cost graph recorded it for these costs.
+    fn recorded_min_cost_per_metre(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// Costs a search reads straight from the cost graph: edge e costs `costs[e]`, times the
@@ -99,6 +103,10 @@ impl EdgeCosts for CostGraph {
     fn direct(&self) -> Option<Direct<'_>> {
         Some(Direct::plain(self, &self.cost_sets[0].costs))
     }
+
+    fn recorded_min_cost_per_metre(&self) -> Option<f64> {
+        self.cost_sets[0].min_cost_per_metre
+    }
 }
 
 /// One cost set of the cost graph (KarstNSim: the costs under one spring's water table).
@@ -121,6 +129,10 @@ impl EdgeCosts for CostSetOf<'_> {
 
     fn direct(&self) -> Option<Direct<'_>> {
         Some(Direct::plain(self.graph, &self.graph.cost_sets[self.set].costs))
+    }
+
+    fn recorded_min_cost_per_metre(&self) -> Option<f64> {
+        self.graph.cost_sets[self.set].min_cost_per_metre
     }
 }
 
@@ -151,8 +163,12 @@ impl EdgeCosts for Cohesive<'_> {
 
 /// The smallest cost per metre of any edge between distinct positions: the factor of the A*
 /// heuristic. Zero when the graph has no such edge (the heuristic then vanishes).
-/// The nodes are taken in parallel (a minimum is the same in any order).
+/// The cost graph's record when it has one, else every edge is measured, the nodes in
+/// parallel (a minimum is the same in any order).
 pub fn min_cost_per_metre(graph: &dyn EdgeCosts, positions: &[[f64; 3]]) -> f64 {
+    if let Some(least) = graph.recorded_min_cost_per_metre() {
+        return least;
+    }
     let direct = graph.direct();
     let least = (0..graph.node_count())
         .into_par_iter()
