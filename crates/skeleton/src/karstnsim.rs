@@ -32,7 +32,7 @@ use karst_sampling::Samples;
 
 use crate::Route;
 use crate::routing::{End, chosen_springs, ends, sample_of};
-use crate::search::{Cohesive, EdgeCosts, astar, dijkstra_to_set, min_cost_per_metre};
+use crate::search::{Cohesive, EdgeCosts, astar, astar_to_set, min_cost_per_metre};
 
 /// The cost set of a water table, by name.
 pub type CostSets<'g> = dyn Fn(&str) -> &'g (dyn EdgeCosts + 'g) + 'g;
@@ -147,7 +147,11 @@ fn leg(
     let at = |v: usize| DVec3::from_array(samples.positions[v]);
     let phreatic = |v: usize| table.height_above(at(v)) <= 0.0;
     let vadose_costs = Cohesive { base: costs, used, factor: p.cohesion_vadose };
-    let (vadose, reached) = dijkstra_to_set(&vadose_costs, source, phreatic);
+    // Every edge costs at least this per metre of its length, and the water table is at least
+    // `depth_bound` away: A* towards it.
+    let vadose_per_metre = per_metre * p.cohesion_vadose.min(1.0);
+    let to_water_table = |v: usize| vadose_per_metre * depth_bound(table, at(v));
+    let (vadose, reached) = astar_to_set(&vadose_costs, source, to_water_table, phreatic);
     let entry = reached?;
     let phreatic_costs = Cohesive { base: costs, used, factor: p.cohesion_phreatic };
     let heuristic = per_metre * p.cohesion_phreatic.min(1.0);
@@ -157,6 +161,14 @@ fn leg(
     let mut edges = vadose.edges(entry);
     edges.extend(phreatic.edges(target));
     Some(Leg { path, edges, cost: vadose.cost(entry) + phreatic.cost(target) })
+}
+
+/// A lower bound of the distance from `p` to the water table's phreatic side that changes by at
+/// most the distance moved (so that the vadose A* heuristic is consistent): the height of `p`
+/// above a plane along its normal; 0 for a TIN (whose distance costs a search of its
+/// triangles: the vadose leg then runs as plain Dijkstra).
+fn depth_bound(table: &Surface, p: DVec3) -> f64 {
+    if table.mesh().is_some() { 0.0 } else { table.signed_distance(p).max(0.0) }
 }
 
 /// Marks `edges` and their reverse edges used.

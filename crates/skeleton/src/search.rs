@@ -194,24 +194,31 @@ pub fn min_cost_per_metre(graph: &dyn EdgeCosts, positions: &[[f64; 3]]) -> f64 
 
 /// A shortest-path tree grown from one source, possibly partial (the search stops early).
 pub struct Tree {
-    cost: Vec<f64>,
-    predecessor: Vec<u32>,
-    via: Vec<u32>,
+    /// Per node: the cost so far, the predecessor and the edge from it, side by side so that a
+    /// relaxation touches one cache line.
+    nodes: Vec<Reached>,
+}
+
+#[derive(Clone, Copy)]
+struct Reached {
+    cost: f64,
+    predecessor: u32,
+    via: u32,
 }
 
 impl Tree {
     /// Cost of the least-cost path to `target`; infinite when it was not reached.
     pub fn cost(&self, target: usize) -> f64 {
-        self.cost[target]
+        self.nodes[target].cost
     }
 
     /// The path source → target as node indices, or None when it was not reached.
     pub fn path(&self, target: usize) -> Option<Vec<usize>> {
-        self.cost[target].is_finite().then(|| {
+        self.cost(target).is_finite().then(|| {
             let mut path = vec![target];
             let mut at = target;
-            while self.predecessor[at] != NONE {
-                at = self.predecessor[at] as usize;
+            while self.nodes[at].predecessor != NONE {
+                at = self.nodes[at].predecessor as usize;
                 path.push(at);
             }
             path.reverse();
@@ -222,13 +229,13 @@ impl Tree {
     /// The edge ids of the path source → target (empty when not reached or target = source).
     pub fn edges(&self, target: usize) -> Vec<usize> {
         let mut edges = Vec::new();
-        if !self.cost[target].is_finite() {
+        if !self.cost(target).is_finite() {
             return edges;
         }
         let mut at = target;
-        while self.predecessor[at] != NONE {
-            edges.push(self.via[at] as usize);
-            at = self.predecessor[at] as usize;
+        while self.nodes[at].predecessor != NONE {
+            edges.push(self.nodes[at].via as usize);
+            at = self.nodes[at].predecessor as usize;
         }
         edges.reverse();
         edges
@@ -259,19 +266,27 @@ pub fn dijkstra_to_set(
     source: usize,
     is_target: impl Fn(usize) -> bool,
 ) -> (Tree, Option<usize>) {
+    astar_to_set(graph, source, |_| 0.0, is_target)
+}
+
+/// A* from `source` to the cheapest node for which `is_target` holds. `heuristic` must be a
+/// consistent lower bound of the cost to the set (0 on its members, and never dropping by
+/// more than an edge's cost along it): the first member settled is then the cheapest, as with
+/// [`dijkstra_to_set`], after settling fewer nodes.
+pub fn astar_to_set(
+    graph: &dyn EdgeCosts,
+    source: usize,
+    heuristic: impl Fn(usize) -> f64,
+    is_target: impl Fn(usize) -> bool,
+) -> (Tree, Option<usize>) {
     let mut reached = None;
-    let tree = grow(
-        graph,
-        source,
-        |_| 0.0,
-        |u| {
-            let hit = is_target(u);
-            if hit {
-                reached = Some(u);
-            }
-            hit
-        },
-    );
+    let tree = grow(graph, source, heuristic, |u| {
+        let hit = is_target(u);
+        if hit {
+            reached = Some(u);
+        }
+        hit
+    });
     (tree, reached)
 }
 
@@ -297,11 +312,11 @@ fn grow(
     mut settle: impl FnMut(usize) -> bool,
 ) -> Tree {
     let n = graph.node_count();
-    let mut tree = Tree { cost: vec![f64::INFINITY; n], predecessor: vec![NONE; n], via: vec![NONE; n] };
+    let mut tree = Tree { nodes: vec![Reached { cost: f64::INFINITY, predecessor: NONE, via: NONE }; n] };
     let mut settled = vec![false; n];
     let mut heap = RadixHeap::new();
     let direct = graph.direct();
-    tree.cost[source] = 0.0;
+    tree.nodes[source].cost = 0.0;
     heap.push(heuristic(source).to_bits(), source as u32);
     while let Some(node) = heap.pop() {
         let u = node as usize;
@@ -312,13 +327,12 @@ fn grow(
         if settle(u) {
             break;
         }
-        let here = tree.cost[u];
+        let here = tree.nodes[u].cost;
         let mut relax = |edge: usize, v: usize, c: f64| {
             let through = here + c;
-            if through < tree.cost[v] {
-                tree.cost[v] = through;
-                tree.predecessor[v] = node;
-                tree.via[v] = edge as u32;
+            let reached = &mut tree.nodes[v];
+            if through < reached.cost {
+                *reached = Reached { cost: through, predecessor: node, via: edge as u32 };
                 heap.push((through + heuristic(v)).to_bits(), v as u32);
             }
         };
