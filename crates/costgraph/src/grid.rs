@@ -120,11 +120,15 @@ impl<'a> Grid<'a> {
             *radius *= 1.5;
         }
         if out.len() > k {
-            // The k smallest keys first (in no order), then only those sorted.
-            out.select_nth_unstable(k - 1);
+            if out.len() > 2 * k {
+                out.select_nth_unstable(k - 1);
+                out.truncate(k);
+            }
+            out.sort_unstable();
             out.truncate(k);
+        } else {
+            out.sort_unstable();
         }
-        out.sort_unstable();
         if out.len() == k {
             // Next guess: 10 % beyond this k-th distance (never below half a cell).
             *radius = (1.1 * squared_distance(out[k - 1]).sqrt()).max(0.5 * self.cell);
