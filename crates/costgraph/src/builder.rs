@@ -77,7 +77,7 @@ fn costed(
             costs
         })
         .collect();
-    let chunks: Vec<ChunkCosts> = chunks.into_iter().collect::<Result<_, _>>()?;
+    let mut chunks: Vec<ChunkCosts> = chunks.into_iter().collect::<Result<_, _>>()?;
     let longest = chunks.iter().flat_map(|c| &c.lengths).copied().fold(0.0, f64::max);
     let mut summary =
         Summary { model: model.name().into(), lengths: Some(Histogram::new(0.0, longest)), sets: empty };
@@ -88,6 +88,10 @@ fn costed(
         .map(|(s, water_table)| {
             let mut costs = vec![0f32; rows.targets.len()];
             knn::scatter(order, &rows.offsets, chunks.iter().map(|c| c.costs[s].as_slice()), &mut costs);
+            // Each set's chunk costs go once copied: the peak holds one set twice, not all.
+            for chunk in &mut chunks {
+                chunk.costs[s] = Vec::new();
+            }
             let least = chunks.iter().map(|c| c.least_per_metre[s]).fold(f64::INFINITY, f64::min);
             CostSet {
                 water_table,
