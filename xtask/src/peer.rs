@@ -40,10 +40,10 @@ pub struct PeerCase {
 
 /// The cases of issue 21.
 pub const CASES: &[PeerCase] = &[
-    PeerCase { name: "100k, k = 50", radius: 14.2, peer_radius: 0.0226, k: 50, threads: None },
+    PeerCase { name: "100k, k = 50", radius: 14.2, peer_radius: 0.02245, k: 50, threads: None },
     PeerCase { name: "300k, k = 50", radius: 9.86, peer_radius: 0.01563, k: 50, threads: None },
     PeerCase { name: "1M, k = 30", radius: 6.6, peer_radius: 0.01044, k: 30, threads: None },
-    PeerCase { name: "100k, k = 50, 1 thread", radius: 14.2, peer_radius: 0.0226, k: 50, threads: Some(1) },
+    PeerCase { name: "100k, k = 50, 1 thread", radius: 14.2, peer_radius: 0.02245, k: 50, threads: Some(1) },
 ];
 
 /// What one process (or one side's chain of processes) used.
