@@ -209,16 +209,16 @@ fn measure(mut command: Command, log: &Path) -> Result<(Usage, String), StageErr
     let (status, usage) = reap(child.id() as libc::pid_t).map_err(|e| fail(e.to_string()))?;
     let wall = start.elapsed().as_secs_f64();
     let output = std::fs::read_to_string(log).unwrap_or_default();
-    if !status {
-        return Err(fail(format!("failed:\n{}", tail(&output))));
+    if let Some(status) = status {
+        return Err(fail(format!("{status} after {wall:.1} s:\n{}", tail(&output))));
     }
     let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
     let cpu = seconds(usage.ru_utime) + seconds(usage.ru_stime);
     Ok((Usage { wall, cpu, peak_bytes: usage.ru_maxrss as u64 * 1024 }, output))
 }
 
-/// Waits for `pid` and returns whether it exited with 0, and its resource usage.
-fn reap(pid: libc::pid_t) -> std::io::Result<(bool, libc::rusage)> {
+/// Waits for `pid` and returns how it failed (None: it exited with 0), and its resource usage.
+fn reap(pid: libc::pid_t) -> std::io::Result<(Option<String>, libc::rusage)> {
     let mut status = 0;
     // SAFETY: an all-zero rusage is a valid value of this plain C struct.
     let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
@@ -226,7 +226,13 @@ fn reap(pid: libc::pid_t) -> std::io::Result<(bool, libc::rusage)> {
         // SAFETY: `pid` is our own unreaped child; both pointers are to live locals.
         let r = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
         if r == pid {
-            return Ok((libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0, usage));
+            let failure = match (libc::WIFEXITED(status), libc::WIFSIGNALED(status)) {
+                (true, _) if libc::WEXITSTATUS(status) == 0 => None,
+                (true, _) => Some(format!("exit code {}", libc::WEXITSTATUS(status))),
+                (_, true) => Some(format!("killed by signal {}", libc::WTERMSIG(status))),
+                _ => Some(format!("wait status {status}")),
+            };
+            return Ok((failure, usage));
         }
         let error = std::io::Error::last_os_error();
         if error.kind() != std::io::ErrorKind::Interrupted {
