@@ -29,9 +29,10 @@ use karst_artifact::StageError;
 use karst_costgraph::CostGraph;
 use karst_geology::{KeyPointKind, Scene, Surface};
 use karst_sampling::Samples;
+use rayon::prelude::*;
 
 use crate::Route;
-use crate::routing::{End, chosen_springs, ends, sample_of};
+use crate::routing::{End, candidate_springs, chosen_springs, ends, sample_of};
 use crate::search::{Cohesive, EdgeCosts, astar, astar_to_set, min_cost_per_metre};
 
 /// The cost set of a water table, by name.
@@ -90,22 +91,28 @@ pub fn route<'g>(
     let mut routes = Vec::new();
     for sink in sinks {
         let source = sample_of(samples, sink)?;
-        let mut legs: BTreeMap<usize, Leg> = BTreeMap::new();
-        let chosen = chosen_springs(scene, sink, springs, &mut |spring| {
-            let table = water_table_of(scene, spring);
+        // The legs towards every candidate spring depend only on the network before this sink:
+        // they are searched in parallel, then chosen among in the candidates' order.
+        let mut searches = Vec::new();
+        for spring in candidate_springs(scene, sink, springs) {
+            let table = water_table_of(scene, &spring);
             let base = cost_set(&table.name);
-            let costs = &Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
             let m = *per_metre
                 .entry(table.name.clone())
                 .or_insert_with(|| min_cost_per_metre(base, &samples.positions) * phase.inherited_cost);
-            let target = sample_of(samples, spring)?;
-            let leg = leg(scene, samples, costs, &used, m, table, source, target);
-            let cost = leg.as_ref().map_or(f64::INFINITY, |l| l.cost);
-            if let Some(l) = leg {
-                legs.insert(spring.row, l);
-            }
-            Ok(cost)
-        })?;
+            searches.push((spring.row, base, table, m, sample_of(samples, &spring)?));
+        }
+        let found: Vec<(usize, Option<Leg>)> = searches
+            .into_par_iter()
+            .map(|(row, base, table, m, target)| {
+                let costs = &Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
+                (row, leg(scene, samples, costs, &used, m, table, source, target))
+            })
+            .collect();
+        let costs: BTreeMap<usize, f64> =
+            found.iter().map(|(row, l)| (*row, l.as_ref().map_or(f64::INFINITY, |l| l.cost))).collect();
+        let legs: BTreeMap<usize, Leg> = found.into_iter().filter_map(|(row, l)| Some((row, l?))).collect();
+        let chosen = chosen_springs(scene, sink, springs, &mut |spring| Ok(costs[&spring.row]))?;
         for spring in chosen {
             let leg = &legs[&spring.row];
             mark_used(graph, &leg.edges, &mut used);
