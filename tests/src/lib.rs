@@ -1,28 +1,17 @@
-//! Helpers shared by the cross-stage tests: where the fixtures are, scratch folders, running
-//! the pipeline in process.
+//! Helpers shared by the cross-stage tests: running the pipeline in process.
 
 use std::path::{Path, PathBuf};
 
-use karst_artifact::{Stage, StageError};
-use xtask::executor::InProcess;
-use xtask::pipeline::{self, Selection, StageReport};
+use karst_artifact::StageId;
+use karst_pipeline::make::{self, Selection, StageReport};
+use karst_pipeline::scene::SceneFile;
+use karst_stage::StageError;
 
-/// The workspace root.
-pub fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("tests/ is in the workspace").to_path_buf()
-}
-
-/// A fresh, empty scratch folder for one test.
-pub fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("karstgen-e2e-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir is writable");
-    dir
-}
+pub use karst_testkit::{root, scratch};
 
 /// Runs the pipeline on `scene` into `out` in this process.
 pub fn run(scene: &Path, out: &Path, selection: &Selection) -> Result<Vec<StageReport>, StageError> {
-    pipeline::run(scene, out, selection, &InProcess, false)
+    make::run(&SceneFile::load(scene)?, out, selection, &mut |_| {})
 }
 
 /// Runs the pipeline with a rayon pool of `threads` threads.
@@ -32,6 +21,6 @@ pub fn run_with_threads(scene: &Path, out: &Path, threads: usize) -> Result<Vec<
 }
 
 /// The artifact file of every stage in `dir`.
-pub fn artifacts(dir: &Path) -> Vec<(Stage, PathBuf)> {
-    Stage::ALL.into_iter().map(|s| (s, dir.join(s.file_name()))).collect()
+pub fn artifacts(dir: &Path) -> Vec<(StageId, PathBuf)> {
+    StageId::ALL.into_iter().map(|s| (s, dir.join(s.file_name()))).collect()
 }

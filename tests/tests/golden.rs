@@ -1,8 +1,8 @@
 //! The tiny scene's artifacts are pinned in fixtures/golden/tiny: a change in any stage's output
 //! shows here (rerun `cargo xtask bless` and explain the change in the commit).
 
+use karst_pipeline::diff;
 use karstgen_tests::{artifacts, root, run_with_threads, scratch};
-use xtask::diff;
 
 #[test]
 fn tiny_scene_matches_the_golden_artifacts() {

@@ -5,12 +5,11 @@
 //! Every preset's routes are also checked: each sink reaches a spring it may reach (connectivity
 //! matrix, last phase's springs) along the network's links.
 
-use karst_artifact::{Stage, read_artifact};
+use karst_artifact::{StageId, read_artifact};
 use karst_geology::{KeyPointKind, Link, Scene};
-use karst_skeleton::routing::ends;
+use karst_pipeline::make::Selection;
 use karst_skeleton::{ConduitType, Skeleton};
 use karstgen_tests::{root, run, scratch};
-use xtask::pipeline::Selection;
 
 const PRESETS: [&str; 6] =
     ["branchwork", "looping", "rectilinear", "superimposed", "karstnsim", "karstnsim-2phase"];
@@ -41,11 +40,21 @@ fn summary(s: &Skeleton) -> serde_json::Value {
 
 /// Why the routes of `skeleton` break the rules of `scene`: a sink without a route, a route to a
 /// spring the sink may not reach (connectivity 0, or a spring of an earlier phase), a connected
+/// A sink or a spring: its row (column) of the connectivity matrix and its name.
+struct End<'a> {
+    row: usize,
+    name: &'a str,
+}
+
+fn ends(scene: &Scene, kind: KeyPointKind) -> Vec<End<'_>> {
+    scene.keypoints_of(kind).enumerate().map(|(row, (_, k))| End { row, name: &k.name }).collect()
+}
+
 /// (1) spring not reached, or a route that does not follow the links from its sink to its spring.
 fn route_failures(scene: &Scene, skeleton: &Skeleton, preset: &str) -> Vec<String> {
     let mut failures = Vec::new();
     let springs = ends(scene, KeyPointKind::Spring);
-    let active = |name: &str| scene.phases.last().is_none_or(|p| p.springs.iter().any(|s| s == name));
+    let active = |name: &str| scene.phases().last().is_none_or(|p| p.springs.iter().any(|s| s == name));
     let mut links = skeleton.links();
     links.sort_unstable();
     for sink in ends(scene, KeyPointKind::Sink) {
@@ -92,10 +101,10 @@ fn preset_skeletons_match_their_golden_summaries() {
     for preset in PRESETS {
         let out = scratch(&format!("preset-{preset}"));
         let scene = root().join(format!("fixtures/scenes/{preset}.toml"));
-        for stage in [Stage::Sampling, Stage::Costgraph, Stage::Skeleton] {
+        for stage in [StageId::Sampling, StageId::Costgraph, StageId::Skeleton] {
             run(&scene, &out, &Selection { only: Some(stage), ..Selection::default() }).unwrap();
         }
-        let (_, skeleton) = read_artifact::<Skeleton>(&out.join(Stage::Skeleton.file_name())).unwrap();
+        let (_, skeleton) = read_artifact::<Skeleton>(&out.join(StageId::Skeleton.file_name())).unwrap();
         failures.extend(route_failures(&Scene::load(&scene).unwrap(), &skeleton, preset));
         let got = summary(&skeleton);
         let golden = root().join(format!("fixtures/golden/{preset}/skeleton-summary.json"));

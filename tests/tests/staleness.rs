@@ -3,11 +3,12 @@
 
 use std::fs;
 
-use karst_artifact::{Stage, StageError};
+use karst_artifact::StageId;
+use karst_pipeline::make::{Outcome, Selection};
+use karst_stage::StageError;
 use karstgen_tests::{root, run, scratch};
-use xtask::pipeline::{Outcome, Selection};
 
-fn ran(reports: &[xtask::pipeline::StageReport]) -> Vec<Stage> {
+fn ran(reports: &[karst_pipeline::make::StageReport]) -> Vec<StageId> {
     reports.iter().filter(|r| matches!(r.outcome, Outcome::Ran { .. })).map(|r| r.stage).collect()
 }
 
@@ -18,18 +19,18 @@ fn second_run_is_up_to_date_and_sdf_edit_reruns_sdf_and_mesher() {
     let text = fs::read_to_string(root().join("fixtures/scenes/tiny.toml")).unwrap();
     fs::write(&scene, &text).unwrap();
     let first = run(&scene, &out, &Selection::default()).unwrap();
-    assert_eq!(ran(&first), Stage::ALL.to_vec());
+    assert_eq!(ran(&first), StageId::ALL.to_vec());
     let second = run(&scene, &out, &Selection::default()).unwrap();
     assert!(second.iter().all(|r| r.outcome == Outcome::UpToDate), "{second:?}");
 
     fs::write(&scene, format!("{text}\n[sdf]\nradius_scale = 1.25\n")).unwrap();
     let third = run(&scene, &out, &Selection::default()).unwrap();
-    assert_eq!(ran(&third), vec![Stage::Sdf, Stage::Mesher]);
+    assert_eq!(ran(&third), vec![StageId::Sdf, StageId::Mesher]);
 
-    let only = run(&scene, &out, &Selection { only: Some(Stage::Hydro), ..Selection::default() }).unwrap();
-    assert_eq!(ran(&only), vec![Stage::Hydro]);
-    let from = run(&scene, &out, &Selection { from: Some(Stage::Mesher), ..Selection::default() }).unwrap();
-    assert_eq!(ran(&from), vec![Stage::Mesher, Stage::Metrics]);
+    let only = run(&scene, &out, &Selection { only: Some(StageId::Hydro), ..Selection::default() }).unwrap();
+    assert_eq!(ran(&only), vec![StageId::Hydro]);
+    let from = run(&scene, &out, &Selection { from: Some(StageId::Mesher), ..Selection::default() }).unwrap();
+    assert_eq!(ran(&from), vec![StageId::Mesher, StageId::Metrics]);
 }
 
 #[test]
@@ -43,7 +44,7 @@ fn flipped_byte_in_samples_stops_costgraph_with_a_checksum_error() {
     bytes[last] ^= 0x01;
     fs::write(&samples, bytes).unwrap();
     let err =
-        run(&scene, &out, &Selection { from: Some(Stage::Costgraph), ..Selection::default() }).unwrap_err();
+        run(&scene, &out, &Selection { from: Some(StageId::Costgraph), ..Selection::default() }).unwrap_err();
     let StageError::BadInput(message) = err else { panic!("expected bad input, got {err}") };
     let message = message.to_string();
     assert!(message.contains("samples.bin") && message.contains("checksum"), "{message}");

@@ -1,18 +1,13 @@
-//! karstgen's task runner, as a library so that tests drive exactly what `cargo xtask` does.
+//! karstgen's developer tasks, as a library so that tests drive exactly what `cargo xtask` does.
 //!
-//! - [`pipeline`]: run the stages in order like make, skipping up-to-date artifacts;
-//! - [`diff`]: compare two artifacts of the same kind semantically;
-//! - [`bench`]: time every stage on the benchmark scenes;
-//! - [`ensemble`]: run many seeds of a scene and gather their statistics;
+//! - [`bench`]: time every stage on the benchmark scenes and each stage's budget cases;
 //! - [`peer`]: time the network half beside KarstNSim;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
 //! - [`tools`]: install the outside programs the tests check outputs with.
+//!
+//! Running the pipeline, diffs and ensembles are `karstgen`'s (crates/pipeline).
 
 pub mod bench;
-pub mod diff;
-pub mod ensemble;
-pub mod executor;
 pub mod metrics_table;
 pub mod peer;
-pub mod pipeline;
 pub mod tools;

@@ -9,11 +9,12 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use karst_artifact::{Stage, StageError, read_artifact};
+use karst_artifact::{StageId, read_artifact};
+use karst_metrics::MetricsReport;
 use karst_metrics::ranges::{CHARACTERIZE_KEYS, real_cave_ranges};
-use karst_metrics::stage::MetricsReport;
-
-use crate::executor::{Executor, InProcess};
+use karst_pipeline::registry;
+use karst_pipeline::scene::SceneFile;
+use karst_stage::{Job, StageError};
 
 const BEGIN: &str = "<!-- metrics-table -->";
 const END: &str = "<!-- /metrics-table -->";
@@ -32,10 +33,13 @@ pub fn scenes(dir: &Path) -> Result<Vec<PathBuf>, StageError> {
 
 /// Runs the stages up to metrics for `scene` into `out` and reads its report.
 pub fn scene_report(scene: &Path, out: &Path) -> Result<MetricsReport, StageError> {
-    for stage in [Stage::Sampling, Stage::Costgraph, Stage::Skeleton, Stage::Hydro, Stage::Metrics] {
-        InProcess.run(stage, scene, out)?;
+    let loaded = SceneFile::load(scene)?;
+    let job = Job { scene_path: scene, scene: &loaded.scene, out };
+    for stage in [StageId::Sampling, StageId::Costgraph, StageId::Skeleton, StageId::Hydro, StageId::Metrics]
+    {
+        registry::stage(stage).run(&job)?;
     }
-    Ok(read_artifact::<MetricsReport>(&out.join(Stage::Metrics.file_name()))?.1)
+    Ok(read_artifact::<MetricsReport>(&job.artifact(StageId::Metrics))?.1)
 }
 
 /// The Markdown table: one row per karstnet metric, one column per scene, then the range.

@@ -16,7 +16,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
-use karst_artifact::{Stage, StageError};
+use karst_artifact::StageId;
+use karst_stage::StageError;
 
 /// The scene both sides run.
 pub const SCENE: &str = "fixtures/bench/karstnsim-peer.toml";
@@ -95,6 +96,27 @@ fn median_usage(runs: &[Usage]) -> Usage {
     }
 }
 
+/// karstgen's network half: the stages KarstNSim's run covers.
+const NETWORK_HALF: [StageId; 3] = [StageId::Sampling, StageId::Costgraph, StageId::Skeleton];
+
+/// Builds the network half's stage binaries (release) and returns their folder, beside this
+/// xtask binary.
+pub fn stage_binaries() -> Result<PathBuf, StageError> {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let mut command = Command::new(cargo);
+    command.args(["build", "--release", "--quiet", "--bins"]);
+    for stage in NETWORK_HALF {
+        command.args(["--package", stage.row().binary]);
+    }
+    let status = command.status().map_err(|e| StageError::failure(format!("cannot run cargo: {e}")))?;
+    if !status.success() {
+        return Err(StageError::failure("building the stage binaries failed"));
+    }
+    let exe = std::env::current_exe().map_err(StageError::failure)?;
+    let dir = exe.parent().ok_or_else(|| StageError::failure("the xtask binary has no folder"))?;
+    Ok(dir.to_path_buf())
+}
+
 /// Installs the peer when missing and returns its Python.
 pub fn peer_python(root: &Path) -> Result<PathBuf, StageError> {
     crate::tools::ensure_venv(root, REQUIREMENTS, VENV).map_err(StageError::failure)
@@ -156,14 +178,14 @@ fn run_ours(case: &PeerCase, scene: &Path, out: &Path, bin: &Path) -> Result<(Us
     let _ = std::fs::remove_dir_all(out);
     let mut total = Usage::default();
     let mut samples = 0;
-    for stage in [Stage::Sampling, Stage::Costgraph, Stage::Skeleton] {
-        let mut command = Command::new(bin.join(stage.binary()));
+    for stage in NETWORK_HALF {
+        let mut command = Command::new(bin.join(stage.row().binary));
         command.arg("run").arg(scene).arg("--out").arg(out);
         if let Some(threads) = case.threads {
             command.env("RAYON_NUM_THREADS", threads.to_string());
         }
         let (usage, stdout) = measure(command, &out.with_extension(format!("{}.log", stage.name())))?;
-        if stage == Stage::Sampling {
+        if stage == StageId::Sampling {
             samples = first_number(&stdout)
                 .ok_or_else(|| StageError::failure(format!("sampling said {stdout:?}")))?;
         }

@@ -1,9 +1,21 @@
-//! The artifact file format: a one-line JSON [`Header`] then the payload.
+//! The artifact file format: a [`Header`] and the payload, in one of two layouts.
 //!
-//! Bulk payloads (samples, costgraph, sdf, mesh) are encoded with postcard (a maintained serde
-//! codec with a stable, documented wire format; see the README for the measurement that chose
-//! it over bincode 2); small ones (skeleton, hydro, metrics) are pretty JSON so that a review or
-//! CI diff is readable.
+//! - Bulk payloads (samples, costgraph, sdf, mesh) are encoded with postcard (a maintained serde
+//!   codec with a stable, documented wire format; see the README for the measurement that chose
+//!   it over bincode 2): the file is the header as one line of JSON, then the payload bytes.
+//! - Small payloads (skeleton, hydro, metrics) are pretty JSON, so that a review or CI diff is
+//!   readable, and the whole file is one JSON document that any JSON parser reads:
+//!
+//!   ```text
+//!   {"header":{"format":"karstgen-artifact",...},
+//!   "payload":
+//!   { ...the payload, pretty-printed... }
+//!   }
+//!   ```
+//!
+//!   The first line is `{"header":` + the header + `,`, the second `"payload":`; the payload's
+//!   bytes run from the third line to the file's last line, which is `}`. `payload_len` and
+//!   `payload_blake3` cover exactly those payload bytes, so both layouts are checked alike.
 
 use std::fs;
 use std::io::{BufRead, BufReader, Read, Write};
@@ -13,6 +25,7 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
+use crate::stages::{Encoding, StageId, stage_key};
 use crate::{atomic, hash};
 
 /// The value of the header's `format` field.
@@ -21,57 +34,11 @@ pub const FORMAT: &str = "karstgen-artifact";
 /// Longest header line accepted; anything longer is not one of ours.
 const MAX_HEADER_LEN: u64 = 64 * 1024;
 
-/// The kinds of artifact, one per stage.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Kind {
-    Samples,
-    Costgraph,
-    Skeleton,
-    Hydro,
-    Sdf,
-    Mesh,
-    Metrics,
-}
-
-impl Kind {
-    /// Lowercase name, as in the header.
-    pub fn name(self) -> &'static str {
-        match self {
-            Kind::Samples => "samples",
-            Kind::Costgraph => "costgraph",
-            Kind::Skeleton => "skeleton",
-            Kind::Hydro => "hydro",
-            Kind::Sdf => "sdf",
-            Kind::Mesh => "mesh",
-            Kind::Metrics => "metrics",
-        }
-    }
-
-    /// How this kind's payload is encoded.
-    pub fn encoding(self) -> Encoding {
-        match self {
-            Kind::Samples | Kind::Costgraph | Kind::Sdf | Kind::Mesh => Encoding::Postcard,
-            Kind::Skeleton | Kind::Hydro | Kind::Metrics => Encoding::Json,
-        }
-    }
-
-    /// The stage that writes this kind (named in "rerun" advice).
-    pub fn stage_name(self) -> &'static str {
-        crate::pipeline::Stage::of_kind(self).name()
-    }
-}
-
-/// Payload encodings.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-pub enum Encoding {
-    /// postcard 1.x wire format.
-    #[serde(rename = "postcard-1")]
-    Postcard,
-    /// Pretty-printed JSON.
-    #[serde(rename = "json")]
-    Json,
-}
+/// How a JSON artifact's first line starts, and its second line.
+const JSON_OPEN: &[u8] = b"{\"header\":";
+const JSON_PAYLOAD: &[u8] = b"\"payload\":\n";
+/// How a JSON artifact ends, after the payload's bytes.
+const JSON_CLOSE: &[u8] = b"}\n";
 
 /// One upstream artifact an artifact was made from.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -88,7 +55,7 @@ pub struct InputRef {
 #[serde(deny_unknown_fields)]
 pub struct Header {
     pub format: String,
-    pub kind: Kind,
+    pub kind: StageId,
     pub schema: u32,
     pub producer: String,
     pub encoding: Encoding,
@@ -108,12 +75,35 @@ pub struct Provenance {
     pub params: String,
 }
 
-/// A type that is the payload of one kind of artifact.
+/// A type that is the payload of one stage's artifact.
 pub trait Payload: Serialize + DeserializeOwned {
-    /// The artifact kind.
-    const KIND: Kind;
+    /// The stage that writes it.
+    const STAGE: StageId;
     /// Bumped on every change of the payload's layout or meaning.
     const SCHEMA: u32;
+
+    /// Checks what decoding cannot: indices in range, counts consistent, numbers finite and in
+    /// their physical range. Called once on every payload read, before anything uses it, so
+    /// that a file with a right checksum but wrong content is an error naming the field, not a
+    /// panic or a silent wrong result downstream.
+    fn validate(&self) -> Result<(), Invalid> {
+        Ok(())
+    }
+}
+
+/// What is wrong with a decoded payload: the field (a path such as `conduits[3].nodes[1]`)
+/// and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Invalid {
+    pub field: String,
+    pub problem: String,
+}
+
+impl Invalid {
+    /// `field` is wrong because of `problem`.
+    pub fn new(field: impl Into<String>, problem: impl Into<String>) -> Self {
+        Invalid { field: field.into(), problem: problem.into() }
+    }
 }
 
 /// Encodes `payload`, then atomically writes header and payload to `path`.
@@ -125,8 +115,9 @@ pub fn write_artifact<P: Payload>(
     provenance: &Provenance,
     payload: &P,
 ) -> Result<Header, Error> {
-    let err = |e: String| Error::Encode { kind: P::KIND.name().into(), detail: e };
-    let (bytes, payload_len, payload_blake3) = match P::KIND.encoding() {
+    let err = |e: String| Error::Encode { kind: P::STAGE.row().kind.into(), detail: e };
+    let encoding = P::STAGE.row().encoding;
+    let (bytes, payload_len, payload_blake3) = match encoding {
         Encoding::Postcard => {
             let mut sink = Chunked::new(HashSink { hasher: blake3::Hasher::new(), len: 0 });
             postcard::to_io(payload, &mut sink).map_err(|e| err(e.to_string()))?;
@@ -134,42 +125,40 @@ pub fn write_artifact<P: Payload>(
             (None, sink.len, sink.hasher.finalize().to_hex().to_string())
         }
         Encoding::Json => {
-            let bytes = encode(payload)?;
+            let mut bytes = serde_json::to_vec_pretty(payload).map_err(|e| err(e.to_string()))?;
+            bytes.push(b'\n');
             let (len, digest) = (bytes.len() as u64, hash::hex(&bytes));
             (Some(bytes), len, digest)
         }
     };
-    let stage = crate::pipeline::Stage::of_kind(P::KIND);
-    let key = crate::pipeline::stage_key(
-        stage,
-        &provenance.producer,
-        P::SCHEMA,
-        &provenance.params,
-        &provenance.inputs,
-    );
     let header = Header {
         format: FORMAT.to_string(),
-        kind: P::KIND,
+        kind: P::STAGE,
         schema: P::SCHEMA,
         producer: provenance.producer.clone(),
-        encoding: P::KIND.encoding(),
-        key,
+        encoding,
+        key: stage_key(P::STAGE, &provenance.producer, P::SCHEMA, &provenance.params, &provenance.inputs),
         inputs: provenance.inputs.clone(),
         params: provenance.params.clone(),
         payload_len,
         payload_blake3,
     };
     let line = serde_json::to_string(&header).map_err(|e| err(e.to_string()))?;
-    atomic::write_with(path, |w| {
-        w.write_all(line.as_bytes())?;
-        w.write_all(b"\n")?;
-        match &bytes {
-            Some(bytes) => w.write_all(bytes),
-            None => {
-                let mut chunked = Chunked::new(w);
-                postcard::to_io(payload, &mut chunked).map_err(std::io::Error::other)?;
-                chunked.finish().map(|_| ())
-            }
+    atomic::write_with(path, |w| match &bytes {
+        Some(bytes) => {
+            w.write_all(JSON_OPEN)?;
+            w.write_all(line.as_bytes())?;
+            w.write_all(b",\n")?;
+            w.write_all(JSON_PAYLOAD)?;
+            w.write_all(bytes)?;
+            w.write_all(JSON_CLOSE)
+        }
+        None => {
+            w.write_all(line.as_bytes())?;
+            w.write_all(b"\n")?;
+            let mut chunked = Chunked::new(w);
+            postcard::to_io(payload, &mut chunked).map_err(std::io::Error::other)?;
+            chunked.finish().map(|_| ())
         }
     })
     .map_err(|source| Error::Write { path: path.to_path_buf(), source })?;
@@ -251,35 +240,68 @@ pub fn read_header(path: &Path) -> Result<Header, Error> {
     read_header_from(path, &mut reader)
 }
 
-/// Reads an artifact of kind `P::KIND`, checking format, kind, schema, length and checksum.
+/// Reads an artifact of `P`'s stage, checking format, kind, schema, length and checksum, then
+/// the payload's own consistency ([`Payload::validate`]).
 pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
     let file = fs::File::open(path).map_err(|source| Error::Open { path: path.into(), source })?;
+    let file_len = file.metadata().map_err(|source| Error::Open { path: path.into(), source })?.len();
     let mut reader = BufReader::new(file);
     let header = read_header_from(path, &mut reader)?;
     check_kind_and_schema::<P>(path, &header)?;
-    let mut payload = Vec::with_capacity(header.payload_len.min(1 << 32) as usize);
+    let stage = P::STAGE.name().to_string();
+    let length_error = |found: u64| Error::Length {
+        path: path.into(),
+        found,
+        expected: header.payload_len,
+        stage: stage.clone(),
+    };
+    // The header's length is checked against the file before anything is allocated for it.
+    if header.payload_len > file_len {
+        return Err(length_error(file_len));
+    }
+    let mut payload = Vec::with_capacity(header.payload_len as usize);
     reader.read_to_end(&mut payload).map_err(|source| Error::Open { path: path.into(), source })?;
-    let stage = P::KIND.stage_name().to_string();
-    if payload.len() as u64 != header.payload_len {
-        return Err(Error::Length {
+    if header.encoding == Encoding::Json {
+        payload = json_payload(payload).ok_or_else(|| Error::NotAnArtifact {
             path: path.into(),
-            found: payload.len() as u64,
-            expected: header.payload_len,
-            stage,
-        });
+            detail: "a JSON artifact is {\"header\":…, \"payload\":…} on lines of their own".into(),
+        })?;
+    }
+    if payload.len() as u64 != header.payload_len {
+        return Err(length_error(payload.len() as u64));
     }
     if hash::hex(&payload) != header.payload_blake3 {
         return Err(Error::Checksum { path: path.into(), stage });
     }
-    let value = decode::<P>(&payload).map_err(|detail| Error::Decode {
+    let decode_error = |detail: String| Error::Decode {
         path: path.into(),
-        kind: P::KIND.name().into(),
+        kind: P::STAGE.row().kind.into(),
         detail,
-        stage,
+        stage: stage.clone(),
+    };
+    let value: P = match header.encoding {
+        Encoding::Postcard => postcard::from_bytes(&payload).map_err(|e| decode_error(e.to_string()))?,
+        Encoding::Json => serde_json::from_slice(&payload).map_err(|e| decode_error(e.to_string()))?,
+    };
+    value.validate().map_err(|invalid| Error::Invalid {
+        path: path.into(),
+        field: invalid.field,
+        problem: invalid.problem,
+        stage: stage.clone(),
     })?;
     Ok((header, value))
 }
 
+/// The payload's bytes in what follows a JSON artifact's first line: `"payload":` on a line of
+/// its own, the payload, then `}` on the last line.
+fn json_payload(mut rest: Vec<u8>) -> Option<Vec<u8>> {
+    let end = rest.strip_suffix(JSON_CLOSE)?.len();
+    rest.truncate(end);
+    rest.starts_with(JSON_PAYLOAD).then(|| rest.split_off(JSON_PAYLOAD.len()))
+}
+
+/// Reads the header line: the whole first line of a bulk artifact, or the `header` field on
+/// the first line of a JSON artifact.
 fn read_header_from(path: &Path, reader: &mut impl BufRead) -> Result<Header, Error> {
     let mut line = Vec::new();
     reader
@@ -287,55 +309,49 @@ fn read_header_from(path: &Path, reader: &mut impl BufRead) -> Result<Header, Er
         .read_until(b'\n', &mut line)
         .map_err(|source| Error::Open { path: path.into(), source })?;
     let not_ours = |detail: String| Error::NotAnArtifact { path: path.into(), detail };
-    if line.last() != Some(&b'\n') {
+    let Some(line) = line.strip_suffix(b"\n") else {
         return Err(not_ours("no header line".into()));
-    }
-    let text = std::str::from_utf8(&line).map_err(|_| not_ours("header is not UTF-8".into()))?;
+    };
+    let json = line.strip_prefix(JSON_OPEN).and_then(|rest| rest.strip_suffix(b","));
+    let text =
+        std::str::from_utf8(json.unwrap_or(line)).map_err(|_| not_ours("header is not UTF-8".into()))?;
     let value: serde_json::Value =
         serde_json::from_str(text).map_err(|e| not_ours(format!("header is not JSON: {e}")))?;
     if value.get("format").and_then(|f| f.as_str()) != Some(FORMAT) {
         return Err(not_ours(format!("header has no \"format\": \"{FORMAT}\"")));
     }
-    serde_json::from_value(value).map_err(|e| not_ours(format!("bad header: {e}")))
+    let header: Header = serde_json::from_value(value).map_err(|e| not_ours(format!("bad header: {e}")))?;
+    let layout_is_json = json.is_some();
+    if layout_is_json != (header.encoding == Encoding::Json) {
+        return Err(not_ours("the header's encoding does not match the file's layout".into()));
+    }
+    Ok(header)
 }
 
 fn check_kind_and_schema<P: Payload>(path: &Path, header: &Header) -> Result<(), Error> {
-    if header.kind != P::KIND {
+    if header.kind != P::STAGE {
         return Err(Error::WrongKind {
             path: path.into(),
-            found: header.kind.name().into(),
-            expected: P::KIND.name().into(),
+            found: header.kind.row().kind.into(),
+            expected: P::STAGE.row().kind.into(),
         });
     }
     if header.schema != P::SCHEMA {
         return Err(Error::Schema {
             path: path.into(),
-            kind: P::KIND.name().into(),
+            kind: P::STAGE.row().kind.into(),
             found: header.schema,
             expected: P::SCHEMA,
-            stage: P::KIND.stage_name().into(),
+            stage: P::STAGE.name().into(),
+        });
+    }
+    if header.encoding != P::STAGE.row().encoding {
+        return Err(Error::NotAnArtifact {
+            path: path.into(),
+            detail: format!("a {} artifact is never {:?}-encoded", P::STAGE.row().kind, header.encoding),
         });
     }
     Ok(())
-}
-
-fn encode<P: Payload>(payload: &P) -> Result<Vec<u8>, Error> {
-    let err = |e: String| Error::Encode { kind: P::KIND.name().into(), detail: e };
-    match P::KIND.encoding() {
-        Encoding::Postcard => postcard::to_stdvec(payload).map_err(|e| err(e.to_string())),
-        Encoding::Json => {
-            let mut bytes = serde_json::to_vec_pretty(payload).map_err(|e| err(e.to_string()))?;
-            bytes.push(b'\n');
-            Ok(bytes)
-        }
-    }
-}
-
-fn decode<P: Payload>(bytes: &[u8]) -> Result<P, String> {
-    match P::KIND.encoding() {
-        Encoding::Postcard => postcard::from_bytes(bytes).map_err(|e| e.to_string()),
-        Encoding::Json => serde_json::from_slice(bytes).map_err(|e| e.to_string()),
-    }
 }
 
 #[cfg(test)]
@@ -345,14 +361,14 @@ mod tests {
     #[derive(Debug, PartialEq, Serialize, Deserialize)]
     struct Points(Vec<[f64; 3]>);
     impl Payload for Points {
-        const KIND: Kind = Kind::Samples;
+        const STAGE: StageId = StageId::Sampling;
         const SCHEMA: u32 = 7;
     }
 
     #[derive(Debug, PartialEq, Serialize, Deserialize)]
     struct Other(u32);
     impl Payload for Other {
-        const KIND: Kind = Kind::Hydro;
+        const STAGE: StageId = StageId::Hydro;
         const SCHEMA: u32 = 1;
     }
 
@@ -418,6 +434,57 @@ mod tests {
         assert!(matches!(read_artifact::<Points>(&path), Err(Error::NotAnArtifact { .. })));
         fs::write(&path, b"{\"format\":\"something-else\"}\n").unwrap();
         assert!(matches!(read_header(&path), Err(Error::NotAnArtifact { .. })));
+    }
+
+    #[test]
+    fn json_artifacts_are_one_json_document() {
+        let path = scratch("doc.json");
+        let value = Other(42);
+        let header = write_artifact(&path, &provenance(), &value).unwrap();
+        let whole: serde_json::Value = serde_json::from_slice(&fs::read(&path).unwrap()).unwrap();
+        assert_eq!(whole["payload"], serde_json::json!(42));
+        assert_eq!(whole["header"]["kind"], "hydro");
+        assert_eq!(read_header(&path).unwrap(), header);
+        assert_eq!(read_artifact::<Other>(&path).unwrap().1, value);
+        // The checksum covers the payload's bytes: an edit inside it is caught.
+        let text = fs::read_to_string(&path).unwrap().replace("42", "43");
+        fs::write(&path, text).unwrap();
+        assert!(matches!(read_artifact::<Other>(&path), Err(Error::Checksum { .. })));
+    }
+
+    #[test]
+    fn a_length_beyond_the_file_is_refused_before_allocating() {
+        let path = scratch("huge.bin");
+        write_artifact(&path, &provenance(), &Points(vec![[1.0, 2.0, 3.0]])).unwrap();
+        let text = fs::read(&path).unwrap();
+        let line_end = text.iter().position(|b| *b == b'\n').unwrap();
+        let header = String::from_utf8(text[..line_end].to_vec()).unwrap();
+        let len = read_header(&path).unwrap().payload_len;
+        let forged = header.replace(&format!("\"payload_len\":{len}"), "\"payload_len\":1099511627776");
+        fs::write(&path, [forged.as_bytes(), &text[line_end..]].concat()).unwrap();
+        assert!(matches!(read_artifact::<Points>(&path), Err(Error::Length { .. })));
+    }
+
+    #[test]
+    fn invalid_payloads_name_the_field() {
+        #[derive(Debug, PartialEq, Serialize, Deserialize)]
+        struct Positive(f64);
+        impl Payload for Positive {
+            const STAGE: StageId = StageId::Metrics;
+            const SCHEMA: u32 = 1;
+            fn validate(&self) -> Result<(), Invalid> {
+                if self.0 > 0.0 {
+                    Ok(())
+                } else {
+                    Err(Invalid::new("value", format!("{} is not positive", self.0)))
+                }
+            }
+        }
+        let path = scratch("invalid.json");
+        write_artifact(&path, &provenance(), &Positive(-1.0)).unwrap();
+        let err = read_artifact::<Positive>(&path).unwrap_err();
+        assert!(matches!(err, Error::Invalid { .. }), "{err}");
+        assert!(err.to_string().contains("value: -1 is not positive"), "{err}");
     }
 
     #[test]

@@ -1,10 +1,12 @@
 //! The versioned artifact envelope that joins karstgen's stages, and the stage table.
 //!
-//! Every artifact file is one line of JSON (the [`Header`]) followed by the payload. The header
+//! Every artifact file holds a [`Header`] and the payload: bulk artifacts as one line of JSON
+//! followed by the postcard payload, JSON artifacts as one JSON document
+//! `{"header": …, "payload": …}` ([`envelope`]). The header
 //! says what the file is (`kind`, `schema`, `encoding`), who wrote it (`producer`), what it was
 //! made from (`inputs`, `params`) and how to check it (`payload_len`, `payload_blake3`). The
 //! `key` decides staleness: `cargo xtask run` skips a stage whose artifact's key equals the key
-//! it would write now (see [`pipeline::stage_key`]).
+//! it would write now (see [`stages::stage_key`]).
 //!
 //! Writing is atomic ([`atomic`]): a killed stage leaves the old artifact or none, never a torn
 //! one. Reading checks format, kind, schema, length and checksum and says what to do when one
@@ -12,15 +14,13 @@
 
 pub mod atomic;
 pub mod bulk;
-pub mod cli;
 pub mod envelope;
 pub mod error;
 pub mod hash;
-pub mod pipeline;
-pub mod progress;
+pub mod stages;
 
 pub use envelope::{
-    Encoding, Header, InputRef, Kind, Payload, Provenance, read_artifact, read_header, write_artifact,
+    Header, InputRef, Invalid, Payload, Provenance, read_artifact, read_header, write_artifact,
 };
-pub use error::{Error, StageError};
-pub use pipeline::Stage;
+pub use error::Error;
+pub use stages::{Encoding, StageId, StageRow};

@@ -15,9 +15,9 @@ fn main() {
     let k: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(50);
     let runs: usize = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(1);
     let mut scene = karst_geology::Scene::load(Path::new(scene_path)).expect("scene");
-    scene.costgraph.k = k;
-    let mut rng = karst_geology::rng::Random::stream(scene.seed, "bench", "costgraph-points");
-    let (min, max) = (scene.domain.min, scene.domain.max);
+    scene.costgraph_mut().k = k;
+    let mut rng = karst_geology::rng::Random::stream(scene.seed(), "bench", "costgraph-points");
+    let (min, max) = (scene.domain().min, scene.domain().max);
     let points: Vec<[f64; 3]> =
         (0..samples).map(|_| std::array::from_fn(|axis| rng.range(min[axis], max[axis]))).collect();
     let mut times = Vec::new();

@@ -14,12 +14,12 @@ use crate::knn::Rows;
 
 /// A key point with no out-edge (no neighbour within `max_edge_length`).
 pub fn isolated_keypoints(scene: &Scene, samples: &Samples, rows: &Rows) -> Result<(), CostGraphError> {
-    for (i, keypoint) in scene.keypoints.iter().enumerate() {
+    for (i, keypoint) in scene.keypoints().iter().enumerate() {
         let Some(sample) = samples.keypoint_sample(i) else { continue };
         if rows.row(sample).is_empty() {
             return Err(CostGraphError::IsolatedKeyPoint {
                 name: keypoint.name.clone(),
-                max_edge_length: scene.costgraph.max_edge_length.unwrap_or(f64::INFINITY),
+                max_edge_length: scene.costgraph().max_edge_length.unwrap_or(f64::INFINITY),
             });
         }
     }
@@ -68,8 +68,8 @@ fn unreachable(scene: &Scene, sink: &str, springs: &[&str]) -> CostGraphError {
     CostGraphError::Unreachable {
         sink: sink.to_string(),
         springs: springs.iter().map(|s| format!("\"{s}\"")).collect::<Vec<_>>().join(" or "),
-        k: scene.costgraph.k,
-        max_edge_length: scene.costgraph.max_edge_length.unwrap_or(f64::INFINITY),
+        k: scene.costgraph().k,
+        max_edge_length: scene.costgraph().max_edge_length.unwrap_or(f64::INFINITY),
     }
 }
 

@@ -111,9 +111,9 @@ pub struct EdgeTerms {
 
 impl CostModel {
     pub fn from_scene(scene: &Scene) -> Self {
-        let max_weight = scene.geology.fractures.iter().map(|f| f.weight).fold(0.0, f64::max);
+        let max_weight = scene.geology().fractures.iter().map(|f| f.weight).fold(0.0, f64::max);
         let families = scene
-            .geology
+            .geology()
             .fractures
             .iter()
             .filter(|f| f.weight > 0.0)
@@ -123,24 +123,24 @@ impl CostModel {
                 relative_weight: f.weight / max_weight,
             })
             .collect();
-        let water_tables = match scene.costgraph.model {
+        let water_tables = match scene.costgraph().model {
             CostModelKind::Paris2021 => Vec::new(),
             CostModelKind::Karstnsim2024 => spring_water_tables(scene),
         };
         CostModel {
-            kind: scene.costgraph.model,
-            params: scene.costgraph.clone(),
-            geology: scene.geology.clone(),
-            inception: scene.geology.inception_surfaces().cloned().collect(),
+            kind: scene.costgraph().model,
+            params: scene.costgraph().clone(),
+            geology: scene.geology().clone(),
+            inception: scene.geology().inception_surfaces().cloned().collect(),
             families,
             water_tables,
-            corridors: match scene.costgraph.model {
+            corridors: match scene.costgraph().model {
                 CostModelKind::Paris2021 => forced_corridors(scene),
                 CostModelKind::Karstnsim2024 => Vec::new(),
             },
-            uniform_potential: scene.geology.layers.is_empty()
-                && scene.geology.grid.is_none()
-                && scene.geology.potential.is_empty(),
+            uniform_potential: scene.geology().layers.is_empty()
+                && scene.geology().grid.is_none()
+                && scene.geology().potential.is_empty(),
         }
     }
 
@@ -350,8 +350,8 @@ impl CostModel {
 /// The ends of every forced link (`skeleton.forced_links`), at the scene's key point positions.
 fn forced_corridors(scene: &Scene) -> Vec<(DVec3, DVec3)> {
     let at =
-        |name: &str| scene.keypoints.iter().find(|k| k.name == name).map(|k| DVec3::from_array(k.position));
-    scene.skeleton.forced_links.iter().filter_map(|[a, b]| Some((at(a)?, at(b)?))).collect()
+        |name: &str| scene.keypoints().iter().find(|k| k.name == name).map(|k| DVec3::from_array(k.position));
+    scene.forced_links().iter().filter_map(|[a, b]| Some((at(a)?, at(b)?))).collect()
 }
 
 /// Distance from `p` to the segment a–b.
@@ -366,7 +366,7 @@ fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
 fn spring_water_tables(scene: &Scene) -> Vec<Surface> {
     let named: Vec<&str> =
         scene.keypoints_of(KeyPointKind::Spring).filter_map(|(_, k)| k.water_table.as_deref()).collect();
-    scene.geology.water_tables.iter().filter(|w| named.contains(&w.name.as_str())).cloned().collect()
+    scene.geology().water_tables.iter().filter(|w| named.contains(&w.name.as_str())).cloned().collect()
 }
 
 /// KarstNSim's falloff as a function of x = d / d_max.

@@ -1,5 +1,7 @@
 //! Why a cost graph cannot be built from a scene and its samples.
 
+use karst_stage::{Blame, Failure};
+
 /// A cost graph that cannot be built; every case is bad input (exit 2).
 #[derive(Debug, thiserror::Error)]
 pub enum CostGraphError {
@@ -19,8 +21,9 @@ pub enum CostGraphError {
     CoincidentSamples { a: usize, b: usize, position: [f64; 3] },
 }
 
-impl From<CostGraphError> for karst_artifact::StageError {
-    fn from(e: CostGraphError) -> Self {
-        karst_artifact::StageError::BadInput(e.into())
+impl Failure for CostGraphError {
+    /// Every case comes from the scene: its parameters, or key points that coincide.
+    fn blame(&self) -> Blame {
+        Blame::Scene
     }
 }

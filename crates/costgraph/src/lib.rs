@@ -4,22 +4,24 @@
 //! Every sample is joined to its k nearest neighbours within the maximum edge length (directed
 //! edges, found in parallel with a k-d tree; optionally symmetrised). Each edge carries a cost
 //! per cost set: its length times the mean along the edge of the chosen model's cost per metre
-//! ([`cost`]), never at one endpoint only, and never ≤ 0. Output: `costgraph.bin`
-//! ([`CostGraph`], compressed sparse rows, u32 targets and f32 costs), with the distributions
+//! ([`cost`]), never at one endpoint only, and never ≤ 0. [`build`] is the algorithm's entry, [`CostgraphStage`] the stage. Output: `costgraph.bin`
+//! ([`CostGraph`] in `payload.rs`, compressed sparse rows, u32 targets and f32 costs), with the distributions
 //! of every cost term for `karst-costgraph inspect`. docs/costgraph.md explains the models.
 
-pub mod builder;
-pub mod checks;
-pub mod cost;
+mod build;
+mod checks;
+mod cost;
 mod error;
-pub mod falloff;
-pub mod graph;
+mod falloff;
 mod grid;
-pub mod knn;
-pub mod stage;
-pub mod stats;
+mod knn;
+mod payload;
+mod stage;
+mod stats;
 
-pub use builder::{build, build_points};
+pub use build::{build, build_points};
 pub use cost::CostModel;
 pub use error::CostGraphError;
-pub use graph::{CostGraph, CostSet};
+pub use payload::{CostGraph, CostSet};
+pub use stage::CostgraphStage;
+pub use stats::{Histogram, SetStats, Summary, TermStats};

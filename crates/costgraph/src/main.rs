@@ -4,8 +4,8 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use karst_artifact::cli::{InspectArgs, RunArgs, default_sigpipe, finish};
-use karst_costgraph::stage;
+use karst_costgraph::CostgraphStage;
+use karst_stage::cli::{self, InspectArgs, RunArgs, default_sigpipe, finish};
 
 /// k-nearest-neighbour graph with geology-driven edge costs (karstgen stage 2).
 #[derive(Parser)]
@@ -20,7 +20,7 @@ enum Cli {
 fn main() -> ExitCode {
     default_sigpipe();
     finish(match Cli::parse() {
-        Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
-        Cli::Inspect(args) => stage::inspect(&args),
+        Cli::Run(args) => cli::run::<CostgraphStage>(&args),
+        Cli::Inspect(args) => cli::inspect::<CostgraphStage>(&args),
     })
 }

@@ -1,62 +1,68 @@
-//! The costgraph stage: scene + `samples.bin` in, `costgraph.bin` out.
+//! The cost graph stage's contract: the scene and `samples.bin` in, `costgraph.bin` out.
 
-use std::time::Instant;
-
-use karst_artifact::cli::{InspectArgs, RunArgs, StageRun, print_json};
-use karst_artifact::{Stage, StageError, read_artifact, write_artifact};
+use karst_artifact::{Header, StageId};
 use karst_geology::Scene;
 use karst_sampling::Samples;
+use karst_stage::Stage;
 
-use crate::{CostGraph, build};
+use crate::build::build;
+use crate::error::CostGraphError;
+use crate::payload::CostGraph;
 
-/// `karst-costgraph run`.
-pub fn run(args: &RunArgs) -> Result<String, StageError> {
-    let scene = Scene::load(&args.scene)?;
-    let mut run = StageRun::new(Stage::Costgraph, &args.out);
-    let samples: Samples = run.read_input(Stage::Sampling)?;
-    let start = Instant::now();
-    let graph = build(&scene, &samples)?;
-    write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Costgraph)), &graph)?;
-    Ok(format!(
-        "{} nodes, {} edges, {} cost set(s) in {:.2} s",
-        graph.node_count(),
-        graph.edge_count(),
-        graph.cost_sets.len(),
-        start.elapsed().as_secs_f64()
-    ))
-}
+/// Stage 2: the k-nearest-neighbour graph of the samples and its edge costs.
+pub struct CostgraphStage;
 
-/// `karst-costgraph inspect`: counts, memory, and the distribution of edge lengths and of
-/// every cost term in every cost set.
-pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
-    if args.json {
-        return print_json::<CostGraph>(&args.file);
+impl Stage for CostgraphStage {
+    const ID: StageId = StageId::Costgraph;
+    type Inputs = (Samples,);
+    type Output = CostGraph;
+    type Error = CostGraphError;
+
+    fn build(scene: &Scene, (samples,): &(Samples,)) -> Result<CostGraph, CostGraphError> {
+        build(scene, samples)
     }
-    let (header, graph) = read_artifact::<CostGraph>(&args.file)?;
-    let edges = graph.edge_count().max(1) as f64;
-    println!("{}: costgraph, schema {}, by {}", args.file.display(), header.schema, header.producer);
-    println!("  model     {}", graph.summary.model);
-    println!("  nodes     {}", graph.node_count());
-    println!("  edges     {} ({:.1} per node)", graph.edge_count(), edges / graph.node_count().max(1) as f64);
-    println!(
-        "  memory    {} bytes ({:.1} per edge); file payload {} bytes ({:.1} per edge)",
-        graph.bytes_in_memory(),
-        graph.bytes_in_memory() as f64 / edges,
-        header.payload_len,
-        header.payload_len as f64 / edges
-    );
-    if let Some(lengths) = &graph.summary.lengths {
-        println!("  length m  {}", lengths.line());
+
+    fn headline(_: &Scene, graph: &CostGraph) -> String {
+        format!(
+            "{} nodes, {} edges, {} cost set(s)",
+            graph.node_count(),
+            graph.edge_count(),
+            graph.cost_sets.len()
+        )
     }
-    for set in &graph.summary.sets {
-        match &set.water_table {
-            Some(w) => println!("  cost set of water table \"{w}\""),
-            None => println!("  cost set"),
+
+    /// Counts, memory, and the distribution of edge lengths and of every cost term in every
+    /// cost set.
+    fn summary(header: &Header, graph: &CostGraph) -> Vec<String> {
+        let edges = graph.edge_count().max(1) as f64;
+        let mut lines = Vec::new();
+        lines.push(format!("model     {}", graph.summary.model));
+        lines.push(format!("nodes     {}", graph.node_count()));
+        lines.push(format!(
+            "edges     {} ({:.1} per node)",
+            graph.edge_count(),
+            edges / graph.node_count().max(1) as f64
+        ));
+        lines.push(format!(
+            "memory    {} bytes ({:.1} per edge); file payload {} bytes ({:.1} per edge)",
+            graph.bytes_in_memory(),
+            graph.bytes_in_memory() as f64 / edges,
+            header.payload_len,
+            header.payload_len as f64 / edges
+        ));
+        if let Some(lengths) = &graph.summary.lengths {
+            lines.push(format!("length m  {}", lengths.line()));
         }
-        for term in &set.terms {
-            println!("    {:<17} × {:<6} {}", term.name, term.weight, term.histogram.line());
+        for set in &graph.summary.sets {
+            match &set.water_table {
+                Some(w) => lines.push(format!("cost set of water table \"{w}\"")),
+                None => lines.push("cost set".to_string()),
+            }
+            for term in &set.terms {
+                lines.push(format!("  {:<17} × {:<6} {}", term.name, term.weight, term.histogram.line()));
+            }
+            lines.push(format!("  {:<26} {}", "cost per metre", set.cost_per_metre.line()));
         }
-        println!("    {:<26} {}", "cost per metre", set.cost_per_metre.line());
+        lines
     }
-    Ok(())
 }

@@ -4,7 +4,7 @@ use std::path::Path;
 
 use karst_costgraph::{CostGraphError, build};
 use karst_geology::{Scene, SceneError};
-use karst_sampling::radius::RadiusField;
+use karst_sampling::SpacingField;
 use karst_sampling::{Samples, Tag};
 
 const SCENE: &str = r#"
@@ -49,7 +49,7 @@ fn samples(step: f64, x0: f64, x1: f64) -> Samples {
     let tags =
         (0..positions.len()).map(|i| if i < 2 { Tag::KeyPoint(i as u32) } else { Tag::Volume }).collect();
     let radius_field =
-        RadiusField { origin: [0.0; 3], cell: 1.0, size: [1, 1, 1], values: vec![step as f32] };
+        SpacingField { origin: [0.0; 3], cell: 1.0, size: [1, 1, 1], values: vec![step as f32] };
     Samples { positions, tags, radius: step, radius_field }
 }
 

@@ -5,9 +5,8 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::field::{self, FieldNode, GridSpec, Layer, NoKarst};
-use crate::params::{
-    CostgraphParams, HydroParams, MesherParams, MetricsParams, SamplingParams, SdfParams, SkeletonParams,
-};
+use crate::params::{CostgraphParams, HydroParams, MesherParams, SamplingParams, SdfParams, SkeletonParams};
+use crate::sections::{Reads, Section};
 use crate::validate::{self, Problem};
 use crate::{Domain, FractureFamily, KeyPoint, KeyPointKind, Surface, Terrain};
 
@@ -16,35 +15,36 @@ use crate::{Domain, FractureFamily, KeyPoint, KeyPointKind, Surface, Terrain};
 #[serde(deny_unknown_fields)]
 pub struct Scene {
     /// Name of the scene; `cargo xtask run` writes into `out/<name>` by default.
-    pub name: String,
+    pub(crate) name: String,
     /// Seed of every random choice; same scene and seed give byte-identical artifacts.
     #[serde(default)]
-    pub seed: u64,
-    pub domain: Domain,
-    pub terrain: Terrain,
+    pub(crate) seed: u64,
+    pub(crate) domain: Domain,
+    pub(crate) terrain: Terrain,
     #[serde(default)]
-    pub geology: Geology,
+    pub(crate) geology: Geology,
     #[serde(default)]
-    pub keypoints: Vec<KeyPoint>,
+    pub(crate) keypoints: Vec<KeyPoint>,
     #[serde(default)]
-    pub connectivity: Connectivity,
+    pub(crate) connectivity: Connectivity,
     /// Speleogenetic phases, oldest first (`[[phases]]`); none: one phase with every spring.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub phases: Vec<Phase>,
+    pub(crate) phases: Vec<Phase>,
     #[serde(default)]
-    pub sampling: SamplingParams,
+    pub(crate) sampling: SamplingParams,
     #[serde(default)]
-    pub costgraph: CostgraphParams,
+    pub(crate) costgraph: CostgraphParams,
     #[serde(default)]
-    pub skeleton: SkeletonParams,
+    pub(crate) skeleton: SkeletonParams,
     #[serde(default)]
-    pub hydro: HydroParams,
+    pub(crate) hydro: HydroParams,
     #[serde(default)]
-    pub sdf: SdfParams,
+    pub(crate) sdf: SdfParams,
     #[serde(default)]
-    pub mesher: MesherParams,
-    #[serde(default)]
-    pub metrics: MetricsParams,
+    pub(crate) mesher: MesherParams,
+    /// Which sections were read, when auditing (see [`Scene::audited`]).
+    #[serde(skip)]
+    pub(crate) reads: Reads,
 }
 
 /// `[geology]`: the surfaces that guide karstification.
@@ -163,16 +163,6 @@ fn format_problems(path: &Path, problems: &[Problem]) -> String {
     text
 }
 
-impl From<SceneError> for karst_artifact::StageError {
-    fn from(e: SceneError) -> Self {
-        match e {
-            SceneError::Read { .. } | SceneError::Invalid { .. } => {
-                karst_artifact::StageError::BadInput(e.into())
-            }
-        }
-    }
-}
-
 impl Scene {
     /// Reads, parses and validates a scene file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
@@ -193,19 +183,46 @@ impl Scene {
         if problems.is_empty() { Ok(scene) } else { Err(invalid(problems)) }
     }
 
+    /// The scene's name; `karstgen run` writes into `out/<name>` by default.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The seed of every random choice.
+    pub fn seed(&self) -> u64 {
+        self.reads.note(Section::Seed);
+        self.seed
+    }
+
+    /// Sets the seed (an ensemble's realizations differ only by it).
+    pub fn set_seed(&mut self, seed: u64) {
+        self.seed = seed;
+    }
+
+    /// `skeleton.forced_links`, read on its own by the cost graph.
+    pub fn forced_links(&self) -> &[[String; 2]] {
+        self.reads.note(Section::ForcedLinks);
+        &self.skeleton.forced_links
+    }
+
     /// The key points of `kind`, with their index in `keypoints`, in scene order.
     pub fn keypoints_of(&self, kind: KeyPointKind) -> impl Iterator<Item = (usize, &KeyPoint)> {
-        self.keypoints.iter().enumerate().filter(move |(_, k)| k.kind == kind)
+        self.keypoints().iter().enumerate().filter(move |(_, k)| k.kind == kind)
+    }
+
+    /// True inside the domain and below the ground (no-karst volumes included).
+    pub fn in_bedrock(&self, p: crate::Point) -> bool {
+        self.domain().contains(p) && p.z < self.terrain().height(p.x, p.y)
     }
 
     /// The water table named `name`.
     pub fn water_table(&self, name: &str) -> Option<&Surface> {
-        self.geology.water_tables.iter().find(|w| w.name == name)
+        self.geology().water_tables.iter().find(|w| w.name == name)
     }
 
     /// Connectivity between the `sink`-th sink and the `spring`-th spring (scene order).
     pub fn link(&self, sink: usize, spring: usize) -> Link {
-        match &self.connectivity.matrix {
+        match &self.connectivity().matrix {
             None => Link::Uncertain,
             Some(rows) => match rows[sink][spring] {
                 0 => Link::None,
@@ -213,11 +230,6 @@ impl Scene {
                 _ => Link::Uncertain,
             },
         }
-    }
-
-    /// Hash of the scene sections `stage` reads: the `params` of its artifact.
-    pub fn params_hash(&self, stage: karst_artifact::Stage) -> String {
-        self.sections_hash(stage.scene_sections())
     }
 
     /// Hash of the named top-level sections (defaults applied), or of one field of a section
@@ -234,4 +246,62 @@ impl Scene {
             .collect();
         karst_artifact::hash::hex_of_parts(texts.iter().map(|t| t.as_bytes()))
     }
+
+    /// A copy that records which sections it hands out ([`Scene::sections_read`]).
+    pub fn audited(&self) -> Scene {
+        Scene { reads: Reads::auditing(), ..self.clone() }
+    }
+
+    /// The sections read from an [`audited`](Scene::audited) scene so far.
+    pub fn sections_read(&self) -> Vec<Section> {
+        self.reads.read()
+    }
+}
+
+/// A read accessor per section, noting the read, and a write accessor without the note.
+macro_rules! section_accessors {
+    ($($(#[$doc:meta])* $field:ident, $field_mut:ident: $ty:ty => $section:ident;)*) => {
+        impl Scene {
+            $(
+                $(#[$doc])*
+                #[inline]
+                pub fn $field(&self) -> &$ty {
+                    self.reads.note(Section::$section);
+                    &self.$field
+                }
+
+                #[doc = concat!("`[", stringify!($field), "]`, to change it.")]
+                pub fn $field_mut(&mut self) -> &mut $ty {
+                    &mut self.$field
+                }
+            )*
+        }
+    };
+}
+
+section_accessors! {
+    /// `[domain]`: the box of the model.
+    domain, domain_mut: Domain => Domain;
+    /// `[terrain]`: the ground surface.
+    terrain, terrain_mut: Terrain => Terrain;
+    /// `[geology]`: water tables, horizons, faults, fractures, layers, potential, no-karst.
+    geology, geology_mut: Geology => Geology;
+    /// `[[keypoints]]`: sinks, springs, waypoints, dead ends, in scene order.
+    keypoints, keypoints_mut: Vec<KeyPoint> => Keypoints;
+    /// `[connectivity]`: which sink may drain to which spring.
+    connectivity, connectivity_mut: Connectivity => Connectivity;
+    /// `[[phases]]`: speleogenetic phases, oldest first.
+    phases, phases_mut: Vec<Phase> => Phases;
+    /// `[sampling]`.
+    sampling, sampling_mut: SamplingParams => Sampling;
+    /// `[costgraph]`.
+    costgraph, costgraph_mut: CostgraphParams => Costgraph;
+    /// `[skeleton]`.
+    skeleton, skeleton_mut: SkeletonParams => Skeleton;
+    /// `[hydro]`.
+    hydro, hydro_mut: HydroParams => Hydro;
+    /// `[sdf]`.
+    sdf, sdf_mut: SdfParams => Sdf;
+    /// `[mesher]`.
+    mesher, mesher_mut: MesherParams => Mesher;
 }

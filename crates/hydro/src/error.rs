@@ -1,5 +1,7 @@
 //! What can be wrong with the network handed to the hydro stage.
 
+use karst_artifact::StageId;
+use karst_stage::{Blame, Failure};
 use thiserror::Error;
 
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -26,12 +28,20 @@ pub enum HydroError {
     PoolClosed { index: usize, node: u32 },
 }
 
-impl HydroError {
-    /// True when the error is about the scene's `[hydro]` section rather than the network.
-    pub fn concerns_scene(&self) -> bool {
-        matches!(
-            self,
-            HydroError::NoPoolNear { .. } | HydroError::SamePool { .. } | HydroError::PoolClosed { .. }
-        )
+impl Failure for HydroError {
+    /// The scene's `[hydro]` section is the scene's; the rest is about the network of
+    /// skeleton.json (whose routes carry the sinks' weights).
+    fn blame(&self) -> Blame {
+        match self {
+            HydroError::NoPoolNear { .. } | HydroError::SamePool { .. } | HydroError::PoolClosed { .. } => {
+                Blame::Scene
+            }
+            HydroError::BadWeight { .. }
+            | HydroError::NoSpring
+            | HydroError::NoDownstreamPath { .. }
+            | HydroError::MissingNode { .. }
+            | HydroError::Radii { .. }
+            | HydroError::Position { .. } => Blame::Artifact(StageId::Skeleton),
+        }
     }
 }

@@ -11,7 +11,7 @@ use glam::DVec3;
 
 use karst_skeleton::Skeleton;
 
-use crate::artifact::{Hydro, Role};
+use crate::payload::{Hydro, Role};
 
 /// File names, beside hydro.json.
 pub const NODES: &str = "hydro_nodes.csv";

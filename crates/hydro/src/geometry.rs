@@ -15,14 +15,14 @@ use std::f64::consts::PI;
 
 use glam::{DVec2, DVec3};
 
-use crate::artifact::Fall;
+use crate::payload::Fall;
 
 /// Gravity, m/s².
 pub const G: f64 = 9.81;
 
 /// Depth and width of a free surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Surface {
+pub struct FreeSurface {
     pub depth: f64,
     pub width: f64,
 }
@@ -34,12 +34,12 @@ fn segment_area(r: f64, d: f64) -> f64 {
 }
 
 /// The free surface of `area` m² of water in a conduit of radius `r`.
-pub fn free_surface(area: f64, r: f64) -> Surface {
+pub fn free_surface(area: f64, r: f64) -> FreeSurface {
     if area <= 0.0 {
-        return Surface { depth: 0.0, width: 0.0 };
+        return FreeSurface { depth: 0.0, width: 0.0 };
     }
     if area >= PI * r * r {
-        return Surface { depth: 2.0 * r, width: 0.0 };
+        return FreeSurface { depth: 2.0 * r, width: 0.0 };
     }
     let (mut lo, mut hi) = (0.0, 2.0 * r);
     for _ in 0..60 {
@@ -47,7 +47,7 @@ pub fn free_surface(area: f64, r: f64) -> Surface {
         if segment_area(r, mid) < area { lo = mid } else { hi = mid }
     }
     let depth = 0.5 * (lo + hi);
-    Surface { depth, width: 2.0 * (depth * (2.0 * r - depth)).sqrt() }
+    FreeSurface { depth, width: 2.0 * (depth * (2.0 * r - depth)).sqrt() }
 }
 
 /// Speed of water running down `slope` radians.
@@ -58,7 +58,14 @@ pub fn speed(slope: f64, factor: f64, min_slope: f64) -> f64 {
 /// The free fall of `discharge` m³/s from `lip` down to `bottom`'s elevation, leaving the
 /// lip at horizontal speed `v0` along `direction`, in a shaft of radius `r`; with the jet's
 /// size as a surface (depth = width = jet diameter).
-pub fn fall(lip: DVec3, bottom: DVec3, direction: DVec2, v0: f64, discharge: f64, r: f64) -> (Fall, Surface) {
+pub fn fall(
+    lip: DVec3,
+    bottom: DVec3,
+    direction: DVec2,
+    v0: f64,
+    discharge: f64,
+    r: f64,
+) -> (Fall, FreeSurface) {
     let drop = (lip.z - bottom.z).max(0.0);
     let throw = v0 * (2.0 * drop / G).sqrt();
     let impact = DVec3::new(lip.x + direction.x * throw, lip.y + direction.y * throw, lip.z - drop);
@@ -72,7 +79,7 @@ pub fn fall(lip: DVec3, bottom: DVec3, direction: DVec2, v0: f64, discharge: f64
         throw,
         impact: impact.to_array(),
     };
-    (fall, Surface { depth: jet, width: jet })
+    (fall, FreeSurface { depth: jet, width: jet })
 }
 
 #[cfg(test)]
@@ -83,7 +90,7 @@ mod tests {
     fn half_a_conduit_of_water_is_at_mid_height() {
         let s = free_surface(PI * 4.0 / 2.0, 2.0);
         assert!((s.depth - 2.0).abs() < 1e-9 && (s.width - 4.0).abs() < 1e-9, "{s:?}");
-        assert_eq!(free_surface(100.0, 1.0), Surface { depth: 2.0, width: 0.0 });
+        assert_eq!(free_surface(100.0, 1.0), FreeSurface { depth: 2.0, width: 0.0 });
         assert!(free_surface(0.01, 1.0).depth < free_surface(0.1, 1.0).depth);
     }
 

@@ -6,11 +6,11 @@ use glam::{DVec2, DVec3};
 use karst_geology::params::{HydroParams, PoolWeights};
 use karst_skeleton::{ConduitType, Skeleton, Zone};
 
-use crate::artifact::{ConduitWater, FlowUnits, Hydro, NodeWater, Role, SegmentWater, Share, Sink, Spring};
 use crate::flow::{self, Flows, Split, propagate};
-use crate::geometry::{self, Surface};
+use crate::geometry::{self, FreeSurface};
 use crate::graph::{self, Graph, Terminal};
 use crate::orient::{Orientation, orient};
+use crate::payload::{ConduitWater, FlowUnits, Hydro, NodeWater, Role, SegmentWater, Share, Sink, Spring};
 use crate::water::{FlowScale, WaterType, classify};
 use crate::{HydroError, sizing};
 
@@ -349,7 +349,7 @@ impl<'a> Water<'a> {
             geometry::speed(if water == WaterType::Pool { 0.0 } else { slope }, p.speed_factor, p.min_slope);
         let full = discharge / (std::f64::consts::PI * r * r).max(f64::MIN_POSITIVE);
         let surface = if water == WaterType::Sump {
-            Surface { depth: 2.0 * r, width: 0.0 }
+            FreeSurface { depth: 2.0 * r, width: 0.0 }
         } else {
             geometry::free_surface(discharge / running, r)
         };

@@ -5,8 +5,8 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use karst_artifact::cli::{InspectArgs, RunArgs, default_sigpipe, finish};
-use karst_hydro::stage;
+use karst_hydro::{HydroStage, stage};
+use karst_stage::cli::{self, InspectArgs, RunArgs, default_sigpipe, finish};
 
 /// Underground hydrology: flows, water types and water geometry (karstgen stage 4).
 #[derive(Parser)]
@@ -23,8 +23,8 @@ enum Cli {
 fn main() -> ExitCode {
     default_sigpipe();
     finish(match Cli::parse() {
-        Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
+        Cli::Run(args) => cli::run::<HydroStage>(&args),
         Cli::Render(args) => stage::render(&args),
-        Cli::Inspect(args) => stage::inspect(&args),
+        Cli::Inspect(args) => cli::inspect::<HydroStage>(&args),
     })
 }

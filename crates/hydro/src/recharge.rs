@@ -44,15 +44,15 @@ struct Grid {
 
 impl Grid {
     fn of(scene: &Scene) -> Grid {
-        let d = &scene.domain;
-        let cell = scene.hydro.catchment_cell;
+        let d = scene.domain();
+        let cell = scene.hydro().catchment_cell;
         let nx = (((d.max[0] - d.min[0]) / cell).ceil() as usize).max(1);
         let ny = (((d.max[1] - d.min[1]) / cell).ceil() as usize).max(1);
         let origin = [d.min[0], d.min[1]];
         let heights = (0..nx * ny)
             .map(|i| {
                 let (x, y) = ((i % nx) as f64 + 0.5, (i / nx) as f64 + 0.5);
-                scene.terrain.height(origin[0] + x * cell, origin[1] + y * cell)
+                scene.terrain().height(origin[0] + x * cell, origin[1] + y * cell)
             })
             .collect();
         Grid { cell, nx, ny, origin, heights }

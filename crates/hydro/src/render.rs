@@ -1,10 +1,14 @@
-//! `karst-hydro render`: the network seen from above (x, y) and from the south (x, z), each
-//! segment coloured by its water type, dry conduits in light grey, with a legend.
+//! `karst-hydro render`: the network picture of karst-plot (top view over side view, one
+//! metric scale, the same picture as `karst-skeleton render`) with each segment coloured by its
+//! water type and widened with its flow, dry conduits thin and light grey, key points named,
+//! and a legend of the water types present.
 
-use karst_raster::{BLACK, Canvas, Rgb, Scale, WHITE};
+use karst_plot::legend::{Entry, Swatch};
+use karst_plot::network::{KeyPoint, NetworkPicture, Segment};
+use karst_plot::{BLACK, Canvas, Rgb, ticks};
 use karst_skeleton::Skeleton;
 
-use crate::artifact::Hydro;
+use crate::payload::Hydro;
 use crate::water::WaterType;
 
 /// Colour of a water type: blues for contact water, warm colours for free falls.
@@ -26,52 +30,52 @@ pub fn colour(water: WaterType) -> Rgb {
     }
 }
 
-const VIEW: u32 = 600;
-const MARGIN: f64 = 20.0;
-const LEGEND: u32 = 130;
+/// Width of a segment, pixels: dry 1, wet 1.5 + 0.5 per flow unit (at least one unit).
+fn width(water: WaterType, flow_units: f64) -> f64 {
+    if water == WaterType::Dry { 1.0 } else { 1.5 + flow_units.max(1.0) * 0.5 }
+}
 
 /// The picture of `hydro` on `skeleton`.
 pub fn picture(skeleton: &Skeleton, hydro: &Hydro) -> Canvas {
-    let mut canvas = Canvas::new(2 * VIEW + LEGEND, VIEW, WHITE);
-    let axis = |i: usize| {
-        let values = skeleton.nodes.iter().map(|n| n.position[i]);
-        values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+    network_picture(skeleton, hydro).render()
+}
+
+fn network_picture(skeleton: &Skeleton, hydro: &Hydro) -> NetworkPicture {
+    let position = |i: u32| skeleton.nodes[i as usize].position;
+    let wet_segments = || {
+        skeleton.conduits.iter().zip(&hydro.conduits).flat_map(|(c, w)| c.nodes.windows(2).zip(&w.segments))
     };
-    let (x, y, z) = (axis(0), axis(1), axis(2));
-    let span = (x.1 - x.0).max(y.1 - y.0).max(z.1 - z.0).max(1.0);
-    let px = |lo: f64, left: f64| Scale {
-        from: (lo, lo + span),
-        to: (left + MARGIN, left + VIEW as f64 - MARGIN),
-    };
-    let py = |lo: f64| Scale { from: (lo, lo + span), to: (VIEW as f64 - MARGIN, MARGIN) };
-    let views = [(px(x.0, 0.0), py(y.0), 1usize), (px(x.0, VIEW as f64), py(z.0), 2usize)];
     // Dry first, so that water is drawn over it.
+    let mut segments: Vec<Segment> = Vec::new();
     for dry_pass in [true, false] {
-        for (conduit, water) in skeleton.conduits.iter().zip(&hydro.conduits) {
-            for (w, s) in conduit.nodes.windows(2).zip(&water.segments) {
-                if (s.water == WaterType::Dry) != dry_pass {
-                    continue;
-                }
-                let [a, b] = [w[0], w[1]].map(|n| skeleton.nodes[n as usize].position);
-                let thickness = if dry_pass { 1.0 } else { 1.5 + s.flow_units.max(1.0) * 0.5 };
-                for (sx, sy, v) in &views {
-                    canvas.line(
-                        (sx.map(a[0]), sy.map(a[*v])),
-                        (sx.map(b[0]), sy.map(b[*v])),
-                        thickness,
-                        colour(s.water),
-                    );
-                }
-            }
-        }
+        segments.extend(wet_segments().filter(|(_, s)| (s.water == WaterType::Dry) == dry_pass).map(
+            |(n, s)| Segment {
+                a: position(n[0]),
+                b: position(n[1]),
+                colour: colour(s.water),
+                width: width(s.water, s.flow_units),
+            },
+        ));
     }
-    canvas.text((MARGIN as i64, 4), "top (x, y)", 1, BLACK);
-    canvas.text((VIEW as i64 + MARGIN as i64, 4), "side (x, z)", 1, BLACK);
-    for (i, w) in WaterType::ALL.iter().enumerate() {
-        let top = 30.0 + 18.0 * i as f64;
-        let left = 2.0 * VIEW as f64 + 8.0;
-        canvas.rect((left, top), (left + 12.0, top + 10.0), colour(*w));
-        canvas.text((left as i64 + 18, top as i64 + 1), w.name(), 1, BLACK);
-    }
-    canvas
+    let key_points = skeleton
+        .nodes
+        .iter()
+        .filter_map(|n| n.keypoint.as_ref().map(|name| KeyPoint { position: n.position, name: name.clone() }))
+        .collect();
+    let used = |w: WaterType| wet_segments().any(|(_, s)| s.water == w);
+    let mut legend: Vec<Entry> = WaterType::ALL
+        .into_iter()
+        .filter(|w| used(*w))
+        .map(|w| Entry::new(Swatch::Line(colour(w), width(w, 1.0)), w.name()))
+        .collect();
+    legend.push(Entry::new(Swatch::Dot(BLACK), "key point"));
+    let most = wet_segments().map(|(_, s)| s.flow_units).fold(0.0, f64::max);
+    let notes = vec![format!(
+        "Line width grows with the flow: 1.5 px + 0.5 px per flow unit (Emilien et al. 2015), {} units at most; \
+         {} of {} conduits dry.",
+        ticks::human(most),
+        hydro.conduits.iter().filter(|c| c.dry).count(),
+        hydro.conduits.len()
+    )];
+    NetworkPicture { title: "Water types".into(), segments, key_points, legend, notes }
 }

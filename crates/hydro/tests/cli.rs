@@ -4,31 +4,21 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use karst_artifact::cli::{RunArgs, StageRun};
-use karst_artifact::{Stage, read_artifact, write_artifact};
+use karst_artifact::{Provenance, read_artifact, write_artifact};
 use karst_skeleton::Skeleton;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+use karst_testkit::{root, scratch};
 
 fn hydro(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_karst-hydro")).args(args).output().unwrap()
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("karst-hydro-cli-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 /// Runs the tiny scene up to the skeleton in `out`.
 fn tiny_skeleton(out: &Path) -> PathBuf {
     let scene = root().join("fixtures/scenes/tiny.toml");
-    let args = RunArgs { scene: scene.clone(), out: out.to_path_buf() };
-    karst_sampling::stage::run(&args).unwrap();
-    karst_costgraph::stage::run(&args).unwrap();
-    karst_skeleton::stage::run(&args).unwrap();
+    let args = (scene.clone(), out.to_path_buf());
+    karst_testkit::run::<karst_sampling::SamplingStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1).unwrap();
     scene
 }
 
@@ -51,7 +41,7 @@ fn bad_skeletons_exit_2_naming_the_file_and_the_sink() {
     let scene = tiny_skeleton(&out);
     let path = out.join("skeleton.json");
     let (_, good) = read_artifact::<Skeleton>(&path).unwrap();
-    let provenance = StageRun::new(Stage::Skeleton, &out).provenance("test");
+    let provenance = Provenance { producer: "test".into(), inputs: vec![], params: "test".into() };
     let run = |skeleton: &Skeleton| {
         write_artifact(&path, &provenance, skeleton).unwrap();
         let result = hydro(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);

@@ -2,25 +2,21 @@
 //! segment has a water type, the CSV tables and the water-type picture are written, and the
 //! catchment recharge works on its terrain.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use karst_artifact::cli::RunArgs;
 use karst_artifact::read_artifact;
 use karst_hydro::stage::{RenderArgs, render};
 use karst_hydro::{Hydro, WaterType};
 use karst_skeleton::{ConduitType, Skeleton, Zone};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+use karst_testkit::root;
 
 fn run_to_hydro(scene: &Path, out: &Path) -> (Skeleton, Hydro) {
     std::fs::create_dir_all(out).unwrap();
-    let args = RunArgs { scene: scene.to_path_buf(), out: out.to_path_buf() };
-    karst_sampling::stage::run(&args).unwrap();
-    karst_costgraph::stage::run(&args).unwrap();
-    karst_skeleton::stage::run(&args).unwrap();
-    karst_hydro::stage::run(&args).unwrap();
+    let args = (scene.to_path_buf(), out.to_path_buf());
+    karst_testkit::run::<karst_sampling::SamplingStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_hydro::HydroStage>(&args.0, &args.1).unwrap();
     let (_, skeleton) = read_artifact::<Skeleton>(&out.join("skeleton.json")).unwrap();
     let (_, hydro) = read_artifact::<Hydro>(&out.join("hydro.json")).unwrap();
     (skeleton, hydro)
@@ -69,7 +65,7 @@ fn default_scene_shafts_with_water_are_free_falls() {
         .replace("file = \"data/", &format!("file = \"{}/data/", scenes.display()));
     let scene = out.join("catchment.toml");
     std::fs::write(&scene, format!("{text}\n[hydro]\nrecharge = \"catchment\"\n")).unwrap();
-    karst_hydro::stage::run(&RunArgs { scene, out: out.clone() }).unwrap();
+    karst_testkit::run::<karst_hydro::HydroStage>(&scene, &out).unwrap();
     let (_, hydro) = read_artifact::<Hydro>(&out.join("hydro.json")).unwrap();
     assert!(hydro.sinks.iter().all(|s| s.recharge > 0.0));
     let total: f64 = hydro.sinks.iter().map(|s| s.recharge).sum();

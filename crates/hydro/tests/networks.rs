@@ -8,6 +8,7 @@ use karst_geology::params::{HydroParams, PoolOutlet, PoolWeights};
 use karst_geology::rng::Random;
 use karst_hydro::{Hydro, HydroError, Inputs, WaterType, compute, export};
 use karst_skeleton::{Conduit, ConduitType, Node, Route, Skeleton, Zone};
+use karst_stage::{Blame, Failure};
 
 fn node(p: [f64; 3], zone: Zone) -> Node {
     Node { position: p, sample: 0, keypoint: None, zone }
@@ -249,7 +250,7 @@ fn a_pool_shares_its_water_by_the_user_weights_of_its_outlets() {
     assert_eq!((h.conduits[1].segments[0].flow, h.conduits[2].segments[0].flow), (4.0, 0.0));
     // Without the chamber node 1 is no pool: the entry names itself and the nearest pool.
     let e = compute(&tee(), &pools(vec![weights.clone()]), &Inputs::default()).unwrap_err();
-    assert!(e.concerns_scene());
+    assert_eq!(e.blame(), Blame::Scene);
     assert!(e.to_string().starts_with("hydro.pools[0]: no pool within 5 m of [101.0, 1.0, 91.0] ("), "{e}");
     // Two entries for one pool, and a pool whose every outgoing conduit gets 0.
     let e = compute(&pool, &pools(vec![weights.clone(), weights.clone()]), &Inputs::default()).unwrap_err();
@@ -433,7 +434,7 @@ fn the_csv_export_loads_back_as_nodes_and_links() {
 
 #[test]
 fn the_picture_colours_every_segment_by_its_water_type() {
-    use karst_hydro::render::{colour, picture};
+    use karst_hydro::{colour, picture};
     let mut nodes = shaft_nodes();
     nodes.push(node([50.0, 80.0, 60.0], Zone::Vadose));
     let skeleton = Skeleton {
@@ -443,11 +444,17 @@ fn the_picture_colours_every_segment_by_its_water_type() {
     };
     let h = compute(&skeleton, &HydroParams::default(), &Inputs::default()).unwrap();
     let canvas = picture(&skeleton, &h);
-    // The network views only (the legend on the right shows every colour).
-    let drawn: std::collections::HashSet<[u8; 3]> = (0..2 * 600)
-        .flat_map(|x| (0..600).map(move |y| (x, y)))
+    // The legend lists only the water types present, so the whole picture can be searched.
+    let (width, height) = (i64::from(canvas.width()), i64::from(canvas.height()));
+    let drawn: std::collections::HashSet<[u8; 3]> = (0..width)
+        .flat_map(|x| (0..height).map(move |y| (x, y)))
         .filter_map(|(x, y)| canvas.get(x, y))
         .collect();
+    let mut bytes = Vec::new();
+    canvas.encode_png(&mut bytes).unwrap();
+    let (png_width, png_height, colours) = karst_plot::testing::png_summary(&bytes);
+    assert_eq!((i64::from(png_width), i64::from(png_height)), (width, height));
+    assert!(colours > 20, "{colours} colours");
     let used: Vec<WaterType> = h.conduits.iter().flat_map(|c| c.segments.iter().map(|s| s.water)).collect();
     assert!(
         used.contains(&WaterType::Sump)

@@ -1,24 +1,60 @@
 //! Meshing a model: the carved terrain and the cave alone, each polygonized and cleaned, and
-//! the water in the conduits.
+//! the water in the conduits. [`build`] is the stage's entry: the cells from the scene, checked,
+//! then [`mesh_simplified`].
 
 use glam::DVec3;
 
+use karst_geology::{KeyPointKind, Scene};
 use karst_sdf::{CarvedTerrain, SdfModel};
 
-use crate::Mesh;
 use crate::cleanup::{Solid, clean};
+use crate::error::MesherError;
+use crate::payload::Mesh;
 use crate::polygonize::polygonize;
 use crate::simplify::simplify;
 use crate::volume::{Cave, Water};
 
-/// The three surfaces of `field`, all at `cell_size`; `anchors` (sinks and springs) keep the
-/// air around them even when it is sealed in rock.
-pub fn build(field: &CarvedTerrain, cell_size: f64, anchors: &[DVec3]) -> Mesh {
-    build_with(field, cell_size, cell_size, anchors)
+/// The meshes of `model` under the scene's `[mesher]` cells, the sinks and springs kept open.
+pub fn build(scene: &Scene, model: &SdfModel) -> Result<Mesh, MesherError> {
+    let params = scene.mesher();
+    check_lattice(model, "mesher.cell_size", params.cell_size)?;
+    let cave_cell = cave_cell(model, params.cell_size, params.cave_cell_size);
+    check_lattice(model, "mesher.cave_cell_size", cave_cell)?;
+    let field = CarvedTerrain::new(model.clone());
+    Ok(mesh_simplified(&field, params.cell_size, cave_cell, &anchors(scene), params.target_triangles))
 }
 
-/// [`build`] with the cave alone and the water at `cave_cell_size`.
-pub fn build_with(field: &CarvedTerrain, cell_size: f64, cave_cell_size: f64, anchors: &[DVec3]) -> Mesh {
+/// The sinks and springs of `scene`: the cleanup keeps the air around them even when it is
+/// sealed in rock.
+pub fn anchors(scene: &Scene) -> Vec<DVec3> {
+    scene
+        .keypoints()
+        .iter()
+        .filter(|k| matches!(k.kind, KeyPointKind::Sink | KeyPointKind::Spring))
+        .map(|k| k.point())
+        .collect()
+}
+
+/// Cells per axis the lattice may have: lattice point ids are (k·ny + j)·nx + i in a u64.
+const MAX_CELLS_PER_AXIS: f64 = (1u64 << 21) as f64;
+
+/// Refuses a cell size that would overflow the lattice's point ids.
+fn check_lattice(model: &SdfModel, field: &'static str, cell_size: f64) -> Result<(), MesherError> {
+    let cells = (model.domain.size() / cell_size).max_element() + 2.0;
+    if cells > MAX_CELLS_PER_AXIS {
+        return Err(MesherError::LatticeTooFine { field, cell_size, cells, max: MAX_CELLS_PER_AXIS });
+    }
+    Ok(())
+}
+
+/// The three surfaces of `field`, all at `cell_size`; `anchors` (sinks and springs) keep the
+/// air around them even when it is sealed in rock.
+pub fn mesh(field: &CarvedTerrain, cell_size: f64, anchors: &[DVec3]) -> Mesh {
+    mesh_with(field, cell_size, cell_size, anchors)
+}
+
+/// [`mesh`] with the cave alone and the water at `cave_cell_size`.
+pub fn mesh_with(field: &CarvedTerrain, cell_size: f64, cave_cell_size: f64, anchors: &[DVec3]) -> Mesh {
     let mut terrain = polygonize(field, cell_size);
     clean(&mut terrain, Solid::Rock, field.model(), anchors, cell_size);
     let mut cave = polygonize(&Cave(field), cave_cell_size);
@@ -36,7 +72,7 @@ pub fn cave_cell(model: &SdfModel, cell_size: f64, requested: f64) -> f64 {
     if requested > 0.0 {
         return requested;
     }
-    let section = |s: &karst_sdf::sweep::SectionSpec| (s.shape.radius * s.shape.ratio.min(1.0)) as f64;
+    let section = |s: &karst_sdf::SectionSpec| (s.shape.radius * s.shape.ratio.min(1.0)) as f64;
     let thinnest = model
         .capsules
         .iter()
@@ -53,15 +89,16 @@ pub fn cave_cell(model: &SdfModel, cell_size: f64, requested: f64) -> f64 {
 /// as its square).
 pub const CAVE_REFINE: f64 = 8.0;
 
-/// [`build`], then each surface simplified to at most `target_triangles` (0: not simplified).
-pub fn build_simplified(
+/// [`mesh_with`], then each surface simplified to at most `target_triangles` (0: not
+/// simplified).
+pub fn mesh_simplified(
     field: &CarvedTerrain,
     cell_size: f64,
     cave_cell_size: f64,
     anchors: &[DVec3],
     target_triangles: u64,
 ) -> Mesh {
-    let mut mesh = build_with(field, cell_size, cave_cell_size, anchors);
+    let mut mesh = mesh_with(field, cell_size, cave_cell_size, anchors);
     if target_triangles > 0 {
         for surface in [&mut mesh.terrain, &mut mesh.cave, &mut mesh.water] {
             simplify(surface, target_triangles as usize);

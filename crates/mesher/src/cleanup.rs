@@ -17,23 +17,11 @@
 //! vertices of a surface that meets the boundary on it, up to the interpolation clamp.
 
 use glam::DVec3;
-use serde::{Deserialize, Serialize};
 
 use karst_sdf::SdfModel;
 
 use crate::components;
-use crate::mesh::Surface;
-
-/// What the cleanup took away from one surface.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct Removed {
-    /// Rock islands floating in cave air, and their total volume, m³.
-    pub islands: u32,
-    pub island_volume: f64,
-    /// Air pockets sealed in rock, and their total volume, m³.
-    pub pockets: u32,
-    pub pocket_volume: f64,
-}
+use crate::payload::{Removed, TriMesh};
 
 /// Which solid a surface bounds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -53,7 +41,7 @@ enum Verdict {
 }
 
 /// Removes islands and pockets from `surface` in place; `anchors` are the sinks and springs.
-pub fn clean(surface: &mut Surface, solid: Solid, model: &SdfModel, anchors: &[DVec3], cell_size: f64) {
+pub fn clean(surface: &mut TriMesh, solid: Solid, model: &SdfModel, anchors: &[DVec3], cell_size: f64) {
     let (labels, count) = components::label(surface);
     let mut volume = vec![0.0; count];
     let mut reaches = vec![false; count];
@@ -97,7 +85,7 @@ pub fn clean(surface: &mut Surface, solid: Solid, model: &SdfModel, anchors: &[D
 
 /// Whether component `c` encloses `p`: parity of the crossings of a ray from p. The ray's
 /// direction is irrational in every axis so that it does not run along lattice planes.
-fn encloses(surface: &Surface, labels: &[u32], c: u32, p: DVec3) -> bool {
+fn encloses(surface: &TriMesh, labels: &[u32], c: u32, p: DVec3) -> bool {
     let direction = DVec3::new(1.0, 2f64.sqrt() * 1e-3, 3f64.sqrt() * 1e-3).normalize();
     let crossings = surface
         .triangles
@@ -124,7 +112,7 @@ fn crosses([a, b, c]: [DVec3; 3], p: DVec3, d: DVec3) -> bool {
 }
 
 /// Keeps the triangles marked in `keep` and the vertices they use, in their order.
-fn retain(surface: &mut Surface, keep: &[bool]) {
+fn retain(surface: &mut TriMesh, keep: &[bool]) {
     let mut used = vec![false; surface.vertices.len()];
     let mut triangles: Vec<[u32; 3]> =
         surface.triangles.iter().zip(keep).filter(|&(_, &k)| k).map(|(t, _)| *t).collect();

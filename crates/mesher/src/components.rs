@@ -2,10 +2,10 @@
 //! 2-manifold mesh each component is one closed sheet bounding one connected piece of the
 //! solid or of its complement.
 
-use crate::mesh::Surface;
+use crate::payload::TriMesh;
 
 /// The component of every triangle, numbered in order of first triangle, and their count.
-pub fn label(surface: &Surface) -> (Vec<u32>, usize) {
+pub fn label(surface: &TriMesh) -> (Vec<u32>, usize) {
     let mut parent: Vec<u32> = (0..surface.vertices.len() as u32).collect();
     for t in &surface.triangles {
         union(&mut parent, t[0], t[1]);
@@ -29,7 +29,7 @@ pub fn label(surface: &Surface) -> (Vec<u32>, usize) {
 }
 
 /// Number of components.
-pub fn count(surface: &Surface) -> usize {
+pub fn count(surface: &TriMesh) -> usize {
     label(surface).1
 }
 

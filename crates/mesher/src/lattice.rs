@@ -23,9 +23,4 @@ impl Lattice {
     pub fn point(&self, [i, j, k]: [u64; 3]) -> DVec3 {
         self.origin + DVec3::new(i as f64, j as f64, k as f64) * self.cell
     }
-
-    /// Global id of lattice point (i, j, k).
-    pub fn id(&self, [i, j, k]: [u64; 3]) -> u64 {
-        (k * self.dims[1] + j) * self.dims[0] + i
-    }
 }

@@ -5,8 +5,8 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use karst_artifact::cli::{InspectArgs, RunArgs, default_sigpipe, finish};
-use karst_mesher::stage;
+use karst_mesher::{MesherStage, stage};
+use karst_stage::cli::{self, InspectArgs, RunArgs, default_sigpipe, finish};
 
 /// Sparse polygonization of the carved terrain and its caves (karstgen stage 6).
 #[derive(Parser)]
@@ -23,8 +23,8 @@ enum Cli {
 fn main() -> ExitCode {
     default_sigpipe();
     finish(match Cli::parse() {
-        Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
-        Cli::Inspect(args) => stage::inspect(&args),
+        Cli::Run(args) => cli::run::<MesherStage>(&args),
+        Cli::Inspect(args) => cli::inspect::<MesherStage>(&args),
         Cli::Render(args) => stage::render(&args),
     })
 }

@@ -4,10 +4,10 @@
 
 use glam::DVec3;
 
-use crate::mesh::Surface;
+use crate::payload::TriMesh;
 
 /// One unit normal per vertex (zero for an unused vertex).
-pub fn vertex_normals(surface: &Surface) -> Vec<[f32; 3]> {
+pub fn vertex_normals(surface: &TriMesh) -> Vec<[f32; 3]> {
     let mut sum = vec![DVec3::ZERO; surface.vertices.len()];
     for t in &surface.triangles {
         let n = surface.normal(t);

@@ -23,8 +23,8 @@ use rayon::prelude::*;
 
 use crate::cubes::{EDGES, table};
 use crate::lattice::Lattice;
-use crate::mesh::Surface;
 use crate::octree::{self, BRICK};
+use crate::payload::TriMesh;
 use crate::volume::Volume;
 
 /// Where on a rock–air edge the vertex goes is clamped away from the lattice points, so that
@@ -118,20 +118,20 @@ impl OwnValues {
 type Neighbours = [u32; 7];
 
 /// Polygonizes the boundary f = 0 of `field` at `cell_size` over its extent.
-pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> Surface {
+pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> TriMesh {
     polygonize_with(field, cell_size, true)
 }
 
 /// [`polygonize`]; with `lazy` false every corner of the active bricks is evaluated (tests
 /// compare both).
-fn polygonize_with<V: Volume>(field: &V, cell_size: f64, lazy: bool) -> Surface {
+fn polygonize_with<V: Volume>(field: &V, cell_size: f64, lazy: bool) -> TriMesh {
     let (lo, hi) = field.extent();
     let lattice = Lattice::around(lo, hi, cell_size);
     let (bricks, octree_evaluations) = octree::active_bricks(field, &lattice);
     // A cell edge is one cell long, so both values of a rock–air edge lie within a cell of zero
     // (1-Lipschitz): beyond that only the sign matters, and vertices are those of exact values.
     let reach = lattice.cell * 1.5;
-    let bar = karst_artifact::progress::bar(4 * bricks.len() as u64, "mesher");
+    let bar = karst_stage::progress::bar(4 * bricks.len() as u64, "mesher");
     let find = |q: [u64; 3]| bricks.binary_search_by_key(&[q[2], q[1], q[0]], |c| [c[2], c[1], c[0]]).ok();
     let up: Vec<Neighbours> = bricks
         .par_iter()
@@ -545,7 +545,7 @@ fn brick<V: Volume>(
 }
 
 /// Numbers the vertices brick by brick and resolves every triangle's references.
-fn weld(parts: Vec<BrickPart>, evaluations: u64) -> Surface {
+fn weld(parts: Vec<BrickPart>, evaluations: u64) -> TriMesh {
     let mut base = Vec::with_capacity(parts.len() + 1);
     base.push(0u32);
     for part in &parts {
@@ -576,7 +576,7 @@ fn weld(parts: Vec<BrickPart>, evaluations: u64) -> Surface {
     for part in parts {
         vertices.extend(part.positions);
     }
-    Surface { vertices, triangles, field_evaluations, removed: Default::default() }
+    TriMesh { vertices, triangles, field_evaluations, removed: Default::default() }
 }
 
 #[cfg(test)]

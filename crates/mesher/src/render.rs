@@ -1,10 +1,13 @@
 //! A preview picture of a surface: orthographic view from above one corner, software z-buffer,
-//! flat Lambert shading, tinted by elevation (deep passages dark blue, shallow ones sand).
+//! flat Lambert shading, tinted by elevation (deep passages dark blue, shallow ones sand), with
+//! a caption and the elevation tint's colour bar (karst-plot).
 
 use glam::DVec3;
-use karst_raster::{BLACK, Canvas, Rgb};
+use karst_plot::colour_bar::{BAR_WIDTH, ColourBar, ColourMap};
+use karst_plot::text::{self, Align, TITLE, Valign};
+use karst_plot::{Canvas, Rect, Rgb};
 
-use crate::mesh::Surface;
+use crate::payload::TriMesh;
 
 /// Where the viewer stands: azimuth and elevation of the view direction, degrees.
 const AZIMUTH: f64 = -60.0;
@@ -13,8 +16,21 @@ const BACKGROUND: Rgb = [245, 245, 240];
 const DEEP: DVec3 = DVec3::new(40.0, 70.0, 140.0);
 const SHALLOW: DVec3 = DVec3::new(225.0, 190.0, 130.0);
 
+/// Width kept on the right for the colour bar, pixels.
+const KEY: f64 = 110.0;
+
+/// The elevation tint over `zlo..zhi`, unshaded.
+fn tint(zlo: f64, zhi: f64) -> ColourBar {
+    let [deep, shallow] = [DEEP, SHALLOW].map(|c| [c.x as u8, c.y as u8, c.z as u8]);
+    ColourBar {
+        map: ColourMap::new(&[(0.0, deep), (1.0, shallow)]),
+        range: (zlo, zhi),
+        title: "elevation (m)".into(),
+    }
+}
+
 /// Renders `surface` on a `width` × `height` canvas with a caption.
-pub fn render(surface: &Surface, width: u32, height: u32, caption: &str) -> Canvas {
+pub fn render(surface: &TriMesh, width: u32, height: u32, caption: &str) -> Canvas {
     let mut canvas = Canvas::new(width, height, BACKGROUND);
     let (az, el) = (AZIMUTH.to_radians(), ELEVATION.to_radians());
     let toward_viewer = DVec3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
@@ -31,8 +47,9 @@ pub fn render(surface: &Surface, width: u32, height: u32, caption: &str) -> Canv
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| (a.min(z), b.max(z)));
     let margin = 24.0;
     let top = 40.0;
-    let scale =
-        ((width as f64 - 2.0 * margin) / (hi.x - lo.x)).min((height as f64 - top - margin) / (hi.y - lo.y));
+    let key = if width as f64 > 3.0 * KEY { KEY } else { 0.0 };
+    let scale = ((width as f64 - 2.0 * margin - key) / (hi.x - lo.x))
+        .min((height as f64 - top - margin) / (hi.y - lo.y));
     let to_pixel = |p: DVec3| DVec3::new(margin + (p.x - lo.x) * scale, top + (p.y - lo.y) * scale, p.z);
     let mut depth = vec![f64::NEG_INFINITY; width as usize * height as usize];
     for t in &surface.triangles {
@@ -48,7 +65,13 @@ pub fn render(surface: &Surface, width: u32, height: u32, caption: &str) -> Canv
         let corners = t.map(|v| to_pixel(screen[v as usize]));
         fill(&mut canvas, &mut depth, corners, colour);
     }
-    canvas.text((margin as i64, 14), caption, 2, BLACK);
+    text::draw(&mut canvas, caption, (margin, 12.0), TITLE, Align::Left, Valign::Top);
+    if key > 0.0 && zhi > zlo {
+        let bar_h = (height as f64 * 0.4).min(240.0);
+        let bar =
+            Rect::at(width as f64 - key + 10.0, top + ColourBar::title_height() + 4.0, BAR_WIDTH, bar_h);
+        tint(zlo, zhi).draw(&mut canvas, bar);
+    }
     canvas
 }
 
@@ -59,9 +82,9 @@ fn fill(canvas: &mut Canvas, depth: &mut [f64], [a, b, c]: [DVec3; 3], colour: R
         return;
     }
     let x0 = a.x.min(b.x).min(c.x).floor().max(0.0) as i64;
-    let x1 = a.x.max(b.x).max(c.x).ceil().min(canvas.width as f64 - 1.0) as i64;
+    let x1 = a.x.max(b.x).max(c.x).ceil().min(canvas.width() as f64 - 1.0) as i64;
     let y0 = a.y.min(b.y).min(c.y).floor().max(0.0) as i64;
-    let y1 = a.y.max(b.y).max(c.y).ceil().min(canvas.height as f64 - 1.0) as i64;
+    let y1 = a.y.max(b.y).max(c.y).ceil().min(canvas.height() as f64 - 1.0) as i64;
     for y in y0..=y1 {
         for x in x0..=x1 {
             let p = DVec3::new(x as f64 + 0.5, y as f64 + 0.5, 0.0);
@@ -70,7 +93,7 @@ fn fill(canvas: &mut Canvas, depth: &mut [f64], [a, b, c]: [DVec3; 3], colour: R
                 continue;
             }
             let z = wa * a.z + wb * b.z + wc * c.z;
-            let i = y as usize * canvas.width as usize + x as usize;
+            let i = y as usize * canvas.width() as usize + x as usize;
             if z > depth[i] {
                 depth[i] = z;
                 canvas.set(x, y, colour);
@@ -82,4 +105,38 @@ fn fill(canvas: &mut Canvas, depth: &mut [f64], [a, b, c]: [DVec3; 3], colour: R
 /// Twice the signed area of (a, b, p) in the screen plane.
 fn edge(a: DVec3, b: DVec3, p: DVec3) -> f64 {
     (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A closed tetrahedron, counter-clockwise seen from outside.
+    fn tetrahedron() -> TriMesh {
+        TriMesh {
+            vertices: vec![[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [0.0, 10.0, 0.0], [0.0, 0.0, 10.0]],
+            triangles: vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+            ..TriMesh::default()
+        }
+    }
+
+    #[test]
+    fn the_render_decodes_at_its_size_with_the_surface_and_its_key() {
+        let canvas = render(&tetrahedron(), 480, 320, "cave: 4 triangles at 1 m");
+        let mut bytes = Vec::new();
+        canvas.encode_png(&mut bytes).unwrap();
+        let (w, h, colours) = karst_plot::testing::png_summary(&bytes);
+        assert_eq!((w, h), (480, 320));
+        assert!(colours > 20, "{colours} colours");
+        // The colour bar runs from the lowest tint at its bottom to the highest at its top.
+        let bar = tint(0.0, 10.0);
+        let x = (480.0 - KEY + 10.0 + BAR_WIDTH / 2.0) as i64;
+        let (y0, y1) =
+            (40.0 + ColourBar::title_height() + 4.0, 40.0 + ColourBar::title_height() + 4.0 + 128.0);
+        let near = |y: f64, v: f64| {
+            let (got, want) = (canvas.get(x, y as i64).unwrap(), bar.colour(v));
+            (0..3).all(|k| got[k].abs_diff(want[k]) <= 6)
+        };
+        assert!(near(y0 + 2.0, 10.0) && near(y1 - 2.0, 0.0));
+    }
 }

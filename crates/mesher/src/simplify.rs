@@ -14,10 +14,10 @@ use std::collections::BinaryHeap;
 
 use glam::DVec3;
 
-use crate::mesh::Surface;
+use crate::payload::TriMesh;
 
 /// Collapses edges until `surface` has at most `target` triangles or no collapse is legal.
-pub fn simplify(surface: &mut Surface, target: usize) {
+pub fn simplify(surface: &mut TriMesh, target: usize) {
     let mut mesh = Working::new(surface);
     let mut queue = BinaryHeap::new();
     for t in &surface.triangles {
@@ -71,7 +71,7 @@ struct Working {
 }
 
 impl Working {
-    fn new(surface: &Surface) -> Self {
+    fn new(surface: &TriMesh) -> Self {
         let mut around = vec![Vec::new(); surface.vertices.len()];
         for (i, t) in surface.triangles.iter().enumerate() {
             for &v in t {
@@ -150,7 +150,7 @@ impl Working {
     }
 
     /// Writes the surviving triangles and vertices back, in their order.
-    fn write_back(self, surface: &mut Surface) {
+    fn write_back(self, surface: &mut TriMesh) {
         let mut renumber = vec![u32::MAX; self.positions.len()];
         let mut vertices = Vec::new();
         let mut triangles = Vec::new();

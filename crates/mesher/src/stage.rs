@@ -1,118 +1,88 @@
-//! The mesher stage: `sdf.bin` in; `mesh.bin`, `mesh.obj` and `export/` out.
+//! The mesher stage's contract: `sdf.bin` in; `mesh.bin`, `mesh.obj` and `export/` out;
+//! `render` draws one surface.
 
-use std::path::PathBuf;
-use std::time::Instant;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
-use glam::DVec3;
 
-use karst_artifact::cli::{InspectArgs, RunArgs, StageRun, print_json};
-use karst_artifact::{Stage, StageError, read_artifact, write_artifact};
-use karst_geology::{KeyPointKind, Scene};
-use karst_sdf::{CarvedTerrain, SdfModel};
+use karst_artifact::{Header, StageId, read_artifact};
+use karst_geology::Scene;
+use karst_sdf::SdfModel;
+use karst_stage::{Stage, StageError};
 
-use crate::mesh::Surface;
-use crate::{Mesh, build, components, export, render, watertight};
+use crate::build::build;
+use crate::error::MesherError;
+use crate::payload::{Mesh, TriMesh};
+use crate::{components, export, render, watertight};
 
-/// The sinks and springs of `scene`: the cleanup keeps the air around them even when it is
-/// sealed in rock.
-pub fn anchors(scene: &Scene) -> Vec<DVec3> {
-    scene
-        .keypoints
-        .iter()
-        .filter(|k| matches!(k.kind, KeyPointKind::Sink | KeyPointKind::Spring))
-        .map(|k| k.point())
-        .collect()
+/// Stage 6: watertight meshes of the carved terrain, the cave alone and the water.
+pub struct MesherStage;
+
+impl Stage for MesherStage {
+    const ID: StageId = StageId::Mesher;
+    type Inputs = (SdfModel,);
+    type Output = Mesh;
+    type Error = MesherError;
+
+    fn build(scene: &Scene, (model,): &(SdfModel,)) -> Result<Mesh, MesherError> {
+        build(scene, model)
+    }
+
+    fn headline(_: &Scene, mesh: &Mesh) -> String {
+        let (t, c, w) = (&mesh.terrain, &mesh.cave, &mesh.water);
+        format!(
+            "terrain {} triangles, cave {} triangles, water {} triangles; removed {} islands and {} \
+             pockets; {:.1} evaluations per vertex",
+            t.triangles.len(),
+            c.triangles.len(),
+            w.triangles.len(),
+            t.removed.islands + c.removed.islands,
+            t.removed.pockets + c.removed.pockets,
+            (t.field_evaluations + c.field_evaluations + w.field_evaluations) as f64
+                / (t.vertices.len() + c.vertices.len() + w.vertices.len()).max(1) as f64
+        )
+    }
+
+    fn summary(_: &Header, mesh: &Mesh) -> Vec<String> {
+        let mut lines = vec![format!(
+            "cell size    {} m (terrain), {} m (cave and water)",
+            mesh.cell_size, mesh.cave_cell_size
+        )];
+        for (name, surface) in mesh.surfaces() {
+            lines.extend(surface_summary(name, surface));
+        }
+        lines
+    }
+
+    /// `mesh.obj` (the carved terrain) and `export/` (OBJ, binary PLY and .glb of the three
+    /// surfaces).
+    fn side_files(out: &Path, _: &Scene, _: &Self::Inputs, mesh: &Mesh) -> std::io::Result<()> {
+        export::write_all(out, mesh).map(|_| ())
+    }
 }
 
-/// `karst-mesher run`.
-pub fn run(args: &RunArgs) -> Result<String, StageError> {
-    let scene = Scene::load(&args.scene)?;
-    let mut run = StageRun::new(Stage::Mesher, &args.out);
-    let model: SdfModel = run.read_input(Stage::Sdf)?;
-    check_lattice(&args.scene, &model, "mesher.cell_size", scene.mesher.cell_size)?;
-    let start = Instant::now();
-    let anchors = anchors(&scene);
-    let params = &scene.mesher;
-    let cave_cell = build::cave_cell(&model, params.cell_size, params.cave_cell_size);
-    check_lattice(&args.scene, &model, "mesher.cave_cell_size", cave_cell)?;
-    let mesh = build::build_simplified(
-        &CarvedTerrain::new(model),
-        params.cell_size,
-        cave_cell,
-        &anchors,
-        params.target_triangles,
-    );
-    write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Mesher)), &mesh)?;
-    export::write_all(&args.out, &mesh)
-        .map_err(|e| StageError::failure(format!("{}: cannot write the exports: {e}", args.out.display())))?;
-    let (t, c, w) = (&mesh.terrain, &mesh.cave, &mesh.water);
-    Ok(format!(
-        "terrain {} triangles, cave {} triangles, water {} triangles; removed {} islands and {} \
-         pockets; {:.1} evaluations per vertex in {:.2} s",
-        t.triangles.len(),
-        c.triangles.len(),
-        w.triangles.len(),
-        t.removed.islands + c.removed.islands,
-        t.removed.pockets + c.removed.pockets,
-        (t.field_evaluations + c.field_evaluations + w.field_evaluations) as f64
-            / (t.vertices.len() + c.vertices.len() + w.vertices.len()).max(1) as f64,
-        start.elapsed().as_secs_f64()
-    ))
-}
-
-/// Cells per axis the lattice may have: lattice point ids are (k·ny + j)·nx + i in a u64.
-const MAX_CELLS_PER_AXIS: f64 = (1u64 << 21) as f64;
-
-/// Refuses a cell size that would overflow the lattice's point ids.
-fn check_lattice(
-    scene: &std::path::Path,
-    model: &SdfModel,
-    field: &str,
-    cell_size: f64,
-) -> Result<(), StageError> {
-    let cells = (model.domain.size() / cell_size).max_element() + 2.0;
-    if cells > MAX_CELLS_PER_AXIS {
-        return Err(StageError::input(format!(
-            "{}: {field} = {cell_size} gives {cells:.0} cells along the domain's longest axis; \
-             at most {MAX_CELLS_PER_AXIS} are possible",
-            scene.display()
-        )));
-    }
-    Ok(())
-}
-
-/// `karst-mesher inspect`.
-pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
-    if args.json {
-        return print_json::<Mesh>(&args.file);
-    }
-    let (header, mesh) = read_artifact::<Mesh>(&args.file)?;
-    println!("{}: mesh, schema {}, by {}", args.file.display(), header.schema, header.producer);
-    println!("  cell size    {} m (terrain), {} m (cave and water)", mesh.cell_size, mesh.cave_cell_size);
-    for (name, surface) in mesh.surfaces() {
-        summary(name, surface);
-    }
-    Ok(())
-}
-
-fn summary(name: &str, s: &Surface) {
-    println!("  {name}");
-    println!("    triangles    {}", s.triangles.len());
-    println!("    vertices     {}", s.vertices.len());
-    println!("    components   {}", components::count(s));
-    match watertight::check(s) {
-        Ok(()) => println!("    watertight   yes: closed, 2-manifold, oriented, no degenerate triangle"),
-        Err(defect) => println!("    watertight   NO: {defect}"),
-    }
-    println!("    area         {:.1} m²", s.area());
-    println!("    volume       {:.1} m³ enclosed", s.enclosed_volume());
-    println!("    evaluations  {} ({:.2} per vertex)", s.field_evaluations, s.evaluations_per_vertex());
+fn surface_summary(name: &str, s: &TriMesh) -> Vec<String> {
+    let mut lines = vec![name.to_string()];
+    lines.push(format!("  triangles    {}", s.triangles.len()));
+    lines.push(format!("  vertices     {}", s.vertices.len()));
+    lines.push(format!("  components   {}", components::count(s)));
+    lines.push(match watertight::check(s) {
+        Ok(()) => "  watertight   yes: closed, 2-manifold, oriented, no degenerate triangle".to_string(),
+        Err(defect) => format!("  watertight   NO: {defect}"),
+    });
+    lines.push(format!("  area         {:.1} m²", s.area()));
+    lines.push(format!("  volume       {:.1} m³ enclosed", s.enclosed_volume()));
+    lines.push(format!(
+        "  evaluations  {} ({:.2} per vertex)",
+        s.field_evaluations,
+        s.evaluations_per_vertex()
+    ));
     let r = &s.removed;
-    println!(
-        "    removed      {} islands ({:.1} m³), {} pockets ({:.1} m³)",
+    lines.push(format!(
+        "  removed      {} islands ({:.1} m³), {} pockets ({:.1} m³)",
         r.islands, r.island_volume, r.pockets, r.pocket_volume
-    );
+    ));
+    lines
 }
 
 /// `karst-mesher render`: a PNG preview of one surface of a mesh artifact.

@@ -3,7 +3,7 @@
 
 use thiserror::Error;
 
-use crate::mesh::Surface;
+use crate::payload::TriMesh;
 
 /// The first broken promise found.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -19,7 +19,7 @@ pub enum Defect {
 }
 
 /// Ok when the surface is closed, 2-manifold at edges, oriented and without zero-area triangles.
-pub fn check(surface: &Surface) -> Result<(), Defect> {
+pub fn check(surface: &TriMesh) -> Result<(), Defect> {
     let n = surface.vertices.len() as u32;
     let mut edges = Vec::with_capacity(surface.triangles.len() * 3);
     for (i, t) in surface.triangles.iter().enumerate() {

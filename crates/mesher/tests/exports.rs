@@ -2,12 +2,12 @@
 //! .glb container, JSON and accessors against the glTF 2.0 rules.
 
 use karst_geology::Domain;
-use karst_mesher::build::build;
-use karst_mesher::normals::vertex_normals;
-use karst_mesher::{Surface, export};
+use karst_mesher::mesh as mesh_of;
+use karst_mesher::vertex_normals;
+use karst_mesher::{TriMesh, export};
 use karst_sdf::{Capsule, CarvedTerrain, SdfModel, TerrainField};
 
-fn cave() -> Surface {
+fn cave() -> TriMesh {
     let domain = Domain { min: [0.0, 0.0, 0.0], max: [40.0, 30.0, 20.0] };
     let terrain = TerrainField::Plane { elevation: 15.0, origin: [0.0, 0.0], gradient: [0.02, 0.0] };
     let field = CarvedTerrain::new(SdfModel {
@@ -17,7 +17,7 @@ fn cave() -> Surface {
         ],
         ..SdfModel::new(domain, terrain)
     });
-    build(&field, 1.0, &[]).cave
+    mesh_of(&field, 1.0, &[]).cave
 }
 
 fn temp(name: &str) -> std::path::PathBuf {

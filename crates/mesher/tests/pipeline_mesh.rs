@@ -30,8 +30,8 @@ fn tiny_scene_surfaces_are_closed_oriented_manifolds() {
 /// closed surface inside the conduits.
 #[test]
 fn tiny_scene_water_is_closed_and_inside_the_conduits() {
-    use karst_mesher::polygonize::polygonize;
-    use karst_mesher::volume::{Cave, Water};
+    use karst_mesher::polygonize;
+    use karst_mesher::{Cave, Water};
     use karst_sdf::{CarvedTerrain, SdfModel};
 
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/golden/tiny/sdf.bin");

@@ -4,39 +4,33 @@
 //! terrain at its scene's cell, the cave and water at 1 m) to keep the test short; the lattice
 //! and the polygonizer are the same at every resolution.
 
-use std::path::{Path, PathBuf};
-
-use karst_artifact::cli::RunArgs;
 use karst_artifact::read_artifact;
 use karst_geology::Scene;
-use karst_mesher::build::build_with;
-use karst_mesher::stage::anchors;
-use karst_mesher::{Surface, watertight};
+use karst_mesher::anchors;
+use karst_mesher::mesh_with;
+use karst_mesher::{TriMesh, watertight};
 use karst_sdf::{CarvedTerrain, SdfModel};
+use karst_testkit::root;
 
 /// The cell of the cave alone and of the water in this test, metres.
 const CAVE_CELL: f64 = 1.0;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 /// The scene's sdf model, its upstream stages run into a scratch folder.
 fn preset_model(name: &str) -> (Scene, SdfModel) {
     let scene = root().join(format!("fixtures/scenes/{name}.toml"));
     let out = std::env::temp_dir().join(format!("karst-mesher-{name}-{}", std::process::id()));
-    let args = RunArgs { scene: scene.clone(), out: out.clone() };
-    karst_sampling::stage::run(&args).unwrap();
-    karst_costgraph::stage::run(&args).unwrap();
-    karst_skeleton::stage::run(&args).unwrap();
-    karst_hydro::stage::run(&args).unwrap();
-    karst_sdf::stage::run(&args).unwrap();
+    let args = (scene.clone(), out.clone());
+    karst_testkit::run::<karst_sampling::SamplingStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_hydro::HydroStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_sdf::SdfStage>(&args.0, &args.1).unwrap();
     let (_, model): (_, SdfModel) = read_artifact(&out.join("sdf.bin")).unwrap();
     let _ = std::fs::remove_dir_all(&out);
     (Scene::load(&scene).unwrap(), model)
 }
 
-fn defects(name: &str, surface: &Surface) -> Option<String> {
+fn defects(name: &str, surface: &TriMesh) -> Option<String> {
     if surface.triangles.is_empty() {
         return Some(format!("{name}: empty"));
     }
@@ -50,7 +44,7 @@ fn defects(name: &str, surface: &Surface) -> Option<String> {
 fn check_preset(name: &str) {
     let (scene, model) = preset_model(name);
     let field = CarvedTerrain::new(model);
-    let mesh = build_with(&field, scene.mesher.cell_size, CAVE_CELL, &anchors(&scene));
+    let mesh = mesh_with(&field, scene.mesher().cell_size, CAVE_CELL, &anchors(&scene));
     let failures: Vec<String> = [("terrain", &mesh.terrain), ("cave", &mesh.cave), ("water", &mesh.water)]
         .into_iter()
         .filter_map(|(surface, s)| defects(&format!("{name} {surface}"), s))

@@ -4,11 +4,11 @@
 use glam::DVec3;
 
 use karst_geology::Domain;
-use karst_mesher::build::build;
-use karst_mesher::cleanup::{Solid, clean};
-use karst_mesher::polygonize::polygonize;
-use karst_mesher::volume::{Cave, Volume};
-use karst_mesher::{Mesh, Surface, components, export, watertight};
+use karst_mesher::mesh as mesh_field;
+use karst_mesher::polygonize;
+use karst_mesher::{Cave, Volume};
+use karst_mesher::{Mesh, TriMesh, components, export, watertight};
+use karst_mesher::{Solid, clean};
 use karst_sdf::{Capsule, CarvedTerrain, SdfModel, TerrainField};
 
 const PI: f64 = std::f64::consts::PI;
@@ -58,10 +58,10 @@ fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
 }
 
 fn mesh_of(model: SdfModel, cell: f64) -> Mesh {
-    build(&CarvedTerrain::new(model), cell, &[])
+    mesh_field(&CarvedTerrain::new(model), cell, &[])
 }
 
-fn assert_watertight(name: &str, surface: &Surface) {
+fn assert_watertight(name: &str, surface: &TriMesh) {
     assert!(!surface.triangles.is_empty(), "{name}: empty");
     if let Err(defect) = watertight::check(surface) {
         panic!("{name}: {defect}");
@@ -107,7 +107,7 @@ fn rock_and_cave_fill_the_ground_between_them() {
 #[test]
 fn sealed_pocket_is_removed_unless_it_holds_a_spring() {
     let field = CarvedTerrain::new(model());
-    let mesh = build(&field, 0.5, &[]);
+    let mesh = mesh_field(&field, 0.5, &[]);
     let pocket = PI * 4.0 * 4.0 + 4.0 / 3.0 * PI * 8.0;
     // Marching cubes' chords cut inside a convex surface: a capsule of 2 m radius at 0.5 m
     // loses about 2 % of its volume.
@@ -116,7 +116,7 @@ fn sealed_pocket_is_removed_unless_it_holds_a_spring() {
         assert!((removed.pocket_volume / pocket - 1.0).abs() < 0.03, "{removed:?}");
     }
     let spring = DVec3::new(42.0, 8.0, 5.0);
-    let kept = build(&field, 0.5, &[spring]);
+    let kept = mesh_field(&field, 0.5, &[spring]);
     assert_eq!(kept.terrain.removed.pockets + kept.cave.removed.pockets, 0);
     let gained = kept.cave.enclosed_volume() - mesh.cave.enclosed_volume();
     assert!((gained / pocket - 1.0).abs() < 0.03, "{gained}");
@@ -150,7 +150,7 @@ fn one_or_two_threads_write_the_same_files() {
             let mesh = with_threads(threads, || {
                 let field = CarvedTerrain::new(random_model());
                 // Cave and water finer than the terrain, as the stage's automatic cave cell does.
-                karst_mesher::build::build_with(&field, 1.0, 0.6, &[])
+                karst_mesher::mesh_with(&field, 1.0, 0.6, &[])
             });
             let dir = std::env::temp_dir().join(format!("karst-mesher-{}-{threads}", std::process::id()));
             let files = export::write_all(&dir, &mesh).unwrap();
@@ -199,7 +199,7 @@ fn simplification_keeps_the_promises() {
     for (name, surface) in [("terrain", &mesh.terrain), ("cave", &mesh.cave)] {
         let target = surface.triangles.len() / 2;
         let mut simple = surface.clone();
-        karst_mesher::simplify::simplify(&mut simple, target);
+        karst_mesher::simplify(&mut simple, target);
         assert!(simple.triangles.len() <= target, "{name}: {} > {target}", simple.triangles.len());
         assert_watertight(&format!("simplified {name}"), &simple);
         let (before, after) = (surface.enclosed_volume(), simple.enclosed_volume());
@@ -309,12 +309,12 @@ fn thin_conduits_are_meshed_whole_at_the_automatic_cave_cell() {
             TerrainField::Plane { elevation: 18.0, origin: [0.0, 0.0], gradient: [0.0, 0.0] },
         )
     };
-    let cave_cell = karst_mesher::build::cave_cell(&model, 4.0, 0.0);
+    let cave_cell = karst_mesher::cave_cell(&model, 4.0, 0.0);
     assert_eq!(cave_cell, r);
     let field = CarvedTerrain::new(model);
     let coarse = polygonize(&Cave(&field), 4.0);
     assert!(components::count(&coarse) != 1, "a 4 m lattice should miss parts of it");
-    let mesh = karst_mesher::build::build_with(&field, 4.0, cave_cell, &[DVec3::from_array(a)]);
+    let mesh = karst_mesher::mesh_with(&field, 4.0, cave_cell, &[DVec3::from_array(a)]);
     assert_watertight("cave", &mesh.cave);
     assert_eq!(components::count(&mesh.cave), 1);
     let length = DVec3::from_array(a).distance(DVec3::from_array(b))

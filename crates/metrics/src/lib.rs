@@ -11,17 +11,21 @@
 //! `branches` (spec §1) → `reduced` (spec §2) → `geometry` / `topology` (spec §3), with the
 //! all-pairs traversals of the reduced graph in `shortest_paths`.
 //!
-//! [`ranges`] compares the metrics with real caves, [`plots`] draws them.
+//! [`ranges`] compares the metrics with real caves, `plots.rs` draws them. [`build`] makes the
+//! stage's report of a skeleton ([`MetricsReport`], `payload.rs`), [`MetricsStage`] is the stage.
 //!
 //! [`readers`] load karstnet `_nodes.dat`/`_links.dat` pairs, GOCAD PLines and CSV tables.
 
 mod branches;
+mod build;
+mod error;
 mod geometry;
 mod graph;
 mod metrics;
 mod network;
 mod nullable;
-pub mod plots;
+mod payload;
+mod plots;
 pub mod ranges;
 pub mod readers;
 mod reduced;
@@ -29,6 +33,10 @@ mod shortest_paths;
 pub mod stage;
 mod topology;
 
+pub use build::{build, network_of, report, water_type_lengths, zone_lengths};
+pub use error::ReportError;
 pub use metrics::{Distributions, Metrics, characterize, distributions};
 pub use network::{MetricsError, Network};
+pub use payload::{MetricsReport, ZoneLengths};
 pub use readers::ReadError;
+pub use stage::{MetricsStage, write_plots};

@@ -1,212 +1,138 @@
-//! The metrics stage: `skeleton.json` and `hydro.json` in, `metrics.json` and three pictures
-//! (DIR/preview/) out.
-//!
-//! `metrics.json` holds, under karstnet's key names, every `characterize_graph()` metric beside
-//! its real-cave range (`karstnet`), every statistic of [`Metrics`] (`network`), and what only a
-//! karstgen skeleton knows: the conduit length above and below the water table (`zones`) and per
-//! conduit type (`conduit_types`, Paris et al. 2021 §5.3). A segment whose two nodes lie in
-//! different zones crosses the water table somewhere between them: half of its length counts in
-//! each zone.
-//!
-//! The length per water type (`water_types`: stream, rapid, plunge, sump, pool, dry... of the
-//! hydro stage, Emilien et al. 2015 Table 1) sums each segment under the type hydro gave it.
+//! The metrics stage's contract: `skeleton.json` and `hydro.json` in, `metrics.json` and three
+//! pictures (DIR/preview/) out; and the statistics of any network file.
 
 use std::collections::BTreeMap;
-use std::path::Path;
-use std::time::Instant;
+use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
-use karst_artifact::cli::{InspectArgs, RunArgs, StageRun, print_json};
-use karst_artifact::{Kind, Payload, Stage, StageError, read_artifact, write_artifact};
+use karst_artifact::{Header, StageId};
 use karst_geology::Scene;
-use karst_hydro::{Hydro, WaterType};
-use karst_skeleton::{ConduitType, Skeleton, Zone};
+use karst_hydro::Hydro;
+use karst_skeleton::Skeleton;
+use karst_stage::{Stage, StageError};
 
-use crate::ranges::{self, Compared};
-use crate::{Metrics, Network, characterize, distributions, plots};
+use crate::build::{build, network_of};
+use crate::error::ReportError;
+use crate::payload::MetricsReport;
+use crate::ranges::Compared;
+use crate::readers::{self, ReadError};
+use crate::{Metrics, Network, characterize, distributions, plots, ranges};
 
-/// The metrics artifact.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct MetricsReport {
-    /// `characterize_graph()`'s metrics, each with its real-cave range.
-    pub karstnet: BTreeMap<String, Compared>,
-    /// Every statistic, under karstnet's key names.
-    pub network: Metrics,
-    /// Conduit length in the vadose and the phreatic zone.
-    pub zones: ZoneLengths,
-    /// Conduit length per conduit type (every type, zero when absent).
-    pub conduit_types: BTreeMap<String, f64>,
-    /// Conduit length per water type of the hydro stage (every type, zero when absent); empty
-    /// when the report is made from a skeleton alone (ensembles).
-    #[serde(default)]
-    pub water_types: BTreeMap<String, f64>,
-}
+/// Stage 7: karstnet's statistics of the network against real caves.
+pub struct MetricsStage;
 
-/// Conduit length above (vadose) and below (phreatic) the water table, metres.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ZoneLengths {
-    pub vadose: f64,
-    pub phreatic: f64,
-}
+impl Stage for MetricsStage {
+    const ID: StageId = StageId::Metrics;
+    type Inputs = (Skeleton, Hydro);
+    type Output = MetricsReport;
+    type Error = ReportError;
 
-impl Payload for MetricsReport {
-    const KIND: Kind = Kind::Metrics;
-    const SCHEMA: u32 = 3;
-}
-
-/// The network of a skeleton as karstnet sees it.
-pub fn network_of(skeleton: &Skeleton) -> Network {
-    Network {
-        nodes: skeleton.nodes.iter().map(|n| n.position).collect(),
-        links: skeleton.links().into_iter().map(|[a, b]| [a as usize, b as usize]).collect(),
+    fn build(_: &Scene, (skeleton, hydro): &(Skeleton, Hydro)) -> Result<MetricsReport, ReportError> {
+        build(skeleton, hydro)
     }
-}
 
-/// The report of a skeleton (karstnet's statistics, zones and conduit types).
-pub fn report(skeleton: &Skeleton) -> Result<MetricsReport, crate::MetricsError> {
-    let metrics = characterize(&network_of(skeleton))?;
-    Ok(MetricsReport {
-        karstnet: ranges::compare(&metrics).into_iter().map(|(k, c)| (k.to_string(), c)).collect(),
-        network: metrics,
-        zones: zone_lengths(skeleton),
-        conduit_types: ConduitType::ALL
-            .iter()
-            .map(|&t| (t.name().to_string(), skeleton.length_of_type(t) + 0.0)) // + 0.0: no -0 for an empty sum
-            .collect(),
-        water_types: BTreeMap::new(),
-    })
-}
+    fn headline(_: &Scene, report: &MetricsReport) -> String {
+        let m = &report.network;
+        let inside = report.karstnet.values().filter(|c| c.inside).count();
+        format!(
+            "{} nodes, {} branches, {:.0} m, {inside}/{} metrics within real caves",
+            m.n_nodes_full,
+            m.n_branches,
+            m.total_length,
+            report.karstnet.len()
+        )
+    }
 
-/// Conduit length per water type of `hydro`, which must describe the segments of `skeleton`.
-pub fn water_type_lengths(skeleton: &Skeleton, hydro: &Hydro) -> Result<BTreeMap<String, f64>, String> {
-    let mut lengths: BTreeMap<String, f64> =
-        WaterType::ALL.iter().map(|t| (t.name().to_string(), 0.0)).collect();
-    if hydro.conduits.len() != skeleton.conduits.len() {
-        return Err(format!(
-            "hydro.json has {} conduits, skeleton.json {}",
-            hydro.conduits.len(),
-            skeleton.conduits.len()
+    fn summary(_: &Header, report: &MetricsReport) -> Vec<String> {
+        let mut lines = Vec::new();
+        for (key, c) in &report.karstnet {
+            let verdict = if c.inside { "inside" } else { "OUTSIDE" };
+            let r = &c.real_caves;
+            lines.push(format!("{key:<28} {:>12.5}  {verdict:<7} [{:.4}, {:.4}]", c.value, r.min, r.max));
+        }
+        for (key, value) in report.network.to_pairs().into_iter().skip(ranges::CHARACTERIZE_KEYS.len()) {
+            lines.push(format!("{key:<28} {value:>12.5}"));
+        }
+        lines.push(format!(
+            "vadose length {:.1} m, phreatic length {:.1} m",
+            report.zones.vadose, report.zones.phreatic
         ));
-    }
-    for (c, (conduit, water)) in skeleton.conduits.iter().zip(&hydro.conduits).enumerate() {
-        if water.segments.len() + 1 != conduit.nodes.len() {
-            return Err(format!("conduit {c}: hydro.json has {} segments", water.segments.len()));
+        for (kind, length) in
+            report.conduit_types.iter().chain(&report.water_types).filter(|(_, l)| **l > 0.0)
+        {
+            lines.push(format!("{kind} {length:.1} m"));
         }
-        for (w, segment) in conduit.nodes.windows(2).zip(&water.segments) {
-            let [a, b] = [w[0], w[1]].map(|i| skeleton.nodes[i as usize].position);
-            *lengths.entry(segment.water.name().to_string()).or_default() +=
-                crate::geometry::distance(&a, &b);
-        }
+        lines
     }
-    Ok(lengths)
-}
 
-/// Conduit length per zone; a segment between zones counts half in each.
-pub fn zone_lengths(skeleton: &Skeleton) -> ZoneLengths {
-    let mut lengths = ZoneLengths { vadose: 0.0, phreatic: 0.0 };
-    for conduit in &skeleton.conduits {
-        for w in conduit.nodes.windows(2) {
-            let [a, b] = [w[0], w[1]].map(|i| &skeleton.nodes[i as usize]);
-            let length = crate::geometry::distance(&a.position, &b.position);
-            for node in [a, b] {
-                match node.zone {
-                    Zone::Vadose => lengths.vadose += length / 2.0,
-                    Zone::Phreatic => lengths.phreatic += length / 2.0,
-                }
-            }
-        }
+    /// The rose diagram, the branch-length histogram and the range chart, in DIR/preview/.
+    fn side_files(
+        out: &Path,
+        _: &Scene,
+        (skeleton, _): &(Skeleton, Hydro),
+        report: &MetricsReport,
+    ) -> std::io::Result<()> {
+        write_plots(&out.join("preview"), &network_of(skeleton), &report.network)
     }
-    lengths
 }
 
 /// Writes the rose diagram, the branch-length histogram and the range chart of a network.
-pub fn write_plots(dir: &Path, net: &Network, metrics: &Metrics) -> Result<(), StageError> {
-    let d = distributions(net).map_err(|e| StageError::input(e.to_string()))?;
+pub fn write_plots(dir: &Path, net: &Network, metrics: &Metrics) -> std::io::Result<()> {
+    let d = distributions(net).map_err(std::io::Error::other)?;
     plots::write_all(dir, &d.azimuth_lengths, &d.branch_lengths, &ranges::compare(metrics))
-        .map_err(|e| StageError::failure(format!("{}: cannot write the plots: {e}", dir.display())))
 }
 
-/// `karst-metrics run`.
-pub fn run(args: &RunArgs) -> Result<String, StageError> {
-    let scene = Scene::load(&args.scene)?;
-    let mut run = StageRun::new(Stage::Metrics, &args.out);
-    let skeleton: Skeleton = run.read_input(Stage::Skeleton)?;
-    let hydro: Hydro = run.read_input(Stage::Hydro)?;
-    let start = Instant::now();
-    let mut report = report(&skeleton).map_err(|e| StageError::input(format!("skeleton.json: {e}")))?;
-    report.water_types = water_type_lengths(&skeleton, &hydro)
-        .map_err(|e| StageError::input(format!("{e}: rerun `cargo xtask run --from hydro`")))?;
-    write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Metrics)), &report)?;
-    write_plots(&args.out.join("preview"), &network_of(&skeleton), &report.network)?;
-    let m = &report.network;
-    let inside = report.karstnet.values().filter(|c| c.inside).count();
-    Ok(format!(
-        "{} nodes, {} branches, {:.0} m, {inside}/{} metrics within real caves, in {:.3} s",
-        m.n_nodes_full,
-        m.n_branches,
-        m.total_length,
-        report.karstnet.len(),
-        start.elapsed().as_secs_f64()
-    ))
+/// A network file to characterize.
+#[derive(Debug, Clone, clap::Args)]
+#[group(multiple = false)]
+pub struct NetworkFile {
+    /// karstnet's BASE_nodes.dat and BASE_links.dat.
+    #[arg(long, value_name = "BASE")]
+    pub karstnet: Option<PathBuf>,
+    /// A GOCAD PLine file.
+    #[arg(long, value_name = "FILE.pl")]
+    pub pline: Option<PathBuf>,
+    /// CSV node table (id,x,y,z) and edge table (from,to).
+    #[arg(long, num_args = 2, value_names = ["NODES", "EDGES"])]
+    pub csv: Option<Vec<PathBuf>>,
 }
 
-/// `karst-metrics inspect`.
-pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
-    if args.json {
-        return print_json::<MetricsReport>(&args.file);
-    }
-    let (header, report) = read_artifact::<MetricsReport>(&args.file)?;
-    println!("{}: metrics, schema {}, by {}", args.file.display(), header.schema, header.producer);
-    for (key, c) in &report.karstnet {
-        let verdict = if c.inside { "inside" } else { "OUTSIDE" };
-        let r = &c.real_caves;
-        println!("  {key:<28} {:>12.5}  {verdict:<7} [{:.4}, {:.4}]", c.value, r.min, r.max);
-    }
-    for (key, value) in report.network.to_pairs().into_iter().skip(ranges::CHARACTERIZE_KEYS.len()) {
-        println!("  {key:<28} {value:>12.5}");
-    }
-    println!("  vadose length {:.1} m, phreatic length {:.1} m", report.zones.vadose, report.zones.phreatic);
-    for (kind, length) in report.conduit_types.iter().chain(&report.water_types).filter(|(_, l)| **l > 0.0) {
-        println!("  {kind} {length:.1} m");
+/// What the command prints for a network file.
+#[derive(Serialize)]
+struct FileReport<'a> {
+    karstnet: BTreeMap<&'a str, Compared>,
+    network: &'a Metrics,
+}
+
+/// Prints the metrics of a network file as JSON (karstnet's keys, each `characterize_graph()`
+/// metric beside its real-cave range), and draws its plots into `plots` when given.
+pub fn characterize_file(file: &NetworkFile, plots: Option<&Path>) -> Result<(), StageError> {
+    let (network, name) = read(file)?;
+    let metrics = characterize(&network).map_err(|e| StageError::input(format!("{name}: {e}")))?;
+    let report = FileReport { karstnet: ranges::compare(&metrics).into_iter().collect(), network: &metrics };
+    let text = serde_json::to_string_pretty(&report).map_err(|e| StageError::failure(e.to_string()))?;
+    println!("{text}");
+    if let Some(dir) = plots {
+        write_plots(dir, &network, &metrics)
+            .map_err(|e| StageError::failure(format!("{}: cannot write the plots: {e}", dir.display())))?;
     }
     Ok(())
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use karst_skeleton::{Conduit, Node};
-
-    fn node(position: [f64; 3], zone: Zone) -> Node {
-        Node { position, sample: 0, keypoint: None, zone }
+fn read(file: &NetworkFile) -> Result<(Network, String), StageError> {
+    let bad = |e: ReadError| StageError::input(e.to_string());
+    let show = |p: &Path| p.display().to_string();
+    if let Some(base) = &file.karstnet {
+        return Ok((readers::read_karstnet(base).map_err(bad)?, show(base)));
     }
-
-    #[test]
-    fn zones_and_types_split_the_total_length() {
-        let skeleton = Skeleton {
-            nodes: vec![
-                node([0.0, 0.0, 10.0], Zone::Vadose),
-                node([0.0, 0.0, 0.0], Zone::Vadose),
-                node([4.0, 0.0, 0.0], Zone::Phreatic),
-                node([4.0, 6.0, 0.0], Zone::Phreatic),
-            ],
-            conduits: vec![Conduit {
-                nodes: vec![0, 1, 2, 3],
-                radius: vec![1.0; 4],
-                types: vec![ConduitType::Tube, ConduitType::Keyhole, ConduitType::Bed],
-                phase: 0,
-                keypoints: vec![],
-            }],
-            routes: vec![],
-        };
-        let r = report(&skeleton).expect("valid");
-        assert_eq!(r.zones, ZoneLengths { vadose: 12.0, phreatic: 8.0 });
-        assert_eq!(r.conduit_types["tube"], 10.0);
-        assert_eq!(r.conduit_types["keyhole"], 4.0);
-        assert_eq!(r.conduit_types["bed"], 6.0);
-        assert_eq!(r.conduit_types.values().sum::<f64>(), r.network.total_length);
-        assert_eq!(r.karstnet.len(), 10);
-        assert_eq!(r.karstnet["mean length"].value, 20.0);
+    if let Some(path) = &file.pline {
+        return Ok((readers::read_pline(path).map_err(bad)?, show(path)));
     }
+    if let Some([nodes, edges]) = file.csv.as_deref() {
+        return Ok((readers::read_csv(nodes, edges).map_err(bad)?, show(nodes)));
+    }
+    Err(StageError::input(
+        "give a subcommand (run, inspect) or a network: --karstnet BASE, --pline FILE.pl or --csv NODES EDGES",
+    ))
 }

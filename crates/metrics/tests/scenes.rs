@@ -12,11 +12,10 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::{as_map, assert_same, json_map, karstnet_metrics, python, temp_dir};
-use karst_artifact::cli::RunArgs;
 use karst_artifact::read_artifact;
+use karst_metrics::MetricsReport;
 use karst_metrics::characterize;
 use karst_metrics::readers::read_karstnet;
-use karst_metrics::stage::MetricsReport;
 
 fn scenes() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scenes");
@@ -30,13 +29,18 @@ fn scenes() -> Vec<PathBuf> {
 }
 
 fn run_stages(scene: &Path, out: &Path) {
-    let args = RunArgs { scene: scene.to_path_buf(), out: out.to_path_buf() };
+    let args = (scene.to_path_buf(), out.to_path_buf());
     let name = scene.display();
-    karst_sampling::stage::run(&args).unwrap_or_else(|e| panic!("{name}: sampling: {e}"));
-    karst_costgraph::stage::run(&args).unwrap_or_else(|e| panic!("{name}: costgraph: {e}"));
-    karst_skeleton::stage::run(&args).unwrap_or_else(|e| panic!("{name}: skeleton: {e}"));
-    karst_hydro::stage::run(&args).unwrap_or_else(|e| panic!("{name}: hydro: {e}"));
-    karst_metrics::stage::run(&args).unwrap_or_else(|e| panic!("{name}: metrics: {e}"));
+    karst_testkit::run::<karst_sampling::SamplingStage>(&args.0, &args.1)
+        .unwrap_or_else(|e| panic!("{name}: sampling: {e}"));
+    karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1)
+        .unwrap_or_else(|e| panic!("{name}: costgraph: {e}"));
+    karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1)
+        .unwrap_or_else(|e| panic!("{name}: skeleton: {e}"));
+    karst_testkit::run::<karst_hydro::HydroStage>(&args.0, &args.1)
+        .unwrap_or_else(|e| panic!("{name}: hydro: {e}"));
+    karst_testkit::run::<karst_metrics::MetricsStage>(&args.0, &args.1)
+        .unwrap_or_else(|e| panic!("{name}: metrics: {e}"));
 }
 
 #[test]

@@ -4,14 +4,20 @@
 //! Key points go in first, exactly, and are never dropped (even when two are closer than the
 //! radius); then samples on the water tables, horizons and faults themselves; then the volume
 //! below the terrain and outside the no-karst volumes, all spaced by a variable radius field
-//! (`radius.rs`) with a fast, deterministic dart-throwing sampler (`poisson.rs`).
-//! Output: `samples.bin` ([`Samples`]).
+//! ([`SpacingField`], `spacing.rs`) with a fast, deterministic dart-throwing sampler
+//! (`poisson.rs`). [`build`] is the algorithm's entry, [`SamplingStage`] the stage; the output is
+//! `samples.bin` ([`Samples`], `payload.rs`).
 
-pub mod poisson;
-pub mod radius;
-pub mod samples;
-pub mod stage;
-pub mod surfaces;
+mod build;
+mod error;
+mod payload;
+mod poisson;
+mod spacing;
+mod stage;
+mod surfaces;
 
-pub use radius::RadiusField;
-pub use samples::{Samples, Tag, TagCounts};
+pub use build::build;
+pub use error::SamplingError;
+pub use payload::{Samples, Tag, TagCounts};
+pub use spacing::SpacingField;
+pub use stage::SamplingStage;

@@ -34,7 +34,7 @@
 use glam::{DVec3, Vec4};
 use rayon::prelude::*;
 
-use crate::radius::RadiusField;
+use crate::spacing::SpacingField;
 
 const NONE: u32 = u32::MAX;
 
@@ -88,7 +88,7 @@ struct Scratch {
 
 /// The growing sample set and its background grid.
 pub struct Sampler<'a> {
-    field: &'a RadiusField,
+    field: &'a SpacingField,
     /// The radius when the field is constant (no interpolation needed).
     constant: Option<f64>,
     lo: DVec3,
@@ -113,7 +113,7 @@ pub struct Sampler<'a> {
 
 impl<'a> Sampler<'a> {
     /// An empty sampler over the box `lo`–`hi`, background cells of `cell` metres.
-    pub fn new(field: &'a RadiusField, lo: DVec3, hi: DVec3, cell: f64) -> Self {
+    pub fn new(field: &'a SpacingField, lo: DVec3, hi: DVec3, cell: f64) -> Self {
         let n = ((hi - lo) / cell).ceil().max(DVec3::ONE);
         let dims = [n.x as usize, n.y as usize, n.z as usize];
         let (r_min, r_max) = (field.min(), field.max());
@@ -226,32 +226,6 @@ impl<'a> Sampler<'a> {
             let c = self.index(self.coords(p));
             self.push(c, p, r);
         }
-    }
-
-    /// Inserts `p` when no sample lies closer than min(r(p), r(q)); returns whether it did.
-    pub fn try_insert(&mut self, p: DVec3) -> bool {
-        self.insert_or_blocker(p).is_ok()
-    }
-
-    /// Inserts `p` when no sample q lies closer than min(r(p), r(q)), else returns such a q
-    /// and its radius.
-    pub fn insert_or_blocker(&mut self, p: DVec3) -> Result<(), (DVec3, f64)> {
-        let r = self.radius_at(p);
-        let mut hit = None;
-        self.neighbours(self.coords(p), r, |id| {
-            let (q, rq) = (self.points[id as usize], self.radii[id as usize] as f64);
-            let m = r.min(rq);
-            if q.distance_squared(p) < m * m {
-                hit = Some((q, rq));
-            }
-            hit.is_none()
-        });
-        if let Some(b) = hit {
-            return Err(b);
-        }
-        let c = self.index(self.coords(p));
-        self.push(c, p, r as f32);
-        Ok(())
     }
 
     /// The samples of the cells around cell `c` (coordinates) closer than `gap` to it.
@@ -578,7 +552,7 @@ mod tests {
     use super::*;
     use karst_geology::rng::Random;
 
-    fn field(values: impl Fn(DVec3) -> f32) -> RadiusField {
+    fn field(values: impl Fn(DVec3) -> f32) -> SpacingField {
         let size = [13u32, 9, 5];
         let cell = 5.0;
         let mut v = Vec::new();
@@ -589,10 +563,10 @@ mod tests {
                 }
             }
         }
-        RadiusField { origin: [0.0; 3], cell, size, values: v }
+        SpacingField { origin: [0.0; 3], cell, size, values: v }
     }
 
-    fn run(f: &RadiusField, seed: u64) -> Vec<DVec3> {
+    fn run(f: &SpacingField, seed: u64) -> Vec<DVec3> {
         let mut s = Sampler::new(f, DVec3::ZERO, DVec3::new(60.0, 40.0, 20.0), f.min());
         s.force(DVec3::new(5.0, 5.0, 5.0));
         s.force(DVec3::new(5.5, 5.0, 5.0));

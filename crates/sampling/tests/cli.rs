@@ -1,21 +1,12 @@
 //! The command-line contract of a stage binary: bad scenes exit with code 2 and a message that
 //! names the file, the line and the field; `inspect --json` prints header and payload.
 
-use std::path::{Path, PathBuf};
+use karst_testkit::{root, scratch};
+use std::path::Path;
 use std::process::{Command, Output};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 fn sampling(args: &[&str], out: &Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_karst-sampling")).args(args).arg("--out").arg(out).output().unwrap()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("karst-sampling-cli-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 #[test]

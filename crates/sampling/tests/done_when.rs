@@ -2,16 +2,11 @@
 //! recorded radius field everywhere, and no sample lies in a no-karst volume or above the
 //! terrain.
 
-use std::path::{Path, PathBuf};
-
 use glam::DVec3;
 use karst_geology::Scene;
-use karst_sampling::stage::sample_scene;
+use karst_sampling::build as sample_scene;
 use karst_sampling::{Samples, Tag};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+use karst_testkit::root;
 
 fn scene(file: &str) -> Scene {
     Scene::load(&root().join(file)).unwrap()
@@ -56,8 +51,8 @@ fn spacing_violations(s: &Samples) -> Vec<(usize, usize, f64, f64)> {
 #[test]
 fn default_scene_horizon_samples_lie_on_the_tsurf_horizon() {
     let scene = scene("fixtures/scenes/default.toml");
-    assert!(matches!(scene.terrain, karst_geology::Terrain::Heightfield { .. }));
-    let horizon = &scene.geology.horizons[0];
+    assert!(matches!(scene.terrain(), karst_geology::Terrain::Heightfield { .. }));
+    let horizon = &scene.geology().horizons[0];
     assert!(horizon.mesh().is_some(), "the default horizon is a TSurf");
     let s = sample_scene(&scene).unwrap();
     let on: Vec<DVec3> = s
@@ -70,7 +65,7 @@ fn default_scene_horizon_samples_lie_on_the_tsurf_horizon() {
     assert!(on.len() > 1000, "{} horizon samples", on.len());
     let close = on.iter().filter(|p| horizon.distance(**p) <= 0.01).count();
     assert!(close * 100 >= 95 * on.len(), "{close} of {} within 1 cm", on.len());
-    let wt = &scene.geology.water_tables[0];
+    let wt = &scene.geology().water_tables[0];
     let mut tagged = s.positions.iter().zip(&s.tags).filter(|(_, t)| **t == Tag::WaterTable(0));
     assert!(tagged.clone().count() > 1000);
     assert!(tagged.all(|(p, _)| wt.distance(DVec3::from_array(*p)) <= 0.01));
@@ -86,7 +81,7 @@ fn spacing_honours_the_variable_radius_field_everywhere() {
     let bad = spacing_violations(&s);
     assert!(bad.is_empty(), "{} pairs too close, first {:?}", bad.len(), bad.first());
     // Key points come first, exactly.
-    for (i, k) in scene.keypoints.iter().enumerate() {
+    for (i, k) in scene.keypoints().iter().enumerate() {
         assert_eq!(s.positions[s.keypoint_sample(i).unwrap()], k.position);
     }
     let again = sample_scene(&scene).unwrap();
@@ -96,20 +91,20 @@ fn spacing_honours_the_variable_radius_field_everywhere() {
 #[test]
 fn no_sample_in_a_no_karst_volume_or_above_the_terrain() {
     let scene = scene("fixtures/scenes/layered.toml");
-    assert!(!scene.geology.no_karst.is_empty());
+    assert!(!scene.geology().no_karst.is_empty());
     let s = sample_scene(&scene).unwrap();
     let c = s.tag_counts();
     assert!(c.volume > 1000 && c.horizon > 50 && c.fault > 20, "{c:?}");
     for p in &s.positions {
         let p = DVec3::from_array(*p);
-        assert!(!scene.geology.in_no_karst(p), "{p} in a no-karst volume");
-        assert!(p.z <= scene.terrain.height(p.x, p.y), "{p} above the terrain");
-        assert!(scene.domain.contains(p));
+        assert!(!scene.geology().in_no_karst(p), "{p} in a no-karst volume");
+        assert!(p.z <= scene.terrain().height(p.x, p.y), "{p} above the terrain");
+        assert!(scene.domain().contains(p));
     }
     // The no-karst volumes are not simply outside the sampled region: samples surround them.
     let near = s.positions.iter().filter(|p| {
         let q = DVec3::from_array(**p);
-        scene.geology.no_karst.iter().any(|v| v.shape().unwrap().signed_distance(q, &scene.geology) < 15.0)
+        scene.geology().no_karst.iter().any(|v| v.shape().unwrap().signed_distance(q, scene.geology()) < 15.0)
     });
     assert!(near.count() > 10);
 }
@@ -131,21 +126,21 @@ fn the_volume_is_filled_up_to_small_holes() {
     // Constant radius (no surfaces): a point of the bedrock farther than r from every sample
     // could still take one. The saturation pass leaves only a small volume of such holes.
     let mut scene = scene("fixtures/scenes/tiny.toml");
-    scene.geology.water_tables.clear();
-    scene.geology.horizons.clear();
-    scene.geology.faults.clear();
-    scene.geology.layers.clear();
-    scene.geology.potential.clear();
-    scene.keypoints.retain(|k| k.water_table.is_none());
+    scene.geology_mut().water_tables.clear();
+    scene.geology_mut().horizons.clear();
+    scene.geology_mut().faults.clear();
+    scene.geology_mut().layers.clear();
+    scene.geology_mut().potential.clear();
+    scene.keypoints_mut().retain(|k| k.water_table.is_none());
     let s = sample_scene(&scene).unwrap();
     let r = s.radius;
     let points: Vec<DVec3> = s.positions.iter().map(|p| DVec3::from_array(*p)).collect();
-    let (lo, hi) = (scene.domain.min(), scene.domain.max());
+    let (lo, hi) = (scene.domain().min(), scene.domain().max());
     let mut rng = karst_geology::rng::Random::stream(3, "test", "holes");
     let (mut inside, mut holes) = (0, 0);
     for _ in 0..4000 {
         let p = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
-        if p.z >= scene.terrain.height(p.x, p.y) || scene.geology.in_no_karst(p) {
+        if p.z >= scene.terrain().height(p.x, p.y) || scene.geology().in_no_karst(p) {
             continue;
         }
         inside += 1;
@@ -163,7 +158,7 @@ fn tsurf_horizon_samples_lie_on_it_and_cover_it() {
     // Paths can run along a TSurf horizon only if its samples are on it and leave no gap on it
     // where another sample would fit.
     let scene = scene("fixtures/scenes/default.toml");
-    let horizon = &scene.geology.horizons[0];
+    let horizon = &scene.geology().horizons[0];
     let mesh = horizon.mesh().expect("the default horizon is a TSurf");
     let s = sample_scene(&scene).unwrap();
     let f = &s.radius_field;
@@ -192,8 +187,8 @@ fn tsurf_horizon_samples_lie_on_it_and_cover_it() {
         let [a, b, c] = mesh.triangle(t.unwrap_or(areas.len() - 1));
         let (u, v) = (rng.uniform().sqrt(), rng.uniform());
         let p = a * (1.0 - u) + b * (u * (1.0 - v)) + c * (u * v);
-        let d = &scene.domain;
-        if !d.contains(p) || p.z >= scene.terrain.height(p.x, p.y) || scene.geology.in_no_karst(p) {
+        let d = scene.domain();
+        if !d.contains(p) || p.z >= scene.terrain().height(p.x, p.y) || scene.geology().in_no_karst(p) {
             continue;
         }
         inside += 1;

@@ -16,7 +16,7 @@ fn main() {
     let runs: usize = args.get(2).and_then(|r| r.parse().ok()).unwrap_or(5);
     let (model, skeleton): (SdfModel, Skeleton) = if args[1] == "synthetic" {
         let (skeleton, hydro) = karst_sdf::synthetic::network(5, 100, 12);
-        (karst_sdf::build::build(&karst_sdf::synthetic::scene(), &skeleton, &hydro).unwrap(), skeleton)
+        (karst_sdf::build(&karst_sdf::synthetic::scene(), &skeleton, &hydro).unwrap(), skeleton)
     } else {
         (read_artifact(&dir.join("sdf.bin")).unwrap().1, read_artifact(&dir.join("skeleton.json")).unwrap().1)
     };
@@ -65,7 +65,7 @@ fn cpu() -> f64 {
 
 #[allow(dead_code)]
 pub fn micro() {
-    use karst_sdf::section::{Section, Shape};
+    use karst_sdf::{Section, Shape};
     let s = Section::blend(
         [karst_skeleton::ConduitType::Keyhole, karst_skeleton::ConduitType::Canyon],
         Shape { radius: 2.0, ratio: 1.0, asymmetry: 0.2 },

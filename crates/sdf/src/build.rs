@@ -16,48 +16,46 @@
 
 use glam::{DVec2, DVec3};
 
-use karst_artifact::StageError;
 use karst_geology::Scene;
 use karst_geology::rng::Random;
 use karst_hydro::Hydro;
 use karst_skeleton::{Conduit, ConduitType, Skeleton};
 
-use crate::SdfModel;
 use crate::chamber::ChamberSpec;
-use crate::model::{SphereGroup, TypedSweep, WaterSpec};
+use crate::error::SdfError;
 use crate::noise::WaveNoise;
+use crate::payload::{SdfModel, SphereGroup, TypedSweep, WaterSpec};
 use crate::section::{Section, Shape};
 use crate::sweep::{SectionSpec, SweepSpec, frame};
 use crate::terrain::TerrainField;
 use crate::water::{self, Water};
 
 /// The model of `scene` carved by the conduits of `skeleton`, with the water of `hydro`.
-pub fn build(scene: &Scene, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfModel, StageError> {
+pub fn build(scene: &Scene, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfModel, SdfError> {
     if hydro.conduits.len() != skeleton.conduits.len() {
-        return Err(StageError::input(format!(
-            "hydro.json describes {} conduits, skeleton.json has {}: rerun `cargo xtask run --from hydro`",
-            hydro.conduits.len(),
-            skeleton.conduits.len()
-        )));
+        return Err(SdfError::ConduitCounts {
+            hydro: hydro.conduits.len(),
+            skeleton: skeleton.conduits.len(),
+        });
     }
-    let terrain = TerrainField::of(&scene.terrain);
+    let terrain = TerrainField::of(scene.terrain());
     let lambda = terrain.lipschitz();
     if !lambda.is_finite() {
-        return Err(StageError::input(format!("scene terrain: no finite Lipschitz bound (λ = {lambda})")));
+        return Err(SdfError::TerrainNotLipschitz { lambda });
     }
-    let p = &scene.sdf;
-    let mut model = SdfModel::new(scene.domain, terrain);
+    let p = scene.sdf();
+    let mut model = SdfModel::new(*scene.domain(), terrain);
     model.blend = p.blend;
     model.detail = p.detail;
     model.chamber_bias = p.chamber_bias;
     model.detail_noise =
-        WaveNoise::draw(&mut Random::stream(scene.seed, "sdf", "detail"), p.detail_wavelength);
+        WaveNoise::draw(&mut Random::stream(scene.seed(), "sdf", "detail"), p.detail_wavelength);
     let mean_radius = mean_radius(skeleton) * p.radius_scale;
     model.chamber_noise =
-        WaveNoise::draw(&mut Random::stream(scene.seed, "sdf", "chamber"), mean_radius * p.chamber_scale);
-    let mut lean = Random::stream(scene.seed, "sdf", "asymmetry");
-    let mut jitter = Random::stream(scene.seed, "sdf", "spheres");
-    let progress = karst_artifact::progress::bar(skeleton.conduits.len() as u64, "sdf");
+        WaveNoise::draw(&mut Random::stream(scene.seed(), "sdf", "chamber"), mean_radius * p.chamber_scale);
+    let mut lean = Random::stream(scene.seed(), "sdf", "asymmetry");
+    let mut jitter = Random::stream(scene.seed(), "sdf", "spheres");
+    let progress = karst_stage::progress::bar(skeleton.conduits.len() as u64, "sdf");
     for (c, conduit) in skeleton.conduits.iter().enumerate() {
         let points = conduit_points(skeleton, conduit, c)?;
         let asymmetry = if lean.uniform() < 0.5 { -p.asymmetry } else { p.asymmetry };
@@ -96,11 +94,8 @@ pub fn build(scene: &Scene, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMod
     Ok(model)
 }
 
-fn segments_mismatch(conduit: usize) -> StageError {
-    StageError::input(format!(
-        "hydro.json: conduit {conduit} has fewer water segments than skeleton.json has segments: \
-         rerun `cargo xtask run --from hydro`"
-    ))
+fn segments_mismatch(conduit: usize) -> SdfError {
+    SdfError::WaterSegments { conduit }
 }
 
 fn mean_radius(skeleton: &Skeleton) -> f64 {
@@ -110,33 +105,26 @@ fn mean_radius(skeleton: &Skeleton) -> f64 {
 }
 
 /// The conduit's node positions, checked: existing nodes, finite, distinct consecutive nodes.
-fn conduit_points(skeleton: &Skeleton, conduit: &Conduit, c: usize) -> Result<Vec<DVec3>, StageError> {
+fn conduit_points(skeleton: &Skeleton, conduit: &Conduit, c: usize) -> Result<Vec<DVec3>, SdfError> {
     if conduit.radius.len() != conduit.nodes.len() || conduit.types.len() + 1 != conduit.nodes.len() {
-        return Err(StageError::input(format!(
-            "skeleton.json: conduits[{c}] has {} nodes, {} radii and {} types (expected n, n and n − 1)",
-            conduit.nodes.len(),
-            conduit.radius.len(),
-            conduit.types.len()
-        )));
+        return Err(SdfError::ConduitShape {
+            conduit: c,
+            nodes: conduit.nodes.len(),
+            radii: conduit.radius.len(),
+            types: conduit.types.len(),
+        });
     }
     let mut points = Vec::with_capacity(conduit.nodes.len());
     for &n in &conduit.nodes {
         let Some(node) = skeleton.nodes.get(n as usize) else {
-            return Err(StageError::input(format!(
-                "skeleton.json: conduits[{c}].nodes names node {n}, which does not exist"
-            )));
+            return Err(SdfError::MissingNode { conduit: c, node: n });
         };
         let p = DVec3::from_array(node.position);
         if !p.is_finite() {
-            return Err(StageError::input(format!(
-                "skeleton.json: nodes[{n}].position = {:?} is not finite",
-                node.position
-            )));
+            return Err(SdfError::NodeNotFinite { node: n, position: node.position });
         }
         if points.last().is_some_and(|q: &DVec3| q.distance(p) == 0.0) {
-            return Err(StageError::input(format!(
-                "skeleton.json: conduits[{c}] repeats node {n} (a segment of length 0)"
-            )));
+            return Err(SdfError::RepeatedNode { conduit: c, node: n });
         }
         points.push(p);
     }
@@ -149,28 +137,25 @@ fn node_sections(
     conduit: &Conduit,
     c: usize,
     asymmetry: f64,
-) -> Result<Vec<SectionSpec>, StageError> {
+) -> Result<Vec<SectionSpec>, SdfError> {
     let last = conduit.types.len().saturating_sub(1);
     (0..conduit.nodes.len())
         .map(|i| {
-            let radius = conduit.radius[i] * scene.sdf.radius_scale;
+            let radius = conduit.radius[i] * scene.sdf().radius_scale;
             if !(radius > 0.0 && radius.is_finite()) {
-                return Err(StageError::input(format!(
-                    "skeleton.json: conduits[{c}].radius[{i}] = {} (radii must be finite and > 0)",
-                    conduit.radius[i]
-                )));
+                return Err(SdfError::BadRadius { conduit: c, node: i, radius: conduit.radius[i] });
             }
             let kinds = [conduit.types[i.saturating_sub(1).min(last)], conduit.types[i.min(last)]];
-            let shape = Shape { radius: radius as f32, ratio: scene.sdf.ratio as f32, asymmetry: asymmetry as f32 };
+            let shape =
+                Shape { radius: radius as f32, ratio: scene.sdf().ratio as f32, asymmetry: asymmetry as f32 };
             let spec = SectionSpec { kinds, shape };
-            spec.section().check().map_err(|e| {
-                StageError::input(format!(
-                    "scene [sdf]: ratio = {} and asymmetry = {} give conduits[{c}] node {i} ({} / {}) a bad section: {e}",
-                    scene.sdf.ratio,
-                    asymmetry,
-                    kinds[0].name(),
-                    kinds[1].name()
-                ))
+            spec.section().check().map_err(|problem| SdfError::BadSection {
+                ratio: scene.sdf().ratio,
+                asymmetry,
+                conduit: c,
+                node: i,
+                types: kinds.map(|k| k.name()),
+                problem: problem.to_string(),
             })?;
             Ok(spec)
         })
@@ -354,8 +339,10 @@ fn to_f32(p: DVec3) -> [f32; 3] {
 mod tests {
     use super::*;
     use crate::synthetic;
+    use karst_artifact::StageId;
+    use karst_stage::{Blame, Failure};
 
-    fn build_with(edit: impl FnOnce(&mut Scene, &mut Skeleton)) -> Result<SdfModel, StageError> {
+    fn build_with(edit: impl FnOnce(&mut Scene, &mut Skeleton)) -> Result<SdfModel, SdfError> {
         let mut scene = synthetic::scene();
         let (mut skeleton, hydro) = synthetic::network(2, 6, 5);
         edit(&mut scene, &mut skeleton);
@@ -366,23 +353,25 @@ mod tests {
     fn bad_radii_nodes_and_terrains_are_input_errors() {
         for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
             let e = build_with(|_, s| s.conduits[2].radius[1] = bad).unwrap_err();
-            assert!((e.exit_code() == 2) && e.to_string().contains("conduits[2].radius[1]"), "{e}");
+            assert!(matches!(e, SdfError::BadRadius { conduit: 2, node: 1, .. }), "{e}");
+            assert_eq!(e.blame(), Blame::Artifact(StageId::Skeleton));
         }
         let e = build_with(|_, s| s.nodes[3].position[1] = f64::NAN).unwrap_err();
-        assert!((e.exit_code() == 2) && e.to_string().contains("nodes[3].position"), "{e}");
+        assert!(matches!(e, SdfError::NodeNotFinite { node: 3, .. }), "{e}");
         let e = build_with(|_, s| s.conduits[0].nodes[1] = 9999).unwrap_err();
-        assert!((e.exit_code() == 2) && e.to_string().contains("9999"), "{e}");
+        assert!(matches!(e, SdfError::MissingNode { conduit: 0, node: 9999 }), "{e}");
         let e = build_with(|_, s| s.conduits[1].types.pop().map(|_| ()).unwrap_or(())).unwrap_err();
-        assert!((e.exit_code() == 2), "{e}");
+        assert!(matches!(e, SdfError::ConduitShape { conduit: 1, .. }), "{e}");
         let e = build_with(|scene, _| {
-            scene.terrain = karst_geology::Terrain::Plane {
+            *scene.terrain_mut() = karst_geology::Terrain::Plane {
                 elevation: 190.0,
                 origin: [0.0, 0.0],
                 gradient: [f64::INFINITY, 0.0],
             }
         })
         .unwrap_err();
-        assert!((e.exit_code() == 2) && e.to_string().contains("Lipschitz"), "{e}");
+        assert!(matches!(e, SdfError::TerrainNotLipschitz { .. }), "{e}");
+        assert_eq!(e.blame(), Blame::Scene);
     }
 
     #[test]

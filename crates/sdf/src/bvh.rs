@@ -227,10 +227,6 @@ impl Bvh {
         self.spheres.len() + self.sweeps.len() + self.water.len() + self.chambers.len() + self.capsules.len()
     }
 
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
     /// min(limit, min over leaves of their value at p).
     pub fn min_value(&self, p: DVec3, limit: f64, ctx: &Context) -> f64 {
         let mut best = limit;

@@ -16,7 +16,7 @@ use glam::DVec3;
 
 use crate::bvh::{Bvh, Candidate};
 use crate::chamber::Chamber;
-use crate::model::detail_factor;
+use crate::payload::detail_factor;
 use crate::primitive::{Context, Leaf, WaterLeaf};
 use crate::sweep::SweepTable;
 use crate::{SdfModel, ops};
@@ -259,7 +259,7 @@ fn karst_leaves(model: &SdfModel, sweeps: &mut SweepTable) -> Vec<Leaf> {
 }
 
 fn water_leaves(model: &SdfModel, sweeps: &mut SweepTable) -> Vec<Leaf> {
-    let piece = |w: &crate::model::WaterSpec| {
+    let piece = |w: &crate::payload::WaterSpec| {
         let level = w.level.unwrap_or(f32::INFINITY);
         Leaf::Water(WaterLeaf { sweep: sweeps.push(&w.sweep), level })
     };

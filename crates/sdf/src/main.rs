@@ -6,8 +6,8 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use karst_artifact::cli::{InspectArgs, RunArgs, default_sigpipe, finish};
-use karst_sdf::stage;
+use karst_sdf::{SdfStage, stage};
+use karst_stage::cli::{self, InspectArgs, RunArgs, default_sigpipe, finish};
 
 /// The signed-distance model of the carved terrain (karstgen stage 5).
 #[derive(Parser)]
@@ -26,8 +26,8 @@ enum Cli {
 fn main() -> ExitCode {
     default_sigpipe();
     finish(match Cli::parse() {
-        Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
-        Cli::Inspect(args) => stage::inspect(&args),
+        Cli::Run(args) => cli::run::<SdfStage>(&args),
+        Cli::Inspect(args) => cli::inspect::<SdfStage>(&args),
         Cli::Slice(args) => stage::slice(&args),
         Cli::Sections(args) => stage::sections(&args),
     })

@@ -1,7 +1,8 @@
 //! Operators of the construction tree (Paris et al. 2021 §6, after [WGG99]), each keeping the
 //! 1-Lipschitz bound of its operands:
 //!
-//! - union min, intersection max, difference max(a, −b): Lipschitz constants do not grow;
+//! - union min, intersection max, difference max(a, −b) (written inline where they are used):
+//!   Lipschitz constants do not grow;
 //! - smooth union: the quadratic smooth minimum min(a, b) − h²k/4 with h = max(k − |a − b|, 0)/k.
 //!   Its partial derivatives are (1 − t, t) with t ∈ [0, 1], so its gradient is a convex
 //!   combination of the operands' gradients: still 1-Lipschitz. It deepens the union by at
@@ -12,18 +13,6 @@
 
 use glam::DVec3;
 
-pub fn union(a: f64, b: f64) -> f64 {
-    a.min(b)
-}
-
-pub fn intersection(a: f64, b: f64) -> f64 {
-    a.max(b)
-}
-
-pub fn difference(a: f64, b: f64) -> f64 {
-    a.max(-b)
-}
-
 /// Quadratic smooth minimum of radius k ≥ 0 (the plain minimum for k = 0).
 pub fn smooth_union(a: f64, b: f64, k: f64) -> f64 {
     if k <= 0.0 {
@@ -31,11 +20,6 @@ pub fn smooth_union(a: f64, b: f64, k: f64) -> f64 {
     }
     let h = (k - (a - b).abs()).max(0.0) / k;
     a.min(b) - h * h * k * 0.25
-}
-
-/// Smooth difference a − b: −smooth_union(−a, b).
-pub fn smooth_difference(a: f64, b: f64, k: f64) -> f64 {
-    -smooth_union(-a, b, k)
 }
 
 /// The warped field f(p + amplitude·w(p)) / (1 + amplitude·jacobian_bound).
@@ -70,11 +54,11 @@ mod tests {
         let a = ball(DVec3::ZERO, 3.0);
         let b = ball(DVec3::new(2.5, 0.5, 0.0), 2.0);
         let pairs = || Pairs::new(5, 8.0, 3.0);
-        assert_lipschitz(|p| union(a(p), b(p)), pairs(), 5000);
-        assert_lipschitz(|p| intersection(a(p), b(p)), pairs(), 5000);
-        assert_lipschitz(|p| difference(a(p), b(p)), pairs(), 5000);
+        assert_lipschitz(|p| a(p).min(b(p)), pairs(), 5000);
+        assert_lipschitz(|p| a(p).max(b(p)), pairs(), 5000);
+        assert_lipschitz(|p| a(p).max(-b(p)), pairs(), 5000);
         assert_lipschitz(|p| smooth_union(a(p), b(p), 1.5), pairs(), 5000);
-        assert_lipschitz(|p| smooth_difference(a(p), b(p), 1.5), pairs(), 5000);
+        assert_lipschitz(|p| -smooth_union(-a(p), b(p), 1.5), pairs(), 5000);
         let noise = WaveNoise::draw(&mut Random::stream(1, "sdf", "test"), 2.0);
         let g = noise.gradient_bound();
         assert_lipschitz(|p| detail(a(p), noise.value(p), 0.4, g), pairs(), 5000);

@@ -1,58 +1,65 @@
-//! The sdf stage: skeleton + hydro in, `sdf.bin` out; `inspect` and `slice` of an sdf.bin.
+//! The sdf stage's contract: `skeleton.json` and `hydro.json` in, `sdf.bin` out; `slice` and
+//! `sections` draw a model and the cross-section library.
 
 use std::path::PathBuf;
-use std::time::Instant;
 
-use karst_artifact::cli::{InspectArgs, RunArgs, StageRun, print_json};
-use karst_artifact::{Stage, StageError, read_artifact, write_artifact};
+use karst_artifact::{Header, StageId, read_artifact};
 use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_skeleton::Skeleton;
+use karst_stage::{Stage, StageError};
 
+use crate::build::build;
+use crate::error::SdfError;
+use crate::field::CarvedTerrain;
+use crate::payload::SdfModel;
 use crate::slice::{self, Plane};
-use crate::{CarvedTerrain, SdfModel, build};
 
-/// `karst-sdf run`.
-pub fn run(args: &RunArgs) -> Result<String, StageError> {
-    let scene = Scene::load(&args.scene)?;
-    let mut run = StageRun::new(Stage::Sdf, &args.out);
-    let skeleton: Skeleton = run.read_input(Stage::Skeleton)?;
-    let hydro: Hydro = run.read_input(Stage::Hydro)?;
-    let start = Instant::now();
-    let model = build::build(&scene, &skeleton, &hydro)?;
-    write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Sdf)), &model)?;
-    let counts: Vec<String> =
-        model.primitive_counts().iter().filter(|(_, n)| *n > 0).map(|(k, n)| format!("{n} {k}")).collect();
-    Ok(format!("{} in {:.2} s", counts.join(", "), start.elapsed().as_secs_f64()))
-}
+/// Stage 5: the signed-distance model of the carved terrain and of the water.
+pub struct SdfStage;
 
-/// `karst-sdf inspect`.
-pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
-    if args.json {
-        return print_json::<SdfModel>(&args.file);
+impl Stage for SdfStage {
+    const ID: StageId = StageId::Sdf;
+    type Inputs = (Skeleton, Hydro);
+    type Output = SdfModel;
+    type Error = SdfError;
+
+    fn build(scene: &Scene, (skeleton, hydro): &(Skeleton, Hydro)) -> Result<SdfModel, SdfError> {
+        build(scene, skeleton, hydro)
     }
-    let (header, model) = read_artifact::<SdfModel>(&args.file)?;
-    println!("{}: sdf, schema {}, by {}", args.file.display(), header.schema, header.producer);
-    println!("  terrain     λ = {:.4}", model.terrain.lipschitz());
-    let counts = model.primitive_counts();
-    for (kind, n) in counts {
-        println!("  {kind:<11} {n}");
+
+    fn headline(_: &Scene, model: &SdfModel) -> String {
+        let counts: Vec<String> = model
+            .primitive_counts()
+            .iter()
+            .filter(|(_, n)| *n > 0)
+            .map(|(k, n)| format!("{n} {k}"))
+            .collect();
+        counts.join(", ")
     }
-    let total: usize = counts.iter().map(|(_, n)| n).sum();
-    println!(
-        "  bytes       {} payload ({:.1} per primitive)",
-        header.payload_len,
-        header.payload_len as f64 / total.max(1) as f64
-    );
-    let field = CarvedTerrain::new(model);
-    let [karst, water] = field.memory();
-    let leaves = field.leaves().max(1) as f64;
-    println!(
-        "  memory      {karst} bytes for the karst ({:.1} per karst leaf), {water} for the water ({:.1} per karst leaf with it)",
-        karst as f64 / leaves,
-        (karst + water) as f64 / leaves
-    );
-    Ok(())
+
+    fn summary(header: &Header, model: &SdfModel) -> Vec<String> {
+        let mut lines = vec![format!("terrain     λ = {:.4}", model.terrain.lipschitz())];
+        let counts = model.primitive_counts();
+        for (kind, n) in counts {
+            lines.push(format!("{kind:<11} {n}"));
+        }
+        let total: usize = counts.iter().map(|(_, n)| n).sum();
+        lines.push(format!(
+            "bytes       {} payload ({:.1} per primitive)",
+            header.payload_len,
+            header.payload_len as f64 / total.max(1) as f64
+        ));
+        let field = CarvedTerrain::new(model.clone());
+        let [karst, water] = field.memory();
+        let leaves = field.leaves().max(1) as f64;
+        lines.push(format!(
+            "memory      {karst} bytes for the karst ({:.1} per karst leaf), {water} for the water ({:.1} per karst leaf with it)",
+            karst as f64 / leaves,
+            (karst + water) as f64 / leaves
+        ));
+        lines
+    }
 }
 
 /// Arguments of `karst-sdf slice`.
@@ -111,7 +118,7 @@ pub fn slice(args: &SliceArgs) -> Result<(), StageError> {
     };
     let (_, model) = read_artifact::<SdfModel>(&args.file)?;
     let field = CarvedTerrain::new(model);
-    let grid = slice::Grid::new(&field, plane, args.pixel, window);
+    let grid = slice::SliceGrid::new(&field, plane, args.pixel, window);
     if let Some(png) = &args.png {
         slice::write_png(&field, &grid, png)
             .map_err(|e| StageError::failure(format!("{}: {e}", png.display())))?;

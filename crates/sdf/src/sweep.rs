@@ -223,6 +223,7 @@ impl Sweep<'_> {
     }
 
     /// The 1-Lipschitz signed distance bound: negative inside.
+    #[cfg(test)]
     pub fn distance(&self, p: DVec3) -> f64 {
         let (l, q) = self.local(p);
         self.distance_local(l, q)
@@ -245,6 +246,7 @@ impl Sweep<'_> {
 
     /// A lower bound of [`Sweep::distance`]: the section value is at least the signed
     /// distance to the union of the end sections' control boxes and at least |q| − extent.
+    #[cfg(test)]
     pub fn lower_bound(&self, p: DVec3) -> f64 {
         let (l, q) = self.local(p);
         self.lower_bound_local(l, q)
@@ -257,10 +259,6 @@ impl Sweep<'_> {
         let d = (lo - q).max(q - hi);
         let boxed = d.max(DVec2::ZERO).length() + d.max_element().min(0.0);
         self.combine(boxed.max(q.length() - self.extent), l)
-    }
-
-    pub fn length(&self) -> f64 {
-        self.length
     }
 
     /// Height of p above the axis, along the section's up direction.

@@ -6,7 +6,7 @@
 use glam::DVec3;
 use karst_geology::rng::Random;
 use karst_geology::{Domain, Scene};
-use karst_hydro::artifact::FlowUnits;
+use karst_hydro::FlowUnits;
 use karst_hydro::{ConduitWater, Hydro, SegmentWater, WaterType};
 use karst_skeleton::{Conduit, ConduitType, Node, Skeleton, Zone};
 

@@ -8,7 +8,7 @@
 //! - other running water (stream, river, rapid, cascade, horsetail, block) is a stream on the
 //!   conduit's floor, as deep as the hydro stage computed, at most the conduit's height.
 
-use karst_hydro::water::WaterType;
+use karst_hydro::WaterType;
 use karst_skeleton::{ConduitType, Zone};
 
 /// What a segment's water looks like.

@@ -5,30 +5,26 @@
 //! BVH's pruning changes nothing and the sign agrees with a brute-force inside test over every
 //! leaf.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::DVec3;
-use karst_artifact::cli::RunArgs;
 use karst_artifact::read_artifact;
 use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_sdf::{CarvedTerrain, build, synthetic};
 use karst_skeleton::Skeleton;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+use karst_testkit::root;
 
 fn field_of(scene: &Path, dir: &Path) -> CarvedTerrain {
     let scene = Scene::load(scene).unwrap();
     let (_, skeleton): (_, Skeleton) = read_artifact(&dir.join("skeleton.json")).unwrap();
     let (_, hydro): (_, Hydro) = read_artifact(&dir.join("hydro.json")).unwrap();
-    CarvedTerrain::new(build::build(&scene, &skeleton, &hydro).unwrap())
+    CarvedTerrain::new(build(&scene, &skeleton, &hydro).unwrap())
 }
 
 fn synthetic_field(conduits: usize) -> CarvedTerrain {
     let (skeleton, hydro) = synthetic::network(5, conduits, 12);
-    CarvedTerrain::new(build::build(&synthetic::scene(), &skeleton, &hydro).unwrap())
+    CarvedTerrain::new(build(&synthetic::scene(), &skeleton, &hydro).unwrap())
 }
 
 /// A small deterministic generator.
@@ -128,11 +124,11 @@ fn tiny_tree_is_one_lipschitz() {
 fn preset_field(name: &str) -> CarvedTerrain {
     let scene = root().join(format!("fixtures/scenes/{name}.toml"));
     let out = std::env::temp_dir().join(format!("karst-sdf-{name}-{}", std::process::id()));
-    let args = RunArgs { scene: scene.clone(), out: out.clone() };
-    karst_sampling::stage::run(&args).unwrap();
-    karst_costgraph::stage::run(&args).unwrap();
-    karst_skeleton::stage::run(&args).unwrap();
-    karst_hydro::stage::run(&args).unwrap();
+    let args = (scene.clone(), out.clone());
+    karst_testkit::run::<karst_sampling::SamplingStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_hydro::HydroStage>(&args.0, &args.1).unwrap();
     let field = field_of(&scene, &out);
     let _ = std::fs::remove_dir_all(&out);
     field

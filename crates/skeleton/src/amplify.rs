@@ -15,7 +15,6 @@
 //! flow stage.
 
 use glam::DVec3;
-use karst_artifact::StageError;
 use karst_costgraph::CostGraph;
 use karst_geology::params::SkeletonMode;
 use karst_geology::rng::Random;
@@ -23,7 +22,8 @@ use karst_geology::{KeyPointKind, Scene};
 use karst_sampling::Samples;
 
 use crate::assemble::NetworkBuilder;
-use crate::routing::{End, sample_of};
+use crate::ends::{End, sample_of};
+use crate::error::SkeletonError;
 use crate::search::dijkstra_to_set;
 
 /// Tries to draw one point inside the bedrock before giving up on it.
@@ -37,9 +37,9 @@ pub fn join_keypoints(
     samples: &Samples,
     graph: &CostGraph,
     network: &mut NetworkBuilder,
-) -> Result<(), StageError> {
-    let waypoints_routed = scene.skeleton.mode == SkeletonMode::Gamma;
-    for (index, k) in scene.keypoints.iter().enumerate() {
+) -> Result<(), SkeletonError> {
+    let waypoints_routed = scene.skeleton().mode == SkeletonMode::Gamma;
+    for (index, k) in scene.keypoints().iter().enumerate() {
         let dead_end = match k.kind {
             KeyPointKind::DeadEnd => true,
             KeyPointKind::Waypoint if !waypoints_routed => false,
@@ -48,10 +48,7 @@ pub fn join_keypoints(
         let end = End { row: index, keypoint: index, name: &k.name };
         let start = sample_of(samples, &end)?;
         if !join(samples, graph, network, start, dead_end) {
-            return Err(StageError::input(format!(
-                "key point \"{}\" cannot reach the network through the cost graph (raise costgraph.k or max_edge_length)",
-                k.name
-            )));
+            return Err(SkeletonError::KeyPointOffNetwork { name: k.name.clone() });
         }
     }
     Ok(())
@@ -59,8 +56,8 @@ pub fn join_keypoints(
 
 /// Adds the amplification branches to `network`.
 pub fn amplify(scene: &Scene, samples: &Samples, graph: &CostGraph, network: &mut NetworkBuilder) {
-    let p = &scene.skeleton;
-    let mut rng = Random::stream(scene.seed, "skeleton", "amplification");
+    let p = scene.skeleton();
+    let mut rng = Random::stream(scene.seed(), "skeleton", "amplification");
     for _ in 0..p.amplification_steps {
         let (lo, hi) = bounding_box(samples, network);
         for _ in 0..p.amplification_points {
@@ -122,13 +119,8 @@ fn bounding_box(samples: &Samples, network: &NetworkBuilder) -> (DVec3, DVec3) {
 fn draw_in_bedrock(scene: &Scene, rng: &mut Random, lo: DVec3, hi: DVec3) -> Option<DVec3> {
     (0..TRIES).find_map(|_| {
         let p = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
-        in_bedrock(scene, p).then_some(p)
+        scene.in_bedrock(p).then_some(p)
     })
-}
-
-/// Inside the domain and below the ground.
-pub fn in_bedrock(scene: &Scene, p: DVec3) -> bool {
-    scene.domain.contains(p) && p.z < scene.terrain.height(p.x, p.y)
 }
 
 fn nearest_sample(samples: &Samples, p: DVec3) -> usize {

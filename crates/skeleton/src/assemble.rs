@@ -8,9 +8,10 @@ use karst_geology::{Point, Scene};
 use karst_sampling::Samples;
 
 use crate::classify::classify;
-use crate::radius::RadiusField;
+use crate::nodes::{is_keypoint, node};
+use crate::payload::{Conduit, Node, Route, Skeleton};
+use crate::radii::ConduitRadii;
 use crate::tortuosity;
-use crate::{Conduit, Node, Route, Skeleton, Zone};
 
 /// The network as it grows: nodes in order of first appearance, undirected links.
 #[derive(Default)]
@@ -67,10 +68,10 @@ impl NetworkBuilder {
         let mut chains = self.conduit_chains(samples);
         let phases: Vec<u32> = chains.iter().map(|c| self.phase_of(c[0], c[1])).collect();
         let mut nodes: Vec<Node> = self.samples.iter().map(|&s| node(scene, samples, s)).collect();
-        if let Some(theta) = scene.skeleton.tortuosity {
+        if let Some(theta) = scene.skeleton().tortuosity {
             tortuosity::refine(scene, theta, &mut nodes, &mut chains, &mut routes);
         }
-        let mut radii = RadiusField::new(scene, nodes.len());
+        let mut radii = ConduitRadii::new(scene, nodes.len());
         let at = |i: u32| Point::from_array(nodes[i as usize].position);
         let conduits = chains
             .into_iter()
@@ -138,21 +139,4 @@ impl NetworkBuilder {
             (prev, at) = (at, next);
         }
     }
-}
-
-/// Whether `sample` is the sample of a key point (key point i is sample i when present).
-fn is_keypoint(samples: &Samples, sample: u32) -> bool {
-    samples.keypoint_sample(sample as usize) == Some(sample as usize)
-}
-
-fn node(scene: &Scene, samples: &Samples, sample: u32) -> Node {
-    let keypoint = scene.keypoints.get(sample as usize).filter(|_| is_keypoint(samples, sample));
-    node_at(scene, samples.positions[sample as usize], sample, keypoint.map(|k| k.name.clone()))
-}
-
-/// A node at `position`, in the zone of the water tables there.
-pub fn node_at(scene: &Scene, position: [f64; 3], sample: u32, keypoint: Option<String>) -> Node {
-    let p = Point::from_array(position);
-    let phreatic = scene.geology.water_tables.iter().any(|w| w.height_above(p) < 0.0);
-    Node { position, sample, keypoint, zone: if phreatic { Zone::Phreatic } else { Zone::Vadose } }
 }

@@ -14,63 +14,24 @@
 //! resistance π ≈ 0, KarstNSim's potential ≈ 1). Without that threshold there are no chambers.
 
 use glam::DVec3;
-use serde::{Deserialize, Serialize};
-
 use karst_geology::Scene;
 
-/// The type of a conduit segment.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ConduitType {
-    Epikarst,
-    Tube,
-    Canyon,
-    Keyhole,
-    Passage,
-    Bed,
-    Chamber,
-}
-
-impl ConduitType {
-    /// Every type, in a fixed order.
-    pub const ALL: [ConduitType; 7] = [
-        ConduitType::Epikarst,
-        ConduitType::Tube,
-        ConduitType::Canyon,
-        ConduitType::Keyhole,
-        ConduitType::Passage,
-        ConduitType::Bed,
-        ConduitType::Chamber,
-    ];
-
-    /// Lowercase name, as in the artifact.
-    pub fn name(self) -> &'static str {
-        match self {
-            ConduitType::Epikarst => "epikarst",
-            ConduitType::Tube => "tube",
-            ConduitType::Canyon => "canyon",
-            ConduitType::Keyhole => "keyhole",
-            ConduitType::Passage => "passage",
-            ConduitType::Bed => "bed",
-            ConduitType::Chamber => "chamber",
-        }
-    }
-}
+use crate::payload::ConduitType;
 
 /// The type of the segment a → b in `scene`.
 pub fn classify(scene: &Scene, a: DVec3, b: DVec3) -> ConduitType {
-    let p = &scene.skeleton;
+    let p = scene.skeleton();
     let d = b - a;
     let length = d.length();
     let dip = if length > 0.0 { (d.z.abs() / length).asin().to_degrees() } else { 0.0 };
     let top = if a.z >= b.z { a } else { b };
     let mid = (a + b) * 0.5;
-    if p.ghost_rock_potential.is_some_and(|g| scene.geology.potential(mid) >= g) {
+    if p.ghost_rock_potential.is_some_and(|g| scene.geology().potential(mid) >= g) {
         return ConduitType::Chamber;
     }
-    let above_water = scene.geology.water_tables.iter().map(|w| w.height_above(mid)).reduce(f64::min);
+    let above_water = scene.geology().water_tables.iter().map(|w| w.height_above(mid)).reduce(f64::min);
     if dip >= p.vertical_angle {
-        let depth = scene.terrain.height(top.x, top.y) - top.z;
+        let depth = scene.terrain().height(top.x, top.y) - top.z;
         return if depth <= p.epikarst_depth { ConduitType::Epikarst } else { ConduitType::Tube };
     }
     match above_water {
@@ -127,7 +88,7 @@ water_table = "w"
     fn ghost_rock_makes_chambers() {
         let mut s = scene();
         let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-        s.skeleton.ghost_rock_potential = Some(1.0);
+        s.skeleton_mut().ghost_rock_potential = Some(1.0);
         assert_eq!(classify(&s, v(10.0, 10.0, 60.0), v(30.0, 10.0, 58.0)), ConduitType::Chamber);
     }
 }

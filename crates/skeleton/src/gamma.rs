@@ -17,14 +17,14 @@
 
 use rayon::prelude::*;
 
-use karst_artifact::StageError;
 use karst_costgraph::CostGraph;
 use karst_geology::{KeyPointKind, Scene};
 use karst_sampling::Samples;
 
 use crate::Route;
 use crate::assemble::NetworkBuilder;
-use crate::routing::{End, chosen_springs, ends, sample_of, sinks_in_order};
+use crate::ends::{End, chosen_springs, ends, sample_of, sinks_in_order};
+use crate::error::SkeletonError;
 use crate::search::{Tree, dijkstra};
 
 /// The pairs (i, j), i < j, of the γ-skeleton of the distance matrix `d` (symmetric, zero
@@ -54,9 +54,9 @@ pub fn network(
     samples: &Samples,
     graph: &CostGraph,
     network: &mut NetworkBuilder,
-) -> Result<Vec<(Route, Vec<usize>)>, StageError> {
+) -> Result<Vec<(Route, Vec<usize>)>, SkeletonError> {
     let keypoints: Vec<End> = scene
-        .keypoints
+        .keypoints()
         .iter()
         .enumerate()
         .filter(|(_, k)| k.kind != KeyPointKind::DeadEnd)
@@ -74,8 +74,8 @@ pub fn network(
         }
     }
     check_reachable(&d, &keypoints)?;
-    let mut pairs = gamma_skeleton(&d, scene.skeleton.gamma);
-    for [a, b] in &scene.skeleton.forced_links {
+    let mut pairs = gamma_skeleton(&d, scene.skeleton().gamma);
+    for [a, b] in &scene.skeleton().forced_links {
         let index = |name: &str| keypoints.iter().position(|k| k.name == name).expect("validated link");
         let (a, b) = (index(a), index(b));
         pairs.push((a.min(b), a.max(b)));
@@ -89,13 +89,13 @@ pub fn network(
 }
 
 /// Every key point must reach every other: name the first that cannot.
-fn check_reachable(d: &[Vec<f64>], keypoints: &[End]) -> Result<(), StageError> {
+fn check_reachable(d: &[Vec<f64>], keypoints: &[End]) -> Result<(), SkeletonError> {
     for (a, row) in d.iter().enumerate() {
         if let Some(b) = row.iter().position(|c| !c.is_finite()) {
-            return Err(StageError::input(format!(
-                "key points \"{}\" and \"{}\" cannot reach each other through the cost graph (raise costgraph.k or max_edge_length, or move them into the bedrock)",
-                keypoints[a].name, keypoints[b].name
-            )));
+            return Err(SkeletonError::KeyPointsApart {
+                a: keypoints[a].name.into(),
+                b: keypoints[b].name.into(),
+            });
         }
     }
     Ok(())
@@ -108,7 +108,7 @@ fn routes_along(
     samples: &Samples,
     graph: &CostGraph,
     network: &NetworkBuilder,
-) -> Result<Vec<(Route, Vec<usize>)>, StageError> {
+) -> Result<Vec<(Route, Vec<usize>)>, SkeletonError> {
     let lists = network
         .adjacency
         .iter()
@@ -121,7 +121,7 @@ fn routes_along(
         .collect();
     let links = CostGraph::from_lists(lists);
     let springs = ends(scene, KeyPointKind::Spring);
-    let node = |end: &End| -> Result<usize, StageError> {
+    let node = |end: &End| -> Result<usize, SkeletonError> {
         let sample = sample_of(samples, end)?;
         Ok(network.node_of(sample).expect("every key point is on the γ-skeleton") as usize)
     };
@@ -137,7 +137,7 @@ fn routes_along(
             let route = Route {
                 sink: sink.name.to_string(),
                 spring: spring.name.to_string(),
-                weight: scene.keypoints[sink.keypoint].weight,
+                weight: scene.keypoints()[sink.keypoint].weight,
                 nodes: Vec::new(),
                 cost: tree.cost(to),
             };

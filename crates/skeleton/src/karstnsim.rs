@@ -25,14 +25,14 @@
 use std::collections::BTreeMap;
 
 use glam::DVec3;
-use karst_artifact::StageError;
 use karst_costgraph::CostGraph;
 use karst_geology::{KeyPointKind, Scene, Surface};
 use karst_sampling::Samples;
 use rayon::prelude::*;
 
 use crate::Route;
-use crate::routing::{End, candidate_springs, chosen_springs, ends, sample_of};
+use crate::ends::{End, candidate_springs, chosen_springs, ends, sample_of};
+use crate::error::SkeletonError;
 use crate::search::{Cohesive, EdgeCosts, astar, astar_to_set, min_cost_per_metre};
 
 /// The cost set of a water table, by name.
@@ -84,7 +84,7 @@ pub fn route<'g>(
     cost_set: &CostSets<'g>,
     sinks: &[End],
     phase: &PhaseSetup,
-) -> Result<PhaseRoutes, StageError> {
+) -> Result<PhaseRoutes, SkeletonError> {
     let springs = &phase.springs;
     let mut used = vec![false; graph.edge_count()];
     let mut per_metre: BTreeMap<String, f64> = BTreeMap::new();
@@ -123,7 +123,7 @@ pub fn route<'g>(
                     .weights
                     .get(sink.name)
                     .copied()
-                    .unwrap_or(scene.keypoints[sink.keypoint].weight),
+                    .unwrap_or(scene.keypoints()[sink.keypoint].weight),
                 nodes: Vec::new(),
                 cost: leg.cost,
             };
@@ -134,7 +134,7 @@ pub fn route<'g>(
 }
 
 fn water_table_of<'s>(scene: &'s Scene, spring: &End) -> &'s Surface {
-    let name = scene.keypoints[spring.keypoint].water_table.as_deref().unwrap_or_default();
+    let name = scene.keypoints()[spring.keypoint].water_table.as_deref().unwrap_or_default();
     scene.water_table(name).expect("validation: every spring names a defined water table")
 }
 
@@ -150,7 +150,7 @@ fn leg(
     source: usize,
     target: usize,
 ) -> Option<Leg> {
-    let p = &scene.skeleton;
+    let p = scene.skeleton();
     let at = |v: usize| DVec3::from_array(samples.positions[v]);
     let phreatic = |v: usize| table.height_above(at(v)) <= 0.0;
     let vadose_costs = Cohesive { base: costs, used, factor: p.cohesion_vadose };

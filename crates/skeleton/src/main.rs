@@ -4,8 +4,8 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use karst_artifact::cli::{InspectArgs, RunArgs, default_sigpipe, finish};
-use karst_skeleton::stage;
+use karst_skeleton::{SkeletonStage, stage};
+use karst_stage::cli::{self, InspectArgs, RunArgs, default_sigpipe, finish};
 
 /// The conduit network (karstgen stage 3).
 #[derive(Parser)]
@@ -22,8 +22,8 @@ enum Cli {
 fn main() -> ExitCode {
     default_sigpipe();
     finish(match Cli::parse() {
-        Cli::Run(args) => stage::run(&args).map(|headline| println!("{headline}")),
-        Cli::Inspect(args) => stage::inspect(&args),
+        Cli::Run(args) => cli::run::<SkeletonStage>(&args),
+        Cli::Inspect(args) => cli::inspect::<SkeletonStage>(&args),
         Cli::Render(args) => stage::render(&args),
     })
 }

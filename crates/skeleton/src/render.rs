@@ -1,16 +1,15 @@
-//! `karst-skeleton render`: a PNG with the network seen from above (x right, y up) and from the
-//! south (x right, z up), conduits coloured by type, key points marked and named, and a legend.
-//! Both views share one metric scale so that lengths compare.
+//! `karst-skeleton render`: the network picture of karst-plot (top view over side view, one
+//! metric scale) with conduits coloured by type, key points marked and named, and a legend of
+//! the types present with their lengths.
 
-use glam::DVec3;
-use karst_raster::{BLACK, Canvas, Rgb, Scale, WHITE};
+use karst_plot::legend::{Entry, Swatch};
+use karst_plot::network::{KeyPoint, NetworkPicture, Segment};
+use karst_plot::{BLACK, Canvas, Rgb, ticks};
 
 use crate::{ConduitType, Skeleton};
 
-/// Width of the picture, pixels.
-const WIDTH: u32 = 1000;
-/// Margin around and between the views, pixels.
-const MARGIN: f64 = 30.0;
+/// Width of a conduit on the picture, pixels.
+const CONDUIT: f64 = 2.0;
 
 /// Colour of a conduit type.
 pub fn colour(kind: ConduitType) -> Rgb {
@@ -27,58 +26,48 @@ pub fn colour(kind: ConduitType) -> Rgb {
 
 /// Draws `skeleton` (titled `title`).
 pub fn render(skeleton: &Skeleton, title: &str) -> Canvas {
-    let points: Vec<DVec3> = skeleton.nodes.iter().map(|n| DVec3::from_array(n.position)).collect();
-    let (lo, hi) =
-        points.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
-            (lo.min(*p), hi.max(*p))
-        });
-    let (lo, hi) = if points.is_empty() { (DVec3::ZERO, DVec3::ONE) } else { (lo, hi) };
-    let span = (hi - lo).max(DVec3::splat(1.0));
-    let metres_to_px = (f64::from(WIDTH) - 2.0 * MARGIN) / span.x.max(span.y);
-    let top_h = span.y * metres_to_px;
-    let side_h = span.z * metres_to_px;
-    let height = (top_h + side_h + 4.0 * MARGIN + 40.0).ceil() as u32;
-    let mut canvas = Canvas::new(WIDTH, height, WHITE);
-    canvas.text((MARGIN as i64, 8), title, 2, BLACK);
-    let x = Scale { from: (lo.x, lo.x + span.x), to: (MARGIN, MARGIN + span.x * metres_to_px) };
-    let top = 2.0 * MARGIN;
-    let y = Scale { from: (lo.y, lo.y + span.y), to: (top + top_h, top) };
-    let side = top + top_h + MARGIN;
-    let z = Scale { from: (lo.z, lo.z + span.z), to: (side + side_h, side) };
-    canvas.text((MARGIN as i64, (top - 12.0) as i64), "top view", 1, BLACK);
-    canvas.text((MARGIN as i64, (side - 12.0) as i64), "side view (from the south)", 1, BLACK);
-    let views: [&dyn Fn(DVec3) -> (f64, f64); 2] =
-        [&|p: DVec3| (x.map(p.x), y.map(p.y)), &|p: DVec3| (x.map(p.x), z.map(p.z))];
-    for view in views {
-        for conduit in &skeleton.conduits {
-            for (w, kind) in conduit.nodes.windows(2).zip(&conduit.types) {
-                let [a, b] = [w[0], w[1]].map(|i| view(points[i as usize]));
-                canvas.line(a, b, 2.0, colour(*kind));
-            }
-        }
-        for (node, p) in skeleton.nodes.iter().zip(&points) {
-            if let Some(name) = &node.keypoint {
-                let (px, py) = view(*p);
-                canvas.disc((px, py), 4.0, BLACK);
-                canvas.text((px as i64 + 6, py as i64 - 4), name, 1, BLACK);
-            }
-        }
-    }
-    legend(&mut canvas, skeleton, height);
-    canvas
+    picture(skeleton, title).render()
 }
 
-/// One swatch per type present, along the bottom edge.
-fn legend(canvas: &mut Canvas, skeleton: &Skeleton, height: u32) {
-    let mut at = MARGIN;
-    let row = f64::from(height) - 20.0;
-    for kind in ConduitType::ALL {
-        if skeleton.length_of_type(kind) > 0.0 {
-            canvas.rect((at, row), (at + 14.0, row + 8.0), colour(kind));
-            let width = canvas.text((at as i64 + 18, row as i64), kind.name(), 1, BLACK);
-            at += 18.0 + width as f64 + 14.0;
-        }
-    }
+fn picture(skeleton: &Skeleton, title: &str) -> NetworkPicture {
+    let position = |i: u32| skeleton.nodes[i as usize].position;
+    let segments = skeleton
+        .conduits
+        .iter()
+        .flat_map(|c| {
+            c.nodes.windows(2).zip(&c.types).map(move |(w, kind)| Segment {
+                a: position(w[0]),
+                b: position(w[1]),
+                colour: colour(*kind),
+                width: CONDUIT,
+            })
+        })
+        .collect();
+    let key_points = skeleton
+        .nodes
+        .iter()
+        .filter_map(|n| n.keypoint.as_ref().map(|name| KeyPoint { position: n.position, name: name.clone() }))
+        .collect();
+    let mut legend: Vec<Entry> = ConduitType::ALL
+        .into_iter()
+        .filter_map(|kind| {
+            let length = skeleton.length_of_type(kind);
+            (length > 0.0).then(|| {
+                Entry::new(
+                    Swatch::Line(colour(kind), 3.0),
+                    format!("{} ({} m)", kind.name(), ticks::human(length)),
+                )
+            })
+        })
+        .collect();
+    legend.push(Entry::new(Swatch::Dot(BLACK), "key point"));
+    let notes = vec![format!(
+        "{} nodes, {} conduits, {} m in all.",
+        skeleton.nodes.len(),
+        skeleton.conduits.len(),
+        ticks::human(skeleton.total_length())
+    )];
+    NetworkPicture { title: title.to_string(), segments, key_points, legend, notes }
 }
 
 #[cfg(test)]
@@ -86,15 +75,14 @@ mod tests {
     use super::*;
     use crate::{Conduit, Node, Zone};
 
-    #[test]
-    fn conduits_are_drawn_in_their_type_colour() {
+    fn skeleton() -> Skeleton {
         let node = |p: [f64; 3], k: Option<&str>| Node {
             position: p,
             sample: 0,
             keypoint: k.map(String::from),
             zone: Zone::Vadose,
         };
-        let skeleton = Skeleton {
+        Skeleton {
             nodes: vec![
                 node([0.0, 0.0, 0.0], Some("a")),
                 node([100.0, 0.0, 0.0], None),
@@ -108,16 +96,38 @@ mod tests {
                 keypoints: vec!["a".into(), "b".into()],
             }],
             routes: vec![],
-        };
-        let canvas = render(&skeleton, "t");
+        }
+    }
+
+    #[test]
+    fn conduits_are_drawn_in_their_type_colour() {
+        let canvas = render(&skeleton(), "t");
         let count = |c: Rgb| {
-            (0..canvas.height as i64)
-                .flat_map(|y| (0..canvas.width as i64).map(move |x| (x, y)))
+            (0..canvas.height() as i64)
+                .flat_map(|y| (0..canvas.width() as i64).map(move |x| (x, y)))
                 .filter(|&(x, y)| canvas.get(x, y) == Some(c))
                 .count()
         };
         assert!(count(colour(ConduitType::Bed)) > 500);
         assert!(count(colour(ConduitType::Canyon)) > 500);
         assert_eq!(count(colour(ConduitType::Tube)), 0);
+    }
+
+    #[test]
+    fn the_png_decodes_at_the_picture_width() {
+        let canvas = render(&skeleton(), "t");
+        let mut bytes = Vec::new();
+        canvas.encode_png(&mut bytes).unwrap();
+        let (w, h, colours) = karst_plot::testing::png_summary(&bytes);
+        assert_eq!((w, h), (canvas.width(), canvas.height()));
+        assert!((640..=karst_plot::network::WIDTH).contains(&w));
+        assert!(h > 600 && colours > 20, "{h} px high, {colours} colours");
+    }
+
+    #[test]
+    fn the_legend_lists_the_types_present_with_their_lengths() {
+        let p = picture(&skeleton(), "t");
+        let labels: Vec<&str> = p.legend.iter().map(|e| e.label.as_str()).collect();
+        assert_eq!(labels, ["canyon (112 m)", "bed (100 m)", "key point"]);
     }
 }

@@ -1,60 +1,93 @@
-//! The skeleton stage: scene + samples + costgraph in, `skeleton.json` (and karstnet's
-//! `network_nodes.dat` / `network_links.dat`) out.
+//! The skeleton stage's contract: the scene, `samples.bin` and `costgraph.bin` in,
+//! `skeleton.json` and karstnet's node/link files out; `render` draws the network.
 
-use std::time::Instant;
+use std::path::{Path, PathBuf};
 
-use karst_artifact::cli::{InspectArgs, RunArgs, StageRun, print_json};
-use karst_artifact::{Stage, StageError, read_artifact, write_artifact};
+use karst_artifact::{Header, StageId, read_artifact};
 use karst_costgraph::CostGraph;
 use karst_geology::Scene;
 use karst_geology::params::SkeletonMode;
 use karst_sampling::Samples;
+use karst_stage::{Stage, StageError};
 
-use crate::{ConduitType, Skeleton, Zone, karstnet, routing};
+use crate::build::build;
+use crate::error::SkeletonError;
+use crate::karstnet;
+use crate::payload::{ConduitType, Skeleton, Zone};
 
-/// Base name of the karstnet export inside the output folder.
+/// The base name of the karstnet export in the output folder.
 pub const KARSTNET_BASE: &str = "network";
 
-/// `karst-skeleton run`.
-pub fn run(args: &RunArgs) -> Result<String, StageError> {
-    let scene = Scene::load(&args.scene)?;
-    let mut run = StageRun::new(Stage::Skeleton, &args.out);
-    let samples: Samples = run.read_input(Stage::Sampling)?;
-    let graph: CostGraph = run.read_input(Stage::Costgraph)?;
-    if graph.node_count() != samples.len() {
-        return Err(StageError::input(format!(
-            "costgraph.bin has {} nodes but samples.bin has {} samples: rerun `cargo xtask run --from costgraph`",
-            graph.node_count(),
-            samples.len()
-        )));
+/// Stage 3: the conduit network.
+pub struct SkeletonStage;
+
+impl Stage for SkeletonStage {
+    const ID: StageId = StageId::Skeleton;
+    type Inputs = (Samples, CostGraph);
+    type Output = Skeleton;
+    type Error = SkeletonError;
+
+    fn build(scene: &Scene, (samples, graph): &(Samples, CostGraph)) -> Result<Skeleton, SkeletonError> {
+        build(scene, samples, graph)
     }
-    let start = Instant::now();
-    let skeleton = routing::build(&scene, &samples, &graph)?;
-    write_artifact(&run.output_path(), &run.provenance(&scene.params_hash(Stage::Skeleton)), &skeleton)?;
-    karstnet::write(&skeleton, &args.out.join(KARSTNET_BASE)).map_err(|e| {
-        StageError::failure(format!("{}: cannot write the karstnet export: {e}", args.out.display()))
-    })?;
-    // Least-cost distances obey the triangle inequality, so γ ≤ 1 prunes nothing (docs/skeleton.md):
-    // say so, since Paris et al.'s Table 1 suggests 0.8 for mazes.
-    let complete = scene.skeleton.mode == SkeletonMode::Gamma && scene.skeleton.gamma <= 1.0;
-    Ok(format!(
-        "{} nodes, {} conduits, {:.0} m in {:.2} s{}",
-        skeleton.nodes.len(),
-        skeleton.conduits.len(),
-        skeleton.total_length(),
-        start.elapsed().as_secs_f64(),
-        if complete { " (skeleton.gamma ≤ 1 keeps every pair of key points)" } else { "" }
-    ))
+
+    fn headline(scene: &Scene, skeleton: &Skeleton) -> String {
+        // Least-cost distances obey the triangle inequality, so γ ≤ 1 prunes nothing
+        // (docs/skeleton.md): say so, since Paris et al.'s Table 1 suggests 0.8 for mazes.
+        let p = scene.skeleton();
+        let complete = p.mode == SkeletonMode::Gamma && p.gamma <= 1.0;
+        format!(
+            "{} nodes, {} conduits, {:.0} m{}",
+            skeleton.nodes.len(),
+            skeleton.conduits.len(),
+            skeleton.total_length(),
+            if complete { " (skeleton.gamma ≤ 1 keeps every pair of key points)" } else { "" }
+        )
+    }
+
+    fn summary(_: &Header, skeleton: &Skeleton) -> Vec<String> {
+        let phreatic = skeleton.nodes.iter().filter(|n| n.zone == Zone::Phreatic).count();
+        let mut lines = vec![
+            format!(
+                "nodes     {} ({} vadose, {phreatic} phreatic)",
+                skeleton.nodes.len(),
+                skeleton.nodes.len() - phreatic
+            ),
+            format!("conduits  {}", skeleton.conduits.len()),
+            format!("length    {:.1} m", skeleton.total_length()),
+        ];
+        for kind in ConduitType::ALL {
+            let length = skeleton.length_of_type(kind);
+            if length > 0.0 {
+                lines.push(format!("{:<9} {length:.1} m", kind.name()));
+            }
+        }
+        for route in &skeleton.routes {
+            lines.push(format!(
+                "route     {} → {}: {} nodes, cost {:.1}",
+                route.sink,
+                route.spring,
+                route.nodes.len(),
+                route.cost
+            ));
+        }
+        lines
+    }
+
+    /// karstnet's `network_nodes.dat` / `network_links.dat`.
+    fn side_files(out: &Path, _: &Scene, _: &Self::Inputs, skeleton: &Skeleton) -> std::io::Result<()> {
+        karstnet::write(skeleton, &out.join(KARSTNET_BASE))
+    }
 }
 
 /// `karst-skeleton render FILE --png PNG`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct RenderArgs {
     /// The skeleton artifact.
-    pub file: std::path::PathBuf,
+    pub file: PathBuf,
     /// The picture to write.
     #[arg(long)]
-    pub png: std::path::PathBuf,
+    pub png: PathBuf,
     /// Title written on the picture (default: the artifact's file name).
     #[arg(long)]
     pub title: Option<String>,
@@ -67,37 +100,4 @@ pub fn render(args: &RenderArgs) -> Result<(), StageError> {
     crate::render::render(&skeleton, &title)
         .write_png(&args.png)
         .map_err(|e| StageError::failure(format!("{}: cannot write the picture: {e}", args.png.display())))
-}
-
-/// `karst-skeleton inspect`.
-pub fn inspect(args: &InspectArgs) -> Result<(), StageError> {
-    if args.json {
-        return print_json::<Skeleton>(&args.file);
-    }
-    let (header, skeleton) = read_artifact::<Skeleton>(&args.file)?;
-    let phreatic = skeleton.nodes.iter().filter(|n| n.zone == Zone::Phreatic).count();
-    println!("{}: skeleton, schema {}, by {}", args.file.display(), header.schema, header.producer);
-    println!(
-        "  nodes     {} ({} vadose, {phreatic} phreatic)",
-        skeleton.nodes.len(),
-        skeleton.nodes.len() - phreatic
-    );
-    println!("  conduits  {}", skeleton.conduits.len());
-    println!("  length    {:.1} m", skeleton.total_length());
-    for kind in ConduitType::ALL {
-        let length = skeleton.length_of_type(kind);
-        if length > 0.0 {
-            println!("  {:<9} {length:.1} m", kind.name());
-        }
-    }
-    for route in &skeleton.routes {
-        println!(
-            "  route     {} → {}: {} nodes, cost {:.1}",
-            route.sink,
-            route.spring,
-            route.nodes.len(),
-            route.cost
-        );
-    }
-    Ok(())
 }

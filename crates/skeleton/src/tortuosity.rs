@@ -14,9 +14,8 @@ use glam::DVec3;
 use karst_geology::Scene;
 use karst_geology::rng::Random;
 
-use crate::amplify::in_bedrock;
-use crate::assemble::node_at;
-use crate::{Node, Route};
+use crate::nodes::node_at;
+use crate::payload::{Node, Route};
 
 /// Draws per displaced midpoint before it stays straight.
 const TRIES: usize = 8;
@@ -34,8 +33,8 @@ pub fn refine(
     chains: &mut [Vec<u32>],
     routes: &mut [Route],
 ) {
-    let mut rng = Random::stream(scene.seed, "skeleton", "tortuosity");
-    let levels = scene.skeleton.tortuosity_levels;
+    let mut rng = Random::stream(scene.seed(), "skeleton", "tortuosity");
+    let levels = scene.skeleton().tortuosity_levels;
     let mut inserted: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
     for chain in chains.iter_mut() {
         let mut refined = vec![chain[0]];
@@ -92,7 +91,7 @@ fn subdivide(scene: &Scene, rng: &mut Random, points: &[DVec3], reach: f64) -> V
         let (u, v) = if axis == DVec3::ZERO { (DVec3::X, DVec3::Y) } else { axis.any_orthonormal_pair() };
         let displaced = (0..TRIES).find_map(|_| {
             let p = mid + u * rng.range(-reach, reach) + v * rng.range(-reach, reach);
-            in_bedrock(scene, p).then_some(p)
+            scene.in_bedrock(p).then_some(p)
         });
         out.push(displaced.unwrap_or(mid));
         out.push(w[1]);

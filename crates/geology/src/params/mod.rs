@@ -5,7 +5,6 @@
 mod costgraph;
 mod hydro;
 mod mesher;
-mod metrics;
 mod sampling;
 mod sdf;
 mod skeleton;
@@ -13,7 +12,6 @@ mod skeleton;
 pub use costgraph::{CostModelKind, CostgraphParams};
 pub use hydro::{HydroParams, PoolOutlet, PoolWeights, Recharge};
 pub use mesher::MesherParams;
-pub use metrics::MetricsParams;
 pub use sampling::{RadiusUnit, SamplingParams};
 pub use sdf::SdfParams;
 pub use skeleton::{Mode as SkeletonMode, SkeletonParams};

@@ -11,7 +11,7 @@ use serde_json::{Value, json};
 
 use karst_artifact::atomic;
 
-use crate::mesh::Surface;
+use crate::payload::TriMesh;
 
 const MAGIC: &[u8; 4] = b"glTF";
 const JSON_CHUNK: u32 = 0x4E4F_534A;
@@ -22,13 +22,13 @@ const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 
 /// Writes the surface as .glb, atomically.
-pub fn write(path: &Path, surface: &Surface, normals: &[[f32; 3]]) -> std::io::Result<()> {
+pub fn write(path: &Path, surface: &TriMesh, normals: &[[f32; 3]]) -> std::io::Result<()> {
     let bytes = encode(surface, normals);
     atomic::write_with(path, |w| w.write_all(&bytes))
 }
 
 /// The .glb file of a surface.
-pub fn encode(surface: &Surface, normals: &[[f32; 3]]) -> Vec<u8> {
+pub fn encode(surface: &TriMesh, normals: &[[f32; 3]]) -> Vec<u8> {
     let y_up = |[x, y, z]: [f32; 3]| [x, z, -y];
     let positions: Vec<[f32; 3]> = surface.vertices.iter().copied().map(y_up).collect();
     let normals: Vec<[f32; 3]> = normals.iter().copied().map(y_up).collect();
@@ -62,7 +62,7 @@ pub fn encode(surface: &Surface, normals: &[[f32; 3]]) -> Vec<u8> {
     out
 }
 
-fn document(surface: &Surface, positions: &[[f32; 3]], bin_len: usize) -> Value {
+fn document(surface: &TriMesh, positions: &[[f32; 3]], bin_len: usize) -> Value {
     let n = positions.len();
     let vec3_bytes = n * 12;
     let (mut min, mut max) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);

@@ -9,8 +9,8 @@ pub mod ply;
 use std::path::{Path, PathBuf};
 
 use crate::Mesh;
-use crate::mesh::Surface;
 use crate::normals::vertex_normals;
+use crate::payload::TriMesh;
 
 /// Name of the export folder inside the output folder.
 pub const FOLDER: &str = "export";
@@ -29,7 +29,7 @@ pub fn write_all(dir: &Path, mesh: &Mesh) -> std::io::Result<Vec<PathBuf>> {
 }
 
 fn write_surface(
-    surface: &Surface,
+    surface: &TriMesh,
     obj: Option<PathBuf>,
     folder: &Path,
     name: &str,

@@ -4,10 +4,10 @@ use std::path::Path;
 
 use karst_artifact::atomic;
 
-use crate::mesh::Surface;
+use crate::payload::TriMesh;
 
 /// Writes the surface as binary PLY, atomically.
-pub fn write(path: &Path, surface: &Surface, normals: &[[f32; 3]]) -> std::io::Result<()> {
+pub fn write(path: &Path, surface: &TriMesh, normals: &[[f32; 3]]) -> std::io::Result<()> {
     atomic::write_with(path, |w| {
         write!(
             w,

@@ -1,0 +1,129 @@
+//! The cost graph artifact: directed edges in compressed sparse rows, one or more cost sets.
+//!
+//! Targets are u32 and costs f32: 4 bytes per edge for the target plus 4 per edge and cost
+//! set, plus 4 per node for the row offsets. With one cost set that is 8 bytes per edge (the
+//! design budget is 40). KarstNSim's water-table term differs per water table, so the
+//! karstnsim2024 model stores one cost set per water table named by a spring; paris2021 stores
+//! one set. Set 0 is the default set.
+
+use serde::{Deserialize, Serialize};
+
+use karst_artifact::{Payload, StageId};
+
+use crate::stats::Summary;
+
+/// Directed graph over the samples: the out-edges of sample `i` are
+/// `targets[offsets[i]..offsets[i + 1]]`, with costs at the same indices in every cost set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CostGraph {
+    #[serde(with = "karst_artifact::bulk")]
+    pub offsets: Vec<u32>,
+    #[serde(with = "karst_artifact::bulk")]
+    pub targets: Vec<u32>,
+    /// At least one cost set; set 0 is the default.
+    pub cost_sets: Vec<CostSet>,
+    /// Distributions of the edge lengths and of every cost term, for `inspect`.
+    pub summary: Summary,
+}
+
+/// The costs of every edge under one water table (or the only set of a model without one).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CostSet {
+    /// The water table whose C_WT these costs use; None for paris2021.
+    pub water_table: Option<String>,
+    /// One cost per edge, > 0.
+    #[serde(with = "karst_artifact::bulk")]
+    pub costs: Vec<f32>,
+    /// The least cost per metre (stored cost / length) of the edges between distinct
+    /// positions, the factor of the searches' A* heuristic, recorded while the costs are made
+    /// so that no later stage goes over every edge again to find it; None when not recorded
+    /// (graphs made from lists) or after costs were changed.
+    pub min_cost_per_metre: Option<f64>,
+}
+
+impl Payload for CostGraph {
+    const STAGE: StageId = StageId::Costgraph;
+    const SCHEMA: u32 = 3;
+}
+
+impl CostGraph {
+    /// Number of nodes (samples).
+    pub fn node_count(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// Number of directed edges.
+    pub fn edge_count(&self) -> usize {
+        self.targets.len()
+    }
+
+    /// Out-edges of `node` as (target, cost) in the default cost set.
+    pub fn out_edges(&self, node: usize) -> impl Iterator<Item = (usize, f32)> + '_ {
+        self.out_edges_in(0, node)
+    }
+
+    /// Out-edges of `node` as (target, cost) in cost set `set`.
+    pub fn out_edges_in(&self, set: usize, node: usize) -> impl Iterator<Item = (usize, f32)> + '_ {
+        let range = self.offsets[node] as usize..self.offsets[node + 1] as usize;
+        let costs = &self.cost_sets[set].costs[range.clone()];
+        self.targets[range].iter().map(|&t| t as usize).zip(costs.iter().copied())
+    }
+
+    /// The cost set to route towards a spring of water table `name`: its own set under
+    /// karstnsim2024, the only set under paris2021; None when the graph has no set for it.
+    pub fn cost_set_of_water_table(&self, name: &str) -> Option<usize> {
+        match self.cost_sets.as_slice() {
+            [only] if only.water_table.is_none() => Some(0),
+            sets => sets.iter().position(|s| s.water_table.as_deref() == Some(name)),
+        }
+    }
+
+    /// Bytes the graph's arrays hold in memory (lengths, not capacities).
+    pub fn bytes_in_memory(&self) -> usize {
+        let costs: usize = self.cost_sets.iter().map(|s| s.costs.len() * 4).sum();
+        self.offsets.len() * 4 + self.targets.len() * 4 + costs
+    }
+
+    /// A graph with one cost set from per-node out-edge lists, in node order (tests, tools).
+    pub fn from_lists(lists: Vec<Vec<(u32, f32)>>) -> Self {
+        let mut offsets = Vec::with_capacity(lists.len() + 1);
+        let mut targets = Vec::new();
+        let mut costs = Vec::new();
+        offsets.push(0);
+        for list in lists {
+            for (t, c) in list {
+                targets.push(t);
+                costs.push(c);
+            }
+            offsets.push(targets.len() as u32);
+        }
+        CostGraph {
+            offsets,
+            targets,
+            cost_sets: vec![CostSet { water_table: None, costs, min_cost_per_metre: None }],
+            summary: Summary::default(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cost_sets_are_found_by_water_table() {
+        let mut g = CostGraph::from_lists(vec![vec![(1, 1.0)], vec![(0, 2.0)]]);
+        assert_eq!(g.cost_set_of_water_table("any"), Some(0));
+        g.cost_sets[0].water_table = Some("high".into());
+        g.cost_sets.push(CostSet {
+            water_table: Some("low".into()),
+            costs: vec![3.0, 4.0],
+            min_cost_per_metre: None,
+        });
+        assert_eq!(g.cost_set_of_water_table("low"), Some(1));
+        assert_eq!(g.cost_set_of_water_table("none"), None);
+        assert_eq!(g.out_edges_in(1, 1).collect::<Vec<_>>(), vec![(0, 4.0)]);
+        assert_eq!(g.out_edges(1).collect::<Vec<_>>(), vec![(0, 2.0)]);
+        assert_eq!(g.bytes_in_memory(), 3 * 4 + 2 * 4 + 2 * 2 * 4);
+    }
+}

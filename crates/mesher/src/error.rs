@@ -1,0 +1,20 @@
+//! Why a model cannot be meshed.
+
+use karst_stage::{Blame, Failure};
+
+/// A mesh that cannot be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MesherError {
+    #[error(
+        "{field} = {cell_size} gives {cells:.0} cells along the domain's longest axis; at most {max} are possible"
+    )]
+    LatticeTooFine { field: &'static str, cell_size: f64, cells: f64, max: f64 },
+}
+
+impl Failure for MesherError {
+    fn blame(&self) -> Blame {
+        match self {
+            MesherError::LatticeTooFine { .. } => Blame::Scene,
+        }
+    }
+}

@@ -1,0 +1,88 @@
+//! The mesh artifact: the carved terrain, the cave alone and the water, each a closed surface.
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use karst_artifact::{Payload, StageId};
+
+/// The artifact `mesh.bin`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Mesh {
+    /// Lattice cell size of the carved terrain, metres.
+    pub cell_size: f64,
+    /// Lattice cell size of the cave alone and the water, metres.
+    pub cave_cell_size: f64,
+    /// The carved rock: normals point from rock to air.
+    pub terrain: TriMesh,
+    /// The karst volume alone: normals point out of the cave, into the rock.
+    pub cave: TriMesh,
+    /// The water standing or flowing in the conduits: normals point out of the water.
+    pub water: TriMesh,
+}
+
+impl Mesh {
+    /// The surfaces with their names: terrain, cave, water.
+    pub fn surfaces(&self) -> [(&'static str, &TriMesh); 3] {
+        [("terrain", &self.terrain), ("cave", &self.cave), ("water", &self.water)]
+    }
+}
+
+impl Payload for Mesh {
+    const STAGE: StageId = StageId::Mesher;
+    const SCHEMA: u32 = 3;
+}
+
+/// An indexed triangle mesh; triangles are counter-clockwise seen from outside the solid.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct TriMesh {
+    pub vertices: Vec<[f32; 3]>,
+    pub triangles: Vec<[u32; 3]>,
+    /// Field evaluations spent (octree and bricks).
+    pub field_evaluations: u64,
+    /// What the cleanup took away.
+    pub removed: Removed,
+}
+
+impl TriMesh {
+    /// Total area, m².
+    pub fn area(&self) -> f64 {
+        self.triangles.iter().map(|t| self.normal(t).length() * 0.5).sum()
+    }
+
+    /// Volume enclosed by the (closed, outward-oriented) mesh, m³.
+    pub fn enclosed_volume(&self) -> f64 {
+        self.volume_of(self.triangles.iter())
+    }
+
+    /// Signed volume under a set of triangles: Σ a·(b × c)/6.
+    pub fn volume_of<'a>(&self, triangles: impl Iterator<Item = &'a [u32; 3]>) -> f64 {
+        triangles.map(|t| self.position(t[0]).dot(self.normal(t)) / 6.0).sum()
+    }
+
+    /// Vertex i in double precision.
+    pub fn position(&self, i: u32) -> DVec3 {
+        glam::Vec3::from_array(self.vertices[i as usize]).as_dvec3()
+    }
+
+    /// The triangle's normal, of length twice its area.
+    pub fn normal(&self, t: &[u32; 3]) -> DVec3 {
+        let [a, b, c] = t.map(|i| self.position(i));
+        (b - a).cross(c - a)
+    }
+
+    /// Field evaluations per output vertex.
+    pub fn evaluations_per_vertex(&self) -> f64 {
+        self.field_evaluations as f64 / self.vertices.len().max(1) as f64
+    }
+}
+
+/// What the cleanup took away from one surface.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Removed {
+    /// Rock islands floating in cave air, and their total volume, m³.
+    pub islands: u32,
+    pub island_volume: f64,
+    /// Air pockets sealed in rock, and their total volume, m³.
+    pub pockets: u32,
+    pub pocket_volume: f64,
+}

@@ -1,0 +1,40 @@
+//! The metrics artifact, `metrics.json`: karstnet's statistics beside their real-cave ranges,
+//! and what only a karstgen network knows (lengths per zone, conduit type and water type).
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use karst_artifact::{Payload, StageId};
+
+use crate::Metrics;
+use crate::ranges::Compared;
+
+/// The metrics artifact.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MetricsReport {
+    /// `characterize_graph()`'s metrics, each with its real-cave range.
+    pub karstnet: BTreeMap<String, Compared>,
+    /// Every statistic, under karstnet's key names.
+    pub network: Metrics,
+    /// Conduit length in the vadose and the phreatic zone.
+    pub zones: ZoneLengths,
+    /// Conduit length per conduit type (every type, zero when absent).
+    pub conduit_types: BTreeMap<String, f64>,
+    /// Conduit length per water type of the hydro stage (every type, zero when absent); empty
+    /// when the report is made from a skeleton alone (ensembles).
+    #[serde(default)]
+    pub water_types: BTreeMap<String, f64>,
+}
+
+/// Conduit length above (vadose) and below (phreatic) the water table, metres.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ZoneLengths {
+    pub vadose: f64,
+    pub phreatic: f64,
+}
+
+impl Payload for MetricsReport {
+    const STAGE: StageId = StageId::Metrics;
+    const SCHEMA: u32 = 3;
+}

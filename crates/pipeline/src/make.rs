@@ -1,0 +1,114 @@
+//! Running the pipeline like make: a stage runs when its artifact is missing or its key
+//! differs from the key it would write now (stage, producer version, the scene sections it
+//! reads, its inputs' payload hashes); otherwise it is up to date.
+
+use std::path::Path;
+use std::time::Instant;
+
+use karst_artifact::stages::{producer, stage_key};
+use karst_artifact::{InputRef, StageId, read_header};
+use karst_stage::{Job, StageError};
+
+use crate::registry;
+use crate::scene::SceneFile;
+
+/// Which stages to run.
+#[derive(Debug, Clone, Default)]
+pub struct Selection {
+    /// Run this stage and every later one, even when up to date.
+    pub from: Option<StageId>,
+    /// Run only this stage, even when up to date.
+    pub only: Option<StageId>,
+    /// Stop after this stage.
+    pub to: Option<StageId>,
+    /// Run every stage, even when up to date.
+    pub force: bool,
+}
+
+/// What happened to one stage.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Outcome {
+    Ran { headline: String },
+    UpToDate,
+    Skipped,
+}
+
+/// One line of the run report.
+#[derive(Debug, Clone)]
+pub struct StageReport {
+    pub stage: StageId,
+    pub outcome: Outcome,
+    pub seconds: f64,
+}
+
+impl StageReport {
+    /// The line printed for it: name, status, seconds, headline.
+    pub fn line(&self) -> String {
+        let (status, detail) = match &self.outcome {
+            Outcome::Ran { headline } => ("ran", headline.as_str()),
+            Outcome::UpToDate => ("up to date", ""),
+            Outcome::Skipped => ("skipped", ""),
+        };
+        format!("{:<10} {:<11} {:>7.2} s  {detail}", self.stage.name(), status, self.seconds)
+            .trim_end()
+            .to_string()
+    }
+}
+
+/// Runs the pipeline on `scene` into `out`, calling `report` after each stage.
+pub fn run(
+    scene: &SceneFile,
+    out: &Path,
+    selection: &Selection,
+    report: &mut dyn FnMut(&StageReport),
+) -> Result<Vec<StageReport>, StageError> {
+    std::fs::create_dir_all(out).map_err(|e| {
+        StageError::failure(format!("{}: cannot create the output folder: {e}", out.display()))
+    })?;
+    let job = Job { scene_path: &scene.path, scene: &scene.scene, out };
+    let mut reports = Vec::new();
+    for stage in StageId::ALL {
+        let start = Instant::now();
+        let outcome = if !selected(stage, selection) {
+            Outcome::Skipped
+        } else if !forced(stage, selection) && up_to_date(&job, stage) {
+            Outcome::UpToDate
+        } else {
+            Outcome::Ran { headline: registry::stage(stage).run(&job)?.headline }
+        };
+        let line = StageReport { stage, outcome, seconds: start.elapsed().as_secs_f64() };
+        report(&line);
+        reports.push(line);
+    }
+    Ok(reports)
+}
+
+fn selected(stage: StageId, selection: &Selection) -> bool {
+    selection.only.is_none_or(|only| only == stage) && selection.to.is_none_or(|to| stage <= to)
+}
+
+fn forced(stage: StageId, selection: &Selection) -> bool {
+    selection.force || selection.only == Some(stage) || selection.from.is_some_and(|from| stage >= from)
+}
+
+/// The key `stage` would write now, if its inputs exist.
+pub fn expected_key(job: &Job, stage: StageId) -> Option<String> {
+    let inputs = stage
+        .inputs()
+        .iter()
+        .map(|input| {
+            let header = read_header(&job.artifact(*input)).ok()?;
+            Some(InputRef { name: input.row().kind.into(), payload_blake3: header.payload_blake3 })
+        })
+        .collect::<Option<Vec<_>>>()?;
+    let params = job.scene.sections_hash(stage.row().sections);
+    Some(stage_key(stage, &producer(stage), registry::stage(stage).schema(), &params, &inputs))
+}
+
+fn up_to_date(job: &Job, stage: StageId) -> bool {
+    let existing = read_header(&job.artifact(stage)).ok();
+    match (existing, expected_key(job, stage)) {
+        (Some(header), Some(key)) => header.key == key,
+        _ => false,
+    }
+}

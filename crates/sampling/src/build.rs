@@ -1,0 +1,78 @@
+//! The sampling algorithm's entry: key points, then the surfaces, then the volume.
+
+use glam::DVec3;
+
+use karst_geology::rng::Random;
+use karst_geology::{Scene, Surface};
+use karst_stage::progress;
+
+use crate::error::SamplingError;
+use crate::payload::{Samples, Tag};
+use crate::poisson::Sampler;
+use crate::spacing::SpacingField;
+use crate::surfaces::fill_surface;
+
+/// Surfaces of one kind, the tag of their samples and their random stream's name.
+type SurfaceList<'a> = (&'a [Surface], fn(u32) -> Tag, &'static str);
+
+/// Samples the bedrock of `scene`: key points first, then samples on the water tables,
+/// horizons and faults, then the volume, all outside no-karst volumes and below the terrain.
+pub fn build(scene: &Scene) -> Result<Samples, SamplingError> {
+    let field = SpacingField::of_scene(scene);
+    let d = scene.domain();
+    // Background cells of the volume's base radius (a few samples each, linked lists).
+    let base = scene.sampling().radius * crate::spacing::unit_scale(scene);
+    let cell = field.min().max(base);
+    let mut sampler = Sampler::new(&field, d.min(), d.max(), cell);
+    // Runs of equal tags (the tags themselves are built once the grid is freed).
+    let mut runs: Vec<(Tag, usize)> = Vec::new();
+    for (i, k) in scene.keypoints().iter().enumerate() {
+        sampler.force(k.point());
+        runs.push((Tag::KeyPoint(i as u32), 1));
+    }
+    let region =
+        |p: DVec3| d.contains(p) && p.z < scene.terrain().height(p.x, p.y) && !scene.geology().in_no_karst(p);
+    let attempts = scene.sampling().attempts;
+    // Surface patches of r/√3, so that one sample covers its patch.
+    let frame = (d.min(), d.max(), cell / 3f64.sqrt());
+    let g = scene.geology();
+    let lists: [SurfaceList; 3] = [
+        (&g.water_tables, Tag::WaterTable, "water tables"),
+        (&g.horizons, Tag::Horizon, "horizons"),
+        (&g.faults, Tag::Fault, "faults"),
+    ];
+    for (surfaces, tag, purpose) in lists {
+        for (i, s) in surfaces.iter().enumerate() {
+            let key = Random::stream(scene.seed(), "sampling", &format!("{purpose} {i}")).uniform().to_bits();
+            let before = sampler.points.len();
+            fill_surface(&mut sampler, s, frame, attempts, key, region);
+            runs.push((tag(i as u32), sampler.points.len() - before));
+        }
+    }
+    let key = Random::stream(scene.seed(), "sampling", "volume").uniform().to_bits();
+    let bar = progress::bar(sampler.work() as u64, "sampling");
+    sampler.fill_volume(key, region, |n| bar.set_position(n));
+    bar.finish_and_clear();
+    let volume = sampler.points.len() - runs.iter().map(|r| r.1).sum::<usize>();
+    runs.push((Tag::Volume, volume));
+    if sampler.points.len() == scene.keypoints().len() {
+        return Err(SamplingError::NothingToSample {
+            smallest: field.min(),
+            radius: scene.sampling().radius,
+        });
+    }
+    // Free the background grid first, and convert the positions in place: peak memory stays
+    // near the samples themselves.
+    let points = std::mem::take(&mut sampler.points);
+    drop(sampler);
+    let positions = points.into_iter().map(|p| p.to_array()).collect();
+    let mut tags = Vec::with_capacity(sampler_len(&runs));
+    for (tag, n) in runs {
+        tags.resize(tags.len() + n, tag);
+    }
+    Ok(Samples { positions, tags, radius: field.min(), radius_field: field })
+}
+
+fn sampler_len(runs: &[(Tag, usize)]) -> usize {
+    runs.iter().map(|r| r.1).sum()
+}

@@ -1,0 +1,82 @@
+//! The samples artifact.
+
+use serde::{Deserialize, Serialize};
+
+use karst_artifact::{Payload, StageId};
+
+use crate::spacing::SpacingField;
+
+/// What a sample stands for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Tag {
+    /// A sample of the rock volume.
+    Volume,
+    /// A sample on the scene's horizon with this index.
+    Horizon(u32),
+    /// A sample on the scene's water table with this index.
+    WaterTable(u32),
+    /// A sample on the scene's fault with this index.
+    Fault(u32),
+    /// The key point with this index in the scene's `keypoints`.
+    KeyPoint(u32),
+}
+
+/// Number of samples of each tag class.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct TagCounts {
+    pub volume: usize,
+    pub horizon: usize,
+    pub water_table: usize,
+    pub fault: usize,
+    pub keypoint: usize,
+}
+
+/// The point cloud through which conduits can run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Samples {
+    /// Positions `[x, y, z]`, metres. Key points come first, in scene order, then surface
+    /// samples (water tables, horizons, faults), then volume samples.
+    pub positions: Vec<[f64; 3]>,
+    /// One tag per position.
+    pub tags: Vec<Tag>,
+    /// The smallest Poisson-disk radius of the field, metres.
+    pub radius: f64,
+    /// The radius field used: two samples p, q (not both key points) are at least
+    /// min(r(p), r(q)) apart.
+    pub radius_field: SpacingField,
+}
+
+impl Payload for Samples {
+    const STAGE: StageId = StageId::Sampling;
+    const SCHEMA: u32 = 3;
+}
+
+impl Samples {
+    pub fn len(&self) -> usize {
+        self.positions.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.positions.is_empty()
+    }
+
+    /// Sample index of the scene's key point `keypoint` (key points come first).
+    pub fn keypoint_sample(&self, keypoint: usize) -> Option<usize> {
+        (self.tags.get(keypoint) == Some(&Tag::KeyPoint(keypoint as u32))).then_some(keypoint)
+    }
+
+    /// Number of samples per tag class.
+    pub fn tag_counts(&self) -> TagCounts {
+        let mut c = TagCounts::default();
+        for t in &self.tags {
+            match t {
+                Tag::Volume => c.volume += 1,
+                Tag::Horizon(_) => c.horizon += 1,
+                Tag::WaterTable(_) => c.water_table += 1,
+                Tag::Fault(_) => c.fault += 1,
+                Tag::KeyPoint(_) => c.keypoint += 1,
+            }
+        }
+        c
+    }
+}

@@ -1,0 +1,121 @@
+//! The skeleton of a scene, the algorithm's entry: the mode ([`karstnsim`] or [`gamma`]) draws
+//! the sample paths on the cost graph, the key points it did not route are joined, the
+//! network is amplified, and the [`NetworkBuilder`] turns the paths into the artifact.
+
+use karst_costgraph::CostGraph;
+use karst_geology::params::SkeletonMode;
+use karst_geology::{KeyPointKind, Scene};
+use karst_sampling::Samples;
+
+use crate::assemble::NetworkBuilder;
+use crate::ends::{ends, sinks_in_order};
+use crate::error::SkeletonError;
+use crate::karstnsim::PhaseSetup;
+use crate::payload::{Route, Skeleton};
+use crate::search::{CostSetOf, EdgeCosts};
+use crate::{amplify, gamma, karstnsim};
+
+/// Builds the network of `scene` on the cost graph; each spring routes on the cost set of its
+/// water table. Dead-end key points are
+/// closed to the mode's paths and to amplification, then joined once.
+pub fn build(scene: &Scene, samples: &Samples, full: &CostGraph) -> Result<Skeleton, SkeletonError> {
+    if full.node_count() != samples.len() {
+        return Err(SkeletonError::GraphOfOtherSamples { nodes: full.node_count(), samples: samples.len() });
+    }
+    let mut network = NetworkBuilder::default();
+    let closed = without_dead_ends(scene, samples, full);
+    let graph = closed.as_ref().unwrap_or(full);
+    let routes = mode_routes(scene, samples, graph, &mut network)?;
+    amplify::join_keypoints(scene, samples, full, &mut network)?;
+    amplify::amplify(scene, samples, graph, &mut network);
+    Ok(network.finish(scene, samples, routes))
+}
+
+/// The least-cost paths of the scene's mode alone (no other key point joined, no amplification,
+/// no conduits): what the skeleton budgets of `cargo xtask bench` time. Returns the number of
+/// routes.
+pub fn mode_paths(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<usize, SkeletonError> {
+    mode_routes(scene, samples, graph, &mut NetworkBuilder::default()).map(|routes| routes.len())
+}
+
+/// The routes of the scene's mode, their paths added to `network`: KarstNSim's routing of every
+/// sink, phase after phase, or the γ-skeleton of the key points.
+fn mode_routes(
+    scene: &Scene,
+    samples: &Samples,
+    graph: &CostGraph,
+    network: &mut NetworkBuilder,
+) -> Result<Vec<(Route, Vec<usize>)>, SkeletonError> {
+    match scene.skeleton().mode {
+        SkeletonMode::Karstnsim => {
+            // One cost set per spring's water table (KarstNSim §1.3): C_WT differs between them.
+            let sets: Vec<CostSetOf> =
+                (0..graph.cost_sets.len()).map(|set| CostSetOf { graph, set }).collect();
+            let cost_set =
+                |table: &str| -> &dyn EdgeCosts { &sets[graph.cost_set_of_water_table(table).unwrap_or(0)] };
+            let sinks = sinks_in_order(scene);
+            let mut inherited = vec![false; graph.edge_count()];
+            let mut routes = Vec::new();
+            for (index, mut setup) in phase_setups(scene, graph).into_iter().enumerate() {
+                network.phase = index as u32;
+                setup.inherited.clone_from(&inherited);
+                let done = karstnsim::route(scene, samples, graph, &cost_set, &sinks, &setup)?;
+                for (_, path) in &done.routes {
+                    network.add_path(path);
+                }
+                for (old, new) in inherited.iter_mut().zip(&done.used) {
+                    *old |= *new;
+                }
+                routes = done.routes;
+            }
+            Ok(routes)
+        }
+        SkeletonMode::Gamma => gamma::network(scene, samples, graph, network),
+    }
+}
+
+/// The cost graph with the edges into or out of dead-end key points closed, so that no path but
+/// their own passes through them; None when the scene has none.
+fn without_dead_ends(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Option<CostGraph> {
+    let mut closed = vec![false; graph.node_count()];
+    for (i, _) in scene.keypoints_of(KeyPointKind::DeadEnd) {
+        if let Some(s) = samples.keypoint_sample(i) {
+            closed[s] = true;
+        }
+    }
+    closed.iter().any(|c| *c).then(|| {
+        // Closed edges cost +∞ in every cost set: no search relaxes them, and edge ids (shared
+        // with the per-edge cohesion state) stay those of the full graph.
+        let mut open = graph.clone();
+        for u in 0..graph.node_count() {
+            for edge in graph.offsets[u] as usize..graph.offsets[u + 1] as usize {
+                if closed[u] || closed[graph.targets[edge] as usize] {
+                    for set in &mut open.cost_sets {
+                        set.costs[edge] = f32::INFINITY;
+                        set.min_cost_per_metre = None;
+                    }
+                }
+            }
+        }
+        open
+    })
+}
+
+/// The phases of the scene, oldest first (one with every spring when it lists none); their
+/// inherited edges are filled in as the phases run.
+fn phase_setups<'a>(scene: &'a Scene, graph: &CostGraph) -> Vec<PhaseSetup<'a>> {
+    if scene.phases().is_empty() {
+        return vec![PhaseSetup::single(scene, graph)];
+    }
+    let springs = ends(scene, KeyPointKind::Spring);
+    scene
+        .phases()
+        .iter()
+        .map(|phase| PhaseSetup {
+            springs: springs.iter().filter(|s| phase.springs.iter().any(|n| n == s.name)).copied().collect(),
+            inherited: Vec::new(),
+            inherited_cost: phase.inherited_cost,
+            weights: phase.weights.clone(),
+        })
+        .collect()
+}

@@ -1,0 +1,144 @@
+//! The skeleton artifact: nodes, conduits and the route of every sink.
+
+use serde::{Deserialize, Serialize};
+
+use karst_artifact::{Payload, StageId};
+
+/// The type of a conduit segment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ConduitType {
+    Epikarst,
+    Tube,
+    Canyon,
+    Keyhole,
+    Passage,
+    Bed,
+    Chamber,
+}
+
+impl ConduitType {
+    /// Every type, in a fixed order.
+    pub const ALL: [ConduitType; 7] = [
+        ConduitType::Epikarst,
+        ConduitType::Tube,
+        ConduitType::Canyon,
+        ConduitType::Keyhole,
+        ConduitType::Passage,
+        ConduitType::Bed,
+        ConduitType::Chamber,
+    ];
+
+    /// Lowercase name, as in the artifact.
+    pub fn name(self) -> &'static str {
+        match self {
+            ConduitType::Epikarst => "epikarst",
+            ConduitType::Tube => "tube",
+            ConduitType::Canyon => "canyon",
+            ConduitType::Keyhole => "keyhole",
+            ConduitType::Passage => "passage",
+            ConduitType::Bed => "bed",
+            ConduitType::Chamber => "chamber",
+        }
+    }
+}
+
+/// Whether a node lies above (vadose) or below (phreatic) the water table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Zone {
+    Vadose,
+    Phreatic,
+}
+
+/// A node of the network: a sample the conduits pass through.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Node {
+    pub position: [f64; 3],
+    /// Index of the sample in `samples.bin`.
+    pub sample: u32,
+    /// Name of the key point at this node, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub keypoint: Option<String>,
+    pub zone: Zone,
+}
+
+/// A conduit: a chain of nodes between two ends (junctions, dead ends or key points), with the
+/// radius of the passage at each node and the type of each segment. A conduit whose ends
+/// coincide is a loop.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Conduit {
+    pub nodes: Vec<u32>,
+    /// Radius at each node, metres.
+    pub radius: Vec<f64>,
+    /// Type of each segment (nodes[i] → nodes[i + 1]).
+    pub types: Vec<ConduitType>,
+    /// The speleogenetic phase that made the conduit (0: the first; later phases keep the
+    /// relict conduits of earlier ones).
+    #[serde(default)]
+    pub phase: u32,
+    /// The key points at the conduit's ends, in end order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub keypoints: Vec<String>,
+}
+
+/// The route water takes from one sink to one spring.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Route {
+    pub sink: String,
+    pub spring: String,
+    /// The sink's weight (its recharge).
+    pub weight: f64,
+    /// Nodes from sink to spring.
+    pub nodes: Vec<u32>,
+    /// Cost of the path in the cost graph.
+    pub cost: f64,
+}
+
+/// The conduit network.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Skeleton {
+    pub nodes: Vec<Node>,
+    pub conduits: Vec<Conduit>,
+    pub routes: Vec<Route>,
+}
+
+impl Payload for Skeleton {
+    const STAGE: StageId = StageId::Skeleton;
+    const SCHEMA: u32 = 3;
+}
+
+impl Skeleton {
+    /// Every link between two nodes, once, as (a, b) with a < b, in conduit order.
+    pub fn links(&self) -> Vec<[u32; 2]> {
+        self.conduits
+            .iter()
+            .flat_map(|c| c.nodes.windows(2).map(|w| [w[0].min(w[1]), w[0].max(w[1])]))
+            .collect()
+    }
+
+    /// Total length of the conduits, metres.
+    pub fn total_length(&self) -> f64 {
+        self.conduits.iter().map(|c| self.conduit_length(c)).sum()
+    }
+
+    /// Length of one conduit, metres.
+    pub fn conduit_length(&self, conduit: &Conduit) -> f64 {
+        conduit.nodes.windows(2).map(|w| self.segment_length(w[0], w[1])).sum()
+    }
+
+    /// Total length of the segments of type `kind`, metres.
+    pub fn length_of_type(&self, kind: ConduitType) -> f64 {
+        self.conduits
+            .iter()
+            .flat_map(|c| c.nodes.windows(2).zip(&c.types))
+            .filter(|(_, t)| **t == kind)
+            .map(|(w, _)| self.segment_length(w[0], w[1]))
+            .sum()
+    }
+
+    fn segment_length(&self, a: u32, b: u32) -> f64 {
+        let [a, b] = [a, b].map(|i| glam::DVec3::from_array(self.nodes[i as usize].position));
+        a.distance(b)
+    }
+}

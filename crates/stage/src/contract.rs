@@ -1,0 +1,60 @@
+//! The [`Stage`] trait and how a stage's error says whose fault it is.
+
+use std::path::Path;
+
+use karst_artifact::{Header, Payload, StageId};
+use karst_geology::Scene;
+
+use crate::inputs::Inputs;
+
+/// One stage of the pipeline. Implemented by a unit type in each stage crate's `stage.rs`;
+/// [`crate::runner::run`] does the rest.
+pub trait Stage: 'static {
+    /// The stage's row of the stage table: name, binary, artifact file, encoding, inputs and
+    /// the scene sections it reads (the key covers exactly those).
+    const ID: StageId;
+    /// The upstream payloads it reads, in the row's order.
+    type Inputs: Inputs;
+    /// The payload of its artifact.
+    type Output: Payload;
+    /// Its typed error.
+    type Error: Failure;
+
+    /// The stage's algorithm: the scene and the inputs in, the payload out.
+    fn build(scene: &Scene, inputs: &Self::Inputs) -> Result<Self::Output, Self::Error>;
+
+    /// The figures printed after a run, one line ("33 nodes, 3 conduits, 376 m").
+    fn headline(scene: &Scene, output: &Self::Output) -> String;
+
+    /// The lines `inspect` prints under the artifact's first line.
+    fn summary(header: &Header, output: &Self::Output) -> Vec<String>;
+
+    /// Files written into the output folder beside the artifact (tables for other programs,
+    /// previews). The runner writes them before the artifact, so a run interrupted between the
+    /// two leaves a stale artifact and the stage runs again next time.
+    fn side_files(
+        _out: &Path,
+        _scene: &Scene,
+        _inputs: &Self::Inputs,
+        _output: &Self::Output,
+    ) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Whose fault an error is, so that the runner can name the file and give the exit code.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Blame {
+    /// The scene file (or a data file it names) is wrong: exit 2, naming the scene.
+    Scene,
+    /// An upstream artifact is inconsistent: exit 2, naming it and the stage to rerun.
+    Artifact(StageId),
+    /// karstgen or the machine failed: exit 1.
+    Internal,
+}
+
+/// A stage's typed error.
+pub trait Failure: std::error::Error + Send + Sync + 'static {
+    /// Whose fault it is.
+    fn blame(&self) -> Blame;
+}

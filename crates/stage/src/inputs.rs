@@ -1,0 +1,51 @@
+//! The upstream payloads a stage reads, as a tuple of payload types.
+
+use std::path::Path;
+
+use karst_artifact::{InputRef, Payload, StageId, read_artifact};
+
+/// A tuple of upstream payloads, read from an output folder.
+pub trait Inputs: Sized {
+    /// The stages that write them, in order.
+    fn stages() -> Vec<StageId>;
+
+    /// Reads each one from `dir`, checking it, and records its payload hash for the key.
+    fn read(dir: &Path, refs: &mut Vec<InputRef>) -> Result<Self, karst_artifact::Error>;
+}
+
+fn read_one<P: Payload>(dir: &Path, refs: &mut Vec<InputRef>) -> Result<P, karst_artifact::Error> {
+    let (header, payload) = read_artifact::<P>(&dir.join(P::STAGE.file_name()))?;
+    refs.push(InputRef { name: P::STAGE.row().kind.into(), payload_blake3: header.payload_blake3 });
+    Ok(payload)
+}
+
+impl Inputs for () {
+    fn stages() -> Vec<StageId> {
+        Vec::new()
+    }
+
+    fn read(_: &Path, _: &mut Vec<InputRef>) -> Result<Self, karst_artifact::Error> {
+        Ok(())
+    }
+}
+
+/// `impl Inputs for (A, B, …)`: reads each payload in turn.
+macro_rules! tuple_inputs {
+    ($($p:ident),+) => {
+        impl<$($p: Payload),+> Inputs for ($($p,)+) {
+            fn stages() -> Vec<StageId> {
+                vec![$($p::STAGE),+]
+            }
+
+            fn read(dir: &Path, refs: &mut Vec<InputRef>) -> Result<Self, karst_artifact::Error> {
+                Ok(($(read_one::<$p>(dir, refs)?,)+))
+            }
+        }
+    };
+}
+
+tuple_inputs!(A);
+tuple_inputs!(A, B);
+tuple_inputs!(A, B, C);
+tuple_inputs!(A, B, C, D);
+tuple_inputs!(A, B, C, D, E);

@@ -1,0 +1,28 @@
+//! The stage contract: what every stage of karstgen is, and the one runner that runs them.
+//!
+//! A stage is a type implementing [`Stage`]: its row of the stage table (name, binary,
+//! artifact file, encoding, inputs, scene sections: [`karst_artifact::StageRow`]), the
+//! upstream payloads it reads ([`Inputs`]), the payload it writes, its own typed error and a
+//! `build` function from the scene and the inputs to the payload, plus a headline and an
+//! `inspect` summary. [`runner::run`] does everything around `build` the same way for every
+//! stage: read and check the inputs, time the build, write the side files then the artifact
+//! (atomically, keyed by the scene sections and inputs), and report. [`cli`] turns the same
+//! into a stage binary's `run` and `inspect` subcommands.
+//!
+//! Library code returns its stage's typed error; only the runner and the command-line layers
+//! turn errors into the [`StageError`] that carries the process exit code (2 for bad input,
+//! 1 for a failure of karstgen or the machine), using the error's [`Blame`] to name the file
+//! at fault.
+
+pub mod cli;
+mod contract;
+mod error;
+pub mod human;
+mod inputs;
+pub mod progress;
+pub mod runner;
+
+pub use contract::{Blame, Failure, Stage};
+pub use error::StageError;
+pub use inputs::Inputs;
+pub use runner::{Job, Ran};

@@ -1,0 +1,21 @@
+//! Progress bars that show on a terminal and stay silent otherwise (CI, pipes, tests).
+
+use std::io::IsTerminal;
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+/// A progress bar over `len` steps labelled `label`, with the elapsed time and an estimate of
+/// the time left; hidden when stderr is not a terminal or
+/// when the `CI` environment variable is set.
+pub fn bar(len: u64, label: &str) -> ProgressBar {
+    if !std::io::stderr().is_terminal() || std::env::var_os("CI").is_some() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(len);
+    let style = ProgressStyle::with_template("{prefix:>10} [{bar:30}] {percent:>3}% {elapsed} (ETA {eta})")
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .progress_chars("=> ");
+    bar.set_style(style);
+    bar.set_prefix(label.to_string());
+    bar
+}

@@ -1,0 +1,99 @@
+//! The one runner: everything around a stage's `build`, the same way for every stage.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use karst_artifact::stages::producer;
+use karst_artifact::{Payload, Provenance, read_artifact, write_artifact};
+use karst_geology::Scene;
+
+use crate::contract::{Blame, Failure, Stage};
+use crate::error::StageError;
+use crate::inputs::Inputs;
+
+/// One run of one stage: the scene (and the file it came from, named in messages) and the
+/// output folder holding the upstream artifacts, where this stage's artifact goes too.
+#[derive(Debug, Clone, Copy)]
+pub struct Job<'a> {
+    pub scene_path: &'a Path,
+    pub scene: &'a Scene,
+    pub out: &'a Path,
+}
+
+impl Job<'_> {
+    /// The path of `stage`'s artifact in the output folder.
+    pub fn artifact(&self, stage: karst_artifact::StageId) -> PathBuf {
+        self.out.join(stage.file_name())
+    }
+}
+
+/// What a run did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ran {
+    /// The stage's headline figures.
+    pub headline: String,
+    /// Seconds spent in `build`.
+    pub seconds: f64,
+}
+
+/// Runs stage `S`: reads and checks its inputs, builds, writes the side files then the
+/// artifact (atomically, keyed by the scene sections it reads and its inputs' hashes).
+pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
+    debug_assert_eq!(S::Inputs::stages(), S::ID.inputs(), "{}: inputs differ from its row", S::ID.name());
+    let mut refs = Vec::new();
+    let inputs = S::Inputs::read(job.out, &mut refs)?;
+    let start = Instant::now();
+    let output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
+    let seconds = start.elapsed().as_secs_f64();
+    output.validate().map_err(|invalid| {
+        StageError::failure(format!(
+            "{} built an invalid {} payload ({}: {}): this is a bug in karstgen",
+            S::ID.name(),
+            S::ID.row().kind,
+            invalid.field,
+            invalid.problem
+        ))
+    })?;
+    S::side_files(job.out, job.scene, &inputs, &output).map_err(|e| {
+        StageError::failure(format!(
+            "{}: cannot write the {} stage's files: {e}",
+            job.out.display(),
+            S::ID.name()
+        ))
+    })?;
+    let provenance = Provenance {
+        producer: producer(S::ID),
+        inputs: refs,
+        params: job.scene.sections_hash(S::ID.row().sections),
+    };
+    write_artifact(&job.artifact(S::ID), &provenance, &output)?;
+    Ok(Ran { headline: S::headline(job.scene, &output), seconds })
+}
+
+/// The error a user sees for a stage's typed error: the file at fault named first.
+pub fn blame(job: &Job, e: &impl Failure) -> StageError {
+    match e.blame() {
+        Blame::Scene => StageError::input(format!("{}: {e}", job.scene_path.display())),
+        Blame::Artifact(stage) => StageError::input(format!(
+            "{}: {e}: rerun the pipeline from {} (`karstgen run SCENE --from {}`)",
+            job.artifact(stage).display(),
+            stage.name(),
+            stage.name()
+        )),
+        Blame::Internal => StageError::failure(e),
+    }
+}
+
+/// The lines `inspect` prints for an artifact of stage `S`: what it is, then its summary.
+pub fn inspect<S: Stage>(path: &Path) -> Result<Vec<String>, StageError> {
+    let (header, output) = read_artifact::<S::Output>(path)?;
+    let mut lines = vec![format!(
+        "{}: {}, schema {}, by {}",
+        path.display(),
+        S::ID.row().kind,
+        header.schema,
+        header.producer
+    )];
+    lines.extend(S::summary(&header, &output).into_iter().map(|l| format!("  {l}")));
+    Ok(lines)
+}

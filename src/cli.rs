@@ -1,0 +1,203 @@
+//! The command line: its arguments and what each command does.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use karst_artifact::StageId;
+use karst_pipeline::make::{self, Selection};
+use karst_pipeline::scene::{self, SceneFile};
+use karst_pipeline::{diff, ensemble, registry};
+use karst_stage::StageError;
+use karst_stage::cli::{default_sigpipe, finish};
+
+/// Geologically coherent 3D karst cave networks and their cave geometry.
+#[derive(Parser)]
+#[command(name = "karstgen", version)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run the pipeline on SCENE (default: the embedded default scene), skipping up-to-date stages.
+    Run(RunArgs),
+    /// Summarize any artifact (samples.bin … metrics.json), or print it whole with --json.
+    Inspect(karst_stage::cli::InspectArgs),
+    /// Compare two artifacts of the same kind; exit 1 when they differ beyond tolerance.
+    Diff(DiffArgs),
+    /// karstnet's statistics of any network file (karstnet .dat, GOCAD PLine or CSV), as JSON.
+    Metrics(MetricsArgs),
+    /// Run N seeds of SCENE in parallel: every realization's metrics, their summary and the
+    /// conduit probability grid.
+    Ensemble(EnsembleArgs),
+    /// Draw a picture of an output.
+    #[command(subcommand)]
+    Render(Render),
+}
+
+/// `karstgen run`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RunArgs {
+    /// Scene file; without it, the embedded default scene runs into out/default.
+    pub scene: Option<PathBuf>,
+    /// Output folder (default out/<scene name>, under the working folder).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Rerun this stage and every later one.
+    #[arg(long, value_parser = parse_stage)]
+    pub from: Option<StageId>,
+    /// Run only this stage.
+    #[arg(long, value_parser = parse_stage, conflicts_with = "from")]
+    pub only: Option<StageId>,
+    /// Stop after this stage.
+    #[arg(long, value_parser = parse_stage)]
+    pub to: Option<StageId>,
+    /// Rerun every stage.
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// `karstgen diff`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct DiffArgs {
+    pub a: PathBuf,
+    pub b: PathBuf,
+    /// Relative tolerance on numbers.
+    #[arg(long, default_value_t = 1e-9)]
+    pub tol: f64,
+}
+
+/// `karstgen metrics`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct MetricsArgs {
+    #[command(flatten)]
+    network: karst_metrics::stage::NetworkFile,
+    /// Also write the plots of the network (PNG) into this folder.
+    #[arg(long, value_name = "DIR")]
+    plots: Option<PathBuf>,
+}
+
+/// `karstgen ensemble`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct EnsembleArgs {
+    scene: PathBuf,
+    /// Number of realizations (seeds scene seed .. scene seed + N − 1).
+    #[arg(long, default_value_t = 50)]
+    n: usize,
+    /// Edge of a probability-grid cell, metres.
+    #[arg(long, default_value_t = 10.0)]
+    cell: f64,
+    /// Output folder (default out/ensemble-<scene name>).
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// `karstgen render`.
+#[derive(Subcommand)]
+enum Render {
+    /// The network of a skeleton artifact: top and side views, conduits coloured by type.
+    Skeleton(karst_skeleton::stage::RenderArgs),
+    /// A run's network coloured by water type (top and side views).
+    Hydro(karst_hydro::stage::RenderArgs),
+    /// One surface of a mesh artifact, shaded.
+    Mesh(karst_mesher::stage::RenderArgs),
+    /// A horizontal (--z) or vertical (--y, --x) slice of an sdf artifact, as PNG and/or EXR.
+    Slice(karst_sdf::stage::SliceArgs),
+    /// The cross-section library (one section per conduit type).
+    Sections(karst_sdf::stage::SectionsArgs),
+}
+
+fn parse_stage(name: &str) -> Result<StageId, String> {
+    StageId::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = StageId::ALL.iter().map(|s| s.name()).collect();
+        format!("unknown stage \"{name}\"; stages: {}", names.join(", "))
+    })
+}
+
+/// The `karstgen` process: parses the command line, runs the command, returns the exit code.
+pub fn main() -> ExitCode {
+    default_sigpipe();
+    match Cli::parse().command {
+        Command::Diff(args) => diff_command(&args),
+        command => finish(execute(command)),
+    }
+}
+
+fn execute(command: Command) -> Result<(), StageError> {
+    match command {
+        Command::Run(args) => run(&args).map(|_| ()),
+        Command::Inspect(args) if args.json => registry::print_json(&args.file),
+        Command::Inspect(args) => {
+            registry::inspect(&args.file)?.iter().for_each(|line| println!("{line}"));
+            Ok(())
+        }
+        Command::Metrics(args) => {
+            karst_metrics::stage::characterize_file(&args.network, args.plots.as_deref())
+        }
+        Command::Ensemble(args) => ensemble_command(args),
+        Command::Render(render) => match render {
+            Render::Skeleton(args) => karst_skeleton::stage::render(&args),
+            Render::Hydro(args) => karst_hydro::stage::render(&args),
+            Render::Mesh(args) => karst_mesher::stage::render(&args),
+            Render::Slice(args) => karst_sdf::stage::slice(&args),
+            Render::Sections(args) => karst_sdf::stage::sections(&args),
+        },
+        Command::Diff(_) => unreachable!("diff has its own exit codes"),
+    }
+}
+
+/// `karstgen run`: prints the scene and output folder, then a line per stage; returns the
+/// output folder.
+pub fn run(args: &RunArgs) -> Result<PathBuf, StageError> {
+    let (scene, out) = match &args.scene {
+        Some(path) => {
+            let scene = SceneFile::load(path)?;
+            let out = args.out.clone().unwrap_or_else(|| scene::default_out(&scene.scene));
+            (scene, out)
+        }
+        None => {
+            let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out").join(scene::DEFAULT_NAME));
+            (SceneFile::default_in(&out)?, out)
+        }
+    };
+    println!("scene {} → {}", scene.path.display(), out.display());
+    let selection = Selection { from: args.from, only: args.only, to: args.to, force: args.force };
+    make::run(&scene, &out, &selection, &mut |report| println!("{}", report.line()))?;
+    Ok(out)
+}
+
+/// `karstgen diff`: prints the comparison; exit code 0 when the artifacts match, 1 when they
+/// differ, 2 when one cannot be read.
+pub fn diff_command(args: &DiffArgs) -> ExitCode {
+    match diff::diff(&args.a, &args.b, args.tol) {
+        Ok(report) => {
+            let verdict = if report.differs() { "differ" } else { "match" };
+            println!(
+                "{} vs {}: {} artifacts {verdict}",
+                args.a.display(),
+                args.b.display(),
+                report.kind.row().kind
+            );
+            print!("{}", report.summary());
+            ExitCode::from(u8::from(report.differs()))
+        }
+        Err(e) => finish(Err(e)),
+    }
+}
+
+fn ensemble_command(args: EnsembleArgs) -> Result<(), StageError> {
+    let name = SceneFile::load(&args.scene)?.scene.name().to_string();
+    let out = args.out.unwrap_or_else(|| PathBuf::from("out").join(format!("ensemble-{name}")));
+    let summary =
+        ensemble::run(&ensemble::EnsembleArgs { scene: args.scene, n: args.n, cell: args.cell, out })?;
+    println!("{summary}");
+    Ok(())
+}
+
+/// `path` made absolute against `base` (the user's working folder) when relative.
+pub fn resolve(base: &Path, path: &Path) -> PathBuf {
+    if path.is_absolute() { path.to_path_buf() } else { base.join(path) }
+}
