@@ -48,8 +48,11 @@ enum Task {
         /// Only the mesher's synthetic budget cases.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// Only the export formats, on the finished run in this folder (e.g. out/looping).
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        export: Option<PathBuf>,
         /// Only the network half beside KarstNSim (pykarstnsim in .venv-peer), alternating runs.
-        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export"])]
         peer: bool,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
@@ -89,8 +92,8 @@ fn main() -> ExitCode {
         }
         Task::Bless => bless(),
         Task::Bench { runs, peer: true, .. } => peer_bench(runs),
-        Task::Bench { runs, costgraph, sdf, mesher, .. } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher })
+        Task::Bench { runs, costgraph, sdf, mesher, export, .. } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, export })
         }
         Task::Test { args } => return test(&args),
         Task::MetricsTable { write } => metrics_table_command(write),
