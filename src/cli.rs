@@ -8,7 +8,7 @@ use clap::{Parser, Subcommand};
 use karst_artifact::StageId;
 use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::{self, SceneFile};
-use karst_pipeline::{diff, ensemble, registry};
+use karst_pipeline::{calibrate, diff, ensemble, registry};
 use karst_stage::StageError;
 use karst_stage::cli::{default_sigpipe, finish};
 
@@ -33,6 +33,9 @@ enum Command {
     /// Run N seeds of SCENE in parallel: every realization's metrics, their summary and the
     /// conduit probability grid.
     Ensemble(EnsembleArgs),
+    /// Search the network parameters of SCENE's [calibrate] box that bring its networks closest
+    /// to a surveyed cave (CMA-ES over karstnet's statistics).
+    Calibrate(CalibrateArgs),
     /// Write a run's outputs in other tools' formats (VTK, GOCAD, Survex, SWMM, glTF, OBJ, PLY,
     /// CSV) into DIR/export/.
     Export(karst_export::stage::ExportArgs),
@@ -100,6 +103,19 @@ pub struct EnsembleArgs {
     out: Option<PathBuf>,
 }
 
+/// `karstgen calibrate`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct CalibrateArgs {
+    scene: PathBuf,
+    /// The surveyed cave: karstnet's BASE_nodes.dat (or BASE), a GOCAD PLine .pl, or two CSV
+    /// files NODES EDGES.
+    #[arg(long, required = true, num_args = 1..=2, value_name = "CAVE")]
+    target: Vec<PathBuf>,
+    /// Output folder (default out/calibrate-<scene name>).
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
 /// `karstgen render`.
 #[derive(Subcommand)]
 enum Render {
@@ -143,6 +159,7 @@ fn execute(command: Command) -> Result<(), StageError> {
             karst_metrics::stage::characterize_file(&args.network, args.plots.as_deref())
         }
         Command::Ensemble(args) => ensemble_command(args),
+        Command::Calibrate(args) => calibrate_command(args),
         Command::Export(args) => karst_export::stage::export_run(&args),
         Command::View(args) => karst_view::cli::view(&args),
         Command::Render(render) => match render {
@@ -200,6 +217,14 @@ fn ensemble_command(args: EnsembleArgs) -> Result<(), StageError> {
     let out = args.out.unwrap_or_else(|| PathBuf::from("out").join(format!("ensemble-{name}")));
     let summary =
         ensemble::run(&ensemble::EnsembleArgs { scene: args.scene, n: args.n, cell: args.cell, out })?;
+    println!("{summary}");
+    Ok(())
+}
+
+fn calibrate_command(args: CalibrateArgs) -> Result<(), StageError> {
+    let name = SceneFile::load(&args.scene)?.scene.name().to_string();
+    let out = args.out.unwrap_or_else(|| PathBuf::from("out").join(format!("calibrate-{name}")));
+    let summary = calibrate::run(&calibrate::CalibrateArgs { scene: args.scene, target: args.target, out })?;
     println!("{summary}");
     Ok(())
 }

@@ -6,7 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::field::{self, FieldNode, GridSpec, Layer, NoKarst};
 use crate::params::{
-    CostgraphParams, ExportParams, HydroParams, MesherParams, SamplingParams, SdfParams, SkeletonParams,
+    CalibrateParams, CostgraphParams, ExportParams, HydroParams, MesherParams, SamplingParams, SdfParams,
+    SkeletonParams,
 };
 use crate::sections::{Reads, Section};
 use crate::validate::{self, Problem};
@@ -46,6 +47,9 @@ pub struct Scene {
     pub(crate) mesher: MesherParams,
     #[serde(default)]
     pub(crate) export: ExportParams,
+    /// `[calibrate]`: the box `karstgen calibrate` searches; read by no stage.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) calibrate: Option<CalibrateParams>,
     /// Which sections were read, when auditing (see [`Scene::audited`]).
     #[serde(skip)]
     pub(crate) reads: Reads,
@@ -310,4 +314,6 @@ section_accessors! {
     mesher, mesher_mut: MesherParams => Mesher;
     /// `[export]`: which formats the export stage writes.
     export, export_mut: ExportParams => Export;
+    /// `[calibrate]`: the parameter box of `karstgen calibrate`, when the scene has one.
+    calibrate, calibrate_mut: Option<CalibrateParams> => Calibrate;
 }

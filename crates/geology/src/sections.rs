@@ -26,11 +26,12 @@ pub enum Section {
     Sdf,
     Mesher,
     Export,
+    Calibrate,
 }
 
 impl Section {
     /// Every section.
-    pub const ALL: [Section; 15] = [
+    pub const ALL: [Section; 16] = [
         Section::Seed,
         Section::Domain,
         Section::Terrain,
@@ -46,6 +47,7 @@ impl Section {
         Section::Sdf,
         Section::Mesher,
         Section::Export,
+        Section::Calibrate,
     ];
 
     /// The section's name in the scene file, as the stage table writes it.
@@ -66,6 +68,7 @@ impl Section {
             Section::Sdf => "sdf",
             Section::Mesher => "mesher",
             Section::Export => "export",
+            Section::Calibrate => "calibrate",
         }
     }
 

@@ -65,6 +65,9 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     scene.sdf.check(&mut found);
     scene.mesher.check(&mut found);
     scene.export.check(&mut found);
+    if let Some(calibrate) = &scene.calibrate {
+        calibrate.check(scene, &mut found);
+    }
     found.problems
 }
 

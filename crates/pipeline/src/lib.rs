@@ -5,10 +5,12 @@
 //! - [`make`]: run the stages in order, skipping those whose artifact is up to date;
 //! - [`scene`]: where a run's scene comes from (a file, or the embedded default scene);
 //! - [`diff`]: compare two artifacts of the same kind semantically;
-//! - [`ensemble`]: many realizations of one scene, differing only by seed.
+//! - [`ensemble`]: many realizations of one scene, differing only by seed;
+//! - [`calibrate`]: the network parameters that bring a scene closest to a surveyed cave.
 //!
 //! The `karstgen` command and `cargo xtask` are thin layers over this crate.
 
+pub mod calibrate;
 pub mod diff;
 pub mod ensemble;
 pub mod make;

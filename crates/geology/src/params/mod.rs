@@ -2,6 +2,7 @@
 //! scene only states what it changes; the hash of a section (defaults applied) is part of that
 //! stage's artifact key. Each section checks its own values.
 
+mod calibrate;
 mod costgraph;
 mod export;
 mod hydro;
@@ -10,6 +11,9 @@ mod sampling;
 mod sdf;
 mod skeleton;
 
+pub use calibrate::{
+    Bounds, CalibrateParams, DEFAULT_EVALUATIONS, MAX_SEEDS, PARAMETERS, Parameter, parameter,
+};
 pub use costgraph::{CostModelKind, CostgraphParams};
 pub use export::{ExportFormat, ExportParams, MeshSurface};
 pub use hydro::{HydroParams, PoolOutlet, PoolWeights, Recharge};
