@@ -56,6 +56,9 @@ enum Task {
         /// Only the network half beside KarstNSim (pykarstnsim in .venv-peer), alternating runs.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export"])]
         peer: bool,
+        /// Only the calibration budget: the default scene's [calibrate] box to the Sakany cave.
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "peer"])]
+        calibrate: bool,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
     MetricsTable {
@@ -99,8 +102,8 @@ fn main() -> ExitCode {
         }
         Task::Bless => bless(),
         Task::Bench { runs, peer: true, .. } => peer_bench(runs),
-        Task::Bench { runs, costgraph, sdf, mesher, export, .. } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher, export })
+        Task::Bench { runs, costgraph, sdf, mesher, export, calibrate, .. } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, export, calibrate })
         }
         Task::Test { args } => return test(&args),
         Task::MetricsTable { write } => metrics_table_command(write),

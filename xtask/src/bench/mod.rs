@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use karst_artifact::StageId;
 use karst_stage::StageError;
 
+mod calibrate;
 mod costgraph;
 mod export;
 mod mesher;
@@ -39,11 +40,17 @@ pub struct Only {
     pub mesher: bool,
     /// The export formats on the finished run in this folder.
     pub export: Option<PathBuf>,
+    /// The calibration budget (default scene to the Sakany cave).
+    pub calibrate: bool,
 }
 
 /// `cargo xtask bench`: runs the benchmarks and prints their tables.
 pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
-    let Only { costgraph: costgraph_only, sdf: sdf_only, mesher: mesher_only, export } = only;
+    let Only { costgraph: costgraph_only, sdf: sdf_only, mesher: mesher_only, export, calibrate } = only;
+    if calibrate {
+        println!("one run, in process, release build, {} threads", rayon_threads());
+        return calibrate::calibrate_bench();
+    }
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
     if let Some(dir) = export {
         return export_bench(&dir, runs);
