@@ -16,7 +16,7 @@ const TARGET: &str = "fixtures/caves/Sakany_nodes.dat";
 
 /// Runs the calibration into a scratch folder (removed afterwards) and prints its figures.
 pub fn calibrate_bench() -> Result<(), StageError> {
-    let out = super::scratch_dir(Path::new(SCENE)).join("calibrate");
+    let out = super::scratch_dir(Path::new(SCENE));
     let args = CalibrateArgs { scene: SCENE.into(), target: vec![TARGET.into()], out: out.clone() };
     let (cpu0, start) = (probes::cpu_seconds(), Instant::now());
     let summary = run(&args)?;
