@@ -70,6 +70,8 @@ fn same_scene_same_report_with_one_or_two_threads() {
     let (before, after) =
         (report["distance"]["before"].as_f64().unwrap(), report["distance"]["after"].as_f64().unwrap());
     assert!(after <= before && after > 0.0, "{before} → {after}");
+    let (width, height, colours) = karst_plot::testing::png_summary(&one[2].1);
+    assert!(width == 900 && height > 400 && colours > 10, "report.png {width}×{height}, {colours} colours");
     let log = String::from_utf8(one[3].1.clone()).unwrap();
     assert_eq!(log.lines().count(), 8, "a header and one row per candidate");
     // The calibrated scene runs: it parses, and carries the best candidate's values.
