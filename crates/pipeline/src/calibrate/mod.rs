@@ -76,10 +76,18 @@ pub fn run(args: &CalibrateArgs) -> Result<String, StageError> {
     let runner = Runner::new(&scene.scene, seeds(&scene, &config)?, &space.sections())
         .map_err(|e| StageError::input(format!("{}: {e}", args.scene.display())))?;
     let budget = config.evaluation_budget();
-    let length = budget.map_or(0, |b| b * config.seeds);
-    let bar = karst_stage::progress::bar(length as u64, "calibrate");
+    // The bar counts runs (candidate × seed) against an evaluation budget, seconds otherwise.
+    let length = match budget {
+        Some(b) => (b * config.seeds) as u64,
+        None => (config.minutes.unwrap_or(0.0) * 60.0).ceil() as u64,
+    };
+    let bar = karst_stage::progress::bar(length, "calibrate");
+    let progress = || match budget {
+        Some(_) => bar.inc(1),
+        None => bar.set_position(start.elapsed().as_secs()),
+    };
     let evaluate = |scenes: &[Scene]| -> Vec<Evaluated> {
-        runner.run(scenes, &|| bar.inc(1)).into_iter().map(|runs| summarise(&objective, runs)).collect()
+        runner.run(scenes, &progress).into_iter().map(|runs| summarise(&objective, runs)).collect()
     };
     let before = evaluate(std::slice::from_ref(&scene.scene)).remove(0);
     if let Some(why) = &before.failure {
