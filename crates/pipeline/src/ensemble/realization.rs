@@ -10,8 +10,8 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
 
 use karst_artifact::{StageId, read_artifact};
-use karst_geology::Scene;
 use karst_hydro::Hydro;
+use karst_metrics::MetricsReport;
 use karst_skeleton::Skeleton;
 use karst_stage::{Job, StageError};
 
@@ -74,29 +74,48 @@ fn figures(plan: &Plan, out: &Path, seed: u64) -> Result<Figures, StageError> {
             registry::stage(stage).run(&job)?;
         }
     }
-    let skeleton_path = job.artifact(StageId::Skeleton);
-    let (_, skeleton) = read_artifact::<Skeleton>(&skeleton_path)?;
-    let unusable = |e: &dyn std::fmt::Display| StageError::input(format!("seed {seed}: {e}"));
-    let (report, springs) = if plan.stages().contains(&StageId::Hydro) {
-        let (_, hydro) = read_artifact::<Hydro>(&job.artifact(StageId::Hydro))?;
-        (karst_metrics::build(&skeleton, &hydro).map_err(|e| unusable(&e))?, springs(&scene.scene, &hydro))
-    } else {
-        (karst_metrics::report(&skeleton).map_err(|e| unusable(&e))?, Vec::new())
-    };
+    let (report, springs, skeleton) = network_figures(&dir, plan.stages().contains(&StageId::Hydro))
+        .map_err(|e| match e {
+            StageError::BadInput(e) if e.downcast_ref::<karst_artifact::Error>().is_none() => {
+                StageError::input(format!("seed {seed}: {e:#}"))
+            }
+            e => e,
+        })?;
     let cells = plan.grid().cells_of(&skeleton);
     tidy(&dir, plan.keep()).map_err(|e| StageError::failure(format!("{}: {e}", dir.display())))?;
     Ok(Figures { report, springs, cells })
 }
 
-/// Every spring's flow and discharge: `hydro.total_discharge` shared in proportion to the
-/// flow, as the hydro stage shares it among segments.
-fn springs(scene: &Scene, hydro: &Hydro) -> Vec<SpringDischarge> {
-    let recharge: f64 = hydro.sinks.iter().map(|s| s.recharge).sum();
-    let per_flow = if recharge > 0.0 { scene.hydro().total_discharge / recharge } else { 0.0 };
+/// The metrics report of the run in `dir` (with the water-type lengths when `hydro`), its
+/// springs' discharges (when `hydro`) and its skeleton.
+pub fn network_figures(
+    dir: &Path,
+    hydro: bool,
+) -> Result<(MetricsReport, Vec<SpringDischarge>, Skeleton), StageError> {
+    let (_, skeleton) = read_artifact::<Skeleton>(&dir.join(StageId::Skeleton.file_name()))?;
+    let unusable = |e: &dyn std::fmt::Display| StageError::input(format!("{}: {e}", dir.display()));
+    if !hydro {
+        let report = karst_metrics::report(&skeleton).map_err(|e| unusable(&e))?;
+        return Ok((report, Vec::new(), skeleton));
+    }
+    let (_, water) = read_artifact::<Hydro>(&dir.join(StageId::Hydro.file_name()))?;
+    let report = karst_metrics::build(&skeleton, &water).map_err(|e| unusable(&e))?;
+    Ok((report, springs(&water), skeleton))
+}
+
+/// Every spring's flow and discharge: hydro shares its total discharge among segments in
+/// proportion to their flow, so a spring's discharge is its flow at the same rate.
+fn springs(hydro: &Hydro) -> Vec<SpringDischarge> {
+    let rate = hydro
+        .conduits
+        .iter()
+        .flat_map(|c| &c.segments)
+        .find(|s| s.flow > 0.0)
+        .map_or(0.0, |s| s.discharge / s.flow);
     hydro
         .springs
         .iter()
-        .map(|s| SpringDischarge { name: s.name.clone(), flow: s.flow, discharge: s.flow * per_flow })
+        .map(|s| SpringDischarge { name: s.name.clone(), flow: s.flow, discharge: s.flow * rate })
         .collect()
 }
 
