@@ -33,7 +33,10 @@ def metrics(nodes: Any, edges: Optional[Any] = None, *, all: bool = False) -> di
     ``metrics(kgraph)``: a karstnet ``KGraph``, read through its ``graph`` and ``pos3d``.
 
     With ``all=True`` the dict also holds every other statistic of ``metrics.json`` (counts,
-    Howard's parameters, DC, Sturges entropies, length-weighted aspl, degree fractions).
+    Howard's parameters, DC, Sturges entropies, length-weighted aspl, degree fractions). The
+    length-weighted aspl depends, as karstnet's does, on the order of the nodes and edges: give
+    them in the order of karstnet's input files to get karstnet's value (a ``KGraph`` does not
+    keep its links' order).
 
     Raises ``ValueError`` for a network karstnet would get wrong or fail on: no edge, an index
     out of range, a self-loop, a non-finite coordinate.
@@ -61,11 +64,17 @@ def metrics(nodes: Any, edges: Optional[Any] = None, *, all: bool = False) -> di
 
 
 def _from_kgraph(kgraph: Any) -> tuple[np.ndarray, np.ndarray]:
-    """Node coordinates and 0-based edges of a karstnet ``KGraph`` (its graph's node order)."""
+    """Node coordinates and 0-based edges of a karstnet ``KGraph``, nodes in the order of its
+    coordinates (the order of karstnet's input files, which its length-weighted aspl depends
+    on)."""
     if not (hasattr(kgraph, "graph") and hasattr(kgraph, "pos3d")):
         raise TypeError("metrics(kgraph) needs a karstnet KGraph; for arrays call metrics(nodes, edges)")
-    order = list(kgraph.graph.nodes)
+    order = list(kgraph.pos3d)
+    order += [node for node in kgraph.graph.nodes if node not in kgraph.pos3d]
     index = {node: i for i, node in enumerate(order)}
+    missing = [node for node in order if node not in kgraph.pos3d]
+    if missing:
+        raise ValueError(f"the KGraph has no coordinates for node {missing[0]!r}")
     nodes = np.array([list(kgraph.pos3d[node])[:3] for node in order], dtype=np.float64).reshape(-1, 3)
     edges = np.array([(index[a], index[b]) for a, b in kgraph.graph.edges], dtype=np.int64).reshape(-1, 2)
     return nodes, edges

@@ -21,7 +21,7 @@ class Network:
         (N, 3) float64 node coordinates x, y, z in metres, the artifact's values bit for bit.
     edges : numpy.ndarray
         (M, 2) int64 0-based node indices of every segment, ``source < target``, conduit by
-        conduit (``network_links.dat`` minus one).
+        conduit (``network_links.dat`` holds the same links, sorted, 1-based).
     node_table : pandas.DataFrame
         One row per node: ``x``, ``y``, ``z``, ``zone`` (vadose, phreatic), ``keypoint`` (name
         or None), ``sample``; with hydro ``role`` (source, well, branch, pool, dry) and

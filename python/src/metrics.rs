@@ -13,13 +13,12 @@ use crate::errors::argument;
 /// node indices, as bytes).
 #[pyfunction]
 pub fn characterize(py: Python<'_>, nodes: &[u8], links: &[u8]) -> PyResult<Vec<(String, f64)>> {
-    let coordinates: Vec<f64> =
-        nodes.chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap_or_default())).collect();
-    let ends: Vec<i64> =
-        links.chunks_exact(8).map(|b| i64::from_le_bytes(b.try_into().unwrap_or_default())).collect();
-    if nodes.len() % 24 != 0 || links.len() % 16 != 0 {
+    if !nodes.len().is_multiple_of(24) || !links.len().is_multiple_of(16) {
         return Err(argument("nodes must be N × 3 float64 and edges M × 2 integers"));
     }
+    let word = |b: &[u8]| <[u8; 8]>::try_from(b).unwrap_or_default();
+    let coordinates: Vec<f64> = nodes.chunks_exact(8).map(|b| f64::from_le_bytes(word(b))).collect();
+    let ends: Vec<i64> = links.chunks_exact(8).map(|b| i64::from_le_bytes(word(b))).collect();
     let links = ends
         .chunks_exact(2)
         .enumerate()

@@ -2,10 +2,12 @@
 //!
 //! - [`bench`]: time every stage on the benchmark scenes and each stage's budget cases;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
+//! - [`python`]: build and install the Python package's wheel and run its pytest suite;
 //! - [`tools`]: install the outside programs the tests check outputs with.
 //!
 //! Running the pipeline, diffs and ensembles are `karstgen`'s (crates/pipeline).
 
 pub mod bench;
 pub mod metrics_table;
+pub mod python;
 pub mod tools;

@@ -5,7 +5,8 @@
 //! length` and `phreatic length`; `<type> length` per conduit type; when hydro ran, `<type>
 //! water length` per water type and `<spring> discharge (m3/s)` per spring (every spring any
 //! realization reports, by name; empty where a realization's water does not reach it).
-//! Undefined values (NaN) are empty cells in CSV.
+//! Undefined values (NaN, and the infinite Howard γ of a two-node graph) are NaN in the table
+//! and empty cells in CSV, as records keep them (JSON `null`).
 
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -50,6 +51,7 @@ pub fn table(realizations: &[(u64, &Figures)]) -> Table {
                     .iter()
                     .map(|name| f.springs.iter().find(|s| s.name == *name).map_or(f64::NAN, |s| s.discharge)),
             );
+            row.iter_mut().filter(|v| !v.is_finite()).for_each(|v| *v = f64::NAN);
             row
         })
         .collect();
