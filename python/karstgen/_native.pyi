@@ -7,6 +7,7 @@ _Path = Union[str, PathLike[str]]
 
 VERSION: str
 STAGES: list[str]
+STAGE_FILES: list[tuple[str, str]]
 
 class KarstgenError(Exception):
     """A failure of karstgen or of the machine (the command line's exit code 1)."""

@@ -52,15 +52,7 @@ class Run:
 
     def artifact(self, stage: str) -> Path:
         """The path of ``stage``'s artifact (``skeleton`` → ``out/skeleton.json``)."""
-        files = {
-            "sampling": "samples.bin",
-            "costgraph": "costgraph.bin",
-            "skeleton": "skeleton.json",
-            "hydro": "hydro.json",
-            "sdf": "sdf.bin",
-            "mesher": "mesh.bin",
-            "metrics": "metrics.json",
-        }
+        files = dict(_native.STAGE_FILES)
         if stage not in files:
             raise ValueError(f"unknown stage {stage!r}; stages: {', '.join(files)}")
         return self.out / files[stage]

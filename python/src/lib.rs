@@ -30,6 +30,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ArtifactError", py.get_type::<errors::ArtifactError>())?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     m.add("STAGES", karst_artifact::StageId::ALL.map(|s| s.name()).to_vec())?;
+    m.add("STAGE_FILES", karst_artifact::StageId::ALL.map(|s| (s.name(), s.file_name())).to_vec())?;
     m.add_function(wrap_pyfunction!(scene::scene_source, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(artifacts::read_network, m)?)?;

@@ -33,6 +33,8 @@ enum Task {
     Run(karstgen::cli::RunArgs),
     /// `karstgen diff`: compare two artifacts of the same kind; exit 1 when they differ.
     Diff(karstgen::cli::DiffArgs),
+    /// `karstgen view`: write (and serve) the web viewer of a run.
+    View(karst_view::cli::ViewArgs),
     /// Regenerate the golden artifacts of the tiny scene and print what changed.
     Bless,
     /// Time every stage of the benchmark scenes (median of RUNS runs).
@@ -48,6 +50,9 @@ enum Task {
         /// Only the mesher's synthetic budget cases.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// Only the export formats, on the finished run in this folder (e.g. out/looping).
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        export: Option<PathBuf>,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
     MetricsTable {
@@ -88,9 +93,14 @@ fn main() -> ExitCode {
             let (a, b) = (karstgen::cli::resolve(&here, &args.a), karstgen::cli::resolve(&here, &args.b));
             return karstgen::cli::diff_command(&karstgen::cli::DiffArgs { a, b, tol: args.tol });
         }
+        Task::View(mut args) => {
+            args.dir = karstgen::cli::resolve(&here, &args.dir);
+            args.scene = args.scene.map(|p| karstgen::cli::resolve(&here, &p));
+            karst_view::cli::view(&args)
+        }
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf, mesher } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher })
+        Task::Bench { runs, costgraph, sdf, mesher, export } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, export })
         }
         Task::Test { python, args } => return test(python, &args),
         Task::MetricsTable { write } => metrics_table_command(write),
