@@ -18,6 +18,7 @@ mod error;
 mod gamma;
 mod karstnet;
 mod karstnsim;
+mod meander;
 #[cfg(test)]
 mod modes_tests;
 mod nodes;

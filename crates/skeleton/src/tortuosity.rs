@@ -1,9 +1,15 @@
 //! Tortuosity (Paris et al. 2021 §5.2): every link of the network is refined by stochastic
-//! midpoint displacement. At level 1 the midpoint of each segment moves by a random offset
-//! perpendicular to the segment, of up to A = 0.05 m + θ · 3.95 m along each of the two normal
-//! axes (θ = `skeleton.tortuosity`: a few centimetres at 0, 4 m at 1); each further level
-//! (`skeleton.tortuosity_levels`) halves A on the new halves. An offset that would leave the
-//! bedrock is drawn again (up to 8 times), then dropped: the node stays at the midpoint.
+//! midpoint displacement. At level 1 the midpoint of each segment moves by a random offset of
+//! up to A = 0.05 m + θ · 3.95 m (θ = `skeleton.tortuosity`: a few centimetres at 0, 4 m at
+//! 1); each further level (`skeleton.tortuosity_levels`) halves A on the new halves. An offset
+//! that would leave the bedrock is drawn again (up to 8 times), then dropped: the node stays at
+//! the midpoint.
+//!
+//! The offset is not white noise in every direction: a passage develops along a plane of
+//! weakness, so the midpoint moves within the weakness plane the segment lies in best (the
+//! fracture family or bedding plane whose normal is the most perpendicular to the segment),
+//! across the segment. Without fracture families that plane is the bedding: conduits wander
+//! sideways along their parting, not up and down through the beds.
 //!
 //! New nodes carry the sample of the nearer end of their link. Routes are rewritten through the
 //! new nodes, so flows follow the tortuous conduits.
@@ -14,28 +20,27 @@ use glam::DVec3;
 use karst_geology::Scene;
 use karst_geology::rng::Random;
 
+use crate::meander::bedding_normal;
 use crate::nodes::node_at;
 use crate::payload::{Node, Route};
 
 /// Draws per displaced midpoint before it stays straight.
 const TRIES: usize = 8;
 
+/// The nodes inserted into links, keyed by the link (a, b), a < b, in the order from a to b.
+pub type Insertions = BTreeMap<(u32, u32), Vec<u32>>;
+
 /// Displacement amplitude of the first level for θ, metres.
 pub fn amplitude(theta: f64) -> f64 {
     0.05 + theta * 3.95
 }
 
-/// Refines `chains` in place, appending the new nodes to `nodes` and rewriting `routes`.
-pub fn refine(
-    scene: &Scene,
-    theta: f64,
-    nodes: &mut Vec<Node>,
-    chains: &mut [Vec<u32>],
-    routes: &mut [Route],
-) {
+/// Refines `chains` in place, appending the new nodes to `nodes`; returns the insertions.
+pub fn refine(scene: &Scene, theta: f64, nodes: &mut Vec<Node>, chains: &mut [Vec<u32>]) -> Insertions {
     let mut rng = Random::stream(scene.seed(), "skeleton", "tortuosity");
     let levels = scene.skeleton().tortuosity_levels;
-    let mut inserted: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
+    let planes = weakness_planes(scene);
+    let mut inserted = Insertions::new();
     for chain in chains.iter_mut() {
         let mut refined = vec![chain[0]];
         for w in chain.windows(2) {
@@ -45,7 +50,7 @@ pub fn refine(
             let mut points = vec![pa, pb];
             for level in 0..levels {
                 let reach = amplitude(theta) / f64::from(1u32 << level);
-                points = subdivide(scene, &mut rng, &points, reach);
+                points = subdivide(scene, &planes, &mut rng, &points, reach);
             }
             let interior = &points[1..points.len() - 1];
             let half = interior.len() / 2;
@@ -60,21 +65,26 @@ pub fn refine(
                 .collect();
             refined.extend(&ids);
             refined.push(b);
-            let key = if a < b { (a, b) } else { (b, a) };
             let forward = if a < b { ids } else { ids.into_iter().rev().collect() };
-            inserted.insert(key, forward);
+            inserted.insert((a.min(b), a.max(b)), forward);
         }
         *chain = refined;
     }
+    inserted
+}
+
+/// Rewrites `routes` through the nodes inserted into their links.
+pub fn reroute(routes: &mut [Route], inserted: &Insertions) {
     for route in routes {
         let mut nodes_of_route = vec![route.nodes[0]];
         for w in route.nodes.windows(2) {
             let (a, b) = (w[0], w[1]);
-            let ids = &inserted[&(a.min(b), a.max(b))];
-            if a < b {
-                nodes_of_route.extend(ids);
-            } else {
-                nodes_of_route.extend(ids.iter().rev());
+            if let Some(ids) = inserted.get(&(a.min(b), a.max(b))) {
+                if a < b {
+                    nodes_of_route.extend(ids);
+                } else {
+                    nodes_of_route.extend(ids.iter().rev());
+                }
             }
             nodes_of_route.push(b);
         }
@@ -82,19 +92,45 @@ pub fn refine(
     }
 }
 
+/// The planes of weakness a segment may lie in: the fracture families, then the bedding
+/// (`None`: the bedding's normal, looked up at the segment).
+pub fn weakness_planes(scene: &Scene) -> Vec<Option<DVec3>> {
+    scene.geology().fractures.iter().map(|f| Some(f.normal())).chain([None]).collect()
+}
+
 /// One level: a displaced midpoint between every two consecutive points.
-fn subdivide(scene: &Scene, rng: &mut Random, points: &[DVec3], reach: f64) -> Vec<DVec3> {
+fn subdivide(
+    scene: &Scene,
+    planes: &[Option<DVec3>],
+    rng: &mut Random,
+    points: &[DVec3],
+    reach: f64,
+) -> Vec<DVec3> {
     let mut out = vec![points[0]];
     for w in points.windows(2) {
         let mid = (w[0] + w[1]) * 0.5;
-        let axis = (w[1] - w[0]).normalize_or_zero();
-        let (u, v) = if axis == DVec3::ZERO { (DVec3::X, DVec3::Y) } else { axis.any_orthonormal_pair() };
+        let across = across_in_plane(scene, planes, mid, w[1] - w[0]);
         let displaced = (0..TRIES).find_map(|_| {
-            let p = mid + u * rng.range(-reach, reach) + v * rng.range(-reach, reach);
+            let p = mid + across * rng.range(-reach, reach);
             scene.in_bedrock(p).then_some(p)
         });
         out.push(displaced.unwrap_or(mid));
         out.push(w[1]);
     }
     out
+}
+
+/// The unit direction across `segment` within the weakness plane it lies in best.
+pub fn across_in_plane(scene: &Scene, planes: &[Option<DVec3>], at: DVec3, segment: DVec3) -> DVec3 {
+    let axis = segment.normalize_or_zero();
+    if axis == DVec3::ZERO {
+        return DVec3::X;
+    }
+    let normal = planes
+        .iter()
+        .map(|n| n.unwrap_or_else(|| bedding_normal(scene, at)))
+        .min_by(|a, b| a.dot(axis).abs().total_cmp(&b.dot(axis).abs()))
+        .expect("the bedding is always a plane");
+    let across = normal.cross(axis).normalize_or_zero();
+    if across == DVec3::ZERO { axis.any_orthonormal_vector() } else { across }
 }
