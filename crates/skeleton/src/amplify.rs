@@ -46,6 +46,7 @@ use crate::assemble::NetworkBuilder;
 use crate::ends::{End, sample_of};
 use crate::error::SkeletonError;
 use crate::nodes::is_keypoint;
+use crate::planes::bedding_normal;
 use crate::search::{Blocked, EdgeCosts, dijkstra_to_set};
 
 /// Tries to draw one point inside the bedrock before giving up on it.
@@ -96,9 +97,8 @@ pub fn amplify(scene: &Scene, samples: &Samples, graph: &CostGraph, network: &mu
                     } else {
                         parents[rng.index(parents.len())]
                     };
-                    let at = DVec3::from_array(samples.positions[network.samples[anchor] as usize]);
                     let length = power_law(&mut rng, min, (max / scale).max(min), p.amplification_exponent);
-                    draw_around(scene, &mut rng, at, length)
+                    draw_tributary(scene, samples, network, &mut rng, anchor, length)
                 }
                 None => draw_in_bedrock(scene, &mut rng, lo, hi),
             };
@@ -196,13 +196,35 @@ fn power_law(rng: &mut Random, min: f64, max: f64, alpha: f64) -> f64 {
     (a - rng.uniform() * (a - b)).powf(-1.0 / alpha)
 }
 
-/// A point of the bedrock at `distance` from `centre` in a uniformly random direction.
-fn draw_around(scene: &Scene, rng: &mut Random, centre: DVec3, distance: f64) -> Option<DVec3> {
+/// A point of the bedrock at `distance` from network node `anchor`, in the direction a
+/// tributary leaves a passage: at an acute angle of 20–70° to the passage there (Horton's
+/// junction angles), to either side and either way along it, in the bedding plane, rising or
+/// falling by at most 30°.
+fn draw_tributary(
+    scene: &Scene,
+    samples: &Samples,
+    network: &NetworkBuilder,
+    rng: &mut Random,
+    anchor: usize,
+    distance: f64,
+) -> Option<DVec3> {
+    let at = |i: u32| DVec3::from_array(samples.positions[network.samples[i as usize] as usize]);
+    let centre = at(anchor as u32);
+    let next = &network.adjacency[anchor];
+    let tangent = match next.as_slice() {
+        [] => DVec3::X,
+        [one] => centre - at(*one),
+        [a, b, ..] => at(*b) - at(*a),
+    };
+    let up = bedding_normal(scene, centre);
+    let along = (tangent - up * tangent.dot(up)).normalize_or(up.any_orthonormal_vector());
+    let side = up.cross(along);
     (0..TRIES).find_map(|_| {
-        let z = rng.range(-1.0, 1.0);
-        let azimuth = rng.range(0.0, std::f64::consts::TAU);
-        let r = (1.0 - z * z).sqrt();
-        let p = centre + DVec3::new(r * azimuth.cos(), r * azimuth.sin(), z) * distance;
+        let turn = rng.range(20f64, 70.0).to_radians() * if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        let way = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        let rise = rng.range(-30f64, 30.0).to_radians();
+        let flat = (along * (way * turn.cos()) + side * turn.sin()) * rise.cos();
+        let p = centre + (flat + up * rise.sin()) * distance;
         scene.in_bedrock(p).then_some(p)
     })
 }

@@ -23,6 +23,7 @@ mod meander;
 mod modes_tests;
 mod nodes;
 mod payload;
+mod planes;
 mod radii;
 mod render;
 mod search;

@@ -26,7 +26,8 @@ use karst_geology::rng::Random;
 
 use crate::nodes::node_at;
 use crate::payload::Node;
-use crate::tortuosity::{Insertions, across_in_plane, weakness_planes};
+use crate::planes::WeaknessPlanes;
+use crate::tortuosity::Insertions;
 
 /// Halvings of an offset that leaves the bedrock before the point stays on the chord.
 const TRIES: usize = 6;
@@ -70,7 +71,7 @@ pub fn bend(scene: &Scene, sinuosity: f64, nodes: &mut Vec<Node>, chains: &mut [
     let p = scene.skeleton();
     let ak = amplitude_ratio(sinuosity);
     let mut rng = Random::stream(scene.seed(), "skeleton", "meanders");
-    let planes = weakness_planes(scene);
+    let planes = WeaknessPlanes::of(scene);
     let mut inserted = Insertions::new();
     for chain in chains.iter_mut() {
         let wavelength = rng.range(p.meander_wavelength[0], p.meander_wavelength[1]);
@@ -84,8 +85,7 @@ pub fn bend(scene: &Scene, sinuosity: f64, nodes: &mut Vec<Node>, chains: &mut [
         if chain[0] == chain[chain.len() - 1] || dip >= p.vertical_angle {
             continue;
         }
-        let across =
-            across_in_plane(scene, &planes, (originals[0] + originals[originals.len() - 1]) * 0.5, chord);
+        let across = planes.across(scene, (originals[0] + originals[originals.len() - 1]) * 0.5, chord);
         *chain = meander.apply(scene, &across, &originals, chain, nodes, &mut inserted);
     }
     inserted
@@ -163,15 +163,4 @@ impl Meander {
 /// `p` moved by `offset` along `across`, halved until it lies in the bedrock.
 fn displaced(scene: &Scene, p: DVec3, across: DVec3, offset: f64) -> DVec3 {
     (0..TRIES).map(|k| p + across * offset / f64::from(1u32 << k)).find(|q| scene.in_bedrock(*q)).unwrap_or(p)
-}
-
-/// The upward normal of the bedding at `p`: the nearest inception horizon's, vertical when the
-/// scene has none.
-pub fn bedding_normal(scene: &Scene, p: DVec3) -> DVec3 {
-    scene
-        .geology()
-        .horizons
-        .iter()
-        .min_by(|a, b| a.distance(p).total_cmp(&b.distance(p)))
-        .map_or(DVec3::Z, |h| h.normal())
 }

@@ -6,9 +6,8 @@
 //! the midpoint.
 //!
 //! The offset is not white noise in every direction: a passage develops along a plane of
-//! weakness, so the midpoint moves within the weakness plane the segment lies in best (the
-//! fracture family or bedding plane whose normal is the most perpendicular to the segment),
-//! across the segment. Without fracture families that plane is the bedding: conduits wander
+//! weakness, so the midpoint moves across the segment within the weakness plane the segment
+//! lies in (`planes.rs`): along a fracture it follows, else the bedding. Conduits wander
 //! sideways along their parting, not up and down through the beds.
 //!
 //! New nodes carry the sample of the nearer end of their link. Routes are rewritten through the
@@ -20,9 +19,9 @@ use glam::DVec3;
 use karst_geology::Scene;
 use karst_geology::rng::Random;
 
-use crate::meander::bedding_normal;
 use crate::nodes::node_at;
 use crate::payload::{Node, Route};
+use crate::planes::WeaknessPlanes;
 
 /// Draws per displaced midpoint before it stays straight.
 const TRIES: usize = 8;
@@ -39,7 +38,7 @@ pub fn amplitude(theta: f64) -> f64 {
 pub fn refine(scene: &Scene, theta: f64, nodes: &mut Vec<Node>, chains: &mut [Vec<u32>]) -> Insertions {
     let mut rng = Random::stream(scene.seed(), "skeleton", "tortuosity");
     let levels = scene.skeleton().tortuosity_levels;
-    let planes = weakness_planes(scene);
+    let planes = WeaknessPlanes::of(scene);
     let mut inserted = Insertions::new();
     for chain in chains.iter_mut() {
         let mut refined = vec![chain[0]];
@@ -92,16 +91,10 @@ pub fn reroute(routes: &mut [Route], inserted: &Insertions) {
     }
 }
 
-/// The planes of weakness a segment may lie in: the fracture families, then the bedding
-/// (`None`: the bedding's normal, looked up at the segment).
-pub fn weakness_planes(scene: &Scene) -> Vec<Option<DVec3>> {
-    scene.geology().fractures.iter().map(|f| Some(f.normal())).chain([None]).collect()
-}
-
 /// One level: a displaced midpoint between every two consecutive points.
 fn subdivide(
     scene: &Scene,
-    planes: &[Option<DVec3>],
+    planes: &WeaknessPlanes,
     rng: &mut Random,
     points: &[DVec3],
     reach: f64,
@@ -109,7 +102,7 @@ fn subdivide(
     let mut out = vec![points[0]];
     for w in points.windows(2) {
         let mid = (w[0] + w[1]) * 0.5;
-        let across = across_in_plane(scene, planes, mid, w[1] - w[0]);
+        let across = planes.across(scene, mid, w[1] - w[0]);
         let displaced = (0..TRIES).find_map(|_| {
             let p = mid + across * rng.range(-reach, reach);
             scene.in_bedrock(p).then_some(p)
@@ -118,19 +111,4 @@ fn subdivide(
         out.push(w[1]);
     }
     out
-}
-
-/// The unit direction across `segment` within the weakness plane it lies in best.
-pub fn across_in_plane(scene: &Scene, planes: &[Option<DVec3>], at: DVec3, segment: DVec3) -> DVec3 {
-    let axis = segment.normalize_or_zero();
-    if axis == DVec3::ZERO {
-        return DVec3::X;
-    }
-    let normal = planes
-        .iter()
-        .map(|n| n.unwrap_or_else(|| bedding_normal(scene, at)))
-        .min_by(|a, b| a.dot(axis).abs().total_cmp(&b.dot(axis).abs()))
-        .expect("the bedding is always a plane");
-    let across = normal.cross(axis).normalize_or_zero();
-    if across == DVec3::ZERO { axis.any_orthonormal_vector() } else { across }
 }

@@ -90,7 +90,7 @@ impl Default for SkeletonParams {
             tortuosity: None,
             tortuosity_levels: 2,
             sinuosity: 1.0,
-            meander_wavelength: [20.0, 60.0],
+            meander_wavelength: [40.0, 100.0],
             radius: [0.5, 4.0],
             radius_correlation: [50.0, 200.0],
             epikarst_radius: 0.5,

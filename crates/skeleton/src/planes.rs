@@ -1,0 +1,63 @@
+//! Planes of weakness: the bedding and the fracture families, along which passages develop.
+//! Conduits bend within them (meanders, midpoint displacement) rather than in every direction.
+//!
+//! A segment lies in a fracture family's plane when the angle between them is within the
+//! family's tolerance: the passage formed along that fracture (the cost model made it follow
+//! it), so it bends within it — up and down along a steep joint, as phreatic loops do. Any
+//! other segment bends in the plane it lies in best among the bedding and the fractures: for
+//! the gently sloping passages of most caves, the bedding plane, where vadose streams meander.
+//! The bedding is the plane of the nearest inception horizon, horizontal when the scene has
+//! none.
+
+use glam::DVec3;
+use karst_geology::Scene;
+
+/// The fracture families' planes of a scene.
+pub struct WeaknessPlanes {
+    /// Unit normal and sine of the angular tolerance of each fracture family.
+    fractures: Vec<(DVec3, f64)>,
+}
+
+impl WeaknessPlanes {
+    pub fn of(scene: &Scene) -> Self {
+        let fractures =
+            scene.geology().fractures.iter().map(|f| (f.normal(), f.tolerance.to_radians().sin())).collect();
+        WeaknessPlanes { fractures }
+    }
+
+    /// The unit direction across `segment` (at `at`) within the weakness plane it lies in.
+    pub fn across(&self, scene: &Scene, at: DVec3, segment: DVec3) -> DVec3 {
+        let axis = segment.normalize_or_zero();
+        if axis == DVec3::ZERO {
+            return DVec3::X;
+        }
+        let off = |n: &DVec3| n.dot(axis).abs();
+        let along_fracture = self
+            .fractures
+            .iter()
+            .filter(|(n, sin_tolerance)| off(n) <= *sin_tolerance)
+            .map(|(n, _)| *n)
+            .min_by(|a, b| off(a).total_cmp(&off(b)));
+        let normal = along_fracture.unwrap_or_else(|| {
+            self.fractures
+                .iter()
+                .map(|(n, _)| *n)
+                .chain([bedding_normal(scene, at)])
+                .min_by(|a, b| off(a).total_cmp(&off(b)))
+                .expect("the bedding is always a plane")
+        });
+        let across = normal.cross(axis).normalize_or_zero();
+        if across == DVec3::ZERO { axis.any_orthonormal_vector() } else { across }
+    }
+}
+
+/// The upward normal of the bedding at `p`: the nearest inception horizon's, vertical when the
+/// scene has none.
+pub fn bedding_normal(scene: &Scene, p: DVec3) -> DVec3 {
+    scene
+        .geology()
+        .horizons
+        .iter()
+        .min_by(|a, b| a.distance(p).total_cmp(&b.distance(p)))
+        .map_or(DVec3::Z, |h| h.normal())
+}
