@@ -3,7 +3,10 @@
 //!
 //! A segment lies in a fracture family's plane when the angle between them is within the
 //! family's tolerance: the passage formed along that fracture (the cost model made it follow
-//! it), so it bends within it — up and down along a steep joint, as phreatic loops do. Any
+//! it), so it bends within it — up and down along a steep joint, as phreatic loops do. A
+//! segment at the intersection of several families (a joint and a bedding-parallel parting)
+//! bends in the steepest: the joint carries the loops (Ford & Ewers 1978), and the passage
+//! keeps the azimuth of the joint set, as in the rectilinear mazes of jointed rock. Any
 //! other segment bends in the plane it lies in best among the bedding and the fractures: for
 //! the gently sloping passages of most caves, the bedding plane, where vadose streams meander.
 //! The bedding is the plane of the nearest inception horizon, horizontal when the scene has
@@ -37,7 +40,7 @@ impl WeaknessPlanes {
             .iter()
             .filter(|(n, sin_tolerance)| off(n) <= *sin_tolerance)
             .map(|(n, _)| *n)
-            .min_by(|a, b| off(a).total_cmp(&off(b)));
+            .min_by(|a, b| a.z.abs().total_cmp(&b.z.abs()).then(off(a).total_cmp(&off(b))));
         let normal = along_fracture.unwrap_or_else(|| {
             self.fractures
                 .iter()
