@@ -233,3 +233,21 @@ fn nearest_sample(samples: &Samples, p: DVec3) -> usize {
     let d = |i: usize| DVec3::from_array(samples.positions[i]).distance_squared(p);
     (0..samples.len()).min_by(|&a, &b| d(a).total_cmp(&d(b))).expect("samples are never empty")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn power_law_lengths_follow_their_tail() {
+        let mut rng = Random::stream(1, "test", "power law");
+        let (min, max, alpha) = (20.0, 400.0, 1.2);
+        let lengths: Vec<f64> = (0..20_000).map(|_| power_law(&mut rng, min, max, alpha)).collect();
+        assert!(lengths.iter().all(|l| (min..=max).contains(l)));
+        let tail = |x: f64| (x.powf(-alpha) - max.powf(-alpha)) / (min.powf(-alpha) - max.powf(-alpha));
+        for x in [30.0, 60.0, 150.0] {
+            let share = lengths.iter().filter(|l| **l > x).count() as f64 / lengths.len() as f64;
+            assert!((share - tail(x)).abs() < 0.01, "P(ℓ > {x}) = {share}, expected {}", tail(x));
+        }
+    }
+}

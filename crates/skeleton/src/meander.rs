@@ -164,3 +164,15 @@ impl Meander {
 fn displaced(scene: &Scene, p: DVec3, across: DVec3, offset: f64) -> DVec3 {
     (0..TRIES).map(|k| p + across * offset / f64::from(1u32 << k)).find(|q| scene.in_bedrock(*q)).unwrap_or(p)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_amplitude_gives_the_requested_sinuosity() {
+        for sinuosity in [1.0, 1.05, 1.2, 2.0] {
+            assert!((sine_sinuosity(amplitude_ratio(sinuosity)) - sinuosity).abs() < 1e-9, "{sinuosity}");
+        }
+    }
+}

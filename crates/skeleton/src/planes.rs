@@ -64,3 +64,55 @@ pub fn bedding_normal(scene: &Scene, p: DVec3) -> DVec3 {
         .min_by(|a, b| a.distance(p).total_cmp(&b.distance(p)))
         .map_or(DVec3::Z, |h| h.normal())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const JOINTED: &str = r#"
+name = "jointed"
+seed = 1
+[domain]
+min = [0, 0, 0]
+max = [100, 100, 50]
+[terrain]
+kind = "plane"
+elevation = 48
+# Partings first: the steepest family wins whatever the order.
+[[geology.fractures]]
+name = "partings"
+azimuth = 0.0
+dip = 0.0
+tolerance = 10.0
+[[geology.fractures]]
+name = "north-south joints"
+azimuth = 0.0
+dip = 90.0
+tolerance = 10.0
+[[geology.water_tables]]
+name = "base"
+elevation = 10
+[[keypoints]]
+name = "in"
+kind = "sink"
+position = [10, 10, 45]
+[[keypoints]]
+name = "out"
+kind = "spring"
+position = [90, 90, 10]
+water_table = "base"
+"#;
+
+    #[test]
+    fn a_passage_along_a_joint_and_a_parting_bends_in_the_joint() {
+        let scene = Scene::parse(JOINTED, std::path::Path::new("jointed.toml")).unwrap();
+        let planes = WeaknessPlanes::of(&scene);
+        let at = DVec3::new(50.0, 50.0, 20.0);
+        // North–south and level: in both families; the joint (vertical) carries the bends.
+        let across = planes.across(&scene, at, DVec3::Y);
+        assert!(across.z.abs() > 0.99, "{across}");
+        // North-east and level: only in the parting; it bends sideways, level.
+        let across = planes.across(&scene, at, DVec3::new(1.0, 1.0, 0.0));
+        assert!(across.z.abs() < 1e-9 && across.dot(DVec3::new(1.0, 1.0, 0.0)).abs() < 1e-9, "{across}");
+    }
+}
