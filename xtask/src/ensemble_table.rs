@@ -8,10 +8,12 @@
 //! edited by hand.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
+use karst_artifact::StageId;
 use karst_metrics::ranges::{CHARACTERIZE_KEYS, real_cave_ranges};
-use karst_pipeline::ensemble::{self, EnsembleArgs};
+use karst_pipeline::ensemble::{self, Keep, Plan};
+use karst_pipeline::scene::SceneFile;
 use karst_plot::bins::quantile;
 use karst_stage::StageError;
 
@@ -23,7 +25,7 @@ pub const END: &str = "<!-- /ensemble-table -->";
 pub const PRESETS: [&str; 7] =
     ["default", "branchwork", "looping", "rectilinear", "superimposed", "karstnsim", "karstnsim-2phase"];
 
-/// One preset's realizations: every column of `metrics.csv` by name.
+/// One preset's realizations: every column of the ensemble's `metrics.csv` by name.
 pub struct Realizations {
     pub preset: String,
     pub columns: Vec<String>,
@@ -47,23 +49,21 @@ impl Realizations {
     }
 }
 
-/// Runs `n` realizations of `fixtures/scenes/<preset>.toml` into `out/ensemble-table/<preset>`
-/// and reads their metrics.
+/// Runs `n` realizations of `fixtures/scenes/<preset>.toml` to the skeleton in
+/// `out/ensemble-table/<preset>` (emptied first: the presets change between runs) and returns
+/// their metrics; a failed realization is an error.
 pub fn realize(preset: &str, n: usize) -> Result<Realizations, StageError> {
     let out = PathBuf::from("out/ensemble-table").join(preset);
-    let scene = PathBuf::from("fixtures/scenes").join(format!("{preset}.toml"));
-    ensemble::run(&EnsembleArgs { scene, n, cell: 10.0, out: out.clone() })?;
-    read_csv(preset, &out.join("metrics.csv"))
-}
-
-fn read_csv(preset: &str, path: &Path) -> Result<Realizations, StageError> {
-    let text =
-        std::fs::read_to_string(path).map_err(|e| StageError::failure(format!("{}: {e}", path.display())))?;
-    let mut lines = text.lines();
-    let header = lines.next().unwrap_or_default();
-    let columns = header.split(',').map(|c| c.trim_matches('"').to_string()).collect();
-    let rows = lines.map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect()).collect();
-    Ok(Realizations { preset: preset.to_string(), columns, rows })
+    let _ = std::fs::remove_dir_all(&out);
+    let scene = SceneFile::load(&PathBuf::from("fixtures/scenes").join(format!("{preset}.toml")))?;
+    let seeds =
+        ensemble::first_n(scene.scene.seed(), n).map_err(|e| StageError::input(format!("ensemble: {e}")))?;
+    let plan = Plan::new(scene, Some(StageId::Skeleton), ensemble::DEFAULT_CELL, Keep::Stages(Vec::new()))?;
+    let summary = ensemble::run(&plan, &out, &seeds)?;
+    if let Some((seed, error)) = summary.failures.first() {
+        return Err(StageError::failure(format!("{preset}: seed {seed}: {error}")));
+    }
+    Ok(Realizations { preset: preset.to_string(), columns: summary.table.columns, rows: summary.table.rows })
 }
 
 /// The Markdown table: one row per metric, one column per preset.

@@ -4,6 +4,7 @@
 //! - [`peer`]: time the network half beside KarstNSim;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
 //! - [`ensemble_table`]: the presets' metrics over many seeds against the real caves;
+//! - [`python`]: build and install the Python package's wheel and run its pytest suite;
 //! - [`tools`]: install the outside programs the tests check outputs with.
 //!
 //! Running the pipeline, diffs and ensembles are `karstgen`'s (crates/pipeline).
@@ -12,4 +13,5 @@ pub mod bench;
 pub mod ensemble_table;
 pub mod metrics_table;
 pub mod peer;
+pub mod python;
 pub mod tools;
