@@ -1,6 +1,7 @@
 //! `cargo xtask`: the developers' tasks. `run`, `diff` and `inspect` are `karstgen`'s own (the
 //! same code); `bless` regenerates the golden artifacts, `bench` times every stage, `test`
-//! installs the test tools and runs the suite, `metrics-table` tables every scene's metrics.
+//! installs the test tools and runs the suite, `metrics-table` tables every scene's metrics,
+//! `ensemble` the presets' metrics over many seeds.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -66,6 +67,16 @@ enum Task {
         #[arg(long)]
         write: bool,
     },
+    /// Table the presets' metrics over N seeds each (`karstgen ensemble`) against the real-cave
+    /// ranges: median, 10th–90th percentile, share inside.
+    Ensemble {
+        /// Realizations per preset.
+        #[arg(long, default_value_t = 20)]
+        n: usize,
+        /// Also replace the table in docs/metrics.md.
+        #[arg(long)]
+        write: bool,
+    },
     /// Run the test suite (`cargo test --release --workspace`, then the Python package's
     /// pytest suite), after installing the outside tools the tests check outputs with
     /// (tools/: Python packages, Debian packages, npm).
@@ -111,6 +122,7 @@ fn main() -> ExitCode {
         }
         Task::Test { python, args } => return test(python, &args),
         Task::MetricsTable { write } => metrics_table_command(write),
+        Task::Ensemble { n, write } => ensemble_table_command(n, write),
     };
     finish(result)
 }
@@ -198,6 +210,25 @@ fn metrics_table_command(write: bool) -> Result<(), StageError> {
         let readme = Path::new("README.md");
         let text = std::fs::read_to_string(readme).map_err(|e| fail(readme, e))?;
         scene::write_if_changed(readme, metrics_table::replace_section(&text, &table).as_bytes())?;
+    }
+    Ok(())
+}
+
+fn ensemble_table_command(n: usize, write: bool) -> Result<(), StageError> {
+    use xtask::ensemble_table::{self, BEGIN, END, PRESETS};
+    let mut sets = Vec::new();
+    for preset in PRESETS {
+        eprintln!("{preset}: {n} realizations");
+        sets.push(ensemble_table::realize(preset, n)?);
+    }
+    let table = ensemble_table::markdown(&sets);
+    print!("{table}");
+    if write {
+        let doc = Path::new("docs/metrics.md");
+        let text = std::fs::read_to_string(doc)
+            .map_err(|e| StageError::failure(format!("{}: {e}", doc.display())))?;
+        let updated = metrics_table::replace_between(&text, BEGIN, END, &table);
+        scene::write_if_changed(doc, updated.as_bytes())?;
     }
     Ok(())
 }

@@ -83,10 +83,16 @@ pub fn markdown(reports: &[(String, MetricsReport)]) -> String {
 
 /// Replaces the README section between the markers (appending it when missing).
 pub fn replace_section(readme: &str, table: &str) -> String {
-    let block = format!("{BEGIN}\n{table}{END}");
-    match (readme.find(BEGIN), readme.find(END)) {
-        (Some(a), Some(b)) if a < b => format!("{}{block}{}", &readme[..a], &readme[b + END.len()..]),
-        _ => format!("{readme}\n{block}\n"),
+    replace_between(readme, BEGIN, END, table)
+}
+
+/// Replaces the section of `text` between the markers `begin` and `end` (appending it when
+/// missing).
+pub fn replace_between(text: &str, begin: &str, end: &str, table: &str) -> String {
+    let block = format!("{begin}\n{table}{end}");
+    match (text.find(begin), text.find(end)) {
+        (Some(a), Some(b)) if a < b => format!("{}{block}{}", &text[..a], &text[b + end.len()..]),
+        _ => format!("{text}\n{block}\n"),
     }
 }
 

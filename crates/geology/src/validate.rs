@@ -61,6 +61,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     scene.sampling.check(&mut found);
     scene.costgraph.check(&mut found);
     scene.skeleton.check(&mut found);
+    found.amplification(scene);
     scene.hydro.check(&mut found);
     scene.sdf.check(&mut found);
     scene.mesher.check(&mut found);
@@ -99,6 +100,34 @@ impl Checks<'_> {
     pub(crate) fn non_negative(&mut self, field: &str, value: f64) {
         if self.finite(field, &[value]) && value < 0.0 {
             self.report(field, format!("must be ≥ 0, got {value}"));
+        }
+    }
+
+    /// A `[min, max]` range of positive numbers.
+    pub(crate) fn range(&mut self, field: &str, [lo, hi]: [f64; 2]) {
+        if !self.finite(field, &[lo, hi]) {
+            return;
+        }
+        if lo <= 0.0 {
+            self.report(field, format!("must be > 0, got {lo}"));
+        } else if hi < lo {
+            self.report(field, format!("[{lo}, {hi}] is not a range (max < min)"));
+        }
+    }
+
+    /// Amplification branches shorter than the sampling radius could not be drawn: the
+    /// samples are that far apart.
+    fn amplification(&mut self, scene: &Scene) {
+        let radius = scene.sampling.radius;
+        if let Some([lo, _]) = scene.skeleton.amplification_length
+            && lo.is_finite()
+            && radius.is_finite()
+            && lo < radius
+        {
+            self.report(
+                "skeleton.amplification_length",
+                format!("the shortest branch ({lo} m) must be at least sampling.radius ({radius} m)"),
+            );
         }
     }
 

@@ -27,10 +27,29 @@ pub struct SkeletonParams {
     /// Fraction of the new key points that are dead ends (joined once); the others are interior
     /// points (joined at two places, closing loops).
     pub dead_end_fraction: f64,
+    /// Range `[min, max]` of the length of the first step's amplification branches, metres:
+    /// each new key point is drawn at a distance from an anchor on the network that follows a
+    /// power law over this range (each later step divides max by `amplification_ratio`).
+    /// Absent: uniform in the network's bounding box (Paris et al. 2021).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub amplification_length: Option<[f64; 2]>,
+    /// Exponent α of that power law, P(length > ℓ) ∝ ℓ^−α: small α, heavier tail.
+    pub amplification_exponent: f64,
+    /// Horton ratio R of the amplification: step s draws `amplification_points` × R^s points,
+    /// and with R > 1 they branch off the previous step's branches. 1: every step alike.
+    pub amplification_ratio: f64,
+    /// Probability that a new branch starts at a confluence of the previous step (mixing
+    /// corrosion) rather than anywhere along the branches it grows from.
+    pub confluence_attraction: f64,
     /// θ in [0, 1]: amplitude of the tortuosity added by midpoint displacement, from a few
     /// centimetres (0) to 4 m (1). Absent: conduits keep the straight links of the graph.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tortuosity: Option<f64>,
+    /// Sinuosity of the meanders conduits make in their bedding plane (arc length over chord of
+    /// each meander, ≥ 1); 1: no meanders.
+    pub sinuosity: f64,
+    /// Range `[min, max]` of the meander wavelength, metres, drawn per conduit.
+    pub meander_wavelength: [f64; 2],
     /// Midpoint-displacement levels (each doubles the segments of a conduit).
     pub tortuosity_levels: u32,
     /// Range `[min, max]` of conduit radii, metres, outside the epikarst: a Gaussian process
@@ -64,8 +83,14 @@ impl Default for SkeletonParams {
             amplification_steps: 0,
             amplification_points: 5,
             dead_end_fraction: 0.5,
+            amplification_length: None,
+            amplification_exponent: 1.5,
+            amplification_ratio: 1.0,
+            confluence_attraction: 0.0,
             tortuosity: None,
             tortuosity_levels: 2,
+            sinuosity: 1.0,
+            meander_wavelength: [40.0, 100.0],
             radius: [0.5, 4.0],
             radius_correlation: [50.0, 200.0],
             epikarst_radius: 0.5,
@@ -109,6 +134,30 @@ impl SkeletonParams {
                 format!("must be in [0, 1], got {}", self.dead_end_fraction),
             );
         }
+        if let Some(range) = self.amplification_length {
+            c.range("skeleton.amplification_length", range);
+        }
+        c.positive("skeleton.amplification_exponent", self.amplification_exponent);
+        if c.finite("skeleton.amplification_ratio", &[self.amplification_ratio])
+            && !(1.0..=10.0).contains(&self.amplification_ratio)
+        {
+            c.report(
+                "skeleton.amplification_ratio",
+                format!("must be in [1, 10], got {}", self.amplification_ratio),
+            );
+        }
+        if c.finite("skeleton.confluence_attraction", &[self.confluence_attraction])
+            && !(0.0..=1.0).contains(&self.confluence_attraction)
+        {
+            c.report(
+                "skeleton.confluence_attraction",
+                format!("must be in [0, 1], got {}", self.confluence_attraction),
+            );
+        }
+        if c.finite("skeleton.sinuosity", &[self.sinuosity]) && !(1.0..=3.0).contains(&self.sinuosity) {
+            c.report("skeleton.sinuosity", format!("must be in [1, 3], got {}", self.sinuosity));
+        }
+        c.range("skeleton.meander_wavelength", self.meander_wavelength);
         if let Some(theta) = self.tortuosity
             && c.finite("skeleton.tortuosity", &[theta])
             && !(0.0..=1.0).contains(&theta)
