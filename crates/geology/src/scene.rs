@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::field::{self, FieldNode, GridSpec, Layer, NoKarst};
 use crate::params::{
     CostgraphParams, HydroParams, MesherParams, MetricsParams, SamplingParams, SdfParams, SkeletonParams,
+    StreamsParams,
 };
 use crate::validate::{self, Problem};
 use crate::{Domain, FractureFamily, KeyPoint, KeyPointKind, Surface, Terrain};
@@ -39,6 +40,9 @@ pub struct Scene {
     pub skeleton: SkeletonParams,
     #[serde(default)]
     pub hydro: HydroParams,
+    /// The surface streams and waterfalls fed by the springs (docs/streams.md).
+    #[serde(default)]
+    pub streams: StreamsParams,
     #[serde(default)]
     pub sdf: SdfParams,
     #[serde(default)]

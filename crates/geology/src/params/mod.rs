@@ -9,6 +9,7 @@ mod metrics;
 mod sampling;
 mod sdf;
 mod skeleton;
+mod streams;
 
 pub use costgraph::{CostModelKind, CostgraphParams};
 pub use hydro::{HydroParams, PoolOutlet, PoolWeights, Recharge};
@@ -17,3 +18,4 @@ pub use metrics::MetricsParams;
 pub use sampling::{RadiusUnit, SamplingParams};
 pub use sdf::SdfParams;
 pub use skeleton::{Mode as SkeletonMode, SkeletonParams};
+pub use streams::{Curve, CurveKind, StreamsParams};
