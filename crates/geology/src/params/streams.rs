@@ -143,12 +143,18 @@ impl Curve {
                 1 => "a single point".to_string(),
                 n => format!("{n} points"),
             };
-            c.report(&at("points"), format!("curve \"{name}\" has {what}: a {:?} curve needs at least {fewest}", self.kind));
+            c.report(
+                &at("points"),
+                format!("curve \"{name}\" has {what}: a {:?} curve needs at least {fewest}", self.kind),
+            );
         }
         if self.kind == CurveKind::FreeFall && self.points.len() > 2 {
             c.report(
                 &at("points"),
-                format!("free fall \"{name}\" has {} points: give its lip and its foot only", self.points.len()),
+                format!(
+                    "free fall \"{name}\" has {} points: give its lip and its foot only",
+                    self.points.len()
+                ),
             );
         }
         for (j, p) in self.points.iter().enumerate() {
@@ -204,16 +210,24 @@ mod tests {
         assert!(p[0].contains("streams.curves[0].points: curve \"empty\" has no point"), "{p:?}");
         let p = problems("[[streams.curves]]\nname = \"one\"\nkind = \"contact\"\npoints = [[1, 2, 3]]");
         assert!(p[0].contains("curve \"one\" has a single point"), "{p:?}");
-        let p = problems("[[streams.curves]]\nname = \"n\"\nkind = \"contact\"\npoints = [[1, 2, 3], [4, nan, 2]]");
+        let p = problems(
+            "[[streams.curves]]\nname = \"n\"\nkind = \"contact\"\npoints = [[1, 2, 3], [4, nan, 2]]",
+        );
         assert!(p[0].contains("streams.curves[0].points[1]: NaN is not a finite number"), "{p:?}");
-        let p = problems("[[streams.curves]]\nname = \"o\"\nkind = \"contact\"\npoints = [[1, 2, 3], [400, 2, 2]]");
+        let p = problems(
+            "[[streams.curves]]\nname = \"o\"\nkind = \"contact\"\npoints = [[1, 2, 3], [400, 2, 2]]",
+        );
         assert!(p[0].contains("curve \"o\": [400, 2, 2] is outside the domain"), "{p:?}");
         assert!(p[0].starts_with(":24:"), "the line of the curve: {p:?}");
-        let p = problems("[[streams.curves]]\nname = \"f\"\nkind = \"free_fall\"\npoints = [[1, 2, 3], [2, 2, 2], [3, 2, 1]]");
+        let p = problems(
+            "[[streams.curves]]\nname = \"f\"\nkind = \"free_fall\"\npoints = [[1, 2, 3], [2, 2, 2], [3, 2, 1]]",
+        );
         assert!(p[0].contains("give its lip and its foot only"), "{p:?}");
         let p = problems("[streams]\nflow_range = [5, 1]\nstep = 0");
         assert_eq!(p.len(), 2, "{p:?}");
-        assert!(problems("[[streams.curves]]\nname = \"x\"\nkind = \"river\"\npoints = []")[0]
-            .contains("unknown variant `river`"));
+        assert!(
+            problems("[[streams.curves]]\nname = \"x\"\nkind = \"river\"\npoints = []")[0]
+                .contains("unknown variant `river`")
+        );
     }
 }
