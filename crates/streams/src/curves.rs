@@ -118,7 +118,7 @@ pub fn lay(scene: &Scene, ground: &Ground, net: &mut Network, springs: &[(u32, D
                 }
             }
             CurveKind::Pool => {
-                let (node, pool) = pool(net, ground, &points[i], curve, i, params.step);
+                let (node, pool) = pool(net, ground, &points[i], curve, params.step);
                 nodes[i] = vec![node];
                 pool_of[i] = Some(pool);
             }
@@ -128,13 +128,12 @@ pub fn lay(scene: &Scene, ground: &Ground, net: &mut Network, springs: &[(u32, D
     for &i in &order {
         let Some(&last) = nodes[i].last() else { continue };
         match (curves[i].kind, ends[i]) {
-            (CurveKind::Pool, _) => {
-                if !starts.iter().any(|s| *s == Attach::Pool(i)) {
-                    let p = &net.pools[pool_of[i].expect("pools are laid")];
-                    let outlet = p.outlet.expect("a pool controller has an outlet");
+            (CurveKind::Pool, _) if !starts.contains(&Attach::Pool(i)) => {
+                if let Some(p) = pool_of[i].map(|p| &net.pools[p]) {
+                    let outlet = p.outlet.map_or(DVec2::ZERO, |o| o.truncate());
                     laid.ends.push(End::Spill {
                         pool: p.node,
-                        outlet: outlet.truncate(),
+                        outlet,
                         level: p.level,
                         name: curves[i].name.clone(),
                     });
@@ -147,8 +146,9 @@ pub fn lay(scene: &Scene, ground: &Ground, net: &mut Network, springs: &[(u32, D
                 }
             }
             (_, Attach::Pool(c)) => {
-                let target = net.pools[pool_of[c].expect("pools are laid")].node;
-                if !net.reaches(target, last) {
+                if let Some(target) = pool_of[c].map(|p| net.pools[p].node)
+                    && !net.reaches(target, last)
+                {
                     net.add_edge(last, target, Motion::Contact, Some(i), None);
                 }
             }
@@ -415,7 +415,6 @@ fn pool(
         outlet: Some(outlet.extend(level)),
         fall: None,
     });
-    let _ = i;
     (node, net.pools.len() - 1)
 }
 

@@ -49,8 +49,9 @@ pub fn find(ground: &Ground, spring: DVec3, spacing: f64) -> Daylight {
         let count = ((std::f64::consts::TAU * radius / spacing).ceil() as usize).clamp(16, 720);
         let directions =
             (0..count).map(|k| DVec2::from_angle(k as f64 * std::f64::consts::TAU / count as f64));
-        if let Some(d) = directions.clone().find(|d| !ground.inside(centre + *d * radius)) {
-            return Daylight::Side(ground.edge_point(centre, centre + d * radius).extend(spring.z));
+        let (side, edge) = nearest_side(ground, centre);
+        if side <= radius {
+            return Daylight::Side(edge.extend(spring.z));
         }
         let hit = directions
             .map(|d| (ground.height(centre + d * radius), d))
@@ -72,6 +73,19 @@ pub fn find(ground: &Ground, spring: DVec3, spacing: f64) -> Daylight {
     rise
 }
 
+/// Distance from `p` to the footprint's nearest side, and the nearest point of that side.
+fn nearest_side(ground: &Ground, p: DVec2) -> (f64, DVec2) {
+    let (lo, hi) = (ground.domain.min, ground.domain.max);
+    [
+        (p.x - lo[0], DVec2::new(lo[0], p.y)),
+        (hi[0] - p.x, DVec2::new(hi[0], p.y)),
+        (p.y - lo[1], DVec2::new(p.x, lo[1])),
+        (hi[1] - p.y, DVec2::new(p.x, hi[1])),
+    ]
+    .into_iter()
+    .fold((f64::INFINITY, p), |best, c| if c.0 < best.0 { c } else { best })
+}
+
 #[cfg(test)]
 mod tests {
     use karst_geology::{Domain, Terrain};
@@ -87,7 +101,7 @@ mod tests {
             domain: Domain { min: [0.0; 3], max: [100.0, 100.0, 200.0] },
             probe: 0.5,
         };
-        let Daylight::Mouth(m) = find(&ground, DVec3::new(20.0, 50.0, 20.0), 1.0) else { panic!() };
+        let Daylight::Mouth(m) = find(&ground, DVec3::new(30.0, 50.0, 20.0), 1.0) else { panic!() };
         assert!((m.point.x - 40.0).abs() < 1e-6 && (m.point.y - 50.0).abs() < 1e-9, "{m:?}");
         assert_eq!(m.point.z, 20.0);
         assert!(m.direction.x > 0.99);

@@ -110,7 +110,7 @@ impl Tracer<'_> {
         let p2 = p.truncate();
         let gradient = self.ground.gradient(p2);
         let steepness = gradient.length();
-        if !(steepness >= 0.5 * self.params.min_slope) {
+        if steepness.is_nan() || steepness < 0.5 * self.params.min_slope {
             return self.hollow(at, source);
         }
         let direction = -gradient / steepness;
