@@ -23,6 +23,7 @@ pub mod primitive;
 pub mod section;
 pub mod slice;
 pub mod stage;
+pub mod surface_water;
 pub mod sweep;
 pub mod synthetic;
 pub mod terrain;
