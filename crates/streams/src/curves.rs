@@ -376,8 +376,8 @@ fn parabola(lip: DVec3, foot: DVec3) -> Fall {
     }
 }
 
-/// Lays a pool controller: its node at the outline's centroid and level, its outline, dug
-/// one tenth of its equivalent diameter deep (at least half a metre); the water leaves at the
+/// Lays a pool controller: its node at the outline's centroid and level, its outline, its
+/// depth one tenth of its equivalent diameter (at least half a metre); the water leaves at the
 /// lowest ground along the outline unless curves leave it.
 fn pool(net: &mut Network, ground: &Ground, points: &[DVec3], curve: &Curve, step: f64) -> (u32, usize) {
     let outline: Vec<DVec2> = (0..points.len())

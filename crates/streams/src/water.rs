@@ -20,7 +20,7 @@ use karst_geology::params::StreamsParams;
 use karst_hydro::geometry::G;
 use karst_hydro::water::{FlowScale, WaterType, classify};
 
-use crate::artifact::{Motion, PoolKind, Segment};
+use crate::artifact::{Motion, Segment};
 use crate::network::Network;
 
 /// The properties of every edge of `net` carrying `flow`.
@@ -135,11 +135,6 @@ fn implausible(segments: &[Segment], reports: &mut Vec<String>) {
 pub fn scour_depth(drop: f64, q: f64, width: f64, radius: f64) -> f64 {
     let unit = q / width.max(0.1);
     (1.9 * drop.max(0.0).powf(0.225) * unit.max(0.0).powf(0.54)).clamp(0.3, radius.max(0.3))
-}
-
-/// Whether pools of this kind are dug into the ground by the sdf stage.
-pub fn dug(kind: PoolKind) -> bool {
-    matches!(kind, PoolKind::Plunge | PoolKind::Curve)
 }
 
 #[cfg(test)]
