@@ -5,7 +5,9 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::field::{self, FieldNode, GridSpec, Layer, NoKarst};
-use crate::params::{CostgraphParams, HydroParams, MesherParams, SamplingParams, SdfParams, SkeletonParams};
+use crate::params::{
+    CostgraphParams, HydroParams, MesherParams, SamplingParams, SdfParams, SkeletonParams, StreamsParams,
+};
 use crate::sections::{Reads, Section};
 use crate::validate::{self, Problem};
 use crate::{Domain, FractureFamily, KeyPoint, KeyPointKind, Surface, Terrain};
@@ -38,6 +40,9 @@ pub struct Scene {
     pub(crate) skeleton: SkeletonParams,
     #[serde(default)]
     pub(crate) hydro: HydroParams,
+    /// The surface streams and waterfalls fed by the springs (docs/streams.md).
+    #[serde(default)]
+    pub(crate) streams: StreamsParams,
     #[serde(default)]
     pub(crate) sdf: SdfParams,
     #[serde(default)]

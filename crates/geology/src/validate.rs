@@ -62,6 +62,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     scene.costgraph.check(&mut found);
     scene.skeleton.check(&mut found);
     scene.hydro.check(&mut found);
+    scene.streams.check(scene, &mut found);
     scene.sdf.check(&mut found);
     scene.mesher.check(&mut found);
     found.problems

@@ -86,4 +86,5 @@ preset_tests! {
     superimposed_meshes_are_watertight: "superimposed";
     karstnsim_meshes_are_watertight: "karstnsim";
     karstnsim_2phase_meshes_are_watertight: "karstnsim-2phase";
+    waterfall_meshes_are_watertight: "waterfall";
 }

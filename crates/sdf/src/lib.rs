@@ -25,6 +25,7 @@ mod primitive;
 mod section;
 mod slice;
 pub mod stage;
+mod surface_water;
 mod sweep;
 pub mod synthetic;
 mod terrain;

@@ -163,6 +163,50 @@ preset_tests! {
     layered_tree_is_one_lipschitz: "layered", 5000, 200;
 }
 
+/// The waterfall preset with its streams carved in: 1-Lipschitz (field, cave, water) on pairs
+/// around the stream's nodes and anywhere; the gathered leaves agree with the hierarchy.
+#[test]
+fn waterfall_tree_with_its_streams_is_one_lipschitz() {
+    let name = "waterfall";
+    let scene_path = root().join(format!("fixtures/scenes/{name}.toml"));
+    let out = std::env::temp_dir().join(format!("karst-sdf-{name}-{}", std::process::id()));
+    let args = RunArgs { scene: scene_path.clone(), out: out.clone() };
+    karst_sampling::stage::run(&args).unwrap();
+    karst_costgraph::stage::run(&args).unwrap();
+    karst_skeleton::stage::run(&args).unwrap();
+    karst_hydro::stage::run(&args).unwrap();
+    let scene = Scene::load(&scene_path).unwrap();
+    let (_, skeleton): (_, Skeleton) = read_artifact(&out.join("skeleton.json")).unwrap();
+    let (_, hydro): (_, Hydro) = read_artifact(&out.join("hydro.json")).unwrap();
+    let _ = std::fs::remove_dir_all(&out);
+    let streams = karst_streams::build(&scene, &hydro).unwrap();
+    let mut model = build::build(&scene, &skeleton, &hydro).unwrap();
+    karst_sdf::surface_water::add(&mut model, &streams, &scene.streams);
+    assert!(
+        !model.surface.beds.is_empty()
+            && !model.surface.alcoves.is_empty()
+            && !model.surface.sheets.is_empty()
+    );
+    let field = CarvedTerrain::new(model);
+    let mut rng = Lcg(31);
+    let nodes: Vec<DVec3> = streams.nodes.iter().map(|n| DVec3::from_array(n.position)).collect();
+    let near =
+        |rng: &mut Lcg| nodes[(rng.unit() * nodes.len() as f64) as usize % nodes.len()] + rng.offset(5.0);
+    for (what, f) in [
+        ("eval", &(|p| field.eval(p)) as &dyn Fn(DVec3) -> f64),
+        ("cave", &|p| field.cave_below_ground(p, f64::INFINITY)),
+        ("water", &|p| field.water(p)),
+    ] {
+        for _ in 0..20_000 {
+            let p = near(&mut rng);
+            let reach = [0.05, 0.5, 3.0][(rng.unit() * 3.0) as usize % 3];
+            let q = p + rng.offset(reach);
+            assert!((f(p) - f(q)).abs() <= p.distance(q) * (1.0 + 1e-5), "{what}: {p} {q}");
+        }
+    }
+    check_tree(&field, 5000);
+}
+
 /// Every fixtures/scenes/*.toml preset has its test above.
 #[test]
 fn every_preset_is_tested() {
@@ -176,6 +220,7 @@ fn every_preset_is_tested() {
         "karstnsim",
         "karstnsim-2phase",
         "layered",
+        "waterfall",
     ];
     for entry in std::fs::read_dir(root().join("fixtures/scenes")).unwrap() {
         let path = entry.unwrap().path();

@@ -8,6 +8,7 @@ mod mesher;
 mod sampling;
 mod sdf;
 mod skeleton;
+mod streams;
 
 pub use costgraph::{CostModelKind, CostgraphParams};
 pub use hydro::{HydroParams, PoolOutlet, PoolWeights, Recharge};
@@ -15,3 +16,4 @@ pub use mesher::MesherParams;
 pub use sampling::{RadiusUnit, SamplingParams};
 pub use sdf::SdfParams;
 pub use skeleton::{Mode as SkeletonMode, SkeletonParams};
+pub use streams::{Curve, CurveKind, StreamsParams};
