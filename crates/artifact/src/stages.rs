@@ -20,6 +20,8 @@ pub enum StageId {
     Skeleton,
     #[serde(rename = "hydro")]
     Hydro,
+    #[serde(rename = "streams")]
+    Streams,
     #[serde(rename = "sdf")]
     Sdf,
     #[serde(rename = "mesh")]
@@ -63,7 +65,7 @@ use Encoding::{Json, Postcard};
 use StageId::*;
 
 /// The table, in run order; `TABLE[id as usize]` is `id`'s row.
-const TABLE: [StageRow; 7] = [
+const TABLE: [StageRow; 8] = [
     StageRow {
         name: "sampling",
         kind: "samples",
@@ -110,13 +112,24 @@ const TABLE: [StageRow; 7] = [
         sections: &["domain", "terrain", "keypoints", "hydro"],
     },
     StageRow {
+        name: "streams",
+        kind: "streams",
+        binary: "karst-streams",
+        file: "streams.json",
+        encoding: Json,
+        inputs: &[Hydro],
+        // Key points: the springs; hydro.total_discharge: their discharge in m³/s.
+        sections: &["domain", "terrain", "keypoints", "hydro.total_discharge", "streams"],
+    },
+    StageRow {
         name: "sdf",
         kind: "sdf",
         binary: "karst-sdf",
         file: "sdf.bin",
         encoding: Postcard,
-        inputs: &[Skeleton, Hydro],
-        sections: &["seed", "domain", "terrain", "sdf"],
+        inputs: &[Skeleton, Hydro, Streams],
+        // Streams: the banks' slope, the sheets' thickness and the mouths' radius.
+        sections: &["seed", "domain", "terrain", "streams", "sdf"],
     },
     StageRow {
         name: "mesher",
@@ -134,14 +147,14 @@ const TABLE: [StageRow; 7] = [
         binary: "karst-metrics",
         file: "metrics.json",
         encoding: Json,
-        inputs: &[Skeleton, Hydro],
+        inputs: &[Skeleton, Hydro, Streams],
         sections: &[],
     },
 ];
 
 impl StageId {
     /// Every stage, in run order.
-    pub const ALL: [StageId; 7] = [Sampling, Costgraph, Skeleton, Hydro, Sdf, Mesher, Metrics];
+    pub const ALL: [StageId; 8] = [Sampling, Costgraph, Skeleton, Hydro, Streams, Sdf, Mesher, Metrics];
 
     /// The stage's row of the table.
     pub fn row(self) -> &'static StageRow {

@@ -210,6 +210,12 @@ impl Scene {
         &self.skeleton.forced_links
     }
 
+    /// `hydro.total_discharge`, read on its own by the streams (the springs' discharge in m³/s).
+    pub fn total_discharge(&self) -> f64 {
+        self.reads.note(Section::TotalDischarge);
+        self.hydro.total_discharge
+    }
+
     /// The key points of `kind`, with their index in `keypoints`, in scene order.
     pub fn keypoints_of(&self, kind: KeyPointKind) -> impl Iterator<Item = (usize, &KeyPoint)> {
         self.keypoints().iter().enumerate().filter(move |(_, k)| k.kind == kind)
@@ -305,6 +311,8 @@ section_accessors! {
     skeleton, skeleton_mut: SkeletonParams => Skeleton;
     /// `[hydro]`.
     hydro, hydro_mut: HydroParams => Hydro;
+    /// `[streams]`: the surface streams and their controller curves.
+    streams, streams_mut: StreamsParams => Streams;
     /// `[sdf]`.
     sdf, sdf_mut: SdfParams => Sdf;
     /// `[mesher]`.

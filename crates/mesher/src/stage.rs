@@ -15,7 +15,7 @@ use crate::error::MesherError;
 use crate::payload::{Mesh, TriMesh};
 use crate::{components, export, render, watertight};
 
-/// Stage 6: watertight meshes of the carved terrain, the cave alone and the water.
+/// Stage 7: watertight meshes of the carved terrain, the cave alone and the water.
 pub struct MesherStage;
 
 impl Stage for MesherStage {

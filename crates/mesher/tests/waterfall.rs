@@ -1,40 +1,33 @@
-//! The waterfall preset end to end, through the libraries: upstream stages, the streams,
-//! the sdf model with its riverbeds, basins, overhangs and surface water, and the mesher. The
-//! carved terrain, the cave (joined to the springs' mouths) and the water (underground and on
-//! the surface: rivers, pools and falling sheets) are each closed 2-manifolds.
-
-use std::path::Path;
+//! The waterfall preset end to end through the stages: upstream stages, the streams, the sdf
+//! model with its riverbeds, basins, overhangs and surface water, and the mesher. The carved
+//! terrain, the cave (joined to the springs' mouths) and the water (underground and on the
+//! surface: rivers, pools and falling sheets) are each closed 2-manifolds, and the carving is
+//! where the streams say.
 
 use glam::DVec3;
-use karst_artifact::cli::RunArgs;
 use karst_artifact::read_artifact;
 use karst_geology::Scene;
-use karst_hydro::Hydro;
-use karst_mesher::{build, stage, watertight};
-use karst_sdf::CarvedTerrain;
-use karst_skeleton::Skeleton;
+use karst_mesher::{anchors, mesh_with, watertight};
+use karst_sdf::{CarvedTerrain, SdfModel};
+use karst_streams::{Outline, Streams};
+use karst_testkit::{fixture, run, scratch};
 
 #[test]
 fn the_waterfall_preset_meshes_watertight_with_its_streams_carved() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let scene_path = root.join("fixtures/scenes/waterfall.toml");
-    let out = std::env::temp_dir().join(format!("karst-mesher-waterfall-{}", std::process::id()));
-    let args = RunArgs { scene: scene_path.clone(), out: out.clone() };
-    karst_sampling::stage::run(&args).unwrap();
-    karst_costgraph::stage::run(&args).unwrap();
-    karst_skeleton::stage::run(&args).unwrap();
-    karst_hydro::stage::run(&args).unwrap();
+    let scene_path = fixture("fixtures/scenes/waterfall.toml");
+    let out = scratch("waterfall");
+    run::<karst_sampling::SamplingStage>(&scene_path, &out).unwrap();
+    run::<karst_costgraph::CostgraphStage>(&scene_path, &out).unwrap();
+    run::<karst_skeleton::SkeletonStage>(&scene_path, &out).unwrap();
+    run::<karst_hydro::HydroStage>(&scene_path, &out).unwrap();
+    run::<karst_streams::StreamsStage>(&scene_path, &out).unwrap();
+    run::<karst_sdf::SdfStage>(&scene_path, &out).unwrap();
     let scene = Scene::load(&scene_path).unwrap();
-    let (_, skeleton): (_, Skeleton) = read_artifact(&out.join("skeleton.json")).unwrap();
-    let (_, hydro): (_, Hydro) = read_artifact(&out.join("hydro.json")).unwrap();
-    let _ = std::fs::remove_dir_all(&out);
-    let streams = karst_streams::build(&scene, &hydro).unwrap();
-    let plain = karst_sdf::build::build(&scene, &skeleton, &hydro).unwrap();
-    let mut model = plain.clone();
-    karst_sdf::surface_water::add(&mut model, &streams, &scene.streams);
+    let (_, streams): (_, Streams) = read_artifact(&out.join("streams.json")).unwrap();
+    let (_, model): (_, SdfModel) = read_artifact(&out.join("sdf.bin")).unwrap();
+    std::fs::remove_dir_all(&out).unwrap();
     let field = CarvedTerrain::new(model);
-    let anchors = stage::anchors(&scene);
-    let mesh = build::build_with(&field, 1.0, 0.5, &anchors);
+    let mesh = mesh_with(&field, 1.0, 0.5, &anchors(&scene));
     for (name, surface) in mesh.surfaces() {
         assert!(!surface.triangles.is_empty(), "{name} is empty");
         watertight::check(surface).unwrap_or_else(|e| panic!("{name}: {e:?}"));
@@ -42,8 +35,9 @@ fn the_waterfall_preset_meshes_watertight_with_its_streams_carved() {
     // The carving is in the mesh: the water reaches down into the plunge pools, below the
     // terrain's own surface, and the falls' sheets hang in the air.
     let pool = streams.pools.iter().find(|p| p.fall.is_some()).unwrap();
-    let karst_streams::Outline::Disc { centre, .. } = pool.outline else { panic!() };
+    let Outline::Disc { centre, .. } = pool.outline else { panic!("a plunge pool is a disc") };
     let under = DVec3::new(centre[0], centre[1], pool.level - 0.5 * pool.depth);
+    assert!(under.z < scene.terrain().height(under.x, under.y), "the basin is below the ground");
     assert!(field.eval(under) > 0.0 && field.water(under) < 0.0, "the basin is dug and full");
     let fall = streams.segments.iter().find_map(|s| s.fall.as_ref()).unwrap();
     let mid = DVec3::from_array(fall.at(0.5 * fall.throw));
@@ -53,13 +47,4 @@ fn the_waterfall_preset_meshes_watertight_with_its_streams_carved() {
         let mouth = DVec3::from_array(s.mouth.unwrap());
         assert!(field.cave(mouth) < 0.0, "{}: the cave reaches its mouth", s.name);
     }
-    let evaluations = |s: &karst_mesher::Surface| s.field_evaluations as f64 / s.vertices.len().max(1) as f64;
-    let uncarved = build::build_with(&CarvedTerrain::new(plain), 1.0, 0.5, &anchors);
-    eprintln!(
-        "waterfall: terrain {} triangles, {:.2} evaluations per vertex ({:.2} without the streams); water {} triangles",
-        mesh.terrain.triangles.len(),
-        evaluations(&mesh.terrain),
-        evaluations(&uncarved.terrain),
-        mesh.water.triangles.len()
-    );
 }

@@ -1,4 +1,4 @@
-//! `karst-metrics`: stage 7 of karstgen, and karstnet's statistics for any network.
+//! `karst-metrics`: stage 8 of karstgen, and karstnet's statistics for any network.
 //!
 //! - `run SCENE --out DIR` writes DIR/metrics.json from DIR/skeleton.json;
 //! - `inspect FILE [--json]` prints a summary or the whole artifact;
@@ -15,7 +15,7 @@ use karst_metrics::MetricsStage;
 use karst_metrics::stage::{NetworkFile, characterize_file};
 use karst_stage::cli::{self, InspectArgs, RunArgs, default_sigpipe, finish};
 
-/// Karst network statistics identical to karstnet 1.2.5 (karstgen stage 7).
+/// Karst network statistics identical to karstnet 1.2.5 (karstgen stage 8).
 #[derive(Parser)]
 #[command(name = "karst-metrics", version, args_conflicts_with_subcommands = true)]
 struct Cli {

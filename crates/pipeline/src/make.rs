@@ -28,7 +28,11 @@ pub struct Selection {
 /// What happened to one stage.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Outcome {
-    Ran { headline: String },
+    /// The stage ran: its headline and notes.
+    Ran {
+        headline: String,
+        notes: Vec<String>,
+    },
     UpToDate,
     Skipped,
 }
@@ -42,16 +46,21 @@ pub struct StageReport {
 }
 
 impl StageReport {
-    /// The line printed for it: name, status, seconds, headline.
+    /// The line printed for it: name, status, seconds, headline; then one indented line per
+    /// note of the stage.
     pub fn line(&self) -> String {
-        let (status, detail) = match &self.outcome {
-            Outcome::Ran { headline } => ("ran", headline.as_str()),
-            Outcome::UpToDate => ("up to date", ""),
-            Outcome::Skipped => ("skipped", ""),
+        let (status, detail, notes) = match &self.outcome {
+            Outcome::Ran { headline, notes } => ("ran", headline.as_str(), notes.as_slice()),
+            Outcome::UpToDate => ("up to date", "", &[][..]),
+            Outcome::Skipped => ("skipped", "", &[][..]),
         };
-        format!("{:<10} {:<11} {:>7.2} s  {detail}", self.stage.name(), status, self.seconds)
+        let mut line = format!("{:<10} {:<11} {:>7.2} s  {detail}", self.stage.name(), status, self.seconds)
             .trim_end()
-            .to_string()
+            .to_string();
+        for note in notes {
+            line.push_str(&format!("\n{:<10} note: {note}", ""));
+        }
+        line
     }
 }
 
@@ -74,7 +83,8 @@ pub fn run(
         } else if !forced(stage, selection) && up_to_date(&job, stage) {
             Outcome::UpToDate
         } else {
-            Outcome::Ran { headline: registry::stage(stage).run(&job)?.headline }
+            let ran = registry::stage(stage).run(&job)?;
+            Outcome::Ran { headline: ran.headline, notes: ran.notes }
         };
         let line = StageReport { stage, outcome, seconds: start.elapsed().as_secs_f64() };
         report(&line);

@@ -92,7 +92,7 @@ impl CarvedTerrain {
 
     /// Rock before the caves: below the terrain and inside the domain, less the riverbeds,
     /// basins and overhangs of the surface water (negative inside).
-    fn uncarved(&self, p: DVec3) -> f64 {
+    pub fn rock(&self, p: DVec3) -> f64 {
         let terrain = (p.z - self.model.terrain.height(p.x, p.y)) * self.terrain_scale;
         let rock = terrain.max(self.model.domain.signed_distance(p));
         if self.surface.is_empty() { rock } else { rock.max(-self.surface.carve(p)) }
@@ -101,12 +101,12 @@ impl CarvedTerrain {
     /// The surface water, in the air of the carved terrain and inside the domain (negative
     /// inside): like the cave, it is closed where a river leaves the domain.
     fn surface_water(&self, p: DVec3) -> f64 {
-        self.surface.water(p).max(-self.uncarved(p)).max(self.model.domain.signed_distance(p))
+        self.surface.water(p).max(-self.rock(p)).max(self.model.domain.signed_distance(p))
     }
 
     /// f(p): negative in rock, positive in air; 1-Lipschitz.
     pub fn eval(&self, p: DVec3) -> f64 {
-        let rock = self.uncarved(p);
+        let rock = self.rock(p);
         let blend = self.model.blend;
         // The smooth union equals −rock wherever the caves stay above −rock + blend.
         let caves = self.caves.min_value(p, (-rock + blend).min(REACH), &self.context());
@@ -139,7 +139,7 @@ impl CarvedTerrain {
     }
 
     fn carved(&self, p: DVec3, reach: f64, caves: impl FnOnce(f64) -> f64) -> f64 {
-        let rock = self.uncarved(p);
+        let rock = self.rock(p);
         if rock >= reach {
             return rock;
         }
@@ -199,7 +199,7 @@ impl CarvedTerrain {
     /// that the search for the nearest conduit can stop early (the mesher asks for a cell or a
     /// half diagonal). Still 1-Lipschitz, so box pruning on it stays exact.
     pub fn cave_below_ground(&self, p: DVec3, reach: f64) -> f64 {
-        let rock = self.uncarved(p);
+        let rock = self.rock(p);
         if rock >= reach {
             return rock;
         }
@@ -209,7 +209,7 @@ impl CarvedTerrain {
     /// [`CarvedTerrain::cave_below_ground`] for a point of the box `near` was gathered for.
     pub fn cave_below_ground_near(&self, near: &Near, p: DVec3, reach: f64) -> f64 {
         debug_assert!(reach <= near.reach);
-        let rock = self.uncarved(p);
+        let rock = self.rock(p);
         if rock >= reach {
             return rock;
         }

@@ -28,7 +28,7 @@ use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
 use karst_geology::params::StreamsParams;
-use karst_streams::artifact::{Motion, Outline, PoolKind, Streams};
+use karst_streams::{Motion, Outline, PoolKind, Streams};
 
 use crate::Capsule;
 use crate::field::REACH;
@@ -269,7 +269,7 @@ fn outline_distance(outline: &Outline, p: DVec2) -> f64 {
             .fold(f64::INFINITY, f64::min),
         Outline::Polygon { points } => {
             let pts: Vec<DVec2> = points.iter().map(|q| DVec2::from_array(*q)).collect();
-            let outside = karst_streams::curves::polygon_distance(&pts, p);
+            let outside = karst_streams::polygon_distance(&pts, p);
             if outside > 0.0 {
                 outside
             } else {

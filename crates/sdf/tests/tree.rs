@@ -1,7 +1,8 @@
-//! Whole construction trees: the tiny scene's network (its golden skeleton and flows), every
-//! other preset of fixtures/scenes (run through the upstream stages) and a synthetic network of
-//! a few thousand primitives. On each, the field, the karst volume and the water are
-//! 1-Lipschitz on random pairs, most of them near the leaves where the field is intricate; the
+//! Whole construction trees: the tiny scene's network (its golden skeleton, flows and streams),
+//! every other preset of fixtures/scenes (run through the upstream stages, their surface
+//! streams carved in) and a synthetic network of a few thousand primitives. On each, the field,
+//! the karst volume and the water are 1-Lipschitz on random pairs, most of them near the
+//! leaves (and the riverbeds, basins, alcoves and sheets) where the field is intricate; the
 //! BVH's pruning changes nothing and the sign agrees with a brute-force inside test over every
 //! leaf.
 
@@ -11,15 +12,21 @@ use glam::DVec3;
 use karst_artifact::read_artifact;
 use karst_geology::Scene;
 use karst_hydro::Hydro;
-use karst_sdf::{CarvedTerrain, build, synthetic};
+use karst_sdf::{CarvedTerrain, add_streams, build, synthetic};
 use karst_skeleton::Skeleton;
+use karst_streams::Streams;
 use karst_testkit::root;
 
+/// The tree of `scene` from the skeleton, hydro and streams artifacts in `dir`, as the sdf
+/// stage builds it.
 fn field_of(scene: &Path, dir: &Path) -> CarvedTerrain {
     let scene = Scene::load(scene).unwrap();
     let (_, skeleton): (_, Skeleton) = read_artifact(&dir.join("skeleton.json")).unwrap();
     let (_, hydro): (_, Hydro) = read_artifact(&dir.join("hydro.json")).unwrap();
-    CarvedTerrain::new(build(&scene, &skeleton, &hydro).unwrap())
+    let (_, streams): (_, Streams) = read_artifact(&dir.join("streams.json")).unwrap();
+    let mut model = build(&scene, &skeleton, &hydro).unwrap();
+    add_streams(&mut model, &streams, scene.streams());
+    CarvedTerrain::new(model)
 }
 
 fn synthetic_field(conduits: usize) -> CarvedTerrain {
@@ -51,6 +58,9 @@ fn points(field: &CarvedTerrain, n: usize, seed: u64) -> Vec<DVec3> {
         .map(|s| v(s.sweep.a))
         .chain(model.spheres.iter().flat_map(|g| g.spheres.iter()).map(|s| v([s[0], s[1], s[2]])))
         .chain(model.chambers.iter().map(|c| v(c.a)))
+        .chain(model.surface.beds.iter().map(|b| DVec3::from_array(b.a)))
+        .chain(model.surface.alcoves.iter().map(|c| DVec3::from_array(c.a)))
+        .chain(model.surface.sheets.iter().map(|s| DVec3::from_array(s.a)))
         .collect();
     let (lo, hi) = (DVec3::from_array(model.domain.min), DVec3::from_array(model.domain.max));
     let mut rng = Lcg(seed);
@@ -129,6 +139,7 @@ fn preset_field(name: &str) -> CarvedTerrain {
     karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_hydro::HydroStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_streams::StreamsStage>(&args.0, &args.1).unwrap();
     let field = field_of(&scene, &out);
     let _ = std::fs::remove_dir_all(&out);
     field
@@ -163,48 +174,16 @@ preset_tests! {
     layered_tree_is_one_lipschitz: "layered", 5000, 200;
 }
 
-/// The waterfall preset with its streams carved in: 1-Lipschitz (field, cave, water) on pairs
-/// around the stream's nodes and anywhere; the gathered leaves agree with the hierarchy.
+/// The waterfall preset with its streams carved in: riverbeds, an alcove behind each fall and
+/// the falling sheets are in the tree; 1-Lipschitz on pairs around them (the preset test's
+/// points include the surface pieces) and the gathered leaves agree with the hierarchy.
 #[test]
 fn waterfall_tree_with_its_streams_is_one_lipschitz() {
-    let name = "waterfall";
-    let scene_path = root().join(format!("fixtures/scenes/{name}.toml"));
-    let out = std::env::temp_dir().join(format!("karst-sdf-{name}-{}", std::process::id()));
-    let args = RunArgs { scene: scene_path.clone(), out: out.clone() };
-    karst_sampling::stage::run(&args).unwrap();
-    karst_costgraph::stage::run(&args).unwrap();
-    karst_skeleton::stage::run(&args).unwrap();
-    karst_hydro::stage::run(&args).unwrap();
-    let scene = Scene::load(&scene_path).unwrap();
-    let (_, skeleton): (_, Skeleton) = read_artifact(&out.join("skeleton.json")).unwrap();
-    let (_, hydro): (_, Hydro) = read_artifact(&out.join("hydro.json")).unwrap();
-    let _ = std::fs::remove_dir_all(&out);
-    let streams = karst_streams::build(&scene, &hydro).unwrap();
-    let mut model = build::build(&scene, &skeleton, &hydro).unwrap();
-    karst_sdf::surface_water::add(&mut model, &streams, &scene.streams);
-    assert!(
-        !model.surface.beds.is_empty()
-            && !model.surface.alcoves.is_empty()
-            && !model.surface.sheets.is_empty()
-    );
-    let field = CarvedTerrain::new(model);
-    let mut rng = Lcg(31);
-    let nodes: Vec<DVec3> = streams.nodes.iter().map(|n| DVec3::from_array(n.position)).collect();
-    let near =
-        |rng: &mut Lcg| nodes[(rng.unit() * nodes.len() as f64) as usize % nodes.len()] + rng.offset(5.0);
-    for (what, f) in [
-        ("eval", &(|p| field.eval(p)) as &dyn Fn(DVec3) -> f64),
-        ("cave", &|p| field.cave_below_ground(p, f64::INFINITY)),
-        ("water", &|p| field.water(p)),
-    ] {
-        for _ in 0..20_000 {
-            let p = near(&mut rng);
-            let reach = [0.05, 0.5, 3.0][(rng.unit() * 3.0) as usize % 3];
-            let q = p + rng.offset(reach);
-            assert!((f(p) - f(q)).abs() <= p.distance(q) * (1.0 + 1e-5), "{what}: {p} {q}");
-        }
-    }
-    check_tree(&field, 5000);
+    let field = preset_field("waterfall");
+    let surface = &field.model().surface;
+    assert!(!surface.beds.is_empty() && !surface.alcoves.is_empty() && !surface.sheets.is_empty());
+    check_tree(&field, 20_000);
+    check_sign(&field, 200, "waterfall");
 }
 
 /// Every fixtures/scenes/*.toml preset has its test above.
@@ -253,7 +232,7 @@ fn check_sign(field: &CarvedTerrain, n: usize, name: &str) {
     for p in points(field, n, 3) {
         let cave = field.cave_without_bvh(p);
         assert_eq!(cave, field.cave(p), "{name}: the BVH changed the union at {p}");
-        let rock = model.terrain.distance(p).max(model.domain.signed_distance(p));
+        let rock = field.rock(p);
         let f = field.eval(p);
         // The entrance blend only acts where −rock and cave are within `blend` of each other.
         if (-rock - cave).abs() >= model.blend {

@@ -20,10 +20,10 @@ use glam::{DVec2, DVec3};
 use karst_geology::Scene;
 use karst_geology::params::{Curve, CurveKind};
 
-use crate::artifact::{Fall, Motion, Outline, PoolKind, Role};
 use crate::ground::Ground;
 use crate::heading;
 use crate::network::{Network, PoolDraft};
+use crate::payload::{Fall, Motion, Outline, PoolKind, Role};
 
 /// Where the water goes on after the controller network.
 #[derive(Debug, Clone, PartialEq)]
@@ -55,7 +55,7 @@ enum Attach {
 
 /// Lays the scene's curves into `net`; `springs` are the spring source nodes.
 pub fn lay(scene: &Scene, ground: &Ground, net: &mut Network, springs: &[(u32, DVec2, String)]) -> Laid {
-    let params = &scene.streams;
+    let params = scene.streams();
     let curves = &params.curves;
     let mut points: Vec<Vec<DVec3>> =
         curves.iter().map(|c| c.points.iter().map(|p| DVec3::from_array(*p)).collect()).collect();
@@ -368,7 +368,7 @@ fn parabola(lip: DVec3, foot: DVec3) -> Fall {
     Fall {
         lip: lip.to_array(),
         direction: heading(lip, foot).to_array(),
-        speed: (throw * (karst_hydro::geometry::G / (2.0 * drop)).sqrt()).max(1e-6),
+        speed: (throw * (karst_hydro::G / (2.0 * drop)).sqrt()).max(1e-6),
         vertical: 0.0,
         drop,
         throw,

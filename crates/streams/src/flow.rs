@@ -1,5 +1,5 @@
 //! Flows on the surface graph (Emilien et al. 2015 §4.2.1), solved node by node from the
-//! sources to the wells, with the hydro stage's splitting rule ([`karst_hydro::flow::split`]):
+//! sources to the wells, with the hydro stage's splitting rule ([`karst_hydro::split`]):
 //! at a branch each incoming flow (a segment, or the water entering at the node, which comes
 //! from above) is shared over the outgoing segments by w = 1 + u·v, normalised; a pool shares
 //! its inflow equally among its outlets. The last outgoing segment takes what the others
@@ -9,10 +9,10 @@ use std::collections::VecDeque;
 
 use glam::DVec3;
 
-use karst_hydro::flow::{Split, split};
+use karst_hydro::{Split, split};
 
-use crate::artifact::Role;
 use crate::network::Network;
+use crate::payload::Role;
 
 /// The flow of every edge and the inflow of every node, m³/s; `None` when the graph has a
 /// loop (which tracing never makes).

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::artifact::{Fall, Motion, Outline, PoolKind, Role};
+use crate::payload::{Fall, Motion, Outline, PoolKind, Role};
 
 /// A segment being built.
 #[derive(Debug, Clone)]

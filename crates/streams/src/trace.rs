@@ -19,12 +19,12 @@
 use glam::{DVec2, DVec3};
 
 use karst_geology::params::StreamsParams;
-use karst_hydro::geometry::G;
+use karst_hydro::G;
 
-use crate::artifact::{Fall, Motion, Outline, PoolKind, Role};
 use crate::flood;
 use crate::ground::{Grid, Ground};
 use crate::network::{Network, PoolDraft};
+use crate::payload::{Fall, Motion, Outline, PoolKind, Role};
 
 /// Water shallower than this does not make a pool, metres.
 const MIN_POOL_DEPTH: f64 = 0.1;

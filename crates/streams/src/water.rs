@@ -1,7 +1,7 @@
 //! Segment properties (Emilien et al. 2015 §5.2): type from the slope–flow diagram, speed,
 //! width and depth.
 //!
-//! The type is the hydro stage's Table 1 classification ([`karst_hydro::water::classify`]):
+//! The type is the hydro stage's Table 1 classification ([`karst_hydro::classify`]):
 //! slope is the segment's inclination (a fall: its chord's), flow the discharge mapped to flow
 //! units on a log scale, `streams.flow_range` going to 1 and 8. A contact segment classified
 //! as a free fall, or a fall classified as contact water, keeps the nearest type and is
@@ -17,11 +17,11 @@
 use glam::DVec3;
 
 use karst_geology::params::StreamsParams;
-use karst_hydro::geometry::G;
-use karst_hydro::water::{FlowScale, WaterType, classify};
+use karst_hydro::G;
+use karst_hydro::{FlowScale, WaterType, classify};
 
-use crate::artifact::{Motion, Segment};
 use crate::network::Network;
+use crate::payload::{Motion, Segment};
 
 /// The properties of every edge of `net` carrying `flow`.
 pub fn segments(
@@ -142,17 +142,56 @@ mod tests {
     use std::f64::consts::PI;
 
     use super::*;
+    use crate::payload::Role;
 
     #[test]
     fn eq_1_holds_for_contact_water() {
         let params = StreamsParams::default();
         let mut net = Network::new(2.0);
-        let a = net.add_node(DVec3::new(0.0, 0.0, 10.0), crate::artifact::Role::Source);
-        let b = net.add_node(DVec3::new(10.0, 0.0, 9.0), crate::artifact::Role::Well);
+        let a = net.add_node(DVec3::new(0.0, 0.0, 10.0), Role::Source);
+        let b = net.add_node(DVec3::new(10.0, 0.0, 9.0), Role::Well);
         net.add_edge(a, b, Motion::Contact, None, None);
         let s = &segments(&net, &[0.4], &params, &mut Vec::new())[0];
         assert!((s.speed * s.width * s.depth / 2.0 - 0.4).abs() < 1e-12);
         assert!((s.slope - (0.1f64).atan()).abs() < 1e-12);
         assert!(s.slope < PI / 2.0);
+    }
+
+    #[test]
+    fn the_ten_types_of_table_1_on_hand_built_segments() {
+        let params = StreamsParams::default();
+        let [q1, q8] = params.flow_range;
+        // (type, slope, flow units, in the air)
+        let seeds = [
+            (WaterType::Ribbon, PI / 2.0, 1.0, true),
+            (WaterType::Plunge, PI / 2.0, 2.0, true),
+            (WaterType::Ledge, PI / 2.0, 5.0, true),
+            (WaterType::Cataract, PI / 2.0, 8.0, true),
+            (WaterType::Stream, PI / 16.0, 2.0, false),
+            (WaterType::River, PI / 32.0, 5.0, false),
+            (WaterType::Rapid, PI / 16.0, 5.0, false),
+            (WaterType::Cascade, PI / 8.0, 3.0, false),
+            (WaterType::Horsetail, PI / 4.0, 2.0, false),
+            (WaterType::Block, PI / 4.0, 6.0, false),
+        ];
+        let mut net = Network::new(1.0);
+        let mut flows = Vec::new();
+        for (k, &(_, slope, units, air)) in seeds.iter().enumerate() {
+            // Slightly off the seed, still in its cell.
+            let slope = if air { slope } else { slope * 1.05 };
+            let run = if air { 1e-3 } else { 10.0 };
+            let a = net.add_node(DVec3::new(0.0, 20.0 * k as f64, 100.0), Role::Source);
+            let b = net
+                .add_node(DVec3::new(run, 20.0 * k as f64, 100.0 - run * slope.tan().min(1e6)), Role::Well);
+            net.add_edge(a, b, if air { Motion::FreeFall } else { Motion::Contact }, None, None);
+            flows.push(q1 * (q8 / q1).powf((units * 1.02 - 1.0) / 7.0));
+        }
+        let mut reports = Vec::new();
+        let segments = segments(&net, &flows, &params, &mut reports);
+        for (s, (t, ..)) in segments.iter().zip(&seeds) {
+            assert_eq!(s.water, *t, "{}", t.name());
+            assert!(s.look.is_some());
+        }
+        assert!(reports.is_empty(), "{reports:?}");
     }
 }

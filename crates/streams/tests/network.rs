@@ -1,18 +1,15 @@
-//! The surface network on hand-made scenes: flow conservation, the ten Table 1 types, the
-//! minimum-slope correction of controller curves, lakes and bad inputs.
+//! The surface network on hand-made scenes: flow conservation, the minimum-slope correction of
+//! controller curves, the angle split at a branch, lakes and bad inputs. (The ten Table 1 types
+//! on hand-built segments are a unit test of `water.rs`.)
 
-use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::DVec3;
 use karst_geology::Scene;
 use karst_geology::heightfield::{HeightGrid, write_png};
-use karst_hydro::Hydro;
-use karst_hydro::artifact::{FlowUnits, Spring};
-use karst_hydro::water::WaterType;
-use karst_streams::artifact::{Motion, PoolKind, Role};
-use karst_streams::network::Network;
-use karst_streams::{Streams, StreamsError, build, water};
+use karst_hydro::{FlowUnits, Hydro, Spring};
+use karst_streams::{PoolKind, Role, Streams, StreamsError, build};
+use karst_testkit::scratch;
 
 fn hydro(springs: &[(&str, f64)]) -> Hydro {
     Hydro {
@@ -73,7 +70,7 @@ fn assert_conserved(s: &Streams) {
 
 #[test]
 fn flows_are_conserved_over_noise_terrain_with_confluences() {
-    let dir = tempdir("conserved");
+    let dir = scratch("conserved");
     let terrain = "[terrain]\nkind = \"noise\"\nelevation = 60\namplitude = 6\nwavelength = 60\ngradient = [-0.15, 0.0]";
     let springs: String = [[40.0, 20.0, 55.0], [40.0, 60.0, 55.0], [40.0, 100.0, 55.0], [90.0, 50.0, 40.0]]
         .iter()
@@ -83,7 +80,7 @@ fn flows_are_conserved_over_noise_terrain_with_confluences() {
     let s = scene(terrain, &format!("{springs}[streams]\nrunoff = 2000\n"), &dir);
     let flows = [("s0", 1.0), ("s1", 2.0), ("s2", 0.5), ("s3", 3.0)];
     let streams = build(&s, &hydro(&flows)).unwrap();
-    assert!(streams.segments.len() > 50, "{}", streams.headline());
+    assert!(streams.segments.len() > 50, "{} segments", streams.segments.len());
     assert!(streams.nodes.iter().any(|n| n.lateral > 0.0), "the catchment feeds the streams");
     assert_conserved(&streams);
     // Scaled to hydro.total_discharge (1 m³/s) in proportion to the springs' flows.
@@ -97,46 +94,8 @@ fn flows_are_conserved_over_noise_terrain_with_confluences() {
 }
 
 #[test]
-fn the_ten_types_of_table_1_on_hand_built_segments() {
-    let params = karst_geology::params::StreamsParams::default();
-    let [q1, q8] = params.flow_range;
-    // (type, slope, flow units, in the air)
-    let seeds = [
-        (WaterType::Ribbon, PI / 2.0, 1.0, true),
-        (WaterType::Plunge, PI / 2.0, 2.0, true),
-        (WaterType::Ledge, PI / 2.0, 5.0, true),
-        (WaterType::Cataract, PI / 2.0, 8.0, true),
-        (WaterType::Stream, PI / 16.0, 2.0, false),
-        (WaterType::River, PI / 32.0, 5.0, false),
-        (WaterType::Rapid, PI / 16.0, 5.0, false),
-        (WaterType::Cascade, PI / 8.0, 3.0, false),
-        (WaterType::Horsetail, PI / 4.0, 2.0, false),
-        (WaterType::Block, PI / 4.0, 6.0, false),
-    ];
-    let mut net = Network::new(1.0);
-    let mut flows = Vec::new();
-    for (k, &(_, slope, units, air)) in seeds.iter().enumerate() {
-        // Slightly off the seed, still in its cell.
-        let slope = if air { slope } else { slope * 1.05 };
-        let run = if air { 1e-3 } else { 10.0 };
-        let a = net.add_node(DVec3::new(0.0, 20.0 * k as f64, 100.0), Role::Source);
-        let b =
-            net.add_node(DVec3::new(run, 20.0 * k as f64, 100.0 - run * slope.tan().min(1e6)), Role::Well);
-        net.add_edge(a, b, if air { Motion::FreeFall } else { Motion::Contact }, None, None);
-        flows.push(q1 * (q8 / q1).powf((units * 1.02 - 1.0) / 7.0));
-    }
-    let mut reports = Vec::new();
-    let segments = water::segments(&net, &flows, &params, &mut reports);
-    for (s, (t, ..)) in segments.iter().zip(&seeds) {
-        assert_eq!(s.water, *t, "{}", t.name());
-        assert!(s.look.is_some());
-    }
-    assert!(reports.is_empty(), "{reports:?}");
-}
-
-#[test]
 fn climbing_curves_are_lowered_and_reported() {
-    let dir = tempdir("climbing");
+    let dir = scratch("climbing");
     let terrain = "[terrain]\nkind = \"plane\"\nelevation = 80\ngradient = [-0.2, 0.0]";
     let curve = "[streams]\nmin_slope = 0.02\n[[streams.curves]]\nname = \"leat\"\nkind = \"contact\"\nflow = 0.5\n\
                  points = [[20, 60, 76], [60, 60, 70], [100, 60, 75], [140, 60, 50]]\n";
@@ -163,7 +122,7 @@ fn climbing_curves_are_lowered_and_reported() {
 
 #[test]
 fn a_branch_off_a_curve_splits_the_water_by_angle() {
-    let dir = tempdir("branch");
+    let dir = scratch("branch");
     let terrain = "[terrain]\nkind = \"plane\"\nelevation = 80\ngradient = [-0.2, 0.0]";
     let curves = "[[streams.curves]]\nname = \"main\"\nkind = \"contact\"\nflow = 1.0\ntension = 1\n\
                   points = [[20, 60, 76], [60, 60, 68], [100, 60, 60]]\n\
@@ -188,7 +147,7 @@ fn a_branch_off_a_curve_splits_the_water_by_angle() {
 
 #[test]
 fn a_spring_in_a_closed_hollow_fills_a_lake_and_leaves_by_its_outlet() {
-    let dir = tempdir("lake");
+    let dir = scratch("lake");
     // A bowl 60 m across walled at 57 m with a notch to the east at 52 m, in a plain falling
     // east from 50 m.
     let (nx, ny) = (101, 61);
@@ -232,17 +191,11 @@ fn a_spring_in_a_closed_hollow_fills_a_lake_and_leaves_by_its_outlet() {
 
 #[test]
 fn a_hydro_json_of_another_scene_is_refused() {
-    let dir = tempdir("other");
+    let dir = scratch("other");
     let s = scene("[terrain]\nkind = \"plane\"\nelevation = 80", &spring("s", [100.0, 60.0, 79.0]), &dir);
     assert_eq!(
         build(&s, &hydro(&[("elsewhere", 1.0)])),
         Err(StreamsError::UnknownSpring("elsewhere".into()))
     );
     assert!(matches!(build(&s, &hydro(&[("s", f64::NAN)])), Err(StreamsError::BadFlow { .. })));
-}
-
-fn tempdir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("karst-streams-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
