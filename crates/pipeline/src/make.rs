@@ -122,3 +122,19 @@ fn up_to_date(job: &Job, stage: StageId) -> bool {
         _ => false,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_stage_s_notes_follow_its_line() {
+        let outcome =
+            Outcome::Ran { headline: "2 falls".into(), notes: vec!["a lake".into(), "a fall".into()] };
+        let report = StageReport { stage: StageId::Streams, outcome, seconds: 0.25 };
+        assert_eq!(
+            report.line(),
+            "streams    ran            0.25 s  2 falls\n           note: a lake\n           note: a fall"
+        );
+    }
+}
