@@ -12,6 +12,11 @@
 //!   surface along it, ζ the depth, k `streams.bank_slope`): the paper's triangular section
 //!   below the water, banks rising at k above it. Its value max((b − z)/√(1 + λ²), d − w_c)
 //!   (λ the slope bound of b, w_c where the banks stop) is 1-Lipschitz;
+//! - a **basin** (a pool controller) removes the rock above b(x, y) = z_l + max(−ζ, k·s),
+//!   s the signed horizontal distance to the pool's outline (negative inside), z_l its level,
+//!   ζ its depth: sides at the bank slope below the water down to a flat floor, banks at the
+//!   same slope above it. s is 1-Lipschitz, so b is k-Lipschitz and the value
+//!   max((b − z)/√(1 + k²), s − w_c) is 1-Lipschitz;
 //! - an **alcove** (a capsule under a fall's lip, across the fall) hollows the cliff behind
 //!   the falling sheet, leaving the lip as an overhang (the flipped "S" of Fig. 13);
 //! - **water**: under the water surface within a bed (rivers, plunge pools), under the level
@@ -49,6 +54,21 @@ pub struct Bed {
     pub reach: f64,
 }
 
+/// A pool controller's basin: see the module documentation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Basin {
+    /// The outline of the water surface.
+    pub outline: Outline,
+    /// Water surface elevation, metres.
+    pub level: f64,
+    /// Depth of the flat floor below the level, metres.
+    pub depth: f64,
+    /// Slope of the sides, under and above the water (rise over run).
+    pub bank_slope: f64,
+    /// The banks stop this far outside the outline, metres.
+    pub reach: f64,
+}
+
 /// A falling sheet's piece: the box along `a` → `b`, `width` across (horizontal) and
 /// `thickness` through.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -70,6 +90,7 @@ pub struct PoolWater {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct SurfacePieces {
     pub beds: Vec<Bed>,
+    pub basins: Vec<Basin>,
     pub alcoves: Vec<Capsule>,
     pub sheets: Vec<Sheet>,
     pub pools: Vec<PoolWater>,
@@ -141,7 +162,18 @@ pub fn pieces(streams: &Streams, params: &StreamsParams) -> (SurfacePieces, Vec<
                     out.alcoves.push(alcove);
                 }
             }
-            _ => out.pools.push(PoolWater { level: pool.level, outline: pool.outline.clone() }),
+            (outline, kind) => {
+                if kind == PoolKind::Curve {
+                    out.basins.push(Basin {
+                        outline: outline.clone(),
+                        level: pool.level,
+                        depth: pool.depth,
+                        bank_slope: k,
+                        reach: 3.0 / k,
+                    });
+                }
+                out.pools.push(PoolWater { level: pool.level, outline: outline.clone() });
+            }
         }
     }
     let mouths = streams
@@ -211,6 +243,21 @@ impl Bed {
     }
 }
 
+impl Basin {
+    /// Carve value: negative in the air the basin opens.
+    pub fn carve(&self, p: DVec3) -> f64 {
+        let s = outline_distance(&self.outline, p.truncate());
+        let k = self.bank_slope;
+        let floor = self.level + (k * s).max(-self.depth);
+        ((floor - p.z) / (1.0 + k * k).sqrt()).max(s - self.reach)
+    }
+
+    fn bounds(&self) -> (DVec2, DVec2) {
+        let (lo, hi) = outline_bounds(&self.outline);
+        (lo - DVec2::splat(self.reach), hi + DVec2::splat(self.reach))
+    }
+}
+
 impl Sheet {
     pub fn water(&self, p: DVec3) -> f64 {
         let (a, b) = (DVec3::from_array(self.a), DVec3::from_array(self.b));
@@ -238,20 +285,25 @@ impl PoolWater {
     }
 
     fn bounds(&self) -> (DVec2, DVec2) {
-        let points: Vec<DVec2> = match &self.outline {
-            Outline::Disc { centre, radius } => {
-                let c = DVec2::from_array(*centre);
-                vec![c - DVec2::splat(*radius), c + DVec2::splat(*radius)]
-            }
-            Outline::Cells { rectangles } => {
-                rectangles.iter().flat_map(|r| [DVec2::new(r[0], r[1]), DVec2::new(r[2], r[3])]).collect()
-            }
-            Outline::Polygon { points } => points.iter().map(|p| DVec2::from_array(*p)).collect(),
-        };
-        let lo = points.iter().copied().fold(DVec2::splat(f64::INFINITY), DVec2::min);
-        let hi = points.iter().copied().fold(DVec2::splat(f64::NEG_INFINITY), DVec2::max);
-        (lo, hi)
+        outline_bounds(&self.outline)
     }
+}
+
+/// 2D bounds of an outline, `(lo, hi)`.
+fn outline_bounds(outline: &Outline) -> (DVec2, DVec2) {
+    let points: Vec<DVec2> = match outline {
+        Outline::Disc { centre, radius } => {
+            let c = DVec2::from_array(*centre);
+            vec![c - DVec2::splat(*radius), c + DVec2::splat(*radius)]
+        }
+        Outline::Cells { rectangles } => {
+            rectangles.iter().flat_map(|r| [DVec2::new(r[0], r[1]), DVec2::new(r[2], r[3])]).collect()
+        }
+        Outline::Polygon { points } => points.iter().map(|p| DVec2::from_array(*p)).collect(),
+    };
+    let lo = points.iter().copied().fold(DVec2::splat(f64::INFINITY), DVec2::min);
+    let hi = points.iter().copied().fold(DVec2::splat(f64::NEG_INFINITY), DVec2::max);
+    (lo, hi)
 }
 
 /// Signed 2D distance to an outline (negative inside; inside a union of rectangles, the depth
@@ -355,8 +407,13 @@ pub struct SurfaceField {
 
 impl SurfaceField {
     pub fn new(pieces: &SurfacePieces) -> SurfaceField {
-        let carve_bounds: Vec<(DVec2, DVec2)> =
-            pieces.beds.iter().map(Bed::bounds).chain(pieces.alcoves.iter().map(capsule_bounds)).collect();
+        let carve_bounds: Vec<(DVec2, DVec2)> = pieces
+            .beds
+            .iter()
+            .map(Bed::bounds)
+            .chain(pieces.basins.iter().map(Basin::bounds))
+            .chain(pieces.alcoves.iter().map(capsule_bounds))
+            .collect();
         let water_bounds: Vec<(DVec2, DVec2)> = pieces
             .beds
             .iter()
@@ -378,14 +435,16 @@ impl SurfaceField {
     /// The air the surface water opens in the rock: negative inside; min(REACH or farther, ·).
     pub fn carve(&self, p: DVec3) -> f64 {
         let (ids, floor) = self.carves.at(p);
-        let beds = self.pieces.beds.len();
+        let (beds, basins) = (self.pieces.beds.len(), self.pieces.basins.len());
         ids.iter()
             .map(|&id| {
                 let id = id as usize;
                 if id < beds {
                     self.pieces.beds[id].carve(p)
+                } else if id < beds + basins {
+                    self.pieces.basins[id - beds].carve(p)
                 } else {
-                    self.pieces.alcoves[id - beds].distance(p)
+                    self.pieces.alcoves[id - beds - basins].distance(p)
                 }
             })
             .fold(floor, f64::min)
@@ -435,6 +494,15 @@ mod tests {
                 bed([10.0, 3.0, 8.0], [14.0, 4.0, 5.0], 0.5, 0.2),
                 bed([20.0, 4.0, 2.0], [20.0, 4.0, 2.0], 4.0, 1.5),
             ],
+            basins: vec![Basin {
+                outline: Outline::Polygon {
+                    points: vec![[50.0, 0.0], [58.0, 1.0], [56.0, 8.0], [51.0, 6.0]],
+                },
+                level: 3.0,
+                depth: 1.2,
+                bank_slope: 1.0,
+                reach: 3.0,
+            }],
             alcoves: vec![Capsule { a: [16.0, 2.0, 4.0], b: [16.0, 6.0, 4.0], radius: 1.5 }],
             sheets: vec![Sheet { a: [14.0, 4.0, 5.0], b: [16.0, 4.0, 2.0], width: 1.0, thickness: 0.5 }],
             pools: vec![
@@ -457,9 +525,10 @@ mod tests {
     #[test]
     fn the_pieces_are_one_lipschitz() {
         let f = field();
-        let around = DVec3::new(20.0, 3.0, 5.0);
-        assert_lipschitz(|p| f.carve(p), Pairs::new(11, 30.0, 3.0).around(around), 20_000);
-        assert_lipschitz(|p| f.water(p), Pairs::new(12, 30.0, 3.0).around(around), 20_000);
+        for around in [DVec3::new(20.0, 3.0, 5.0), DVec3::new(54.0, 4.0, 3.0)] {
+            assert_lipschitz(|p| f.carve(p), Pairs::new(11, 30.0, 3.0).around(around), 20_000);
+            assert_lipschitz(|p| f.water(p), Pairs::new(12, 30.0, 3.0).around(around), 20_000);
+        }
     }
 
     #[test]
@@ -471,8 +540,18 @@ mod tests {
         assert!(f.water(axis - DVec3::Z * 0.1) < 0.0 && f.water(axis + DVec3::Z * 0.1) > 0.0);
         // The plunge basin is 1.5 m deep at its centre.
         assert!(f.carve(DVec3::new(20.0, 4.0, 0.6)) < 0.0 && f.carve(DVec3::new(20.0, 4.0, 0.4)) > 0.0);
+        // The pool controller's basin: a flat floor 1.2 m under its level inside, sides at the
+        // bank slope (the floor is 0.5 m down 0.5 m inside the shore), banks above the level.
+        let centre = DVec3::new(54.0, 4.0, 0.0);
+        assert!(f.carve(centre.with_z(1.9)) < 0.0 && f.carve(centre.with_z(1.7)) > 0.0);
+        let inshore = DVec3::new(54.0, 0.5 + 0.5 * 65f64.sqrt() / 8.0, 0.0);
+        assert!(
+            f.carve(inshore.with_z(2.6)) < 0.0 && f.carve(inshore.with_z(2.4)) > 0.0,
+            "{}",
+            f.carve(inshore.with_z(2.4))
+        );
         // Far away nothing is carved, and the value grows with the distance.
-        assert!(f.carve(DVec3::new(200.0, 4.0, 0.0)) >= 150.0);
+        assert!(f.carve(DVec3::new(200.0, 4.0, 0.0)) >= 130.0);
         assert!(SurfaceField::new(&SurfacePieces::default()).is_empty());
     }
 }

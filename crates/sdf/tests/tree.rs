@@ -186,6 +186,57 @@ fn waterfall_tree_with_its_streams_is_one_lipschitz() {
     check_sign(&field, 200, "waterfall");
 }
 
+/// A pool controller (a flat closed curve with its own flow) is dug into a flat terrain: air
+/// and water down to its floor, rock below it and outside its banks; 1-Lipschitz around it.
+#[test]
+fn a_pool_controller_is_dug_into_the_terrain() {
+    let dir = karst_testkit::scratch("pool-curve");
+    let text = karst_testkit::SceneText::new("pool")
+        .with(
+            "[[streams.curves]]\nname = \"tarn\"\nkind = \"pool\"\nflow = 0.2\ntension = 1\n\
+             points = [[40, 40, 39.5], [60, 40, 39.5], [60, 60, 39.5], [40, 60, 39.5]]",
+        )
+        .text();
+    let scene = Scene::parse(&text, &dir.join("pool.toml")).unwrap();
+    let hydro = Hydro {
+        flow_units: karst_hydro::FlowUnits { min: 1.0, max: 1.0 },
+        conduits: Vec::new(),
+        nodes: Vec::new(),
+        sinks: Vec::new(),
+        springs: Vec::new(),
+    };
+    let skeleton = Skeleton { nodes: Vec::new(), conduits: Vec::new(), routes: Vec::new() };
+    let streams = karst_streams::build(&scene, &hydro).unwrap();
+    let pool = streams.pools.iter().find(|p| p.kind == karst_streams::PoolKind::Curve).unwrap();
+    let floor = pool.level - pool.depth;
+    assert!(pool.depth > 2.0 && (pool.level - 39.5).abs() < 1e-9, "{pool:?}");
+    let bare = CarvedTerrain::new(build(&scene, &skeleton, &hydro).unwrap());
+    let mut model = build(&scene, &skeleton, &hydro).unwrap();
+    add_streams(&mut model, &streams, scene.streams());
+    assert_eq!(model.surface.basins.len(), 1);
+    let field = CarvedTerrain::new(model);
+    let centre = DVec3::new(50.0, 50.0, 0.5 * (pool.level + floor));
+    assert!(bare.eval(centre) < 0.0, "rock before the pool is dug");
+    assert!(field.eval(centre) > 0.0 && field.water(centre) < 0.0, "dug and full at {centre}");
+    assert!(field.eval(centre.with_z(floor - 0.3)) < 0.0, "rock under the floor");
+    assert!(
+        field.eval(DVec3::new(50.0, 50.0, 39.8)) > 0.0 && field.water(DVec3::new(50.0, 50.0, 39.8)) > 0.0
+    );
+    assert!(field.eval(DVec3::new(20.0, 50.0, 39.5)) < 0.0, "rock beyond the banks");
+    let mut rng = Lcg(7);
+    for _ in 0..20_000 {
+        let p = DVec3::new(30.0, 30.0, 35.0)
+            + DVec3::new(rng.unit(), rng.unit(), rng.unit()) * DVec3::new(40.0, 40.0, 8.0);
+        let reach = [0.05, 0.5, 3.0][(rng.unit() * 3.0) as usize % 3];
+        let q = p + rng.offset(reach);
+        for (what, f) in [("eval", field.eval(p) - field.eval(q)), ("water", field.water(p) - field.water(q))]
+        {
+            assert!(f.abs() <= p.distance(q) * (1.0 + 1e-5), "{what}: {p} {q}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Every fixtures/scenes/*.toml preset has its test above.
 #[test]
 fn every_preset_is_tested() {
