@@ -1,6 +1,6 @@
 //! `karst-metrics`: stage 8 of karstgen, and karstnet's statistics for any network.
 //!
-//! - `run SCENE --out DIR` writes DIR/metrics.json from DIR/skeleton.json;
+//! - `run SCENE --out DIR` writes DIR/metrics.json from DIR/skeleton.json, hydro.json and streams.json;
 //! - `inspect FILE [--json]` prints a summary or the whole artifact;
 //! - `--karstnet BASE`, `--pline FILE.pl`, `--csv NODES EDGES` print the metrics of a surveyed or
 //!   simulated network as JSON, with karstnet's key names, each `characterize_graph()` metric
@@ -30,7 +30,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Compute the statistics of DIR/skeleton.json into DIR/metrics.json.
+    /// Compute the statistics of DIR/skeleton.json (with its water and the surface streams) into DIR/metrics.json.
     Run(RunArgs),
     /// Summarize a metrics artifact (or print it whole with --json).
     Inspect(InspectArgs),

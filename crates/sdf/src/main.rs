@@ -13,7 +13,7 @@ use karst_stage::cli::{self, InspectArgs, RunArgs, default_sigpipe, finish};
 #[derive(Parser)]
 #[command(name = "karst-sdf", version)]
 enum Cli {
-    /// Build the SDF model of DIR/skeleton.json and DIR/hydro.json into DIR/sdf.bin.
+    /// Build the SDF model of DIR/skeleton.json, DIR/hydro.json and DIR/streams.json into DIR/sdf.bin.
     Run(RunArgs),
     /// Summarize an sdf artifact (or print it whole with --json).
     Inspect(InspectArgs),
