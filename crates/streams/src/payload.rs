@@ -385,3 +385,99 @@ impl Streams {
         self.segments.iter().filter(|s| s.motion == Motion::FreeFall).count()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fall(vertical: f64) -> Fall {
+        Fall {
+            lip: [0.0, 0.0, 30.0],
+            direction: [0.6, 0.8],
+            speed: 2.5,
+            vertical,
+            drop: 20.0,
+            throw: 4.0,
+            impact: [2.4, 3.2, 10.0],
+        }
+    }
+
+    #[test]
+    fn a_fall_s_arc_length_is_the_length_of_its_parabola() {
+        for vertical in [0.0, -1.5, 0.8] {
+            let f = fall(vertical);
+            let n = 100_000;
+            let chords: f64 = (0..n)
+                .map(|i| {
+                    let [a, b] = [i, i + 1].map(|k| DVec3::from_array(f.at(f.throw * k as f64 / n as f64)));
+                    a.distance(b)
+                })
+                .sum();
+            assert!((f.arc_length() - chords).abs() < 1e-6 * chords, "{} vs {chords}", f.arc_length());
+        }
+    }
+
+    fn streams() -> Streams {
+        let node = |z: f64| Node {
+            position: [0.0, 0.0, z],
+            role: Role::Branch,
+            source: 0.0,
+            lateral: 0.0,
+            inflow: 1.0,
+        };
+        let segment = |motion, fall| Segment {
+            from: 0,
+            to: 1,
+            motion,
+            curve: None,
+            flow: 1.0,
+            water: WaterType::Ribbon,
+            slope: 1.5,
+            flow_units: 3.0,
+            look: None,
+            speed: 2.5,
+            width: 1.0,
+            depth: 0.2,
+            fall,
+        };
+        Streams {
+            flow_range: [0.005, 500.0],
+            nodes: vec![node(30.0), node(10.0)],
+            segments: vec![segment(Motion::FreeFall, Some(fall(0.0))), segment(Motion::Contact, None)],
+            pools: vec![Pool {
+                node: 1,
+                kind: PoolKind::Plunge,
+                level: 10.0,
+                area: 12.0,
+                depth: 1.0,
+                outline: Outline::Disc { centre: [2.4, 3.2], radius: 2.0 },
+                outlet: None,
+                fall: Some(0),
+            }],
+            springs: Vec::new(),
+            reports: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn validate_names_the_wrong_field() {
+        assert_eq!(streams().validate(), Ok(()));
+        let field = |change: fn(&mut Streams)| {
+            let mut s = streams();
+            change(&mut s);
+            s.validate().unwrap_err().field
+        };
+        assert_eq!(field(|s| s.segments[1].to = 7), "segments[1].to");
+        assert_eq!(field(|s| s.nodes[0].position[2] = f64::NAN), "nodes[0].position");
+        assert_eq!(field(|s| s.segments[0].fall = None), "segments[0].fall");
+        assert_eq!(field(|s| s.segments[1].fall = Some(fall(0.0))), "segments[1].fall");
+        assert_eq!(field(|s| s.segments[1].width = -1.0), "segments[1].width");
+        assert_eq!(field(|s| s.segments[1].slope = 2.0), "segments[1].slope");
+        assert_eq!(field(|s| s.pools[0].fall = Some(1)), "pools[0].fall");
+        assert_eq!(
+            field(|s| s.pools[0].outline = Outline::Polygon { points: vec![[0.0, 0.0]] }),
+            "pools[0].outline"
+        );
+        assert_eq!(field(|s| s.flow_range = [5.0, 1.0]), "flow_range");
+    }
+}
