@@ -33,6 +33,8 @@ enum Task {
     Run(karstgen::cli::RunArgs),
     /// `karstgen diff`: compare two artifacts of the same kind; exit 1 when they differ.
     Diff(karstgen::cli::DiffArgs),
+    /// `karstgen view`: write (and serve) the web viewer of a run.
+    View(karst_view::cli::ViewArgs),
     /// Regenerate the golden artifacts of the tiny scene and print what changed.
     Bless,
     /// Time every stage of the benchmark scenes (median of RUNS runs).
@@ -51,6 +53,9 @@ enum Task {
         /// Only the streams budgets (surface network, pipeline overhead, carved terrain).
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
         streams: bool,
+        /// Only the export formats, on the finished run in this folder (e.g. out/looping).
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher", "streams"])]
+        export: Option<PathBuf>,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
     MetricsTable {
@@ -87,9 +92,14 @@ fn main() -> ExitCode {
             let (a, b) = (karstgen::cli::resolve(&here, &args.a), karstgen::cli::resolve(&here, &args.b));
             return karstgen::cli::diff_command(&karstgen::cli::DiffArgs { a, b, tol: args.tol });
         }
+        Task::View(mut args) => {
+            args.dir = karstgen::cli::resolve(&here, &args.dir);
+            args.scene = args.scene.map(|p| karstgen::cli::resolve(&here, &p));
+            karst_view::cli::view(&args)
+        }
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf, mesher, streams } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher, streams })
+        Task::Bench { runs, costgraph, sdf, mesher, streams, export } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, streams, export })
         }
         Task::Test { args } => return test(&args),
         Task::MetricsTable { write } => metrics_table_command(write),

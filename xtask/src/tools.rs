@@ -88,25 +88,22 @@ fn ensure_apt(root: &Path) -> Result<(), String> {
     })
 }
 
-/// `npm ci` in tools/node when node_modules is missing or older than the lock file.
+/// `npm ci` in tools/node unless node_modules was installed from this very lock file (a stamp
+/// holds the lock's hash: npm's own `.package-lock.json` is rewritten by `npm install
+/// --package-lock-only` without installing anything).
 fn ensure_node(root: &Path) -> Result<PathBuf, String> {
     let dir = root.join(NODE_DIR);
     let modules = dir.join("node_modules");
-    let lock = dir.join("package-lock.json");
-    let installed = modules.join(".package-lock.json");
-    let fresh = match (std::fs::read(&lock), std::fs::metadata(&installed)) {
-        (Ok(_), Ok(_)) => modified(&installed) >= modified(&lock),
-        _ => false,
-    };
-    if !fresh {
-        eprintln!("installing the npm test tools of {NODE_DIR}/package-lock.json...");
-        run(&dir, &["npm", "ci", "--silent", "--no-audit", "--no-fund"])?;
+    let lock = read(&dir.join("package-lock.json"))?;
+    let digest = karst_artifact::hash::hex(lock.as_bytes());
+    let stamp = modules.join(".karstgen-lock.blake3");
+    if std::fs::read_to_string(&stamp).is_ok_and(|s| s.trim() == digest) {
+        return Ok(modules);
     }
+    eprintln!("installing the npm test tools of {NODE_DIR}/package-lock.json...");
+    run(&dir, &["npm", "ci", "--silent", "--no-audit", "--no-fund"])?;
+    std::fs::write(&stamp, digest).map_err(|e| format!("{}: {e}", stamp.display()))?;
     Ok(modules)
-}
-
-fn modified(path: &Path) -> std::time::SystemTime {
-    std::fs::metadata(path).and_then(|m| m.modified()).unwrap_or(std::time::UNIX_EPOCH)
 }
 
 /// The package names of a list file: one per line, `#` starts a comment.

@@ -28,6 +28,8 @@ pub enum StageId {
     Mesher,
     #[serde(rename = "metrics")]
     Metrics,
+    #[serde(rename = "export")]
+    Export,
 }
 
 /// How an artifact's payload is encoded.
@@ -65,7 +67,7 @@ use Encoding::{Json, Postcard};
 use StageId::*;
 
 /// The table, in run order; `TABLE[id as usize]` is `id`'s row.
-const TABLE: [StageRow; 8] = [
+const TABLE: [StageRow; 9] = [
     StageRow {
         name: "sampling",
         kind: "samples",
@@ -150,11 +152,22 @@ const TABLE: [StageRow; 8] = [
         inputs: &[Skeleton, Hydro, Streams],
         sections: &[],
     },
+    StageRow {
+        name: "export",
+        kind: "export",
+        binary: "karst-export",
+        file: "export.json",
+        encoding: Json,
+        inputs: &[Sampling, Skeleton, Hydro, Streams, Mesher, Metrics],
+        // Geology: the rock layer of each sample in the GOCAD VSet.
+        sections: &["geology", "export"],
+    },
 ];
 
 impl StageId {
     /// Every stage, in run order.
-    pub const ALL: [StageId; 8] = [Sampling, Costgraph, Skeleton, Hydro, Streams, Sdf, Mesher, Metrics];
+    pub const ALL: [StageId; 9] =
+        [Sampling, Costgraph, Skeleton, Hydro, Streams, Sdf, Mesher, Metrics, Export];
 
     /// The stage's row of the table.
     pub fn row(self) -> &'static StageRow {

@@ -6,7 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::field::{self, FieldNode, GridSpec, Layer, NoKarst};
 use crate::params::{
-    CostgraphParams, HydroParams, MesherParams, SamplingParams, SdfParams, SkeletonParams, StreamsParams,
+    CostgraphParams, ExportParams, HydroParams, MesherParams, SamplingParams, SdfParams, SkeletonParams,
+    StreamsParams,
 };
 use crate::sections::{Reads, Section};
 use crate::validate::{self, Problem};
@@ -47,6 +48,8 @@ pub struct Scene {
     pub(crate) sdf: SdfParams,
     #[serde(default)]
     pub(crate) mesher: MesherParams,
+    #[serde(default)]
+    pub(crate) export: ExportParams,
     /// Which sections were read, when auditing (see [`Scene::audited`]).
     #[serde(skip)]
     pub(crate) reads: Reads,
@@ -317,4 +320,6 @@ section_accessors! {
     sdf, sdf_mut: SdfParams => Sdf;
     /// `[mesher]`.
     mesher, mesher_mut: MesherParams => Mesher;
+    /// `[export]`: which formats the export stage writes.
+    export, export_mut: ExportParams => Export;
 }

@@ -28,11 +28,12 @@ pub enum Section {
     Streams,
     Sdf,
     Mesher,
+    Export,
 }
 
 impl Section {
     /// Every section.
-    pub const ALL: [Section; 16] = [
+    pub const ALL: [Section; 17] = [
         Section::Seed,
         Section::Domain,
         Section::Terrain,
@@ -49,6 +50,7 @@ impl Section {
         Section::Streams,
         Section::Sdf,
         Section::Mesher,
+        Section::Export,
     ];
 
     /// The section's name in the scene file, as the stage table writes it.
@@ -70,6 +72,7 @@ impl Section {
             Section::Streams => "streams",
             Section::Sdf => "sdf",
             Section::Mesher => "mesher",
+            Section::Export => "export",
         }
     }
 

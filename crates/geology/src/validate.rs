@@ -65,6 +65,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     scene.streams.check(scene, &mut found);
     scene.sdf.check(&mut found);
     scene.mesher.check(&mut found);
+    scene.export.check(&mut found);
     found.problems
 }
 
