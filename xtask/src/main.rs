@@ -56,6 +56,9 @@ enum Task {
         /// Only the export formats, on the finished run in this folder (e.g. out/looping).
         #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher", "streams"])]
         export: Option<PathBuf>,
+        /// Only the network half beside KarstNSim (pykarstnsim in .venv-peer), alternating runs.
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "streams", "export"])]
+        peer: bool,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
     MetricsTable {
@@ -98,13 +101,49 @@ fn main() -> ExitCode {
             karst_view::cli::view(&args)
         }
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf, mesher, streams, export } => {
+        Task::Bench { runs, peer: true, .. } => peer_bench(runs),
+        Task::Bench { runs, costgraph, sdf, mesher, streams, export, .. } => {
             bench::run(runs, bench::Only { costgraph, sdf, mesher, streams, export })
         }
         Task::Test { args } => return test(&args),
         Task::MetricsTable { write } => metrics_table_command(write),
     };
     finish(result)
+}
+
+/// karstgen's network half beside KarstNSim on `peer::SCENE` (issue 21), every case.
+fn peer_bench(runs: usize) -> Result<(), StageError> {
+    use xtask::peer;
+    let python = peer::peer_python(&workspace_root())?;
+    let binaries = peer::stage_binaries()?;
+    println!("{} vs KarstNSim (pykarstnsim 2.0.1), {runs} alternating runs each, medians", peer::SCENE);
+    println!(
+        "| case | samples (ours / theirs) | KarstNSim wall / CPU / peak | karstgen wall / CPU / peak | ratio wall / CPU | load |"
+    );
+    println!("|---|---|---|---|---|---|");
+    for case in peer::CASES {
+        let load = peer::load_average();
+        let r = peer::run_case(case, runs, &binaries, &python)?;
+        let (ours, theirs) = r.medians();
+        let show = |u: peer::Usage| {
+            format!("{:.2} s / {:.2} s / {:.0} MB", u.wall, u.cpu, u.peak_bytes as f64 / 1e6)
+        };
+        let load = match (load, peer::load_average()) {
+            (Some(a), Some(b)) => format!("{a:.1}–{b:.1}"),
+            _ => "-".into(),
+        };
+        println!(
+            "| {} | {} / {} | {} | {} | {:.1}× / {:.1}× | {load} |",
+            case.name,
+            r.our_samples,
+            r.their_samples,
+            show(theirs),
+            show(ours),
+            theirs.wall / ours.wall,
+            theirs.cpu / ours.cpu
+        );
+    }
+    Ok(())
 }
 
 fn workspace_root() -> PathBuf {
