@@ -168,6 +168,8 @@ enum Render {
     Skeleton(karst_skeleton::stage::RenderArgs),
     /// A run's network coloured by water type (top and side views).
     Hydro(karst_hydro::stage::RenderArgs),
+    /// The map of a run's surface streams over the scene's terrain, coloured by water type.
+    Streams(karst_streams::stage::RenderArgs),
     /// One surface of a mesh artifact, shaded.
     Mesh(karst_mesher::stage::RenderArgs),
     /// A horizontal (--z) or vertical (--y, --x) slice of an sdf artifact, as PNG and/or EXR.
@@ -210,6 +212,7 @@ fn execute(command: Command) -> Result<(), StageError> {
         Command::Render(render) => match render {
             Render::Skeleton(args) => karst_skeleton::stage::render(&args),
             Render::Hydro(args) => karst_hydro::stage::render(&args),
+            Render::Streams(args) => karst_streams::stage::render(&args),
             Render::Mesh(args) => karst_mesher::stage::render(&args),
             Render::Slice(args) => karst_sdf::stage::slice(&args),
             Render::Sections(args) => karst_sdf::stage::sections(&args),

@@ -51,11 +51,14 @@ enum Task {
         /// Only the mesher's synthetic budget cases.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// Only the streams budgets (surface network, pipeline overhead, carved terrain).
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        streams: bool,
         /// Only the export formats, on the finished run in this folder (e.g. out/looping).
-        #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher", "streams"])]
         export: Option<PathBuf>,
         /// Only the network half beside KarstNSim (pykarstnsim in .venv-peer), alternating runs.
-        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export"])]
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "streams", "export"])]
         peer: bool,
         /// Only the calibration budget: the default scene's [calibrate] box to the Sakany cave.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "peer"])]
@@ -117,8 +120,8 @@ fn main() -> ExitCode {
         }
         Task::Bless => bless(),
         Task::Bench { runs, peer: true, .. } => peer_bench(runs),
-        Task::Bench { runs, costgraph, sdf, mesher, export, calibrate, .. } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher, export, calibrate })
+        Task::Bench { runs, costgraph, sdf, mesher, streams, export, calibrate, .. } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, streams, export, calibrate })
         }
         Task::Test { python, args } => return test(python, &args),
         Task::MetricsTable { write } => metrics_table_command(write),

@@ -35,8 +35,15 @@ pub fn scenes(dir: &Path) -> Result<Vec<PathBuf>, StageError> {
 pub fn scene_report(scene: &Path, out: &Path) -> Result<MetricsReport, StageError> {
     let loaded = SceneFile::load(scene)?;
     let job = Job { scene_path: scene, scene: &loaded.scene, out };
-    for stage in [StageId::Sampling, StageId::Costgraph, StageId::Skeleton, StageId::Hydro, StageId::Metrics]
-    {
+    let stages = [
+        StageId::Sampling,
+        StageId::Costgraph,
+        StageId::Skeleton,
+        StageId::Hydro,
+        StageId::Streams,
+        StageId::Metrics,
+    ];
+    for stage in stages {
         registry::stage(stage).run(&job)?;
     }
     Ok(read_artifact::<MetricsReport>(&job.artifact(StageId::Metrics))?.1)

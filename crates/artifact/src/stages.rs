@@ -20,6 +20,8 @@ pub enum StageId {
     Skeleton,
     #[serde(rename = "hydro")]
     Hydro,
+    #[serde(rename = "streams")]
+    Streams,
     #[serde(rename = "sdf")]
     Sdf,
     #[serde(rename = "mesh")]
@@ -65,7 +67,7 @@ use Encoding::{Json, Postcard};
 use StageId::*;
 
 /// The table, in run order; `TABLE[id as usize]` is `id`'s row.
-const TABLE: [StageRow; 8] = [
+const TABLE: [StageRow; 9] = [
     StageRow {
         name: "sampling",
         kind: "samples",
@@ -112,13 +114,24 @@ const TABLE: [StageRow; 8] = [
         sections: &["domain", "terrain", "keypoints", "hydro"],
     },
     StageRow {
+        name: "streams",
+        kind: "streams",
+        binary: "karst-streams",
+        file: "streams.json",
+        encoding: Json,
+        inputs: &[Hydro],
+        // Key points: the springs; hydro.total_discharge: their discharge in m³/s.
+        sections: &["domain", "terrain", "keypoints", "hydro.total_discharge", "streams"],
+    },
+    StageRow {
         name: "sdf",
         kind: "sdf",
         binary: "karst-sdf",
         file: "sdf.bin",
         encoding: Postcard,
-        inputs: &[Skeleton, Hydro],
-        sections: &["seed", "domain", "terrain", "sdf"],
+        inputs: &[Skeleton, Hydro, Streams],
+        // Streams: the banks' slope, the sheets' thickness and the mouths' radius.
+        sections: &["seed", "domain", "terrain", "streams", "sdf"],
     },
     StageRow {
         name: "mesher",
@@ -136,7 +149,7 @@ const TABLE: [StageRow; 8] = [
         binary: "karst-metrics",
         file: "metrics.json",
         encoding: Json,
-        inputs: &[Skeleton, Hydro],
+        inputs: &[Skeleton, Hydro, Streams],
         sections: &[],
     },
     StageRow {
@@ -145,7 +158,7 @@ const TABLE: [StageRow; 8] = [
         binary: "karst-export",
         file: "export.json",
         encoding: Json,
-        inputs: &[Sampling, Skeleton, Hydro, Mesher, Metrics],
+        inputs: &[Sampling, Skeleton, Hydro, Streams, Mesher, Metrics],
         // Geology: the rock layer of each sample in the GOCAD VSet.
         sections: &["geology", "export"],
     },
@@ -153,7 +166,8 @@ const TABLE: [StageRow; 8] = [
 
 impl StageId {
     /// Every stage, in run order.
-    pub const ALL: [StageId; 8] = [Sampling, Costgraph, Skeleton, Hydro, Sdf, Mesher, Metrics, Export];
+    pub const ALL: [StageId; 9] =
+        [Sampling, Costgraph, Skeleton, Hydro, Streams, Sdf, Mesher, Metrics, Export];
 
     /// The stage's row of the table.
     pub fn row(self) -> &'static StageRow {

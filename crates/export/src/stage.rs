@@ -12,6 +12,7 @@ use karst_metrics::MetricsReport;
 use karst_sampling::Samples;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
+use karst_streams::Streams;
 
 use crate::build::{FOLDER, Input, Inputs, export, needs};
 use crate::error::ExportError;
@@ -20,9 +21,9 @@ use crate::payload::Manifest;
 use crate::{ExportFormat, ExportParams};
 
 /// The upstream payloads of the export stage.
-type Upstream = (Samples, Skeleton, Hydro, Mesh, MetricsReport);
+type Upstream = (Samples, Skeleton, Hydro, Streams, Mesh, MetricsReport);
 
-/// Stage 8: the run in the formats other tools read.
+/// Stage 9: the run in the formats other tools read.
 pub struct ExportStage;
 
 impl Stage for ExportStage {
@@ -54,10 +55,11 @@ impl Stage for ExportStage {
         upstream: &Upstream,
         manifest: &mut Manifest,
     ) -> std::io::Result<()> {
-        let (samples, skeleton, hydro, mesh, metrics) = upstream;
+        let (samples, skeleton, hydro, streams, mesh, metrics) = upstream;
         let inputs = Inputs {
             skeleton: Some(skeleton),
             hydro: Some(hydro),
+            streams: Some(streams),
             mesh: Some(mesh),
             metrics: Some(metrics),
             samples: Some(samples),
@@ -79,7 +81,7 @@ impl Stage for ExportStage {
 /// `karstgen export DIR [--format a,b] [--scene SCENE] [--json]`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ExportArgs {
-    /// The run's output folder (holding skeleton.json, hydro.json, mesh.bin, ...).
+    /// The run's output folder (holding skeleton.json, hydro.json, streams.json, mesh.bin, ...).
     pub dir: PathBuf,
     /// Comma-separated formats: vtk, vtk-meshes, gocad, gocad-meshes, survex, swmm, gltf, obj,
     /// ply, csv (default: the scene's [export] formats, or the cheap ones).
@@ -118,16 +120,19 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
         Ok(Some(match input {
             Input::Skeleton => load::<Skeleton>(&path)?,
             Input::Hydro => load::<Hydro>(&path)?,
+            Input::Streams => load::<Streams>(&path)?,
             Input::Mesh => load::<Mesh>(&path)?,
             Input::Metrics => load::<MetricsReport>(&path)?,
             Input::Samples => load::<Samples>(&path)?,
         }))
     };
-    let (skeleton, hydro, mesh) = (read(Input::Skeleton)?, read(Input::Hydro)?, read(Input::Mesh)?);
+    let (skeleton, hydro, streams) = (read(Input::Skeleton)?, read(Input::Hydro)?, read(Input::Streams)?);
+    let mesh = read(Input::Mesh)?;
     let (metrics, samples) = (read(Input::Metrics)?, read(Input::Samples)?);
     let inputs = Inputs {
         skeleton: skeleton.as_deref().and_then(|a| a.downcast_ref()),
         hydro: hydro.as_deref().and_then(|a| a.downcast_ref()),
+        streams: streams.as_deref().and_then(|a| a.downcast_ref()),
         mesh: mesh.as_deref().and_then(|a| a.downcast_ref()),
         metrics: metrics.as_deref().and_then(|a| a.downcast_ref()),
         samples: samples.as_deref().and_then(|a| a.downcast_ref()),

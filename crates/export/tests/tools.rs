@@ -77,6 +77,56 @@ fn vtk_reads_the_network_with_the_artifacts_counts_and_arrays() {
 }
 
 #[test]
+fn vtk_and_csv_carry_the_surface_streams_with_types_flows_and_falls() {
+    let run = Run::load(&network_run("waterfall"));
+    let streams = &run.streams;
+    assert!(streams.falls() >= 3, "the waterfall preset has falls");
+    let (dir, _) = export_run(&run, &[ExportFormat::Vtk, ExportFormat::Csv], "streams");
+    let report = python_json("read_vtp.py", &[dir.join("streams.vtp").to_str().unwrap()]);
+    assert_eq!(report["log"], "", "VTK wrote errors or warnings");
+    assert_eq!(report["points"], streams.nodes.len());
+    assert_eq!(report["lines"], streams.segments.len());
+    let code = |w: WaterType| WaterType::ALL.iter().position(|k| *k == w).unwrap() as f64;
+    let water: Vec<f64> = streams.segments.iter().map(|s| code(s.water)).collect();
+    assert_eq!(values(&report, "cell_data", "water_type"), water);
+    let flows = values(&report, "cell_data", "flow");
+    for (s, flow) in streams.segments.iter().zip(&flows) {
+        assert!((s.flow - flow).abs() <= 1e-12 * flow, "{flow} vs {}", s.flow);
+    }
+    // The report's JSON is parsed without exact float round trips: the last bit may differ.
+    let lengths = values(&report, "cell_data", "length");
+    for (s, length) in streams.segments.iter().zip(&lengths) {
+        assert!((streams.length(s) - length).abs() <= 1e-12 * length, "{length} vs {}", streams.length(s));
+    }
+    let drops = values(&report, "cell_data", "drop");
+    for (s, drop) in streams.segments.iter().zip(&drops) {
+        let expected = s.fall.as_ref().map_or(0.0, |f| f.drop);
+        assert!((expected - drop).abs() <= 1e-12 * drop, "{drop} vs {expected}");
+    }
+    let inflow = values(&report, "point_data", "inflow");
+    for (n, q) in streams.nodes.iter().zip(&inflow) {
+        assert!((n.inflow - q).abs() <= 1e-12 * q, "{q} vs {}", n.inflow);
+    }
+
+    let table = std::fs::read_to_string(dir.join("stream_segments.csv")).unwrap();
+    let mut lines = table.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), streams.segments.len());
+    for (row, s) in rows.iter().zip(&streams.segments) {
+        assert_eq!(row.len(), header.len());
+        assert_eq!(row[column("water")], s.water.name());
+        assert_eq!(row[column("flow")].parse::<f64>().unwrap(), s.flow);
+        let from = row[column("from")].parse::<usize>().unwrap();
+        assert_eq!(from, s.from as usize + 1, "1-based ids");
+        assert_eq!(row[column("motion")] == "free_fall", s.fall.is_some());
+    }
+    let nodes = std::fs::read_to_string(dir.join("stream_nodes.csv")).unwrap();
+    assert_eq!(nodes.lines().count(), 1 + streams.nodes.len());
+}
+
+#[test]
 fn vtk_reads_the_meshes_with_their_normals() {
     let run = Run::load(&tiny());
     let (dir, _) = export_run(&run, &[ExportFormat::VtkMeshes], "vtk-meshes");

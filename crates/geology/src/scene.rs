@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::field::{self, FieldNode, GridSpec, Layer, NoKarst};
 use crate::params::{
     CalibrateParams, CostgraphParams, ExportParams, HydroParams, MesherParams, SamplingParams, SdfParams,
-    SkeletonParams,
+    SkeletonParams, StreamsParams,
 };
 use crate::sections::{Reads, Section};
 use crate::validate::{self, Problem};
@@ -41,6 +41,9 @@ pub struct Scene {
     pub(crate) skeleton: SkeletonParams,
     #[serde(default)]
     pub(crate) hydro: HydroParams,
+    /// The surface streams and waterfalls fed by the springs (docs/streams.md).
+    #[serde(default)]
+    pub(crate) streams: StreamsParams,
     #[serde(default)]
     pub(crate) sdf: SdfParams,
     #[serde(default)]
@@ -213,6 +216,12 @@ impl Scene {
         &self.skeleton.forced_links
     }
 
+    /// `hydro.total_discharge`, read on its own by the streams (the springs' discharge in m³/s).
+    pub fn total_discharge(&self) -> f64 {
+        self.reads.note(Section::TotalDischarge);
+        self.hydro.total_discharge
+    }
+
     /// The key points of `kind`, with their index in `keypoints`, in scene order.
     pub fn keypoints_of(&self, kind: KeyPointKind) -> impl Iterator<Item = (usize, &KeyPoint)> {
         self.keypoints().iter().enumerate().filter(move |(_, k)| k.kind == kind)
@@ -308,6 +317,8 @@ section_accessors! {
     skeleton, skeleton_mut: SkeletonParams => Skeleton;
     /// `[hydro]`.
     hydro, hydro_mut: HydroParams => Hydro;
+    /// `[streams]`: the surface streams and their controller curves.
+    streams, streams_mut: StreamsParams => Streams;
     /// `[sdf]`.
     sdf, sdf_mut: SdfParams => Sdf;
     /// `[mesher]`.

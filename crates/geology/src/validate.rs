@@ -63,6 +63,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     scene.skeleton.check(&mut found);
     found.amplification(scene);
     scene.hydro.check(&mut found);
+    scene.streams.check(scene, &mut found);
     scene.sdf.check(&mut found);
     scene.mesher.check(&mut found);
     scene.export.check(&mut found);

@@ -1,4 +1,4 @@
-//! karstgen's pipeline: the seven stages run in order like make, in this process, plus what
+//! karstgen's pipeline: the stages of the table run in order like make, in this process, plus what
 //! works across stages: inspecting or diffing any artifact, and ensembles of realizations.
 //!
 //! - [`registry`]: the one place that maps a stage of the table to the type implementing it;

@@ -12,6 +12,7 @@ use karst_skeleton::ConduitType;
 use crate::Capsule;
 use crate::chamber::ChamberSpec;
 use crate::noise::WaveNoise;
+use crate::surface_water::SurfacePieces;
 use crate::sweep::SweepSpec;
 use crate::terrain::TerrainField;
 
@@ -59,11 +60,14 @@ pub struct SdfModel {
     pub chamber_noise: WaveNoise,
     /// Cui et al.'s bias b of the chambers, in (0, 0.5].
     pub chamber_bias: f64,
+    /// Riverbeds, plunge basins, overhangs and surface water from the streams stage
+    /// ([`crate::surface_water`]); empty without streams.
+    pub surface: SurfacePieces,
 }
 
 impl Payload for SdfModel {
     const STAGE: StageId = StageId::Sdf;
-    const SCHEMA: u32 = 2;
+    const SCHEMA: u32 = 3;
 }
 
 impl SdfModel {
@@ -82,6 +86,7 @@ impl SdfModel {
             detail_noise: WaveNoise { wavelength: 1.0, waves: Vec::new() },
             chamber_noise: WaveNoise { wavelength: 1.0, waves: Vec::new() },
             chamber_bias: 0.5,
+            surface: SurfacePieces::default(),
         }
     }
 

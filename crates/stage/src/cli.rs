@@ -38,6 +38,9 @@ pub fn run<S: Stage>(args: &RunArgs) -> Result<(), StageError> {
     let scene = Scene::load(&args.scene)?;
     let ran = runner::run::<S>(&Job { scene_path: &args.scene, scene: &scene, out: &args.out })?;
     println!("{} in {:.2} s", ran.headline, ran.seconds);
+    for note in &ran.notes {
+        eprintln!("note: {note}");
+    }
     Ok(())
 }
 

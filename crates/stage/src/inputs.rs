@@ -49,3 +49,4 @@ tuple_inputs!(A, B);
 tuple_inputs!(A, B, C);
 tuple_inputs!(A, B, C, D);
 tuple_inputs!(A, B, C, D, E);
+tuple_inputs!(A, B, C, D, E, F);

@@ -34,6 +34,8 @@ pub struct Ran {
     pub headline: String,
     /// Seconds spent in `build`.
     pub seconds: f64,
+    /// What the stage corrected or could not do ([`Stage::notes`]).
+    pub notes: Vec<String>,
 }
 
 /// Runs stage `S`: reads and checks its inputs, builds, writes the side files, checks the
@@ -68,7 +70,7 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
         params: job.scene.sections_hash(S::ID.row().sections),
     };
     write_artifact(&job.artifact(S::ID), &provenance, &output)?;
-    Ok(Ran { headline: S::headline(job.scene, &output), seconds })
+    Ok(Ran { headline: S::headline(job.scene, &output), seconds, notes: S::notes(&output) })
 }
 
 /// The error a user sees for a stage's typed error: the file at fault named first.

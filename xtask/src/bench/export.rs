@@ -19,12 +19,14 @@ pub struct ExportTime {
 pub fn time_exports(dir: &Path, runs: usize) -> Result<Vec<ExportTime>, StageError> {
     let skeleton = read_artifact(&dir.join("skeleton.json"))?.1;
     let hydro = read_artifact(&dir.join("hydro.json"))?.1;
+    let streams = read_artifact(&dir.join("streams.json"))?.1;
     let mesh = read_artifact(&dir.join("mesh.bin"))?.1;
     let metrics = read_artifact(&dir.join("metrics.json"))?.1;
     let samples = read_artifact(&dir.join("samples.bin"))?.1;
     let inputs = Inputs {
         skeleton: Some(&skeleton),
         hydro: Some(&hydro),
+        streams: Some(&streams),
         mesh: Some(&mesh),
         metrics: Some(&metrics),
         samples: Some(&samples),

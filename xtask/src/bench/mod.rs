@@ -16,6 +16,7 @@ mod pipeline;
 mod probes;
 mod sdf;
 mod skeleton;
+mod streams;
 
 /// Scenes timed stage by stage.
 const BENCH_SCENES: &[&str] = &["fixtures/scenes/tiny.toml", "fixtures/scenes/default.toml"];
@@ -32,12 +33,21 @@ const COSTGRAPH_CASES: &[costgraph::CostgraphCase] = &[
 /// Conduits of the synthetic sdf benchmark network (about 30k primitives).
 const SDF_BENCH_CONDUITS: usize = 100;
 
+/// Scenes whose surface network is timed: the budget's and the waterfall preset.
+const STREAMS_SCENES: &[&str] = &["fixtures/scenes/default.toml", "fixtures/scenes/waterfall.toml"];
+/// The scene whose pipeline the streams must not slow by more than 10 %.
+const STREAMS_PIPELINE_SCENE: &str = "fixtures/scenes/default.toml";
+/// The preset whose carved terrain is meshed with and without its streams, and the cell.
+const CARVING_SCENE: &str = "fixtures/scenes/waterfall.toml";
+const CARVING_CELL: f64 = 1.0;
+
 /// Which benchmarks to run.
 #[derive(Debug, Clone, Default)]
 pub struct Only {
     pub costgraph: bool,
     pub sdf: bool,
     pub mesher: bool,
+    pub streams: bool,
     /// The export formats on the finished run in this folder.
     pub export: Option<PathBuf>,
     /// The calibration budget (default scene to the Sakany cave).
@@ -46,7 +56,14 @@ pub struct Only {
 
 /// `cargo xtask bench`: runs the benchmarks and prints their tables.
 pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
-    let Only { costgraph: costgraph_only, sdf: sdf_only, mesher: mesher_only, export, calibrate } = only;
+    let Only {
+        costgraph: costgraph_only,
+        sdf: sdf_only,
+        mesher: mesher_only,
+        streams: streams_only,
+        export,
+        calibrate,
+    } = only;
     if calibrate {
         println!("one run, in process, release build, {} threads", rayon_threads());
         return calibrate::calibrate_bench();
@@ -54,6 +71,9 @@ pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
     if let Some(dir) = export {
         return export_bench(&dir, runs);
+    }
+    if streams_only {
+        return streams_bench(runs);
     }
     if mesher_only {
         mesher_bench(runs);
@@ -100,7 +120,45 @@ pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
     }
 
     sdf_bench(runs)?;
+    streams_bench(runs)?;
     mesher_and_network_bench(runs)
+}
+
+/// The streams budgets: the surface network per scene, the default pipeline's overhead, the
+/// carved terrain's evaluations per vertex.
+fn streams_bench(runs: usize) -> Result<(), StageError> {
+    println!("\nsurface network and classification (streams stage build; budget 50 ms on default)");
+    for scene in STREAMS_SCENES {
+        let t = streams::time_network(Path::new(scene), runs)?;
+        let cpu = t.cpu_seconds.map_or("-".into(), |c| format!("{:.1}", c * 1e3));
+        println!("{scene:<32} {:>8.1} ms  (CPU {cpu} ms per build)  {}", t.seconds * 1e3, t.headline);
+    }
+    let o = streams::overhead(Path::new(STREAMS_PIPELINE_SCENE), runs)?;
+    let extra = o.streams_seconds + o.sdf_extra + o.mesher_extra;
+    println!(
+        "\n{STREAMS_PIPELINE_SCENE}: pipeline {:.3} s, of which the streams add {:.4} s ({:+.1} % on the {:.3} s without them; budget +10 %): \
+         streams {:.4} s, sdf {:+.4} s, mesher {:+.4} s (paired, mesher alone {:.3} s)",
+        o.pipeline_seconds,
+        extra,
+        100.0 * extra / (o.pipeline_seconds - extra),
+        o.pipeline_seconds - extra,
+        o.streams_seconds,
+        o.sdf_extra,
+        o.mesher_extra,
+        o.mesher_without
+    );
+    if let (Some(extra), Some(without)) = (o.cpu_extra, o.cpu_without) {
+        println!(
+            "  sdf + mesher in CPU time, paired: {without:.2} s without the streams, {extra:+.3} s with them ({:+.1} %)",
+            100.0 * extra / without
+        );
+    }
+    let c = streams::carving(Path::new(CARVING_SCENE), CARVING_CELL)?;
+    println!(
+        "{CARVING_SCENE} terrain at {CARVING_CELL} m: {:.2} field evaluations per vertex carved, {:.2} uncarved ({} and {} triangles)",
+        c.evaluations_per_vertex[0], c.evaluations_per_vertex[1], c.triangles[0], c.triangles[1]
+    );
+    Ok(())
 }
 
 /// The mesher's budget cases  on a synthetic model of 30k capsules.

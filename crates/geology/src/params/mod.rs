@@ -10,6 +10,7 @@ mod mesher;
 mod sampling;
 mod sdf;
 mod skeleton;
+mod streams;
 
 pub use calibrate::{
     Bounds, CalibrateParams, DEFAULT_EVALUATIONS, MAX_SEEDS, PARAMETERS, Parameter, parameter,
@@ -21,3 +22,4 @@ pub use mesher::MesherParams;
 pub use sampling::{RadiusUnit, SamplingParams};
 pub use sdf::SdfParams;
 pub use skeleton::{Mode as SkeletonMode, SkeletonParams};
+pub use streams::{Curve, CurveKind, StreamsParams};
