@@ -11,6 +11,8 @@ mod sampling;
 mod sdf;
 mod skeleton;
 mod streams;
+#[cfg(test)]
+mod test_scene;
 
 pub use calibrate::{
     Bounds, CalibrateParams, DEFAULT_EVALUATIONS, MAX_SEEDS, PARAMETERS, Parameter, parameter,
