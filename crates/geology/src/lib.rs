@@ -10,9 +10,12 @@
 //!
 //! Conventions: metres, z up, right-handed; azimuths in degrees clockwise from north (+y).
 
+pub mod crs;
 pub mod domain;
 pub mod field;
 pub mod fracture;
+pub mod geokeys;
+pub mod geotiff;
 pub mod heightfield;
 pub mod keypoint;
 mod load;
