@@ -88,6 +88,9 @@ fn under_domain() -> &'static str {
     ", inside the domain's footprint: fill the hole (gdal_fillnodata) or shrink the domain"
 }
 
+/// An inclusive range of file columns or rows.
+type Span = (usize, usize);
+
 /// A rectangle `[[x0, x1], [y0, y1]]` of model coordinates the window must cover.
 pub type Footprint = [[f64; 2]; 2];
 
@@ -203,7 +206,7 @@ impl GeoRaster {
         &mut self,
         decoder: &mut Decoder<BufReader<File>>,
         layout: &Layout,
-        (columns, rows): ((usize, usize), (usize, usize)),
+        (columns, rows): (Span, Span),
         nodata: Option<f64>,
     ) -> tiff::TiffResult<()> {
         let (chunk_w, chunk_h) = decoder.chunk_dimensions();
@@ -431,9 +434,7 @@ fn tag_doubles(
     tag: Tag,
     file: &str,
 ) -> Result<Option<Vec<f64>>, GeoTiffError> {
-    let read =
-        |e: tiff::TiffError| GeoTiffError::Read { file: file.into(), message: format!("{tag:?}: {e}") };
-    decoder.find_tag(tag).map_err(read)?.map(|v| v.into_f64_vec().map_err(read)).transpose()
+    tag_values(decoder, tag, file, tiff::decoder::ifd::Value::into_f64_vec)
 }
 
 fn tag_shorts(
@@ -441,9 +442,19 @@ fn tag_shorts(
     tag: Tag,
     file: &str,
 ) -> Result<Option<Vec<u16>>, GeoTiffError> {
+    tag_values(decoder, tag, file, tiff::decoder::ifd::Value::into_u16_vec)
+}
+
+/// The values of `tag` if the file has it, converted by `into`.
+fn tag_values<T>(
+    decoder: &mut Decoder<BufReader<File>>,
+    tag: Tag,
+    file: &str,
+    into: fn(tiff::decoder::ifd::Value) -> tiff::TiffResult<Vec<T>>,
+) -> Result<Option<Vec<T>>, GeoTiffError> {
     let read =
         |e: tiff::TiffError| GeoTiffError::Read { file: file.into(), message: format!("{tag:?}: {e}") };
-    decoder.find_tag(tag).map_err(read)?.map(|v| v.into_u16_vec().map_err(read)).transpose()
+    decoder.find_tag(tag).map_err(read)?.map(|v| into(v).map_err(read)).transpose()
 }
 
 /// The columns and rows (inclusive ranges) whose centres bracket `footprint`.
@@ -452,7 +463,7 @@ fn window(
     affine: &Affine,
     footprint: Option<Footprint>,
     file: &str,
-) -> Result<((usize, usize), (usize, usize)), GeoTiffError> {
+) -> Result<(Span, Span), GeoTiffError> {
     let (w, h) = (layout.width, layout.height);
     let Some(wanted) = footprint else { return Ok(((0, w - 1), (0, h - 1))) };
     // Continuous column (row) of the centre at x (y); a pixel's tolerance against rounding.

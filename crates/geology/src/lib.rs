@@ -11,15 +11,19 @@
 //! Conventions: metres, z up, right-handed; azimuths in degrees clockwise from north (+y).
 
 pub mod crs;
+mod csv;
 pub mod domain;
 pub mod field;
 pub mod fracture;
 pub mod geokeys;
 pub mod geotiff;
+pub mod grids;
 pub mod heightfield;
 pub mod keypoint;
+mod links;
 mod load;
 pub mod params;
+pub mod point_table;
 pub mod rng;
 pub mod scene;
 mod spans;

@@ -20,12 +20,19 @@ pub struct Scene {
     /// Seed of every random choice; same scene and seed give byte-identical artifacts.
     #[serde(default)]
     pub seed: u64,
+    /// The coordinate reference system, `"EPSG:NNNN"` (a projected CRS in metres); every data
+    /// file that carries a CRS must be in it. Absent: local coordinates.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crs: Option<String>,
     pub domain: Domain,
     pub terrain: Terrain,
     #[serde(default)]
     pub geology: Geology,
     #[serde(default)]
     pub keypoints: Vec<KeyPoint>,
+    /// Tables of key points (CSV, GeoJSON), appended to `keypoints` when the scene is loaded.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub keypoints_from: Vec<crate::point_table::PointTable>,
     #[serde(default)]
     pub connectivity: Connectivity,
     /// Speleogenetic phases, oldest first (`[[phases]]`); none: one phase with every spring.
@@ -112,6 +119,10 @@ pub struct Connectivity {
     /// Absent: every entry is 2.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub matrix: Option<Vec<Vec<u8>>>,
+    /// The same by name: sink → spring → 0/1/2, unlisted pairs 2; turned into `matrix` when
+    /// the scene is loaded ([`crate::links`]).
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub named: std::collections::BTreeMap<String, std::collections::BTreeMap<String, u8>>,
 }
 
 /// One speleogenetic phase (`[[phases]]`, KarstNSim §2.6): the springs active during it (each
@@ -121,7 +132,9 @@ pub struct Connectivity {
 #[serde(deny_unknown_fields)]
 pub struct Phase {
     pub name: String,
-    /// Names of the springs that drain the network during the phase.
+    /// Names of the springs that drain the network during the phase (springs read from tables
+    /// join the phases their `phase` column names).
+    #[serde(default)]
     pub springs: Vec<String>,
     /// Factor in (0, 1] on the cost of the edges the earlier phases' conduits use (default 1).
     #[serde(default = "one")]

@@ -4,7 +4,11 @@
 //! each, the georeferencing, CRS and no-data value must equal `gdalinfo -json`'s, and the value
 //! at every pixel centre must equal `gdallocationinfo -geoloc`'s there.
 
+mod common;
+
 use std::path::{Path, PathBuf};
+
+use common::Scratch;
 use std::process::Command;
 
 use karst_geology::crs::Epsg;
@@ -27,27 +31,6 @@ fn gdal(program: &str, args: &[&str], stdin: Option<&str>) -> String {
     let out = child.wait_with_output().unwrap();
     assert!(out.status.success(), "{program} {args:?}: {}", String::from_utf8_lossy(&out.stderr));
     String::from_utf8(out.stdout).unwrap()
-}
-
-/// A folder of its own for each test, removed when the test ends.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(test: &str) -> Scratch {
-        let dir = std::env::temp_dir().join(format!("karst-geotiff-gdal-{}-{test}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        Scratch(dir)
-    }
-
-    fn path(&self, name: &str) -> PathBuf {
-        self.0.join(name)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
 }
 
 /// 37 × 23 pixels of 5 m in Lambert-93, a smooth surface with one no-data pixel.
