@@ -21,7 +21,9 @@ pub mod grids;
 pub mod heightfield;
 pub mod keypoint;
 mod links;
+pub mod lithology;
 mod load;
+mod npy;
 pub mod params;
 pub mod point_table;
 pub mod rng;
@@ -31,6 +33,7 @@ pub mod surface;
 pub mod terrain;
 pub mod tin;
 mod validate;
+mod vti;
 
 pub use domain::Domain;
 pub use fracture::FractureFamily;

@@ -25,6 +25,7 @@ pub(crate) fn attach_files(scene: &mut Scene, folder: &Path, text: &str) -> Vec<
     loader.terrain(&mut scene.terrain);
     loader.surfaces(scene);
     loader.potential_grid(scene);
+    loader.lithology(scene);
     crate::point_table::attach(scene, &mut loader);
     crate::links::resolve(scene, &mut |field, message| loader.report(field, message));
     loader.check_crs(scene.crs.as_deref());
@@ -161,6 +162,20 @@ impl Loader<'_> {
                 grid.values = Arc::new(values);
             }
             Err(e) => self.report("geology.grid.file", e),
+        }
+    }
+
+    fn lithology(&mut self, scene: &mut Scene) {
+        let Some(lithology) = &mut scene.geology.lithology else { return };
+        if self.footprint.is_none() {
+            return;
+        }
+        match lithology.load(self.folder, &scene.domain) {
+            Ok(grid) => {
+                lithology.content = hash_file(&self.folder.join(&lithology.file));
+                lithology.grid = Arc::new(grid);
+            }
+            Err(e) => self.report("geology.lithology.file", e),
         }
     }
 

@@ -75,6 +75,9 @@ pub struct Geology {
     /// Background grid of potentials read from a file.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid: Option<GridSpec>,
+    /// A voxel model of lithology codes mapped to layers of rock.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lithology: Option<crate::lithology::Lithology>,
 }
 
 impl Geology {
@@ -87,15 +90,28 @@ impl Geology {
         (layer * field::tree_value(&self.potential, p, self) * grid).clamp(0.0, 1.0)
     }
 
-    /// The first layer (scene order) containing `p`.
+    /// The layer containing `p`: the lithology grid's unit there, else the first layer (scene
+    /// order) containing `p`.
     pub fn layer_at(&self, p: crate::Point) -> Option<&Layer> {
-        self.layers.iter().find(|l| l.contains(p, self))
+        let unit = self.lithology.as_ref().and_then(|l| l.grid.layer_at(p));
+        unit.or_else(|| self.layers.iter().find(|l| l.contains(p, self)))
     }
 
-    /// True when `p` lies in a no-karst volume.
+    /// True when `p` lies in a no-karst volume or a no-karst lithology unit.
     #[inline]
     pub fn in_no_karst(&self, p: crate::Point) -> bool {
         self.no_karst.iter().any(|v| v.shape().is_some_and(|s| s.signed_distance(p, self) <= 0.0))
+            || self.lithology.as_ref().is_some_and(|l| l.grid.no_karst_at(p).is_some())
+    }
+
+    /// The sampling radii the layers and lithology units set.
+    pub fn layer_radii(&self) -> impl Iterator<Item = f64> + '_ {
+        self.layers.iter().filter_map(|l| l.radius).chain(self.lithology.iter().flat_map(|l| l.radii()))
+    }
+
+    /// True when the potential is 1 everywhere (no layer, tree, grid or lithology).
+    pub fn uniform_potential(&self) -> bool {
+        self.layers.is_empty() && self.grid.is_none() && self.potential.is_empty() && self.lithology.is_none()
     }
 
     /// Inception surfaces: horizons and faults.

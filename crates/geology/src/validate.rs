@@ -64,6 +64,9 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     found.layers(scene);
     found.field_nodes(scene, "geology.potential", &scene.geology.potential, false);
     found.field_nodes(scene, "geology.no_karst", &scene.geology.no_karst, true);
+    if let Some(lithology) = &scene.geology.lithology {
+        lithology.check(&mut found);
+    }
     found.keypoints(scene);
     found.connectivity(scene);
     found.forced_links(scene);
@@ -386,6 +389,11 @@ impl Checks<'_> {
         {
             let message =
                 format!("\"{}\" at [{x}, {y}, {z}] is inside no-karst volume \"{}\"", k.name, v.name);
+            self.keypoint(scene, i, "position", message);
+        }
+        if let Some(unit) = scene.geology.lithology.as_ref().and_then(|l| l.grid.no_karst_at(k.point())) {
+            let message =
+                format!("\"{}\" at [{x}, {y}, {z}] is in no-karst lithology unit \"{unit}\"", k.name);
             self.keypoint(scene, i, "position", message);
         }
         let ground = scene.terrain.height(x, y);
