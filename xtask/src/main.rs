@@ -81,6 +81,9 @@ enum Task {
         /// Only the mesher's synthetic budget cases (issue 8).
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// Only the GeoTIFF terrain budget (a 4000 × 4000 float32 LZW raster).
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        geotiff: bool,
     },
     /// Run N seeds of SCENE in parallel: every realization's metrics in one CSV, their summary and
     /// the conduit probability grid (EXR slices and a top-view PNG).
@@ -128,7 +131,13 @@ fn main() -> ExitCode {
         Task::Run { scene, out, from, only, force } => run(scene, out, Selection { from, only, force }),
         Task::Diff { a, b, tol } => return diff_command(&a, &b, tol),
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf, mesher } => bench_command(runs, costgraph, sdf, mesher),
+        Task::Bench { runs, costgraph, sdf, mesher, geotiff } => {
+            if geotiff {
+                geotiff_bench(runs)
+            } else {
+                bench_command(runs, costgraph, sdf, mesher)
+            }
+        }
         Task::Test { args } => return test(&args),
         Task::Ensemble { scene, n, cell, out } => ensemble_command(scene, n, cell, out),
         Task::MetricsTable { write } => metrics_table_command(write),
@@ -261,7 +270,28 @@ fn bench_command(
     }
 
     sdf_bench(runs)?;
-    mesher_and_network_bench(runs)
+    mesher_and_network_bench(runs)?;
+    geotiff_bench(runs)
+}
+
+/// The GeoTIFF terrain budget (issue 16).
+fn geotiff_bench(runs: usize) -> Result<(), StageError> {
+    let t = xtask::geodata_bench::time_geotiff_terrain(runs)?;
+    let mb = |b: u64| format!("{:.0}", b as f64 / 1e6);
+    let side = xtask::geodata_bench::SIDE;
+    println!(
+        "
+GeoTIFF terrain: {side} × {side} float32 LZW ({} MB file), Scene::load",
+        mb(t.file_bytes)
+    );
+    println!(
+        "{:.3} s, CPU {} s, peak memory {} MB above the process's (the raster's own float32 size: {} MB)",
+        t.seconds,
+        t.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}")),
+        t.peak_above.map_or("-".into(), mb),
+        mb(side as u64 * side as u64 * 4)
+    );
+    Ok(())
 }
 
 /// The mesher's budget cases (issue 8) on a synthetic model of 30k capsules.

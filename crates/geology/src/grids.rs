@@ -18,10 +18,15 @@ pub fn is_geotiff(file: &str) -> bool {
     lower.ends_with(".tif") || lower.ends_with(".tiff")
 }
 
-/// The terrain: elevation = offset + vertical_scale·value at each pixel centre.
-pub fn height_grid(raster: &GeoRaster, vertical_scale: f64, offset: f64) -> HeightGrid {
-    let heights = raster.values.iter().map(|v| offset + vertical_scale * v).collect();
-    HeightGrid::new(raster.origin, raster.cell, raster.nx as u32, raster.ny as u32, heights)
+/// The terrain: elevation = offset + vertical_scale·value at each pixel centre (the raster's
+/// values become the heights in place: a large DEM is held once).
+pub fn height_grid(raster: GeoRaster, vertical_scale: f64, offset: f64) -> HeightGrid {
+    let (origin, cell, nx, ny) = (raster.origin, raster.cell, raster.nx as u32, raster.ny as u32);
+    let mut heights = raster.values;
+    for h in &mut heights {
+        *h = offset + vertical_scale * *h;
+    }
+    HeightGrid::new(origin, cell, nx, ny, heights)
 }
 
 /// A surface through the pixel centres, two triangles per cell.
@@ -58,7 +63,7 @@ mod tests {
             (0..3).flat_map(|r| (0..4).map(move |c| (5 * c + 3 * r) as f32 * 0.5)).collect();
         write(&path, 4, 3, &values, &Encoding::default()).unwrap();
         let raster = GeoRaster::read(&path, None, None).unwrap();
-        let grid = height_grid(&raster, 2.0, 100.0);
+        let grid = height_grid(raster.clone(), 2.0, 100.0);
         let surface = tin(&raster, "wt.tif").unwrap();
         assert_eq!(surface.triangles.len(), 2 * 3 * 2);
         for (x, y) in [(1005.0, 5015.0), (1017.5, 5022.0), (1033.0, 5019.0)] {

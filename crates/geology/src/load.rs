@@ -95,7 +95,7 @@ impl Loader<'_> {
             }
             if let Some(raster) = self.geotiff("terrain.file", &path, *nodata) {
                 *content = hash_file(&path);
-                *grid = Arc::new(grids::height_grid(&raster, *vertical_scale, *offset));
+                *grid = Arc::new(grids::height_grid(raster, *vertical_scale, *offset));
             }
             return;
         }
