@@ -48,6 +48,9 @@ enum Task {
         /// Only the mesher's synthetic budget cases.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// Only the GeoTIFF terrain budget (a 4000 × 4000 float32 LZW raster).
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        geotiff: bool,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
     MetricsTable {
@@ -85,8 +88,8 @@ fn main() -> ExitCode {
             return karstgen::cli::diff_command(&karstgen::cli::DiffArgs { a, b, tol: args.tol });
         }
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf, mesher } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher })
+        Task::Bench { runs, costgraph, sdf, mesher, geotiff } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, geotiff })
         }
         Task::Test { args } => return test(&args),
         Task::MetricsTable { write } => metrics_table_command(write),

@@ -10,13 +10,22 @@
 //!
 //! Conventions: metres, z up, right-handed; azimuths in degrees clockwise from north (+y).
 
+pub mod crs;
+mod csv;
 pub mod domain;
 pub mod field;
 pub mod fracture;
+pub mod geokeys;
+pub mod geotiff;
+pub mod grids;
 pub mod heightfield;
 pub mod keypoint;
+mod links;
+pub mod lithology;
 mod load;
+mod npy;
 pub mod params;
+pub mod point_table;
 pub mod rng;
 pub mod scene;
 pub mod sections;
@@ -25,6 +34,7 @@ pub mod surface;
 pub mod terrain;
 pub mod tin;
 mod validate;
+mod vti;
 
 pub use domain::Domain;
 pub use fracture::FractureFamily;

@@ -53,9 +53,10 @@ fn check_preset(name: &str) {
 }
 
 macro_rules! preset_tests {
-    ($($test:ident: $name:literal;)*) => {
+    ($($(#[$attribute:meta])* $test:ident: $name:literal;)*) => {
         $(
             #[test]
+            $(#[$attribute])*
             fn $test() {
                 check_preset($name);
             }
@@ -86,4 +87,8 @@ preset_tests! {
     superimposed_meshes_are_watertight: "superimposed";
     karstnsim_meshes_are_watertight: "karstnsim";
     karstnsim_2phase_meshes_are_watertight: "karstnsim-2phase";
+    // Meshes store f32 world coordinates: at y ≈ 6.86e6 their step is 0.5 m and triangles
+    // collapse. Runs once meshes are stored relative to a local origin (issue 16, item 0).
+    #[ignore = "f32 world coordinates at y = 6.86e6 (issue 16: local origin)"]
+    geotiff_meshes_are_watertight: "geotiff";
 }

@@ -161,6 +161,7 @@ preset_tests! {
     karstnsim_tree_is_one_lipschitz: "karstnsim", 5000, 200;
     karstnsim_2phase_tree_is_one_lipschitz: "karstnsim-2phase", 5000, 200;
     layered_tree_is_one_lipschitz: "layered", 5000, 200;
+    geotiff_tree_is_one_lipschitz: "geotiff", 5000, 200;
 }
 
 /// Every fixtures/scenes/*.toml preset has its test above.
@@ -176,6 +177,7 @@ fn every_preset_is_tested() {
         "karstnsim",
         "karstnsim-2phase",
         "layered",
+        "geotiff",
     ];
     for entry in std::fs::read_dir(root().join("fixtures/scenes")).unwrap() {
         let path = entry.unwrap().path();

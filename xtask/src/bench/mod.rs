@@ -8,6 +8,7 @@ use karst_artifact::StageId;
 use karst_stage::StageError;
 
 mod costgraph;
+mod geotiff;
 mod mesher;
 mod metrics;
 mod pipeline;
@@ -36,12 +37,16 @@ pub struct Only {
     pub costgraph: bool,
     pub sdf: bool,
     pub mesher: bool,
+    pub geotiff: bool,
 }
 
 /// `cargo xtask bench`: runs the benchmarks and prints their tables.
 pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
-    let Only { costgraph: costgraph_only, sdf: sdf_only, mesher: mesher_only } = only;
+    let Only { costgraph: costgraph_only, sdf: sdf_only, mesher: mesher_only, geotiff: geotiff_only } = only;
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
+    if geotiff_only {
+        return geotiff_bench(runs);
+    }
     if mesher_only {
         mesher_bench(runs);
         return Ok(());
@@ -87,7 +92,24 @@ pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
     }
 
     sdf_bench(runs)?;
-    mesher_and_network_bench(runs)
+    mesher_and_network_bench(runs)?;
+    geotiff_bench(runs)
+}
+
+/// The GeoTIFF terrain budget: loading a scene over a large raster.
+fn geotiff_bench(runs: usize) -> Result<(), StageError> {
+    let t = geotiff::time_geotiff_terrain(runs)?;
+    let mb = |b: u64| format!("{:.0}", b as f64 / 1e6);
+    let side = geotiff::SIDE;
+    println!("\nGeoTIFF terrain: {side} × {side} float32 LZW ({} MB file), Scene::load", mb(t.file_bytes));
+    println!(
+        "{:.3} s, CPU {} s, peak memory {} MB above the process's (the raster's own float32 size: {} MB)",
+        t.seconds,
+        t.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}")),
+        t.peak_above.map_or("-".into(), mb),
+        mb(side as u64 * side as u64 * 4)
+    );
+    Ok(())
 }
 
 /// The mesher's budget cases  on a synthetic model of 30k capsules.
