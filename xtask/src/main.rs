@@ -49,8 +49,11 @@ enum Task {
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
         /// Only the GeoTIFF terrain budget (a 4000 × 4000 float32 LZW raster).
-        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export"])]
         geotiff: bool,
+        /// Only the export formats, on the finished run in this folder (e.g. out/looping).
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        export: Option<PathBuf>,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
     MetricsTable {
@@ -88,8 +91,8 @@ fn main() -> ExitCode {
             return karstgen::cli::diff_command(&karstgen::cli::DiffArgs { a, b, tol: args.tol });
         }
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf, mesher, geotiff } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher, geotiff })
+        Task::Bench { runs, costgraph, sdf, mesher, geotiff, export } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, geotiff, export })
         }
         Task::Test { args } => return test(&args),
         Task::MetricsTable { write } => metrics_table_command(write),

@@ -36,14 +36,22 @@ pub struct Ran {
     pub seconds: f64,
 }
 
-/// Runs stage `S`: reads and checks its inputs, builds, writes the side files then the
-/// artifact (atomically, keyed by the scene sections it reads and its inputs' hashes).
+/// Runs stage `S`: reads and checks its inputs, builds, writes the side files, checks the
+/// payload, then writes the artifact (atomically, keyed by the scene sections it reads and its
+/// inputs' hashes).
 pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     debug_assert_eq!(S::Inputs::stages(), S::ID.inputs(), "{}: inputs differ from its row", S::ID.name());
     let mut refs = Vec::new();
     let inputs = S::Inputs::read(job.out, &mut refs)?;
     let start = Instant::now();
-    let output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
+    let mut output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
+    S::side_files(job.out, job.scene, &inputs, &mut output).map_err(|e| {
+        StageError::failure(format!(
+            "{}: cannot write the {} stage's files: {e}",
+            job.out.display(),
+            S::ID.name()
+        ))
+    })?;
     let seconds = start.elapsed().as_secs_f64();
     output.validate().map_err(|invalid| {
         StageError::failure(format!(
@@ -52,13 +60,6 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
             S::ID.row().kind,
             invalid.field,
             invalid.problem
-        ))
-    })?;
-    S::side_files(job.out, job.scene, &inputs, &output).map_err(|e| {
-        StageError::failure(format!(
-            "{}: cannot write the {} stage's files: {e}",
-            job.out.display(),
-            S::ID.name()
         ))
     })?;
     let provenance = Provenance {

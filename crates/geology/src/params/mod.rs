@@ -3,6 +3,7 @@
 //! stage's artifact key. Each section checks its own values.
 
 mod costgraph;
+mod export;
 mod hydro;
 mod mesher;
 mod sampling;
@@ -10,6 +11,7 @@ mod sdf;
 mod skeleton;
 
 pub use costgraph::{CostModelKind, CostgraphParams};
+pub use export::{ExportFormat, ExportParams, MeshSurface};
 pub use hydro::{HydroParams, PoolOutlet, PoolWeights, Recharge};
 pub use mesher::MesherParams;
 pub use sampling::{RadiusUnit, SamplingParams};
