@@ -36,6 +36,8 @@ enum Command {
     /// Write a run's outputs in other tools' formats (VTK, GOCAD, Survex, SWMM, glTF, OBJ, PLY,
     /// CSV) into DIR/export/.
     Export(karst_export::stage::ExportArgs),
+    /// Write the web viewer of a run into DIR/view/ (and serve it on 127.0.0.1 with --serve).
+    View(karst_view::cli::ViewArgs),
     /// Draw a picture of an output.
     #[command(subcommand)]
     Render(Render),
@@ -142,6 +144,7 @@ fn execute(command: Command) -> Result<(), StageError> {
         }
         Command::Ensemble(args) => ensemble_command(args),
         Command::Export(args) => karst_export::stage::export_run(&args),
+        Command::View(args) => karst_view::cli::view(&args),
         Command::Render(render) => match render {
             Render::Skeleton(args) => karst_skeleton::stage::render(&args),
             Render::Hydro(args) => karst_hydro::stage::render(&args),

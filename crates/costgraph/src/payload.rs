@@ -16,7 +16,9 @@ use crate::stats::Summary;
 /// `targets[offsets[i]..offsets[i + 1]]`, with costs at the same indices in every cost set.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CostGraph {
+    #[serde(with = "karst_artifact::bulk")]
     pub offsets: Vec<u32>,
+    #[serde(with = "karst_artifact::bulk")]
     pub targets: Vec<u32>,
     /// At least one cost set; set 0 is the default.
     pub cost_sets: Vec<CostSet>,
@@ -30,12 +32,18 @@ pub struct CostSet {
     /// The water table whose C_WT these costs use; None for paris2021.
     pub water_table: Option<String>,
     /// One cost per edge, > 0.
+    #[serde(with = "karst_artifact::bulk")]
     pub costs: Vec<f32>,
+    /// The least cost per metre (stored cost / length) of the edges between distinct
+    /// positions, the factor of the searches' A* heuristic, recorded while the costs are made
+    /// so that no later stage goes over every edge again to find it; None when not recorded
+    /// (graphs made from lists) or after costs were changed.
+    pub min_cost_per_metre: Option<f64>,
 }
 
 impl Payload for CostGraph {
     const STAGE: StageId = StageId::Costgraph;
-    const SCHEMA: u32 = 2;
+    const SCHEMA: u32 = 3;
 }
 
 impl CostGraph {
@@ -92,7 +100,7 @@ impl CostGraph {
         CostGraph {
             offsets,
             targets,
-            cost_sets: vec![CostSet { water_table: None, costs }],
+            cost_sets: vec![CostSet { water_table: None, costs, min_cost_per_metre: None }],
             summary: Summary::default(),
         }
     }
@@ -107,7 +115,11 @@ mod tests {
         let mut g = CostGraph::from_lists(vec![vec![(1, 1.0)], vec![(0, 2.0)]]);
         assert_eq!(g.cost_set_of_water_table("any"), Some(0));
         g.cost_sets[0].water_table = Some("high".into());
-        g.cost_sets.push(CostSet { water_table: Some("low".into()), costs: vec![3.0, 4.0] });
+        g.cost_sets.push(CostSet {
+            water_table: Some("low".into()),
+            costs: vec![3.0, 4.0],
+            min_cost_per_metre: None,
+        });
         assert_eq!(g.cost_set_of_water_table("low"), Some(1));
         assert_eq!(g.cost_set_of_water_table("none"), None);
         assert_eq!(g.out_edges_in(1, 1).collect::<Vec<_>>(), vec![(0, 4.0)]);

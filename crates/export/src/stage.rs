@@ -85,8 +85,8 @@ pub struct ExportArgs {
     /// ply, csv (default: the scene's [export] formats, or the cheap ones).
     #[arg(long, value_delimiter = ',')]
     pub format: Vec<String>,
-    /// The scene: its [export] section, and the rock layers of the samples (default:
-    /// DIR/scene.toml when present).
+    /// The scene: its [export] section, and the rock layers of the samples (default: the scene
+    /// the run was made from).
     #[arg(long)]
     pub scene: Option<PathBuf>,
     /// Print the manifest (name, format, bytes, blake3 of every file) as JSON.
@@ -97,7 +97,7 @@ pub struct ExportArgs {
 /// Writes the exports of the run in `args.dir` on demand, reading only the artifacts the
 /// chosen formats need; the run's artifacts are never touched.
 pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
-    let scene_path = args.scene.clone().or_else(|| Some(args.dir.join("scene.toml")).filter(|p| p.exists()));
+    let scene_path = args.scene.clone().or_else(|| karst_stage::run_dir::scene_of(&args.dir));
     let scene = scene_path.as_deref().map(Scene::load).transpose()?;
     let mut params = scene.as_ref().map_or_else(ExportParams::default, |s| s.export().clone());
     if !args.format.is_empty() {

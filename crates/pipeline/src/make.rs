@@ -65,6 +65,9 @@ pub fn run(
     std::fs::create_dir_all(out).map_err(|e| {
         StageError::failure(format!("{}: cannot create the output folder: {e}", out.display()))
     })?;
+    karst_stage::run_dir::record_scene(out, &scene.path).map_err(|e| {
+        StageError::failure(format!("{}: cannot record the scene's path: {e}", out.display()))
+    })?;
     let job = Job { scene_path: &scene.path, scene: &scene.scene, out };
     let mut reports = Vec::new();
     for stage in StageId::ALL {
