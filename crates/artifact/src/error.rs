@@ -38,6 +38,18 @@ pub enum Error {
         "{path}: {field}: {problem}: rerun the pipeline from {stage} (`karstgen run SCENE --from {stage}`)"
     )]
     Invalid { path: PathBuf, field: String, problem: String, stage: String },
+    #[error(
+        "{path}: its coordinates are relative to origin {found:?} ({found_crs}), the scene's to \
+         {expected:?} ({expected_crs}): rerun the pipeline from {stage} (`karstgen run SCENE --from {stage}`)"
+    )]
+    Frame {
+        path: PathBuf,
+        found: [f64; 3],
+        found_crs: String,
+        expected: [f64; 3],
+        expected_crs: String,
+        stage: String,
+    },
     #[error("cannot encode the {kind} payload: {detail}")]
     Encode { kind: String, detail: String },
 }

@@ -9,6 +9,9 @@
 //! sections a stage reads ([`Scene::sections_hash`]) is part of its artifact's key.
 //!
 //! Conventions: metres, z up, right-handed; azimuths in degrees clockwise from north (+y).
+//! Once loaded, every coordinate is local: relative to the domain's `min` corner
+//! ([`Scene::origin`], see `localize.rs`), so that f32 geometry keeps its precision whatever the
+//! magnitude of the file's coordinates.
 
 pub mod crs;
 mod csv;
@@ -23,6 +26,7 @@ pub mod keypoint;
 mod links;
 pub mod lithology;
 mod load;
+mod localize;
 mod npy;
 pub mod params;
 pub mod point_table;

@@ -123,6 +123,13 @@ impl Lattice {
 }
 
 impl LithologyGrid {
+    /// Moves the voxels by `by`.
+    pub fn translate(&mut self, by: [f64; 3]) {
+        for a in 0..3 {
+            self.lattice.first_centre[a] += by[a];
+        }
+    }
+
     /// The unit at `p`, if the grid has one there.
     fn unit_at(&self, p: Point) -> Option<usize> {
         self.units.get(self.lattice.index(p)).filter(|u| **u != UNMAPPED).map(|u| *u as usize)

@@ -53,6 +53,10 @@ pub struct Scene {
     pub(crate) mesher: MesherParams,
     #[serde(default)]
     pub(crate) export: ExportParams,
+    /// The world position of the local frame's origin (the domain's `min` as written in the
+    /// file); every coordinate above is relative to it once loaded ([`crate::localize`]).
+    #[serde(skip)]
+    pub(crate) origin: [f64; 3],
     /// Which sections were read, when auditing (see [`Scene::audited`]).
     #[serde(skip)]
     pub(crate) reads: Reads,
@@ -213,7 +217,11 @@ impl Scene {
         let folder = path.parent().unwrap_or(Path::new(""));
         let mut problems = crate::load::attach_files(&mut scene, folder, text);
         problems.extend(validate::check(&scene, text));
-        if problems.is_empty() { Ok(scene) } else { Err(invalid(problems)) }
+        if !problems.is_empty() {
+            return Err(invalid(problems));
+        }
+        crate::localize::localize(&mut scene);
+        Ok(scene)
     }
 
     /// The scene's name; `karstgen run` writes into `out/<name>` by default.
@@ -236,6 +244,19 @@ impl Scene {
     /// the name, it is the scene's identity, not an input of any stage's computation.
     pub fn crs(&self) -> Option<&str> {
         self.crs.as_deref()
+    }
+
+    /// The world coordinates of the local frame's origin: the domain's `min` as the scene file
+    /// gives it. Every coordinate the scene hands out is local (world − origin); artifacts
+    /// record the origin and exports add it back. Like the CRS, it is not an input of any
+    /// stage's computation: a scene moved by any offset gives the same payloads.
+    pub fn origin(&self) -> [f64; 3] {
+        self.origin
+    }
+
+    /// The local frame (origin and CRS) every artifact of this scene records.
+    pub fn frame(&self) -> karst_artifact::Frame {
+        karst_artifact::Frame { origin: self.origin, crs: self.crs.clone() }
     }
 
     /// `[[keypoints_from]]`: the tables key points were read from; their points are already

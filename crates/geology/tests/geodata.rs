@@ -114,21 +114,22 @@ fn geotiff_terrain_and_water_table_in_lambert_93() {
     let base = with(&with(SCENE, TABLE), phases);
     let scene = s.scene(&base).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.crs(), Some("EPSG:2154"));
+    // Coordinates are local once loaded: relative to the domain's min corner.
+    assert_eq!(scene.origin(), [651_000.0, 6_862_000.0, 0.0]);
+    assert_eq!(scene.domain().min, [0.0; 3]);
+    assert_eq!(scene.domain().max, [300.0, 250.0, 300.0]);
     // Pixel centres at 650995 + 10 c: the ground at x = 651100 is halfway between columns 10
     // and 11, 250 − 0.1 · 10.5.
-    assert!((scene.terrain().height(651_100.0, 6_862_100.0) - 248.95).abs() < 1e-5);
+    assert!((scene.terrain().height(100.0, 100.0) - 248.95).abs() < 1e-5);
     let wt = scene.water_table("wt").unwrap();
     // Row r's centre is at 6862255 − 10 r: at y = 6862100, r = 15.5.
-    assert!((wt.elevation_at(651_123.0, 6_862_100.0) - (120.0 + 0.2 * 15.5)).abs() < 1e-4);
+    assert!((wt.elevation_at(123.0, 100.0) - (120.0 + 0.2 * 15.5)).abs() < 1e-4);
     let names: Vec<&str> = scene.keypoints().iter().map(|k| k.name.as_str()).collect();
     assert_eq!(names, ["A", "B", "S1"]);
     let b = &scene.keypoints()[1];
     assert_eq!(b.kind, KeyPointKind::Sink);
     assert_eq!(b.weight, 2.5, "recharge is the weight");
-    assert!(
-        (b.position[2] - scene.terrain().height(651_100.5, 6_862_200.0)).abs() < 1e-12,
-        "z from the terrain"
-    );
+    assert!((b.position[2] - scene.terrain().height(100.5, 200.0)).abs() < 1e-12, "z from the terrain");
     assert_eq!(scene.keypoints()[2].water_table.as_deref(), Some("wt"));
     assert!(scene.phases().iter().all(|p| p.springs == ["S1"]), "the spring joins both phases");
     assert!(!scene.keypoints_from()[0].content.is_empty());

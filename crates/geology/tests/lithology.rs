@@ -119,9 +119,13 @@ fn code(i: usize, j: usize, k: usize) -> usize {
 
 /// Every voxel centre takes its code's unit: potential 1, 0.5 or 0.25, granite no-karst.
 fn check(scene: &Scene, what: &str) {
+    // The scene is local once loaded: world − the domain's min corner.
+    let origin = Point::from_array(scene.origin());
+    assert_eq!(origin, Point::new(651_000.0, 6_862_000.0, 100.0));
     for (i, j, k) in (0..4).flat_map(|i| (0..3).flat_map(move |j| (0..2).map(move |k| (i, j, k)))) {
-        let p =
+        let world =
             Point::new(651_012.5 + 25.0 * i as f64, 6_862_012.5 + 25.0 * j as f64, 105.0 + 10.0 * k as f64);
+        let p = world - origin;
         let expected = [1.0, 0.5, 0.25][code(i, j, k) - 1];
         assert_eq!(scene.geology().potential(p), expected, "{what}: voxel ({i}, {j}, {k})");
         assert_eq!(scene.geology().in_no_karst(p), code(i, j, k) == 3, "{what}: voxel ({i}, {j}, {k})");

@@ -57,6 +57,8 @@ pub struct Run {
     pub metrics: MetricsReport,
     pub samples: Samples,
     pub mesh: Option<Mesh>,
+    /// The frame the artifacts record.
+    pub frame: karst_artifact::Frame,
 }
 
 impl Run {
@@ -68,6 +70,7 @@ impl Run {
             metrics: read(dir, "metrics.json"),
             samples: read(dir, "samples.bin"),
             mesh: mesh_path.exists().then(|| read(dir, "mesh.bin")),
+            frame: karst_artifact::read_header(&dir.join("samples.bin")).unwrap().frame(),
         }
     }
 
@@ -79,6 +82,7 @@ impl Run {
             metrics: Some(&self.metrics),
             samples: Some(&self.samples),
             scene: None,
+            frame: &self.frame,
         }
     }
 }
