@@ -22,6 +22,9 @@ use crate::{Domain, Scene, Terrain};
 pub(crate) fn attach_files(scene: &mut Scene, folder: &Path, text: &str) -> Vec<Problem> {
     let mut loader =
         Loader { folder, text, footprint: footprint(&scene.domain), problems: Vec::new(), crs: Vec::new() };
+    if let Terrain::Noise { anchor, .. } = &mut scene.terrain {
+        *anchor = [scene.domain.min[0], scene.domain.min[1]];
+    }
     loader.terrain(&mut scene.terrain);
     loader.surfaces(scene);
     loader.potential_grid(scene);

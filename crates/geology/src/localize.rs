@@ -88,7 +88,10 @@ impl Shift {
                 self.xy(origin);
             }
             Terrain::Heightfield { grid, .. } => Arc::make_mut(grid).translate(by),
-            Terrain::Noise { elevation, .. } => self.z(elevation),
+            Terrain::Noise { elevation, anchor, .. } => {
+                self.z(elevation);
+                self.xy(anchor);
+            }
         }
     }
 

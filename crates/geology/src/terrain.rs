@@ -58,7 +58,9 @@ pub enum Terrain {
         grid: Arc<HeightGrid>,
     },
     /// Value noise: elevation + Σ_o amplitude·2^−o · n(2^o·(x, y)/wavelength), n a smooth
-    /// (cubic Hermite) interpolation of pseudo-random lattice values in [−1, 1].
+    /// (cubic Hermite) interpolation of pseudo-random lattice values in [−1, 1], x and y
+    /// measured from the domain's south-west corner (so that a moved scene carries its terrain
+    /// with it).
     Noise {
         /// Mean elevation, metres.
         elevation: f64,
@@ -72,6 +74,10 @@ pub enum Terrain {
         /// Slope added to the noise, as for a plane; default flat.
         #[serde(default)]
         gradient: [f64; 2],
+        /// Where x and y are measured from: the domain's `[min x, min y]`, set when the scene
+        /// is loaded ([0, 0] once it is localized).
+        #[serde(skip)]
+        anchor: [f64; 2],
     },
 }
 
@@ -92,7 +98,8 @@ impl Terrain {
                 elevation + gradient[0] * (x - origin[0]) + gradient[1] * (y - origin[1])
             }
             Terrain::Heightfield { grid, .. } => grid.height(x, y),
-            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient } => {
+            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient, anchor } => {
+                let (x, y) = (x - anchor[0], y - anchor[1]);
                 elevation
                     + gradient[0] * x
                     + gradient[1] * y
@@ -170,6 +177,7 @@ mod tests {
             wavelength: 100.0,
             octaves: 3,
             gradient: [0.01, 0.0],
+            anchor: [0.0; 2],
         };
         let lambda = t.lipschitz();
         let mut steepest = 0.0f64;
