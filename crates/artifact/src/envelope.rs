@@ -319,17 +319,17 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
 
 /// Checks that an artifact's header is in `frame` (the scene's): an artifact made from the
 /// same scene moved elsewhere, or in another CRS, is not an input of this run.
-pub fn check_frame(path: &Path, header: &Header, frame: &Frame) -> Result<(), Error> {
-    if header.origin == frame.origin && header.crs == frame.crs {
+pub fn check_frame(path: &Path, header: &Header, expected: &Frame) -> Result<(), Error> {
+    if header.origin == expected.origin && header.crs == expected.crs {
         return Ok(());
     }
-    let crs = |c: &Option<String>| c.clone().unwrap_or_else(|| "no CRS".into());
+    let frame = |origin: [f64; 3], crs: &Option<String>| {
+        format!("origin {origin:?} ({})", crs.as_deref().unwrap_or("no CRS"))
+    };
     Err(Error::Frame {
         path: path.into(),
-        found: header.origin,
-        found_crs: crs(&header.crs),
-        expected: frame.origin,
-        expected_crs: crs(&frame.crs),
+        found: frame(header.origin, &header.crs),
+        expected: frame(expected.origin, &expected.crs),
         stage: header.kind.name().into(),
     })
 }
@@ -527,6 +527,21 @@ mod tests {
         let err = read_artifact::<Positive>(&path).unwrap_err();
         assert!(matches!(err, Error::Invalid { .. }), "{err}");
         assert!(err.to_string().contains("value: -1 is not positive"), "{err}");
+    }
+
+    #[test]
+    fn the_header_records_the_frame_and_another_frame_is_refused() {
+        let path = scratch("frame.bin");
+        let lambert = Frame { origin: [651000.0, 6862000.0, 250.0], crs: Some("EPSG:2154".into()) };
+        let header =
+            write_artifact(&path, &Provenance { frame: lambert.clone(), ..provenance() }, &Points(vec![]))
+                .unwrap();
+        assert_eq!(read_header(&path).unwrap().frame(), lambert);
+        assert_ne!(header.key, write_artifact(&path, &provenance(), &Points(vec![])).unwrap().key);
+        assert!(check_frame(&path, &header, &lambert).is_ok());
+        let err = check_frame(&path, &header, &Frame::default()).unwrap_err().to_string();
+        assert!(err.contains("origin [651000.0, 6862000.0, 250.0] (EPSG:2154)"), "{err}");
+        assert!(err.contains("origin [0.0, 0.0, 0.0] (no CRS)") && err.contains("--from sampling"), "{err}");
     }
 
     #[test]

@@ -39,17 +39,10 @@ pub enum Error {
     )]
     Invalid { path: PathBuf, field: String, problem: String, stage: String },
     #[error(
-        "{path}: its coordinates are relative to origin {found:?} ({found_crs}), the scene's to \
-         {expected:?} ({expected_crs}): rerun the pipeline from {stage} (`karstgen run SCENE --from {stage}`)"
+        "{path}: its coordinates are relative to {found}, the scene's to {expected}: \
+         rerun the pipeline from {stage} (`karstgen run SCENE --from {stage}`)"
     )]
-    Frame {
-        path: PathBuf,
-        found: [f64; 3],
-        found_crs: String,
-        expected: [f64; 3],
-        expected_crs: String,
-        stage: String,
-    },
+    Frame { path: PathBuf, found: String, expected: String, stage: String },
     #[error("cannot encode the {kind} payload: {detail}")]
     Encode { kind: String, detail: String },
 }
