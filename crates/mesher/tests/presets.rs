@@ -87,8 +87,7 @@ preset_tests! {
     superimposed_meshes_are_watertight: "superimposed";
     karstnsim_meshes_are_watertight: "karstnsim";
     karstnsim_2phase_meshes_are_watertight: "karstnsim-2phase";
-    // Meshes store f32 world coordinates: at y ≈ 6.86e6 their step is 0.5 m and triangles
-    // collapse. Runs once meshes are stored relative to a local origin (issue 16, item 0).
-    #[ignore = "f32 world coordinates at y = 6.86e6 (issue 16: local origin)"]
+    // In Lambert-93 (y ≈ 6.86e6, where an f32 steps by 0.5 m): watertight because the scene
+    // is meshed in its local frame (issue 16).
     geotiff_meshes_are_watertight: "geotiff";
 }

@@ -97,6 +97,14 @@ pub fn inspect<S: Stage>(path: &Path) -> Result<Vec<String>, StageError> {
         header.schema,
         header.producer
     )];
+    // The frame, when the coordinates are not world coordinates already.
+    if header.origin != [0.0; 3] || header.crs.is_some() {
+        lines.push(format!(
+            "  local frame: world = local + {:?} ({})",
+            header.origin,
+            header.crs.as_deref().unwrap_or("no CRS")
+        ));
+    }
     lines.extend(S::summary(&header, &output).into_iter().map(|l| format!("  {l}")));
     Ok(lines)
 }
