@@ -125,8 +125,8 @@ impl Lattice {
 impl LithologyGrid {
     /// Moves the voxels by `by`.
     pub fn translate(&mut self, by: [f64; 3]) {
-        for a in 0..3 {
-            self.lattice.first_centre[a] += by[a];
+        for (c, d) in self.lattice.first_centre.iter_mut().zip(by) {
+            *c += d;
         }
     }
 

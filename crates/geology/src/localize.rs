@@ -67,8 +67,8 @@ struct Shift([f64; 3]);
 
 impl Shift {
     fn point(&self, p: &mut [f64; 3]) {
-        for a in 0..3 {
-            p[a] -= self.0[a];
+        for (c, o) in p.iter_mut().zip(self.0) {
+            *c -= o;
         }
     }
 

@@ -96,8 +96,8 @@ impl Tin {
     /// Moves the triangles by `by` (their search structure rebuilt where they now are).
     pub fn translate(&mut self, by: [f64; 3]) {
         for v in &mut self.vertices {
-            for a in 0..3 {
-                v[a] += by[a];
+            for (c, d) in v.iter_mut().zip(by) {
+                *c += d;
             }
         }
         self.buckets = self.bucket_grid();
