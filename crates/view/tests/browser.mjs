@@ -102,10 +102,15 @@ async function test(browser, runDir) {
   await page.click('#layer-cave');
   await redraw(page);
 
-  // Picking: click the middle of the segment drawn farthest from every other one.
-  const data = await page.evaluate(() => ({ conduits: window.karstView.data.skeleton.conduits.map((c) => ({ nodes: c.nodes, types: c.types })) }));
+  // Picking: click the middle of the segment drawn farthest from every other segment and from
+  // the nodes a click picks first (conduit ends: junctions, dead ends; key points).
+  const data = await page.evaluate(() => ({
+    conduits: window.karstView.data.skeleton.conduits.map((c) => ({ nodes: c.nodes, types: c.types })),
+    keypoints: window.karstView.data.skeleton.nodes.flatMap((n, i) => (n.keypoint ? [i] : [])),
+  }));
   const screen = await page.evaluate(() => window.karstView.projectNodes());
   const segments = data.conduits.flatMap((c, ci) => c.nodes.slice(1).map((b, i) => ({ ci, i, a: c.nodes[i], b })));
+  const pickedFirst = [...new Set([...data.conduits.flatMap((c) => [c.nodes[0], c.nodes[c.nodes.length - 1]]), ...data.keypoints])];
   const onScreen = (p) => p && p.x > 20 && p.y > 20 && p.x < VIEWPORT.width - 360 && p.y < VIEWPORT.height - 20;
   const toSegment = (x, y, p, q) => {
     const [dx, dy] = [q.x - p.x, q.y - p.y];
@@ -116,14 +121,16 @@ async function test(browser, runDir) {
   let target = null;
   for (const s of segments) {
     const [p, q] = [screen[s.a], screen[s.b]];
-    if (!onScreen(p) || !onScreen(q) || Math.hypot(q.x - p.x, q.y - p.y) < 12) continue;
+    if (!onScreen(p) || !onScreen(q) || Math.hypot(q.x - p.x, q.y - p.y) < 8) continue;
     const [x, y] = [(p.x + q.x) / 2, (p.y + q.y) / 2];
-    const clearance = Math.min(...segments.filter((o) => o !== s && screen[o.a] && screen[o.b])
-      .map((o) => toSegment(x, y, screen[o.a], screen[o.b])),
-      ...screen.filter(Boolean).map((n) => Math.hypot(n.x - x, n.y - y)));
+    const fromSegments = Math.min(...segments.filter((o) => o !== s && screen[o.a] && screen[o.b])
+      .map((o) => toSegment(x, y, screen[o.a], screen[o.b])));
+    // A node within the viewer's 6 px node tolerance would be picked instead.
+    const fromNodes = Math.min(...pickedFirst.filter((n) => screen[n]).map((n) => Math.hypot(screen[n].x - x, screen[n].y - y))) - 6;
+    const clearance = Math.min(fromSegments, fromNodes);
     if (!target || clearance > target.clearance) target = { ...s, x, y, clearance };
   }
-  assert.ok(target && target.clearance > 8, 'no conduit segment stands alone on screen');
+  assert.ok(target && target.clearance > 3, `no conduit segment stands alone on screen (best: ${JSON.stringify(target)})`);
   await page.mouse.click(target.x, target.y);
   await redraw(page);
   const info = await page.$eval('#info', (e) => e.innerText);

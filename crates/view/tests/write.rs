@@ -85,7 +85,7 @@ fn a_complete_run_gives_every_layer() {
         }
         assert_eq!(triangles, mesh["triangles"].as_u64().unwrap(), "the finest levels hold every triangle");
     }
-    assert_eq!(data["metrics"]["network"]["n_nodes_full"], 33);
+    assert_eq!(data["metrics"]["network"]["n_nodes_full"], 30);
     assert!(dir.join("view/index.html").is_file());
     assert!(dir.join("view/vendor/three/LICENSE").is_file());
 }
