@@ -13,13 +13,17 @@
 //! fails.
 
 pub mod atomic;
+pub mod check;
 pub mod envelope;
 pub mod error;
+pub mod files;
 pub mod hash;
+pub mod lock;
 pub mod stages;
 
 pub use envelope::{
     Header, InputRef, Invalid, Payload, Provenance, read_artifact, read_header, write_artifact,
 };
 pub use error::Error;
+pub use lock::{OutputLock, lock_output};
 pub use stages::{Encoding, StageId, StageRow};
