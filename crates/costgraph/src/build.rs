@@ -113,14 +113,14 @@ fn cost_chunk(
     for &i in chunk {
         let i = i as usize;
         for &j in rows.row(i) {
-            let j = j as usize;
-            if fields.position(i) == fields.position(j) {
-                let position = fields.position(i).to_array();
-                return Err(CostGraphError::CoincidentSamples { a: i.min(j), b: i.max(j), position });
-            }
-            model.edge(fields, i, j, &mut terms);
+            model.edge(fields, i, j as usize, &mut terms);
             for (costs, &cost) in out.costs.iter_mut().zip(&terms.cost) {
-                costs.push(cost as f32);
+                // Caught where it happens: the artifact's costs are f32, finite and > 0.
+                let single = cost as f32;
+                if !(single.is_finite() && single > 0.0) {
+                    return Err(CostGraphError::CostOutOfRange { cost, length: terms.length });
+                }
+                costs.push(single);
             }
             if !i.is_multiple_of(STATS_STRIDE) {
                 continue;

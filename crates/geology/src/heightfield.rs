@@ -141,7 +141,7 @@ impl HeightGrid {
     /// A grid from its samples (x fastest, south row first); computes the Lipschitz bound.
     pub fn new(origin: [f64; 2], cell_size: f64, nx: u32, ny: u32, heights: Vec<f64>) -> HeightGrid {
         let mut grid = HeightGrid { origin, cell_size, nx, ny, heights, lipschitz: 0.0 };
-        grid.lipschitz = grid.bilinear_lipschitz();
+        grid.lipschitz = grid.slope_bound();
         grid
     }
 
@@ -149,7 +149,9 @@ impl HeightGrid {
         self.heights[j * self.nx as usize + i]
     }
 
-    fn bilinear_lipschitz(&self) -> f64 {
+    /// The Lipschitz bound of the bilinear interpolant over its valid cells, computed from the
+    /// heights (what `lipschitz` holds for a grid made by [`HeightGrid::new`]).
+    pub fn slope_bound(&self) -> f64 {
         let (nx, ny) = (self.nx as usize, self.ny as usize);
         let mut bound = 0.0f64;
         for j in 0..ny.saturating_sub(1) {

@@ -166,7 +166,7 @@ fn format_problems(path: &Path, problems: &[Problem]) -> String {
 impl Scene {
     /// Reads, parses and validates a scene file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path)
+        let text = karst_artifact::files::read_regular_text(path, karst_artifact::files::MAX_SCENE_BYTES)
             .map_err(|source| SceneError::Read { path: path.to_path_buf(), source })?;
         Scene::parse(&text, path)
     }
@@ -177,6 +177,10 @@ impl Scene {
         let invalid = |problems| SceneError::Invalid { path: path.to_path_buf(), problems };
         let mut scene: Scene =
             toml::from_str(text).map_err(|e| invalid(vec![validate::from_toml(text, &e)]))?;
+        let extra = validate::extra_elements(text, &scene);
+        if !extra.is_empty() {
+            return Err(invalid(extra));
+        }
         let folder = path.parent().unwrap_or(Path::new(""));
         let mut problems = crate::load::attach_files(&mut scene, folder, text);
         problems.extend(validate::check(&scene, text));

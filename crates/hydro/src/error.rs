@@ -10,14 +10,6 @@ pub enum HydroError {
     NoSpring,
     #[error("sink \"{sink}\" (node {node}) has no downstream path: no conduit leads from it to a spring")]
     NoDownstreamPath { sink: String, node: u32 },
-    #[error("sink \"{sink}\" has weight {weight}: recharge must be a finite number ≥ 0")]
-    BadWeight { sink: String, weight: f64 },
-    #[error("{what} names node {node}, but the network has {count} nodes")]
-    MissingNode { what: String, node: u32, count: usize },
-    #[error("conduit {conduit} has {nodes} nodes and {radii} radii")]
-    Radii { conduit: usize, nodes: usize, radii: usize },
-    #[error("node {node} has a non-finite position")]
-    Position { node: usize },
     #[error("hydro.pools[{index}]: no pool within {radius} m of {at:?} ({nearest})")]
     NoPoolNear { index: usize, at: [f64; 3], radius: f64, nearest: String },
     #[error("hydro.pools[{second}]: selects pool node {node}, which hydro.pools[{first}] already selects")]
@@ -36,12 +28,8 @@ impl Failure for HydroError {
             HydroError::NoPoolNear { .. } | HydroError::SamePool { .. } | HydroError::PoolClosed { .. } => {
                 Blame::Scene
             }
-            HydroError::BadWeight { .. }
-            | HydroError::NoSpring
-            | HydroError::NoDownstreamPath { .. }
-            | HydroError::MissingNode { .. }
-            | HydroError::Radii { .. }
-            | HydroError::Position { .. } => Blame::Artifact(StageId::Skeleton),
+            HydroError::NoSpring
+            | HydroError::NoDownstreamPath { .. } => Blame::Artifact(StageId::Skeleton),
         }
     }
 }

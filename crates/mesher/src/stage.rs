@@ -116,6 +116,13 @@ pub fn render(args: &RenderArgs) -> Result<(), StageError> {
             )));
         }
     };
+    if surface.triangles.is_empty() {
+        return Err(StageError::input(format!(
+            "{}: the {} surface is empty: nothing to draw",
+            args.file.display(),
+            args.surface
+        )));
+    }
     if !(16..=8192).contains(&args.width) || !(16..=8192).contains(&args.height) {
         return Err(StageError::input(format!(
             "--width {} --height {}: each must be within 16..=8192 pixels",

@@ -162,6 +162,25 @@ impl SpacingField {
         self.values.iter().copied().fold(f32::INFINITY, f32::min) as f64
     }
 
+    /// Checks a decoded field: a grid of at least one node per axis holding one finite,
+    /// positive radius per node.
+    pub fn validate(&self) -> Result<(), karst_artifact::Invalid> {
+        use karst_artifact::check::{self, MAX_COORDINATE, ensure};
+        check::position(|| "radius_field.origin".into(), &self.origin)?;
+        check::positive(|| "radius_field.cell".into(), self.cell, MAX_COORDINATE)?;
+        let nodes = self.size.iter().try_fold(1usize, |n, &s| n.checked_mul(s as usize).filter(|_| s > 0));
+        ensure(nodes == Some(self.values.len()), || "radius_field.values".into(), || {
+            format!("holds {} radii for a grid of {:?} nodes", self.values.len(), self.size)
+        })?;
+        match self.values.iter().position(|r| !(*r > 0.0 && r.is_finite())) {
+            Some(i) => Err(karst_artifact::Invalid::new(
+                format!("radius_field.values[{i}]"),
+                format!("{} is not a finite radius > 0", self.values[i]),
+            )),
+            None => Ok(()),
+        }
+    }
+
     /// Expected number of samples of a maximal Poisson-disk set filling the grid's box
     /// (random close packing of spheres of diameter r: about 0.725 / r³ per m³).
     pub fn expected_samples(&self) -> f64 {

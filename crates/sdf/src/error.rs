@@ -13,18 +13,6 @@ pub enum SdfError {
     #[error("terrain: no finite Lipschitz bound (λ = {lambda})")]
     TerrainNotLipschitz { lambda: f64 },
     #[error(
-        "conduits[{conduit}] has {nodes} nodes, {radii} radii and {types} types (expected n, n and n − 1)"
-    )]
-    ConduitShape { conduit: usize, nodes: usize, radii: usize, types: usize },
-    #[error("conduits[{conduit}].nodes names node {node}, which does not exist")]
-    MissingNode { conduit: usize, node: u32 },
-    #[error("nodes[{node}].position = {position:?} is not finite")]
-    NodeNotFinite { node: u32, position: [f64; 3] },
-    #[error("conduits[{conduit}] repeats node {node} (a segment of length 0)")]
-    RepeatedNode { conduit: usize, node: u32 },
-    #[error("conduits[{conduit}].radius[{node}] = {radius} (radii must be finite and > 0)")]
-    BadRadius { conduit: usize, node: usize, radius: f64 },
-    #[error(
         "[sdf] ratio = {ratio} and asymmetry = {asymmetry} give conduits[{conduit}] node {node} \
          ({} / {}) a bad section: {problem}", types[0], types[1]
     )]
@@ -45,11 +33,6 @@ impl Failure for SdfError {
                 Blame::Artifact(StageId::Hydro)
             }
             SdfError::TerrainNotLipschitz { .. } | SdfError::BadSection { .. } => Blame::Scene,
-            SdfError::ConduitShape { .. }
-            | SdfError::MissingNode { .. }
-            | SdfError::NodeNotFinite { .. }
-            | SdfError::RepeatedNode { .. }
-            | SdfError::BadRadius { .. } => Blame::Artifact(StageId::Skeleton),
         }
     }
 }

@@ -3,8 +3,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use karst_artifact::stages::producer;
-use karst_artifact::{Payload, Provenance, read_artifact, write_artifact};
+use karst_artifact::stages::{producer, stage_key};
+use karst_artifact::{Header, InputRef, Payload, Provenance, read_artifact, read_header, write_artifact};
 use karst_geology::Scene;
 
 use crate::contract::{Blame, Failure, Stage};
@@ -40,8 +40,13 @@ pub struct Ran {
 /// artifact (atomically, keyed by the scene sections it reads and its inputs' hashes).
 pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     debug_assert_eq!(S::Inputs::stages(), S::ID.inputs(), "{}: inputs differ from its row", S::ID.name());
-    let mut refs = Vec::new();
-    let inputs = S::Inputs::read(job.out, &mut refs)?;
+    let mut headers = Vec::new();
+    let inputs = S::Inputs::read(job.out, &mut headers)?;
+    consistent(job, &headers)?;
+    let refs = headers
+        .iter()
+        .map(|h| InputRef { name: h.kind.row().kind.into(), payload_blake3: h.payload_blake3.clone() })
+        .collect();
     let start = Instant::now();
     let output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
     let seconds = start.elapsed().as_secs_f64();
@@ -54,6 +59,13 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
             invalid.problem
         ))
     })?;
+    let provenance = Provenance {
+        producer: producer(S::ID),
+        inputs: refs,
+        params: job.scene.sections_hash(S::ID.row().sections),
+    };
+    let path = job.artifact(S::ID);
+    invalidate_other(&path, &stage_key(S::ID, &provenance.producer, S::Output::SCHEMA, &provenance.params, &provenance.inputs))?;
     S::side_files(job.out, job.scene, &inputs, &output).map_err(|e| {
         StageError::failure(format!(
             "{}: cannot write the {} stage's files: {e}",
@@ -61,13 +73,42 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
             S::ID.name()
         ))
     })?;
-    let provenance = Provenance {
-        producer: producer(S::ID),
-        inputs: refs,
-        params: job.scene.sections_hash(S::ID.row().sections),
-    };
-    write_artifact(&job.artifact(S::ID), &provenance, &output)?;
+    write_artifact(&path, &provenance, &output)?;
     Ok(Ran { headline: S::headline(job.scene, &output), seconds })
+}
+
+/// Checks that the inputs were made from one another: a costgraph.bin made from another
+/// samples.bin than the one beside it (a stage rerun alone with `--only`) is refused, naming
+/// the stage to rerun.
+fn consistent(job: &Job, headers: &[Header]) -> Result<(), StageError> {
+    for header in headers {
+        for input in &header.inputs {
+            let Some(used) = headers.iter().find(|h| h.kind.row().kind == input.name) else { continue };
+            if used.payload_blake3 != input.payload_blake3 {
+                let stage = header.kind.name();
+                return Err(StageError::input(format!(
+                    "{}: was made from another {} than {}: rerun the pipeline from {stage} (`karstgen run SCENE --from {stage}`)",
+                    job.artifact(header.kind).display(),
+                    used.kind.file_name(),
+                    job.artifact(used.kind).display(),
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Removes the artifact at `path` when its key is not `key`, before the side files are
+/// rewritten: an interrupted run then leaves no artifact that claims side files it did not
+/// write, and the stage runs again next time. (With the same key, the side files written are
+/// the same bytes: nothing to invalidate.)
+fn invalidate_other(path: &Path, key: &str) -> Result<(), StageError> {
+    match read_header(path) {
+        Ok(header) if header.key == key => Ok(()),
+        Err(karst_artifact::Error::Open { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        _ => std::fs::remove_file(path)
+            .map_err(|e| StageError::failure(format!("{}: cannot remove the stale artifact: {e}", path.display()))),
+    }
 }
 
 /// The error a user sees for a stage's typed error: the file at fault named first.

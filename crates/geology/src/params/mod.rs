@@ -9,6 +9,11 @@ mod sampling;
 mod sdf;
 mod skeleton;
 
+/// Smallest conduit radius a scene may ask for, metres.
+pub const MIN_RADIUS: f64 = 1e-3;
+/// Largest conduit radius, metres.
+pub const MAX_RADIUS: f64 = 1e3;
+
 pub use costgraph::{CostModelKind, CostgraphParams};
 pub use hydro::{HydroParams, PoolOutlet, PoolWeights, Recharge};
 pub use mesher::MesherParams;

@@ -88,10 +88,43 @@ pub enum Mode {
     Karstnsim,
 }
 
+/// Largest γ (γ = 50 already keeps only the relative neighbourhood graph's pairs).
+pub const MAX_GAMMA: f64 = 100.0;
+/// Most amplification steps.
+pub const MAX_AMPLIFICATION_STEPS: usize = 100;
+/// Most new key points per amplification step.
+pub const MAX_AMPLIFICATION_POINTS: usize = 10_000;
+/// Most new key points over all amplification steps.
+pub const MAX_AMPLIFICATION_WORK: usize = 100_000;
+
 impl SkeletonParams {
     pub(crate) fn check(&self, c: &mut Checks) {
-        if c.finite("skeleton.gamma", &[self.gamma]) && self.gamma <= 0.0 {
+        if c.within("skeleton.gamma", self.gamma, 0.0, MAX_GAMMA) && self.gamma == 0.0 {
             c.report("skeleton.gamma", format!("must be > 0, got {}", self.gamma));
+        }
+        if self.amplification_steps > MAX_AMPLIFICATION_STEPS {
+            c.report(
+                "skeleton.amplification_steps",
+                format!("must be at most {MAX_AMPLIFICATION_STEPS}, got {}", self.amplification_steps),
+            );
+        }
+        if self.amplification_points > MAX_AMPLIFICATION_POINTS {
+            c.report(
+                "skeleton.amplification_points",
+                format!("must be at most {MAX_AMPLIFICATION_POINTS}, got {}", self.amplification_points),
+            );
+        }
+        let new_points = self.amplification_steps.saturating_mul(self.amplification_points);
+        if new_points > MAX_AMPLIFICATION_WORK {
+            // One or two least-cost searches per new point.
+            c.report(
+                "skeleton.amplification_points",
+                format!(
+                    "amplification_steps × amplification_points = {new_points} new key points, each one or two least-cost \
+                     searches: at most {MAX_AMPLIFICATION_WORK}; {} points per step would fit",
+                    MAX_AMPLIFICATION_WORK / self.amplification_steps.max(1)
+                ),
+            );
         }
         for (field, p) in [
             ("skeleton.cohesion_vadose", self.cohesion_vadose),
@@ -121,11 +154,7 @@ impl SkeletonParams {
                 format!("must be at most 6, got {}", self.tortuosity_levels),
             );
         }
-        let [lo, hi] = self.radius;
-        c.positive("skeleton.radius", lo);
-        if lo.is_finite() && hi.is_finite() && hi < lo {
-            c.report("skeleton.radius", format!("[{lo}, {hi}] is not a range (max < min)"));
-        }
+        c.range("skeleton.radius", self.radius, super::MIN_RADIUS, super::MAX_RADIUS);
         if c.finite("skeleton.vertical_angle", &[self.vertical_angle])
             && !(self.vertical_angle > 0.0 && self.vertical_angle <= 90.0)
         {
@@ -134,12 +163,12 @@ impl SkeletonParams {
                 format!("must be in (0, 90] degrees, got {}", self.vertical_angle),
             );
         }
-        let [c0, c1] = self.radius_correlation;
-        c.positive("skeleton.radius_correlation", c0);
-        if c0.is_finite() && c1.is_finite() && c1 < c0 {
-            c.report("skeleton.radius_correlation", format!("[{c0}, {c1}] is not a range (max < min)"));
+        let [c0, _] = self.radius_correlation;
+        c.range("skeleton.radius_correlation", self.radius_correlation, 0.0, crate::validate::MAX_LENGTH);
+        if c0 == 0.0 {
+            c.report("skeleton.radius_correlation", "must be > 0, got 0".into());
         }
-        c.positive("skeleton.epikarst_radius", self.epikarst_radius);
+        c.within("skeleton.epikarst_radius", self.epikarst_radius, super::MIN_RADIUS, super::MAX_RADIUS);
         if let Some(g) = self.ghost_rock_potential
             && c.finite("skeleton.ghost_rock_potential", &[g])
             && !(0.0..=1.0).contains(&g)
