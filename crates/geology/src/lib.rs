@@ -10,6 +10,7 @@
 //!
 //! Conventions: metres, z up, right-handed; azimuths in degrees clockwise from north (+y).
 
+pub mod budget;
 pub mod domain;
 pub mod field;
 pub mod fracture;
@@ -34,6 +35,11 @@ pub use sections::Section;
 pub use surface::{Geometry, Surface};
 pub use terrain::Terrain;
 pub use validate::Problem;
+
+/// The ranges every scene is checked against (docs/limits.md).
+pub mod limits {
+    pub use crate::validate::{MAX_COORDINATE, MAX_EXTENT, MAX_KEYPOINTS, MAX_LENGTH, MAX_TERRAIN_SLOPE, MAX_WEIGHT};
+}
 
 /// A point in space, metres, z up.
 pub type Point = glam::DVec3;

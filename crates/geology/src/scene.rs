@@ -45,6 +45,9 @@ pub struct Scene {
     /// Which sections were read, when auditing (see [`Scene::audited`]).
     #[serde(skip)]
     pub(crate) reads: Reads,
+    /// The memory the stages may plan to use: set by the command line, in no key.
+    #[serde(skip)]
+    pub(crate) budget: crate::budget::Budget,
 }
 
 /// `[geology]`: the surfaces that guide karstification.
@@ -201,6 +204,16 @@ impl Scene {
     /// Sets the seed (an ensemble's realizations differ only by it).
     pub fn set_seed(&mut self, seed: u64) {
         self.seed = seed;
+    }
+
+    /// The memory budget the stages check their work estimates against.
+    pub fn budget(&self) -> crate::budget::Budget {
+        self.budget
+    }
+
+    /// Sets the memory budget (`--max-memory`).
+    pub fn set_budget(&mut self, budget: crate::budget::Budget) {
+        self.budget = budget;
     }
 
     /// `skeleton.forced_links`, read on its own by the cost graph.

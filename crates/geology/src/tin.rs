@@ -63,7 +63,7 @@ impl Tin {
     /// Reads a `.ts` TSurf or a plain vertices/triangles text, by extension.
     pub fn read(path: &Path) -> Result<Tin, TinError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path)
+        let text = karst_artifact::files::read_regular_text(path, karst_artifact::files::MAX_DATA_BYTES)
             .map_err(|e| TinError::Read { file: file.clone(), message: e.to_string() })?;
         let is_tsurf = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ts"));
         let (vertices, triangles) =
@@ -337,8 +337,9 @@ fn numbers<T: std::str::FromStr>(
 }
 
 fn finite_vertex(xyz: Vec<f64>, file: &str, line: usize) -> Result<[f64; 3], TinError> {
-    if let Some(v) = xyz.iter().find(|v| !v.is_finite()) {
-        return Err(syntax(file, line, format!("coordinate {v} is not a finite number")));
+    let limit = crate::validate::MAX_COORDINATE;
+    if let Some(v) = xyz.iter().find(|v| !(v.abs() <= limit)) {
+        return Err(syntax(file, line, format!("coordinate {v} is not a finite number within ±{limit:e}")));
     }
     Ok([xyz[0], xyz[1], xyz[2]])
 }

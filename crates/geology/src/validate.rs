@@ -87,7 +87,7 @@ fn longer_arrays(given: &toml::Value, read: &toml::Value, path: String, found: &
 pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     let mut found = Checks { text, problems: Vec::new() };
     found.domain(scene);
-    found.terrain(scene);
+    let terrain = found.terrain(scene);
     found.surfaces("geology.water_tables", &scene.geology.water_tables, false);
     found.surfaces("geology.horizons", &scene.geology.horizons, false);
     found.surfaces("geology.faults", &scene.geology.faults, true);
@@ -95,7 +95,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     found.layers(scene);
     found.field_nodes(scene, "geology.potential", &scene.geology.potential, false);
     found.field_nodes(scene, "geology.no_karst", &scene.geology.no_karst, true);
-    found.keypoints(scene);
+    found.keypoints(scene, terrain);
     found.connectivity(scene);
     found.forced_links(scene);
     found.phases(scene);
@@ -110,7 +110,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
 
 /// A number as people write it: plain when moderate, in exponent notation when huge or tiny.
 fn number(v: f64) -> String {
-    if v != 0.0 && !(1e-4..1e7).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
+    if v != 0.0 && !(1e-4..1e6).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
 }
 
 /// Largest coordinate of a scene, metres (projected coordinates are a few million).
@@ -220,7 +220,8 @@ impl Checks<'_> {
         }
     }
 
-    fn terrain(&mut self, scene: &Scene) {
+    /// Checks the terrain; true when it can be evaluated.
+    fn terrain(&mut self, scene: &Scene) -> bool {
         let ok = match &scene.terrain {
             Terrain::Plane { elevation, origin, gradient } => {
                 self.coordinates("terrain.elevation", &[*elevation])
@@ -255,7 +256,7 @@ impl Checks<'_> {
                 driver,
                 format!("gives the terrain a steepest slope of {lambda:e} (at most {MAX_TERRAIN_SLOPE:e}): the terrain would be a wall"),
             );
-            return;
+            return false;
         }
         if ok && self.problems.is_empty() {
             let d = &scene.domain;
@@ -271,6 +272,7 @@ impl Checks<'_> {
                 );
             }
         }
+        ok
     }
 
     fn heightfield_covers(&mut self, scene: &Scene, grid: &crate::heightfield::HeightGrid) -> bool {
@@ -425,7 +427,7 @@ impl Checks<'_> {
         }
     }
 
-    fn keypoints(&mut self, scene: &Scene) {
+    fn keypoints(&mut self, scene: &Scene, terrain: bool) {
         for (i, k) in scene.keypoints.iter().enumerate() {
             let at = |f: &str| format!("keypoints[{i}].{f}");
             if scene.keypoints[..i].iter().any(|o| o.name == k.name) {
@@ -433,7 +435,7 @@ impl Checks<'_> {
             }
             self.within(&at("weight"), k.weight, 0.0, MAX_WEIGHT);
             if self.coordinates(&at("position"), &k.position) {
-                self.keypoint_position(scene, i);
+                self.keypoint_position(scene, i, terrain);
                 if let Some(o) = scene.keypoints[..i].iter().find(|o| o.position == k.position) {
                     self.report(
                         &at("position"),
@@ -465,7 +467,7 @@ impl Checks<'_> {
         }
     }
 
-    fn keypoint_position(&mut self, scene: &Scene, i: usize) {
+    fn keypoint_position(&mut self, scene: &Scene, i: usize, terrain: bool) {
         let k = &scene.keypoints[i];
         let field = format!("keypoints[{i}].position");
         let [x, y, z] = k.position;
@@ -484,7 +486,7 @@ impl Checks<'_> {
                 format!("\"{}\" at [{x}, {y}, {z}] is inside no-karst volume \"{}\"", k.name, v.name),
             );
         }
-        let ground = scene.terrain.height(x, y);
+        let ground = if terrain { scene.terrain.height(x, y) } else { f64::INFINITY };
         if z > ground {
             self.report(
                 &field,

@@ -65,6 +65,9 @@ pub fn run(
     std::fs::create_dir_all(out).map_err(|e| {
         StageError::failure(format!("{}: cannot create the output folder: {e}", out.display()))
     })?;
+    // One run writes into a folder at a time; what a killed run left half-written goes.
+    let _lock = karst_artifact::lock_output(out)?;
+    karst_artifact::atomic::remove_stale_temporaries(out);
     let job = Job { scene_path: &scene.path, scene: &scene.scene, out };
     let mut reports = Vec::new();
     for stage in StageId::ALL {
