@@ -18,6 +18,8 @@ pub enum HydroError {
         "hydro.pools[{index}]: every outgoing conduit of pool node {node} gets weight 0: water could not leave it"
     )]
     PoolClosed { index: usize, node: u32 },
+    #[error(transparent)]
+    OverBudget(#[from] karst_geology::budget::OverBudget),
 }
 
 impl Failure for HydroError {
@@ -25,9 +27,10 @@ impl Failure for HydroError {
     /// skeleton.json (whose routes carry the sinks' weights).
     fn blame(&self) -> Blame {
         match self {
-            HydroError::NoPoolNear { .. } | HydroError::SamePool { .. } | HydroError::PoolClosed { .. } => {
-                Blame::Scene
-            }
+            HydroError::NoPoolNear { .. }
+            | HydroError::SamePool { .. }
+            | HydroError::PoolClosed { .. }
+            | HydroError::OverBudget(_) => Blame::Scene,
             HydroError::NoSpring
             | HydroError::NoDownstreamPath { .. } => Blame::Artifact(StageId::Skeleton),
         }
