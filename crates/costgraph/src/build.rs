@@ -21,6 +21,8 @@ pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, CostGraphErr
     if k >= samples.len() {
         return Err(CostGraphError::TooFewSamples { k, samples: samples.len() });
     }
+    let model = CostModel::from_scene(scene);
+    crate::estimate::check(scene, samples.len(), model.set_count())?;
     let chunks = samples.len().div_ceil(CHUNK) as u64;
     let bar = karst_stage::progress::bar(2 * chunks, "costgraph");
     let done = || bar.inc(1);
@@ -28,7 +30,7 @@ pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, CostGraphErr
     let rows = edges(scene, &samples.positions, &order, &done);
     checks::isolated_keypoints(scene, samples, &rows)?;
     checks::sinks_reach_their_springs(scene, samples, &rows)?;
-    let graph = costed(&CostModel::from_scene(scene), &samples.positions, (rows, &order), &done);
+    let graph = costed(&model, &samples.positions, (rows, &order), &done);
     bar.finish_and_clear();
     graph
 }

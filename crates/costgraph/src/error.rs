@@ -22,6 +22,8 @@ pub enum CostGraphError {
          {cost:e}, which a cost (32-bit float, finite and > 0) cannot hold: bring them within docs/limits.md's ranges"
     )]
     CostOutOfRange { cost: f64, length: f64 },
+    #[error(transparent)]
+    OverBudget(#[from] karst_geology::budget::OverBudget),
 }
 
 impl Failure for CostGraphError {

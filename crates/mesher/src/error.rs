@@ -14,12 +14,16 @@ pub enum MesherError {
          (a terrain steeper than the domain is tall, or conduits thinner than the cell?)"
     )]
     Empty { surface: &'static str, field: &'static str, cell_size: f64 },
+    #[error(transparent)]
+    OverBudget(#[from] karst_geology::budget::OverBudget),
 }
 
 impl Failure for MesherError {
     fn blame(&self) -> Blame {
         match self {
-            MesherError::LatticeTooFine { .. } | MesherError::Empty { .. } => Blame::Scene,
+            MesherError::LatticeTooFine { .. } | MesherError::Empty { .. } | MesherError::OverBudget(_) => {
+                Blame::Scene
+            }
         }
     }
 }

@@ -19,6 +19,7 @@ mod cleanup;
 pub mod components;
 mod cubes;
 mod error;
+mod estimate;
 pub mod export;
 mod lattice;
 mod normals;

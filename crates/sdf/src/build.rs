@@ -32,6 +32,7 @@ use crate::water::{self, Water};
 
 /// The model of `scene` carved by the conduits of `skeleton`, with the water of `hydro`.
 pub fn build(scene: &Scene, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfModel, SdfError> {
+    crate::estimate::check(scene, skeleton)?;
     if hydro.conduits.len() != skeleton.conduits.len() {
         return Err(SdfError::ConduitCounts {
             hydro: hydro.conduits.len(),

@@ -6,6 +6,8 @@ use karst_stage::{Blame, Failure};
 /// An sdf model that cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SdfError {
+    #[error(transparent)]
+    OverBudget(#[from] karst_geology::budget::OverBudget),
     #[error("describes {hydro} conduits, skeleton.json has {skeleton}")]
     ConduitCounts { hydro: usize, skeleton: usize },
     #[error("conduit {conduit} has fewer water segments than skeleton.json has segments")]
@@ -32,7 +34,9 @@ impl Failure for SdfError {
             SdfError::ConduitCounts { .. } | SdfError::WaterSegments { .. } => {
                 Blame::Artifact(StageId::Hydro)
             }
-            SdfError::TerrainNotLipschitz { .. } | SdfError::BadSection { .. } => Blame::Scene,
+            SdfError::TerrainNotLipschitz { .. } | SdfError::BadSection { .. } | SdfError::OverBudget(_) => {
+                Blame::Scene
+            }
         }
     }
 }
