@@ -1,6 +1,7 @@
 //! `cargo xtask`: the developers' tasks. `run`, `diff` and `inspect` are `karstgen`'s own (the
 //! same code); `bless` regenerates the golden artifacts, `bench` times every stage, `test`
-//! installs the test tools and runs the suite, `metrics-table` tables every scene's metrics.
+//! installs the test tools and runs the suite, `metrics-table` tables every scene's metrics,
+//! `fuzz` runs the fuzz targets for a while.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -48,12 +49,24 @@ enum Task {
         /// Only the mesher's synthetic budget cases.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// Only the network statistics of mazes (grids of 40k and 250k nodes).
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        mazes: bool,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
     MetricsTable {
         /// Also copy each metrics.json to fixtures/metrics/ and update the README's table.
         #[arg(long)]
         write: bool,
+    },
+    /// Fuzz every reader (scene, artifacts, network and data files) for MINUTES with new
+    /// seeds; each failure is shrunk and saved in fixtures/bad/fuzz/ (exit 1 when any).
+    Fuzz {
+        #[arg(long, default_value_t = 10.0)]
+        minutes: f64,
+        /// First random seed (later rounds take the next ones).
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
     },
     /// Run the test suite (`cargo test --release --workspace`), after installing the outside
     /// tools the tests check outputs with (tools/: Python packages, Debian packages, npm).
@@ -85,13 +98,34 @@ fn main() -> ExitCode {
             return karstgen::cli::diff_command(&karstgen::cli::DiffArgs { a, b, tol: args.tol });
         }
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf, mesher } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher })
+        Task::Bench { runs, costgraph, sdf, mesher, mazes } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, mazes })
         }
         Task::Test { args } => return test(&args),
+        Task::Fuzz { minutes, seed } => fuzz(minutes, seed),
         Task::MetricsTable { write } => metrics_table_command(write),
     };
     finish(result)
+}
+
+/// `cargo xtask fuzz`: every target in turn, 500 cases a round, until the time is up.
+fn fuzz(minutes: f64, seed: u64) -> Result<(), StageError> {
+    let root = workspace_root();
+    let failures = karst_fuzz::run_for(minutes * 60.0, 500, seed);
+    for failure in &failures {
+        let saved = karst_fuzz::save(&root, failure)
+            .map_err(|e| StageError::failure(format!("cannot save a regression case: {e}")))?;
+        eprintln!("{failure}\n  saved as {}", saved.display());
+    }
+    if failures.is_empty() {
+        println!("fuzz: {minutes} min, no failure");
+        Ok(())
+    } else {
+        Err(StageError::failure(format!(
+            "fuzz: {} failure(s), saved in fixtures/bad/fuzz/: fix the readers, keep the files",
+            failures.len()
+        )))
+    }
 }
 
 fn workspace_root() -> PathBuf {

@@ -308,15 +308,24 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
     if hash::hex(&payload) != header.payload_blake3 {
         return Err(Error::Checksum { path: path.into(), stage });
     }
+    let value = decode_payload::<P>(path, header.encoding, &payload)?;
+    Ok((header, value))
+}
+
+/// Decodes the payload bytes of an artifact of `P`'s stage (`path` names it in messages), then
+/// checks it with [`Payload::validate`]: what [`read_artifact`] does once the envelope is
+/// checked, and what the fuzz targets feed with arbitrary bytes.
+pub fn decode_payload<P: Payload>(path: &Path, encoding: Encoding, bytes: &[u8]) -> Result<P, Error> {
+    let stage = P::STAGE.name().to_string();
     let decode_error = |detail: String| Error::Decode {
         path: path.into(),
         kind: P::STAGE.row().kind.into(),
         detail,
         stage: stage.clone(),
     };
-    let value: P = match header.encoding {
-        Encoding::Postcard => postcard::from_bytes(&payload).map_err(|e| decode_error(e.to_string()))?,
-        Encoding::Json => serde_json::from_slice(&payload).map_err(|e| decode_error(e.to_string()))?,
+    let value: P = match encoding {
+        Encoding::Postcard => postcard::from_bytes(bytes).map_err(|e| decode_error(e.to_string()))?,
+        Encoding::Json => serde_json::from_slice(bytes).map_err(|e| decode_error(e.to_string()))?,
     };
     value.validate().map_err(|invalid| Error::Invalid {
         path: path.into(),
@@ -324,7 +333,7 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
         problem: invalid.problem,
         stage: stage.clone(),
     })?;
-    Ok((header, value))
+    Ok(value)
 }
 
 /// Opens an artifact file: a regular file (a FIFO would block, a device never end).

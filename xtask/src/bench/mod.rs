@@ -36,12 +36,16 @@ pub struct Only {
     pub costgraph: bool,
     pub sdf: bool,
     pub mesher: bool,
+    pub mazes: bool,
 }
 
 /// `cargo xtask bench`: runs the benchmarks and prints their tables.
 pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
-    let Only { costgraph: costgraph_only, sdf: sdf_only, mesher: mesher_only } = only;
+    let Only { costgraph: costgraph_only, sdf: sdf_only, mesher: mesher_only, mazes } = only;
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
+    if mazes {
+        return maze_bench(runs);
+    }
     if mesher_only {
         mesher_bench(runs);
         return Ok(());
@@ -152,6 +156,16 @@ fn mesher_and_network_bench(runs: usize) -> Result<(), StageError> {
             "{:<14} {:>7} {:>8} {:>12.4} {theirs:>12} {ratio:>8}",
             t.name, t.nodes, t.reduced_nodes, t.ours
         );
+    }
+    Ok(())
+}
+
+/// The network statistics of mazes, where the all-pairs traversals dominate.
+fn maze_bench(runs: usize) -> Result<(), StageError> {
+    println!("\nnetwork statistics of mazes");
+    println!("{:<16} {:>8} {:>8} {:>12}", "network", "nodes", "reduced", "karstgen s");
+    for t in metrics::time_mazes(runs)? {
+        println!("{:<16} {:>8} {:>8} {:>12.3}", t.name, t.nodes, t.reduced_nodes, t.ours);
     }
     Ok(())
 }
