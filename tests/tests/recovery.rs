@@ -91,7 +91,8 @@ fn inputs_made_from_another_upstream_artifact_are_refused() {
     let text = fs::read_to_string(&scene).unwrap();
     fs::write(&scene, text.replace("seed = 7", "seed = 8")).unwrap();
     run(&scene, &out, &Selection { only: Some(StageId::Sampling), ..Selection::default() }).unwrap();
-    let err = run(&scene, &out, &Selection { only: Some(StageId::Skeleton), ..Selection::default() }).unwrap_err();
+    let err =
+        run(&scene, &out, &Selection { only: Some(StageId::Skeleton), ..Selection::default() }).unwrap_err();
     let message = err.to_string();
     assert!(message.contains("costgraph.bin: was made from another samples.bin"), "{message}");
     assert!(message.contains("--from costgraph"), "{message}");
@@ -127,9 +128,11 @@ fn wrong_payloads_with_right_checksums_are_refused_by_every_reader() {
     forger::<karst_skeleton::Skeleton>(&skeleton)(&|s| s.conduits[0].nodes[1] = 1_000_000_000);
     let message = bad_input(karst_pipeline::registry::inspect(&skeleton));
     assert!(message.contains("skeleton.json: conduits[0].nodes[1]: 1000000000 is out of range"), "{message}");
-    let args = karst_skeleton::stage::RenderArgs { file: skeleton.clone(), png: out.join("s.png"), title: None };
+    let args =
+        karst_skeleton::stage::RenderArgs { file: skeleton.clone(), png: out.join("s.png"), title: None };
     bad_input(karst_skeleton::stage::render(&args));
-    let message = bad_input(run(&scene, &out, &Selection { only: Some(StageId::Hydro), ..Selection::default() }));
+    let message =
+        bad_input(run(&scene, &out, &Selection { only: Some(StageId::Hydro), ..Selection::default() }));
     assert!(message.contains("rerun the pipeline from skeleton"), "{message}");
 
     let mesh = out.join("mesh.bin");

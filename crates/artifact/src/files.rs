@@ -17,12 +17,18 @@ pub fn open_regular(path: &Path, cap: u64) -> io::Result<(File, u64)> {
     let meta = fs::metadata(path)?;
     let kind = meta.file_type();
     if !kind.is_file() {
-        return Err(io::Error::new(io::ErrorKind::InvalidInput, format!("is not a regular file (it is {})", kind_name(&kind))));
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("is not a regular file (it is {})", kind_name(&kind)),
+        ));
     }
     if meta.len() > cap {
         return Err(io::Error::new(
             io::ErrorKind::InvalidInput,
-            format!("is {} bytes, more than the {cap} bytes such a file may have (docs/limits.md)", meta.len()),
+            format!(
+                "is {} bytes, more than the {cap} bytes such a file may have (docs/limits.md)",
+                meta.len()
+            ),
         ));
     }
     let file = File::open(path)?;
@@ -36,7 +42,10 @@ pub fn read_regular(path: &Path, cap: u64) -> io::Result<Vec<u8>> {
     let mut bytes = Vec::with_capacity(len as usize);
     file.take(cap + 1).read_to_end(&mut bytes)?;
     if bytes.len() as u64 > cap {
-        return Err(io::Error::new(io::ErrorKind::InvalidInput, format!("grew past {cap} bytes while being read")));
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("grew past {cap} bytes while being read"),
+        ));
     }
     Ok(bytes)
 }

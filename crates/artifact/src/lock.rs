@@ -30,7 +30,13 @@ impl OutputLock {
 pub fn lock_output(dir: &Path) -> Result<OutputLock, Error> {
     let io = |source| Error::Write { path: dir.join(LOCK_FILE), source };
     fs::create_dir_all(dir).map_err(io)?;
-    let file = OpenOptions::new().read(true).write(true).create(true).truncate(false).open(dir.join(LOCK_FILE)).map_err(io)?;
+    let file = OpenOptions::new()
+        .read(true)
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .open(dir.join(LOCK_FILE))
+        .map_err(io)?;
     match file.try_lock() {
         Ok(()) => Ok(OutputLock { _file: file, dir: dir.to_path_buf() }),
         Err(TryLockError::WouldBlock) => Err(Error::Busy { dir: dir.to_path_buf() }),

@@ -3,8 +3,8 @@
 //! in chunks then assembled (so held twice at the peak), plus per-sample fields (position,
 //! potential, one distance per surface and per water table) and the search grid.
 
-use karst_geology::budget::{Cheaper, Estimate, OverBudget};
 use karst_geology::Scene;
+use karst_geology::budget::{Cheaper, Estimate, OverBudget};
 
 /// Bytes per edge and per cost set at the peak (the chunk's cost and the graph's).
 const BYTES_PER_EDGE_AND_SET: f64 = 8.0;
@@ -21,7 +21,8 @@ pub fn check(scene: &Scene, samples: usize, sets: usize) -> Result<(), OverBudge
     let n = samples as f64;
     let bytes = |k: f64| {
         let edges = n * k * if p.symmetrise { 2.0 } else { 1.0 };
-        n * (BYTES_PER_SAMPLE + 8.0 * fields as f64) + edges * (BYTES_PER_EDGE + BYTES_PER_EDGE_AND_SET * sets as f64)
+        n * (BYTES_PER_SAMPLE + 8.0 * fields as f64)
+            + edges * (BYTES_PER_EDGE + BYTES_PER_EDGE_AND_SET * sets as f64)
     };
     let k = p.k as f64;
     let estimate = Estimate {

@@ -44,7 +44,10 @@ impl Payload for CostGraph {
         ensure(self.offsets.first() == Some(&0), || "offsets".into(), || "must start with 0".into())?;
         if let Some(i) = self.offsets.windows(2).position(|w| w[1] < w[0]) {
             let (a, b) = (self.offsets[i], self.offsets[i + 1]);
-            return Err(Invalid::new(format!("offsets[{}]", i + 1), format!("{b} is below offsets[{i}] = {a}")));
+            return Err(Invalid::new(
+                format!("offsets[{}]", i + 1),
+                format!("{b} is below offsets[{i}] = {a}"),
+            ));
         }
         let last = self.offsets.last().copied().unwrap_or(0) as usize;
         check::count(|| "targets".into(), self.targets.len(), last)?;

@@ -11,23 +11,59 @@ use proptest::prelude::*;
 /// One change to an input; positions are taken modulo the input's length.
 #[derive(Debug, Clone)]
 pub enum Mutation {
-    Flip { at: u32, bit: u8 },
-    Byte { at: u32, value: u8 },
-    Insert { at: u32, bytes: Vec<u8> },
-    Delete { at: u32, len: u16 },
-    Truncate { at: u32 },
+    Flip {
+        at: u32,
+        bit: u8,
+    },
+    Byte {
+        at: u32,
+        value: u8,
+    },
+    Insert {
+        at: u32,
+        bytes: Vec<u8>,
+    },
+    Delete {
+        at: u32,
+        len: u16,
+    },
+    Truncate {
+        at: u32,
+    },
     /// An interesting number written over the input (binary) or over its `at`-th number token
     /// (text).
-    Number { at: u32, which: u8 },
+    Number {
+        at: u32,
+        which: u8,
+    },
     /// Text: drop (0), repeat (1) or swap with the next (2) the `at`-th line, or lengthen the
     /// first array on it (3).
-    Line { at: u32, op: u8 },
+    Line {
+        at: u32,
+        op: u8,
+    },
 }
 
 /// Numbers that break code, as text.
 const TEXT_NUMBERS: [&str; 18] = [
-    "nan", "inf", "-inf", "1e308", "-1e308", "5e-324", "-1", "0", "-0", "4294967296", "4e9",
-    "18446744073709551615", "9223372036854775807", "1e-300", "0.5", "\"x\"", "[]", "1e20",
+    "nan",
+    "inf",
+    "-inf",
+    "1e308",
+    "-1e308",
+    "5e-324",
+    "-1",
+    "0",
+    "-0",
+    "4294967296",
+    "4e9",
+    "18446744073709551615",
+    "9223372036854775807",
+    "1e-300",
+    "0.5",
+    "\"x\"",
+    "[]",
+    "1e20",
 ];
 
 /// Numbers that break code, as little-endian bytes (f64, u32, u64 and postcard varints of
@@ -50,7 +86,8 @@ fn mutation() -> impl Strategy<Value = Mutation> {
     prop_oneof![
         (any::<u32>(), 0u8..8).prop_map(|(at, bit)| Mutation::Flip { at, bit }),
         (any::<u32>(), any::<u8>()).prop_map(|(at, value)| Mutation::Byte { at, value }),
-        (any::<u32>(), prop::collection::vec(any::<u8>(), 1..8)).prop_map(|(at, bytes)| Mutation::Insert { at, bytes }),
+        (any::<u32>(), prop::collection::vec(any::<u8>(), 1..8))
+            .prop_map(|(at, bytes)| Mutation::Insert { at, bytes }),
         (any::<u32>(), 1u16..64).prop_map(|(at, len)| Mutation::Delete { at, len }),
         any::<u32>().prop_map(|at| Mutation::Truncate { at }),
         (any::<u32>(), any::<u8>()).prop_map(|(at, which)| Mutation::Number { at, which }),

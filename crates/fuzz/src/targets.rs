@@ -27,13 +27,43 @@ pub struct Target {
 pub fn targets() -> Vec<Target> {
     vec![
         Target { name: "scene", seeds: scene_seeds, text: true, check: check_scene },
-        Target { name: "samples", seeds: payload_seeds::<karst_sampling::SamplingStage>, text: false, check: check_payload::<karst_sampling::SamplingStage> },
-        Target { name: "costgraph", seeds: payload_seeds::<karst_costgraph::CostgraphStage>, text: false, check: check_payload::<karst_costgraph::CostgraphStage> },
-        Target { name: "skeleton", seeds: payload_seeds::<karst_skeleton::SkeletonStage>, text: true, check: check_payload::<karst_skeleton::SkeletonStage> },
-        Target { name: "hydro", seeds: payload_seeds::<karst_hydro::HydroStage>, text: true, check: check_payload::<karst_hydro::HydroStage> },
+        Target {
+            name: "samples",
+            seeds: payload_seeds::<karst_sampling::SamplingStage>,
+            text: false,
+            check: check_payload::<karst_sampling::SamplingStage>,
+        },
+        Target {
+            name: "costgraph",
+            seeds: payload_seeds::<karst_costgraph::CostgraphStage>,
+            text: false,
+            check: check_payload::<karst_costgraph::CostgraphStage>,
+        },
+        Target {
+            name: "skeleton",
+            seeds: payload_seeds::<karst_skeleton::SkeletonStage>,
+            text: true,
+            check: check_payload::<karst_skeleton::SkeletonStage>,
+        },
+        Target {
+            name: "hydro",
+            seeds: payload_seeds::<karst_hydro::HydroStage>,
+            text: true,
+            check: check_payload::<karst_hydro::HydroStage>,
+        },
         Target { name: "sdf", seeds: payload_seeds::<karst_sdf::SdfStage>, text: false, check: check_sdf },
-        Target { name: "mesh", seeds: mesh_seeds, text: false, check: check_payload::<karst_mesher::MesherStage> },
-        Target { name: "metrics", seeds: payload_seeds::<karst_metrics::MetricsStage>, text: true, check: check_payload::<karst_metrics::MetricsStage> },
+        Target {
+            name: "mesh",
+            seeds: mesh_seeds,
+            text: false,
+            check: check_payload::<karst_mesher::MesherStage>,
+        },
+        Target {
+            name: "metrics",
+            seeds: payload_seeds::<karst_metrics::MetricsStage>,
+            text: true,
+            check: check_payload::<karst_metrics::MetricsStage>,
+        },
         Target { name: "karstnet", seeds: karstnet_seeds, text: true, check: check_karstnet },
         Target { name: "pline", seeds: pline_seeds, text: true, check: check_pline },
         Target { name: "csv", seeds: csv_seeds, text: true, check: check_csv },
@@ -49,8 +79,10 @@ fn read(relative: &str) -> Vec<u8> {
 
 /// A scratch folder of this thread, for the readers that take files.
 fn scratch() -> PathBuf {
-    let dir = std::env::temp_dir()
-        .join(format!("karst-fuzz-{}-{:?}", std::process::id(), std::thread::current().id()).replace(['(', ')'], ""));
+    let dir = std::env::temp_dir().join(
+        format!("karst-fuzz-{}-{:?}", std::process::id(), std::thread::current().id())
+            .replace(['(', ')'], ""),
+    );
     std::fs::create_dir_all(&dir).expect("the temporary folder is writable");
     dir
 }
@@ -75,8 +107,9 @@ fn check_scene(input: &[u8]) {
 
 /// The payload of the tiny golden artifact of stage `S`, encoded as in its file.
 fn payload_seeds<S: Stage>() -> Vec<Vec<u8>> {
-    let (_, payload) = read_artifact::<S::Output>(&root().join("fixtures/golden/tiny").join(S::ID.file_name()))
-        .expect("the goldens read");
+    let (_, payload) =
+        read_artifact::<S::Output>(&root().join("fixtures/golden/tiny").join(S::ID.file_name()))
+            .expect("the goldens read");
     vec![encode(&payload)]
 }
 
@@ -90,8 +123,8 @@ fn encode<P: Payload>(payload: &P) -> Vec<u8> {
 /// The tiny mesh cut to its first 300 triangles per surface: a small seed, so that a case
 /// costs a millisecond, not the golden's 25 MB of work.
 fn mesh_seeds() -> Vec<Vec<u8>> {
-    let (_, mut mesh) =
-        read_artifact::<karst_mesher::Mesh>(&root().join("fixtures/golden/tiny/mesh.bin")).expect("the golden reads");
+    let (_, mut mesh) = read_artifact::<karst_mesher::Mesh>(&root().join("fixtures/golden/tiny/mesh.bin"))
+        .expect("the golden reads");
     for surface in [&mut mesh.terrain, &mut mesh.cave, &mut mesh.water] {
         surface.triangles.truncate(300);
         let mut used: Vec<u32> = surface.triangles.iter().flatten().copied().collect();
@@ -163,7 +196,11 @@ fn small_network() -> (String, String) {
 
 fn karstnet_seeds() -> Vec<Vec<u8>> {
     let (nodes, links) = small_network();
-    let sakany = [read("fixtures/caves/Sakany_nodes.dat"), SPLIT.as_bytes().to_vec(), read("fixtures/caves/Sakany_links.dat")];
+    let sakany = [
+        read("fixtures/caves/Sakany_nodes.dat"),
+        SPLIT.as_bytes().to_vec(),
+        read("fixtures/caves/Sakany_links.dat"),
+    ];
     vec![format!("{nodes}{SPLIT}{links}").into_bytes(), sakany.concat()]
 }
 
@@ -245,7 +282,13 @@ fn png_seeds() -> Vec<Vec<u8>> {
 
 /// A heightfield that decodes is evaluated as the terrain is.
 fn check_png(input: &[u8]) {
-    let geo = Georeference { origin: [0.0, 0.0], cell_size: 10.0, vertical_scale: 0.1, offset: 0.0, nodata: Some(0.0) };
+    let geo = Georeference {
+        origin: [0.0, 0.0],
+        cell_size: 10.0,
+        vertical_scale: 0.1,
+        offset: 0.0,
+        nodata: Some(0.0),
+    };
     if let Ok(grid) = HeightGrid::decode_png(input, "fuzz.png", &geo) {
         let _ = grid.height(15.0, 5.0);
         let _ = grid.slope_bound();

@@ -40,7 +40,8 @@ impl std::str::FromStr for Budget {
         let t = text.trim();
         let split = t.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(t.len());
         let (number, unit) = t.split_at(split);
-        let value: f64 = number.parse().map_err(|_| format!("\"{text}\" is not a size such as 16G or 512M"))?;
+        let value: f64 =
+            number.parse().map_err(|_| format!("\"{text}\" is not a size such as 16G or 512M"))?;
         let unit = unit.trim().trim_end_matches("iB").trim_end_matches('B').to_ascii_uppercase();
         let scale = match unit.as_str() {
             "" => 1.0,
@@ -192,9 +193,16 @@ pub fn bytes(b: f64) -> String {
     let mut value = b;
     for unit in UNITS {
         if value < 1024.0 {
-            let decimals = if value >= 100.0 { 0 } else if value >= 10.0 { 1 } else { 2 };
+            let decimals = if value >= 100.0 {
+                0
+            } else if value >= 10.0 {
+                1
+            } else {
+                2
+            };
             let text = format!("{value:.decimals$}");
-            let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { &text };
+            let text =
+                if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { &text };
             return format!("{text} {unit}");
         }
         value /= 1024.0;
@@ -238,7 +246,8 @@ mod tests {
         assert!(message.contains(&format!("sampling.radius = {} would fit", short(fits))), "{message}");
         // A count that grows the estimate: the advice is a smaller integer.
         let per_k = |k: f64| k * 1e8;
-        let e = Estimate { what: "edges".into(), bytes: per_k(40.0), field: "costgraph.k".into(), value: 40.0 };
+        let e =
+            Estimate { what: "edges".into(), bytes: per_k(40.0), field: "costgraph.k".into(), value: 40.0 };
         let err = budget.check(e, Cheaper::Smaller, true, per_k).unwrap_err();
         assert_eq!(err.fits, Some(10.0));
     }

@@ -78,7 +78,9 @@ impl HeightGrid {
         let mut reader = decoder.read_info().map_err(|e| read(e.to_string()))?;
         let (width, height) = (reader.info().width as u64, reader.info().height as u64);
         if width * height > MAX_PIXELS {
-            return Err(read(format!("{width} × {height} pixels, more than the {MAX_PIXELS} a heightfield may have")));
+            return Err(read(format!(
+                "{width} × {height} pixels, more than the {MAX_PIXELS} a heightfield may have"
+            )));
         }
         let size = reader.output_buffer_size().ok_or_else(|| read("image too large".into()))?;
         let mut buffer = vec![0u8; size];

@@ -38,7 +38,9 @@ pub use validate::Problem;
 
 /// The ranges every scene is checked against (docs/limits.md).
 pub mod limits {
-    pub use crate::validate::{MAX_COORDINATE, MAX_EXTENT, MAX_KEYPOINTS, MAX_LENGTH, MAX_TERRAIN_SLOPE, MAX_WEIGHT};
+    pub use crate::validate::{
+        MAX_COORDINATE, MAX_EXTENT, MAX_KEYPOINTS, MAX_LENGTH, MAX_TERRAIN_SLOPE, MAX_WEIGHT,
+    };
 }
 
 /// A point in space, metres, z up.

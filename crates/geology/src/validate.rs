@@ -61,7 +61,12 @@ pub(crate) fn extra_elements(text: &str, scene: &Scene) -> Vec<Problem> {
         .collect()
 }
 
-fn longer_arrays(given: &toml::Value, read: &toml::Value, path: String, found: &mut Vec<(String, usize, usize)>) {
+fn longer_arrays(
+    given: &toml::Value,
+    read: &toml::Value,
+    path: String,
+    found: &mut Vec<(String, usize, usize)>,
+) {
     match (given, read) {
         (toml::Value::Table(g), toml::Value::Table(r)) => {
             for (key, value) in g {
@@ -215,7 +220,10 @@ impl Checks<'_> {
                 );
             } else if d.max[axis] - d.min[axis] > MAX_EXTENT {
                 let extent = d.max[axis] - d.min[axis];
-                self.report("domain.max", format!("the domain is {extent:e} m along {name}, more than {MAX_EXTENT:e} m"));
+                self.report(
+                    "domain.max",
+                    format!("the domain is {extent:e} m along {name}, more than {MAX_EXTENT:e} m"),
+                );
             }
         }
     }
@@ -239,7 +247,12 @@ impl Checks<'_> {
                 let ok = self.coordinates("terrain.elevation", &[*elevation])
                     & self.within("terrain.amplitude", *amplitude, -MAX_LENGTH, MAX_LENGTH)
                     & self.within("terrain.gradient", gradient[0].hypot(gradient[1]), 0.0, MAX_TERRAIN_SLOPE)
-                    & self.within("terrain.octaves", *octaves as f64, 0.0, crate::terrain::MAX_OCTAVES as f64);
+                    & self.within(
+                        "terrain.octaves",
+                        *octaves as f64,
+                        0.0,
+                        crate::terrain::MAX_OCTAVES as f64,
+                    );
                 self.positive("terrain.wavelength", *wavelength);
                 ok && *wavelength > 0.0
             }
@@ -439,7 +452,10 @@ impl Checks<'_> {
                 if let Some(o) = scene.keypoints[..i].iter().find(|o| o.position == k.position) {
                     self.report(
                         &at("position"),
-                        format!("\"{}\" lies where \"{}\" does, {:?}: two key points need two places", k.name, o.name, k.position),
+                        format!(
+                            "\"{}\" lies where \"{}\" does, {:?}: two key points need two places",
+                            k.name, o.name, k.position
+                        ),
                     );
                 }
             }
@@ -458,7 +474,10 @@ impl Checks<'_> {
             }
         }
         if scene.keypoints.len() > MAX_KEYPOINTS {
-            self.report("keypoints", format!("has {} key points, at most {MAX_KEYPOINTS}", scene.keypoints.len()));
+            self.report(
+                "keypoints",
+                format!("has {} key points, at most {MAX_KEYPOINTS}", scene.keypoints.len()),
+            );
         }
         for (kind, name) in [(KeyPointKind::Sink, "sink"), (KeyPointKind::Spring, "spring")] {
             if scene.keypoints_of(kind).next().is_none() {
@@ -525,7 +544,10 @@ impl Checks<'_> {
                         format!("names sink \"{sink}\", which [[keypoints]] does not define"),
                     );
                 } else if !(0.0..=MAX_WEIGHT).contains(w) {
-                    self.report(&at("weights"), format!("weight of \"{sink}\" must be in [0, {MAX_WEIGHT:e}], got {w}"));
+                    self.report(
+                        &at("weights"),
+                        format!("weight of \"{sink}\" must be in [0, {MAX_WEIGHT:e}], got {w}"),
+                    );
                 }
             }
         }
@@ -664,14 +686,22 @@ water_table = "wt"
     fn upper_bounds_and_derived_quantities_are_checked() {
         let p = problems(&format!("{GOOD}\n[skeleton]\nradius = [1, nan]\nradius_correlation = [1, inf]\n"));
         assert!(p.iter().any(|m| m.contains("skeleton.radius: NaN is not a finite number")), "{p:?}");
-        assert!(p.iter().any(|m| m.contains("skeleton.radius_correlation: inf is not a finite number")), "{p:?}");
-        let p = problems(&GOOD.replace("name = \"a\"\nkind = \"sink\"", "name = \"a\"\nkind = \"sink\"\nweight = 1e308"));
+        assert!(
+            p.iter().any(|m| m.contains("skeleton.radius_correlation: inf is not a finite number")),
+            "{p:?}"
+        );
+        let p = problems(
+            &GOOD.replace("name = \"a\"\nkind = \"sink\"", "name = \"a\"\nkind = \"sink\"\nweight = 1e308"),
+        );
         assert!(p.iter().any(|m| m.contains("keypoints[0].weight: must be in [0, 1e9], got 1e308")), "{p:?}");
         let p = problems(&format!("{GOOD}\n[costgraph]\ncost_floor = 1e300\n"));
         assert!(p.iter().any(|m| m.contains("costgraph.cost_floor: must be in")), "{p:?}");
         let noise = "kind = \"noise\"\nelevation = 40\namplitude = 5\nwavelength = 1e-154";
         let p = problems(&GOOD.replace("kind = \"plane\"\nelevation = 40", noise));
-        assert!(p.iter().any(|m| m.contains("terrain.wavelength: gives the terrain a steepest slope")), "{p:?}");
+        assert!(
+            p.iter().any(|m| m.contains("terrain.wavelength: gives the terrain a steepest slope")),
+            "{p:?}"
+        );
         let p = problems(&GOOD.replace("max = [100, 100, 50]", "max = [1e308, 100, 50]"));
         assert!(p.iter().any(|m| m.contains("domain.max: 1e308 is beyond")), "{p:?}");
     }

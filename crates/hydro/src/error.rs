@@ -31,8 +31,7 @@ impl Failure for HydroError {
             | HydroError::SamePool { .. }
             | HydroError::PoolClosed { .. }
             | HydroError::OverBudget(_) => Blame::Scene,
-            HydroError::NoSpring
-            | HydroError::NoDownstreamPath { .. } => Blame::Artifact(StageId::Skeleton),
+            HydroError::NoSpring | HydroError::NoDownstreamPath { .. } => Blame::Artifact(StageId::Skeleton),
         }
     }
 }

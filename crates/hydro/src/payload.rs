@@ -90,8 +90,15 @@ impl SegmentWater {
         if let Some(fall) = &self.fall {
             check::position(|| field("fall.lip"), &fall.lip)?;
             check::position(|| field("fall.impact"), &fall.impact)?;
-            check::within(|| field("fall.direction"), fall.direction[0].hypot(fall.direction[1]), 0.999, 1.001)?;
-            for (name, value) in [("fall.speed", fall.speed), ("fall.drop", fall.drop), ("fall.throw", fall.throw)] {
+            check::within(
+                || field("fall.direction"),
+                fall.direction[0].hypot(fall.direction[1]),
+                0.999,
+                1.001,
+            )?;
+            for (name, value) in
+                [("fall.speed", fall.speed), ("fall.drop", fall.drop), ("fall.throw", fall.throw)]
+            {
                 amount(|| field(name), value)?;
             }
         }

@@ -105,14 +105,21 @@ fn a_catchment_grid_beyond_the_memory_budget_is_refused_before_allocating() {
     let out = scratch("catchment");
     let tiny = tiny_skeleton(&out);
     let scene = out.join("tiny-catchment.toml");
-    let text = std::fs::read_to_string(&tiny).unwrap() + "\n[hydro]\nrecharge = \"catchment\"\ncatchment_cell = 1e-4\n";
+    let text = std::fs::read_to_string(&tiny).unwrap()
+        + "\n[hydro]\nrecharge = \"catchment\"\ncatchment_cell = 1e-4\n";
     std::fs::write(&scene, text).unwrap();
     let result = hydro(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert_eq!(result.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("tiny-catchment.toml: hydro.catchment_cell = 1.00e-4 means about 3.00e12 catchment cells"), "{stderr}");
+    assert!(
+        stderr.contains(
+            "tiny-catchment.toml: hydro.catchment_cell = 1.00e-4 means about 3.00e12 catchment cells"
+        ),
+        "{stderr}"
+    );
     assert!(stderr.contains("hydro.catchment_cell = 0.0075 would fit"), "{stderr}");
     // A smaller budget refuses a cell the default one takes.
-    let small = hydro(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--max-memory", "1M"]);
+    let small =
+        hydro(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--max-memory", "1M"]);
     assert_eq!(small.status.code(), Some(2));
 }

@@ -20,7 +20,9 @@ pub fn build(scene: &Scene, model: &SdfModel) -> Result<Mesh, MesherError> {
     check_lattice(model, "mesher.cell_size", params.cell_size)?;
     let cave_cell = cave_cell(model, params.cell_size, params.cave_cell_size);
     check_lattice(model, "mesher.cave_cell_size", cave_cell)?;
-    crate::estimate::check(scene, model, params.cell_size, |c| crate::build::cave_cell(model, c, params.cave_cell_size))?;
+    crate::estimate::check(scene, model, params.cell_size, |c| {
+        crate::build::cave_cell(model, c, params.cave_cell_size)
+    })?;
     let field = CarvedTerrain::new(model.clone());
     let mesh = mesh_simplified(&field, params.cell_size, cave_cell, &anchors(scene), params.target_triangles);
     // Degenerate results are errors: the water may be absent, the rock and the cave may not.

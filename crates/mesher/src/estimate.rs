@@ -48,11 +48,13 @@ impl Areas {
             .iter()
             .map(|s| {
                 let shape = s.sweep.start.shape;
-                let length = glam::Vec3::from_array(s.sweep.a).distance(glam::Vec3::from_array(s.sweep.b)) as f64;
+                let length =
+                    glam::Vec3::from_array(s.sweep.a).distance(glam::Vec3::from_array(s.sweep.b)) as f64;
                 tau * (shape.radius * shape.ratio.max(1.0)) as f64 * length
             })
             .sum();
-        let spheres: f64 = model.spheres.iter().flat_map(|g| &g.spheres).map(|s| tau * (s[3] as f64).powi(2)).sum();
+        let spheres: f64 =
+            model.spheres.iter().flat_map(|g| &g.spheres).map(|s| tau * (s[3] as f64).powi(2)).sum();
         let chambers: f64 = model.chambers.iter().map(|c| 2.0 * tau * (c.radius as f64 * 1.5).powi(2)).sum();
         let capsules: f64 = model.capsules.iter().map(|c| 2.0 * tau * c.radius.powi(2)).sum();
         Areas { outside: top + sides + size.x * size.y, cave: sweeps + spheres + chambers + capsules }
@@ -68,7 +70,12 @@ impl Areas {
 
 /// Refuses lattices whose meshes would not fit in the memory budget, naming the cell that
 /// drives the estimate; `cave_of` gives the cave cell of a terrain cell.
-pub fn check(scene: &Scene, model: &SdfModel, cell: f64, cave_of: impl Fn(f64) -> f64) -> Result<(), OverBudget> {
+pub fn check(
+    scene: &Scene,
+    model: &SdfModel,
+    cell: f64,
+    cave_of: impl Fn(f64) -> f64,
+) -> Result<(), OverBudget> {
     let areas = Areas::of(model);
     let cave = cave_of(cell);
     let bytes = areas.bytes(cell, cave);
@@ -79,7 +86,8 @@ pub fn check(scene: &Scene, model: &SdfModel, cell: f64, cave_of: impl Fn(f64) -
         let estimate = Estimate { what: triangles, bytes, field: "mesher.cell_size".into(), value: cell };
         scene.budget().check(estimate, Cheaper::Larger, false, |c| areas.bytes(c, cave_of(c)))
     } else {
-        let estimate = Estimate { what: triangles, bytes, field: "mesher.cave_cell_size".into(), value: cave };
+        let estimate =
+            Estimate { what: triangles, bytes, field: "mesher.cave_cell_size".into(), value: cave };
         scene.budget().check(estimate, Cheaper::Larger, false, |c| areas.bytes(cell, c))
     }
 }

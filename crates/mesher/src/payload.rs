@@ -68,15 +68,16 @@ impl TriMesh {
             if let Some(&v) = tri.iter().find(|&&v| v as u64 >= n) {
                 check::index(|| format!("{name}.triangles[{t}]"), v as u64, self.vertices.len())?;
             }
-            ensure(tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2], || format!("{name}.triangles[{t}]"), || {
-                format!("{tri:?} repeats a vertex")
-            })?;
+            ensure(
+                tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2],
+                || format!("{name}.triangles[{t}]"),
+                || format!("{tri:?} repeats a vertex"),
+            )?;
         }
         let r = &self.removed;
         check::within(|| format!("{name}.removed.island_volume"), r.island_volume, 0.0, f64::MAX)?;
         check::within(|| format!("{name}.removed.pocket_volume"), r.pocket_volume, 0.0, f64::MAX)
     }
-
 
     /// Total area, m².
     pub fn area(&self) -> f64 {

@@ -161,7 +161,8 @@ impl Kept {
     /// The bucket width of Dial's algorithm when the arc lengths allow it: all positive and
     /// within a factor [`DIAL_RATIO`] of each other (grids, regular mazes); else None.
     fn dial_width(&self) -> Option<f64> {
-        let (lo, hi) = self.lengths.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &l| (lo.min(l), hi.max(l)));
+        let (lo, hi) =
+            self.lengths.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &l| (lo.min(l), hi.max(l)));
         (lo > 0.0 && hi <= lo * DIAL_RATIO).then_some(lo * (1.0 - 1e-6))
     }
 }
@@ -241,7 +242,12 @@ struct Brandes {
 
 impl Brandes {
     fn new(n: usize) -> Self {
-        Self { dist: vec![u32::MAX; n], sigma: vec![0.0; n], delta: vec![0.0; n], order: Vec::with_capacity(n) }
+        Self {
+            dist: vec![u32::MAX; n],
+            sigma: vec![0.0; n],
+            delta: vec![0.0; n],
+            order: Vec::with_capacity(n),
+        }
     }
 
     /// Adds the dependencies of kept source `s` on kept nodes, times the size(s) sources it
@@ -311,7 +317,12 @@ struct Dijkstra {
 
 impl Dijkstra {
     fn new(n: usize) -> Self {
-        Self { dist: vec![f64::INFINITY; n], settled: Vec::with_capacity(n), done: vec![false; n], heap: BinaryHeap::new() }
+        Self {
+            dist: vec![f64::INFINITY; n],
+            settled: Vec::with_capacity(n),
+            done: vec![false; n],
+            heap: BinaryHeap::new(),
+        }
     }
 
     /// `Σ_t d(s, t)` along edge lengths, over the kept nodes and the trees hanging from them.
@@ -416,7 +427,8 @@ impl Dial {
                     let through = d + kept.lengths[arc];
                     if !self.done[w] && through < self.dist[w] {
                         self.dist[w] = through;
-                        self.buckets[(self.bucket(through) % ring) as usize].push(w as u32);
+                        let slot = (self.bucket(through) % ring) as usize;
+                        self.buckets[slot].push(w as u32);
                         pending += 1;
                     }
                 }

@@ -98,7 +98,13 @@ fn surface_layers(scene: &Scene) -> f64 {
         .sum::<f64>()
         * 2.0;
     let g = scene.geology();
-    let area: f64 = g.water_tables.iter().chain(&g.horizons).chain(&g.faults).map(|s| surface_area(scene, &s.geometry)).sum();
+    let area: f64 = g
+        .water_tables
+        .iter()
+        .chain(&g.horizons)
+        .chain(&g.faults)
+        .map(|s| surface_area(scene, &s.geometry))
+        .sum();
     per_area * area
 }
 
@@ -119,13 +125,22 @@ type Driver = (String, f64, Box<dyn Fn(&mut Scene, f64)>);
 /// density of samples grows as the inverse cube of the radius).
 fn driver(scene: &Scene) -> Driver {
     let s = scene.sampling();
-    let mut best: Driver = ("sampling.radius".into(), s.radius, Box::new(|scene, v| scene.sampling_mut().radius = v));
+    let mut best: Driver =
+        ("sampling.radius".into(), s.radius, Box::new(|scene, v| scene.sampling_mut().radius = v));
     if let Some(r) = s.surface_radius.filter(|r| *r < best.1) {
-        best = ("sampling.surface_radius".into(), r, Box::new(|scene, v| scene.sampling_mut().surface_radius = Some(v)));
+        best = (
+            "sampling.surface_radius".into(),
+            r,
+            Box::new(|scene, v| scene.sampling_mut().surface_radius = Some(v)),
+        );
     }
     for (i, layer) in scene.geology().layers.iter().enumerate() {
         if let Some(r) = layer.radius.filter(|r| *r < best.1) {
-            best = (format!("geology.layers[{i}].radius"), r, Box::new(move |scene, v| scene.geology_mut().layers[i].radius = Some(v)));
+            best = (
+                format!("geology.layers[{i}].radius"),
+                r,
+                Box::new(move |scene, v| scene.geology_mut().layers[i].radius = Some(v)),
+            );
         }
     }
     best
@@ -136,7 +151,11 @@ pub fn check(scene: &Scene) -> Result<(), OverBudget> {
     let work = Work::of(scene);
     let (field, value, set) = driver(scene);
     let estimate = Estimate {
-        what: format!("{:.2e} samples and {:.2e} grid cells", work.samples(), work.cells.max(work.field_nodes)),
+        what: format!(
+            "{:.2e} samples and {:.2e} grid cells",
+            work.samples(),
+            work.cells.max(work.field_nodes)
+        ),
         bytes: work.bytes(),
         field,
         value,

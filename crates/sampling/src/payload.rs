@@ -62,7 +62,11 @@ impl Payload for Samples {
         }
         for (i, tag) in self.tags.iter().enumerate() {
             if let Tag::KeyPoint(k) = tag {
-                ensure(*k as usize == i, || format!("tags[{i}]"), || format!("key point {k} is not sample {k}"))?;
+                ensure(
+                    *k as usize == i,
+                    || format!("tags[{i}]"),
+                    || format!("key point {k} is not sample {k}"),
+                )?;
             }
         }
         if let Some((a, b)) = coincident(&self.positions) {

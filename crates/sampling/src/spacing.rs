@@ -187,9 +187,11 @@ impl SpacingField {
         check::position(|| "radius_field.origin".into(), &self.origin)?;
         check::positive(|| "radius_field.cell".into(), self.cell, MAX_COORDINATE)?;
         let nodes = self.size.iter().try_fold(1usize, |n, &s| n.checked_mul(s as usize).filter(|_| s > 0));
-        ensure(nodes == Some(self.values.len()), || "radius_field.values".into(), || {
-            format!("holds {} radii for a grid of {:?} nodes", self.values.len(), self.size)
-        })?;
+        ensure(
+            nodes == Some(self.values.len()),
+            || "radius_field.values".into(),
+            || format!("holds {} radii for a grid of {:?} nodes", self.values.len(), self.size),
+        )?;
         match self.values.iter().position(|r| !(*r > 0.0 && r.is_finite())) {
             Some(i) => Err(karst_artifact::Invalid::new(
                 format!("radius_field.values[{i}]"),

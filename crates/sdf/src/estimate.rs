@@ -50,5 +50,7 @@ pub fn check(scene: &Scene, skeleton: &Skeleton) -> Result<(), OverBudget> {
         field: "sdf.radius_scale".into(),
         value: scale,
     };
-    scene.budget().check(estimate, Cheaper::Larger, false, |s| primitives(scene, skeleton, s) * BYTES_PER_PRIMITIVE)
+    scene
+        .budget()
+        .check(estimate, Cheaper::Larger, false, |s| primitives(scene, skeleton, s) * BYTES_PER_PRIMITIVE)
 }

@@ -72,9 +72,11 @@ impl Payload for SdfModel {
     fn validate(&self) -> Result<(), Invalid> {
         check::position(|| "domain.min".into(), &self.domain.min)?;
         check::position(|| "domain.max".into(), &self.domain.max)?;
-        ensure((0..3).all(|a| self.domain.min[a] < self.domain.max[a]), || "domain".into(), || {
-            format!("{:?} – {:?} is not a box of positive extent", self.domain.min, self.domain.max)
-        })?;
+        ensure(
+            (0..3).all(|a| self.domain.min[a] < self.domain.max[a]),
+            || "domain".into(),
+            || format!("{:?} – {:?} is not a box of positive extent", self.domain.min, self.domain.max),
+        )?;
         self.terrain.validate()?;
         for (i, c) in self.capsules.iter().enumerate() {
             check::position(|| format!("capsules[{i}].a"), &c.a)?;

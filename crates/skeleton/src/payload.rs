@@ -118,7 +118,11 @@ impl Payload for Skeleton {
     /// with one radius (finite, > 0) per node and one type per segment, no segment of length 0;
     /// routes through existing nodes with finite weights and costs ≥ 0.
     fn validate(&self) -> Result<(), Invalid> {
-        ensure(!self.conduits.is_empty(), || "conduits".into(), || "is empty: the network has no conduit".into())?;
+        ensure(
+            !self.conduits.is_empty(),
+            || "conduits".into(),
+            || "is empty: the network has no conduit".into(),
+        )?;
         for (i, node) in self.nodes.iter().enumerate() {
             check::position(|| format!("nodes[{i}].position"), &node.position)?;
         }
@@ -151,9 +155,11 @@ impl Skeleton {
         }
         for (i, w) in conduit.nodes.windows(2).enumerate() {
             let [a, b] = [w[0], w[1]].map(|n| self.nodes[n as usize].position);
-            ensure(a != b, || format!("conduits[{c}].nodes[{}]", i + 1), || {
-                format!("node {} lies where node {} does: a segment of length 0", w[1], w[0])
-            })?;
+            ensure(
+                a != b,
+                || format!("conduits[{c}].nodes[{}]", i + 1),
+                || format!("node {} lies where node {} does: a segment of length 0", w[1], w[0]),
+            )?;
         }
         Ok(())
     }

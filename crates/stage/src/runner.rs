@@ -65,7 +65,10 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
         params: job.scene.sections_hash(S::ID.row().sections),
     };
     let path = job.artifact(S::ID);
-    invalidate_other(&path, &stage_key(S::ID, &provenance.producer, S::Output::SCHEMA, &provenance.params, &provenance.inputs))?;
+    invalidate_other(
+        &path,
+        &stage_key(S::ID, &provenance.producer, S::Output::SCHEMA, &provenance.params, &provenance.inputs),
+    )?;
     S::side_files(job.out, job.scene, &inputs, &output).map_err(|e| {
         StageError::failure(format!(
             "{}: cannot write the {} stage's files: {e}",
@@ -105,9 +108,12 @@ fn consistent(job: &Job, headers: &[Header]) -> Result<(), StageError> {
 fn invalidate_other(path: &Path, key: &str) -> Result<(), StageError> {
     match read_header(path) {
         Ok(header) if header.key == key => Ok(()),
-        Err(karst_artifact::Error::Open { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        _ => std::fs::remove_file(path)
-            .map_err(|e| StageError::failure(format!("{}: cannot remove the stale artifact: {e}", path.display()))),
+        Err(karst_artifact::Error::Open { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
+            Ok(())
+        }
+        _ => std::fs::remove_file(path).map_err(|e| {
+            StageError::failure(format!("{}: cannot remove the stale artifact: {e}", path.display()))
+        }),
     }
 }
 

@@ -85,7 +85,9 @@ impl HydroParams {
         c.positive("hydro.catchment_cell", self.catchment_cell);
         c.positive("hydro.total_discharge", self.total_discharge);
         c.positive("hydro.speed_factor", self.speed_factor);
-        if c.within("hydro.min_slope", self.min_slope, 0.0, std::f64::consts::FRAC_PI_2) && self.min_slope == 0.0 {
+        if c.within("hydro.min_slope", self.min_slope, 0.0, std::f64::consts::FRAC_PI_2)
+            && self.min_slope == 0.0
+        {
             c.report("hydro.min_slope", "must be > 0, got 0".into());
         }
         if c.within("hydro.radius_exponent", self.radius_exponent, 0.0, 10.0) && self.radius_exponent == 0.0 {

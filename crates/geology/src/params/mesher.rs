@@ -31,7 +31,10 @@ impl MesherParams {
         c.positive("mesher.cell_size", self.cell_size);
         c.non_negative("mesher.cave_cell_size", self.cave_cell_size);
         if self.target_triangles > MAX_TRIANGLES {
-            c.report("mesher.target_triangles", format!("must be at most {MAX_TRIANGLES}, got {}", self.target_triangles));
+            c.report(
+                "mesher.target_triangles",
+                format!("must be at most {MAX_TRIANGLES}, got {}", self.target_triangles),
+            );
         }
     }
 }
