@@ -33,6 +33,11 @@ enum Command {
     /// Run N seeds of SCENE in parallel: every realization's metrics, their summary and the
     /// conduit probability grid.
     Ensemble(EnsembleArgs),
+    /// Write a run's outputs in other tools' formats (VTK, GOCAD, Survex, SWMM, glTF, OBJ, PLY,
+    /// CSV) into DIR/export/.
+    Export(karst_export::stage::ExportArgs),
+    /// Write the web viewer of a run into DIR/view/ (and serve it on 127.0.0.1 with --serve).
+    View(karst_view::cli::ViewArgs),
     /// Draw a picture of an output.
     #[command(subcommand)]
     Render(Render),
@@ -142,6 +147,8 @@ fn execute(command: Command) -> Result<(), StageError> {
             karst_metrics::stage::characterize_file(&args.network, args.plots.as_deref())
         }
         Command::Ensemble(args) => ensemble_command(args),
+        Command::Export(args) => karst_export::stage::export_run(&args),
+        Command::View(args) => karst_view::cli::view(&args),
         Command::Render(render) => match render {
             Render::Skeleton(args) => karst_skeleton::stage::render(&args),
             Render::Hydro(args) => karst_hydro::stage::render(&args),

@@ -26,8 +26,20 @@ fn a_second_run_into_the_same_folder_is_refused_while_the_first_writes() {
     assert!(err.to_string().contains(&format!("another run is writing to {}", out.display())), "{err}");
     assert_eq!(err.exit_code(), 1);
     assert!(!out.join("samples.bin").exists());
+    // Exports on demand and the viewer write into the run folder too: they wait their turn.
+    let args = karst_export::stage::ExportArgs {
+        dir: out.clone(),
+        format: vec!["csv".into()],
+        scene: None,
+        json: false,
+    };
+    let err = karst_export::stage::export_run(&args).unwrap_err();
+    assert!(err.to_string().contains("another run is writing to"), "{err}");
+    let err = karst_view::write_view(&out, Some(&scene)).unwrap_err();
+    assert!(err.to_string().contains("another run is writing to"), "{err}");
     drop(first);
     run(&scene, &out, &Selection { to: Some(StageId::Sampling), ..Selection::default() }).unwrap();
+    fs::remove_dir_all(&out).unwrap();
 }
 
 #[test]
@@ -35,23 +47,26 @@ fn a_stage_whose_side_files_fail_leaves_no_artifact_that_claims_them() {
     let out = scratch("sides");
     let scene = tiny_in(&out);
     run(&scene, &out, &Selection::default()).unwrap();
-    // Another mesh is asked for, and its OBJ cannot be written (a folder stands in its way),
-    // as if the disk filled up or the run was killed while exporting.
+    // Another mesh is asked for, and the export's VTK file cannot be written (a folder stands
+    // in its way), as if the disk filled up or the run was killed while exporting.
     let text = fs::read_to_string(&scene).unwrap();
     fs::write(&scene, text.replace("cell_size = 3.0", "cell_size = 3.5")).unwrap();
-    fs::remove_file(out.join("mesh.obj")).unwrap();
-    fs::create_dir_all(out.join("mesh.obj/blocked")).unwrap();
+    let vtk = out.join("export/network.vtp");
+    fs::remove_file(&vtk).unwrap();
+    fs::create_dir_all(vtk.join("blocked")).unwrap();
     let err = run(&scene, &out, &Selection::default()).unwrap_err();
-    assert!(err.to_string().contains("cannot write the mesher stage's files"), "{err}");
-    assert!(!out.join("mesh.bin").exists(), "the old mesh.bin would claim the half-written exports");
-    // Back to the first scene: the mesher runs again instead of being "up to date" over
+    assert!(err.to_string().contains("cannot write the export stage's files"), "{err}");
+    assert!(!out.join("export.json").exists(), "the old export.json would claim the half-written exports");
+    // Back to the first scene: the export runs again instead of being "up to date" over
     // exports of another mesh.
-    fs::remove_dir_all(out.join("mesh.obj")).unwrap();
+    fs::remove_dir_all(&vtk).unwrap();
     fs::write(&scene, &text).unwrap();
     let reports = run(&scene, &out, &Selection::default()).unwrap();
-    let mesher = reports.iter().find(|r| r.stage == StageId::Mesher).unwrap();
-    assert!(matches!(mesher.outcome, Outcome::Ran { .. }), "{:?}", mesher.outcome);
-    assert!(out.join("mesh.obj").is_file());
+    let export = reports.iter().find(|r| r.stage == StageId::Export).unwrap();
+    assert!(matches!(export.outcome, Outcome::Ran { .. }), "{:?}", export.outcome);
+    assert!(vtk.is_file());
+    assert!(!out.join(".export.json.previous").exists());
+    fs::remove_dir_all(&out).unwrap();
 }
 
 /// A process id that runs no more: a finished child's.
@@ -80,6 +95,7 @@ fn leftovers_of_killed_runs_are_swept_and_live_writers_kept() {
         assert!(!file.exists(), "{} was left behind", file.display());
     }
     assert!(live.exists());
+    fs::remove_dir_all(&out).unwrap();
 }
 
 #[test]
@@ -97,6 +113,7 @@ fn inputs_made_from_another_upstream_artifact_are_refused() {
     assert!(message.contains("costgraph.bin: was made from another samples.bin"), "{message}");
     assert!(message.contains("--from costgraph"), "{message}");
     assert_eq!(err.exit_code(), 2);
+    fs::remove_dir_all(&out).unwrap();
 }
 
 /// A forger of the artifact at `path`: each forgery is its good payload with `edit` applied,
@@ -148,6 +165,14 @@ fn wrong_payloads_with_right_checksums_are_refused_by_every_reader() {
         height: 64,
     };
     bad_input(karst_mesher::stage::render(&args));
+    let args = karst_export::stage::ExportArgs {
+        dir: out.clone(),
+        format: vec!["obj".into()],
+        scene: None,
+        json: false,
+    };
+    let message = bad_input(karst_export::stage::export_run(&args));
+    assert!(message.contains("cave.triangles[3]"), "{message}");
     forge(&|m| m.terrain = Default::default());
     let message = bad_input(karst_pipeline::registry::inspect(&mesh));
     assert!(message.contains("terrain.triangles: is empty"), "{message}");
@@ -157,6 +182,9 @@ fn wrong_payloads_with_right_checksums_are_refused_by_every_reader() {
     forge(&|g| g.cost_sets.clear());
     let message = bad_input(karst_pipeline::registry::inspect(&graph));
     assert!(message.contains("cost_sets: is empty"), "{message}");
+    forge(&|g| g.cost_sets[0].min_cost_per_metre = Some(f64::NAN));
+    let message = bad_input(karst_pipeline::registry::inspect(&graph));
+    assert!(message.contains("cost_sets[0].min_cost_per_metre: NaN"), "{message}");
     forge(&|g| g.targets[5] = 9_999_999);
     bad_input(karst_pipeline::registry::inspect(&graph));
 
@@ -181,4 +209,33 @@ fn wrong_payloads_with_right_checksums_are_refused_by_every_reader() {
     forger::<karst_hydro::Hydro>(&hydro)(&|h| h.conduits[0].segments[0].depth = -1.0);
     let message = bad_input(karst_pipeline::registry::inspect(&hydro));
     assert!(message.contains("conduits[0].segments[0].depth: -1 is not a finite number"), "{message}");
+    fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
+fn the_export_removes_only_files_its_previous_manifest_lists_and_refuses_forged_ones() {
+    let out = scratch("manifest");
+    let scene = tiny_in(&out);
+    let text = fs::read_to_string(&scene).unwrap();
+    run(&scene, &out, &Selection::default()).unwrap();
+    assert!(out.join("export/nodes.csv").is_file());
+    // Fewer formats: the files of the last export that this one does not write go, found in
+    // its manifest (moved aside while the export is rewritten, deleted after).
+    fs::write(&scene, format!("{text}\n[export]\nformats = [\"vtk\"]\n")).unwrap();
+    run(&scene, &out, &Selection::default()).unwrap();
+    assert!(out.join("export/network.vtp").is_file());
+    assert!(!out.join("export/nodes.csv").exists());
+    assert!(!out.join(".export.json.previous").exists());
+
+    let manifest = out.join("export.json");
+    forger::<karst_export::Manifest>(&manifest)(&|m| m.files[0].name = "../scene.toml".into());
+    let message = bad_input(karst_pipeline::registry::inspect(&manifest));
+    assert!(message.contains("files[0].name: \"../scene.toml\" is not a file name"), "{message}");
+    // The next export reads the forged manifest for the files to remove: refused, nothing
+    // outside export/ is touched.
+    fs::write(&scene, &text).unwrap();
+    run(&scene, &out, &Selection::default()).unwrap();
+    assert!(scene.is_file());
+    assert!(out.join("export/nodes.csv").is_file());
+    fs::remove_dir_all(&out).unwrap();
 }

@@ -13,7 +13,7 @@ fn ran(reports: &[karst_pipeline::make::StageReport]) -> Vec<StageId> {
 }
 
 #[test]
-fn second_run_is_up_to_date_and_sdf_edit_reruns_sdf_and_mesher() {
+fn second_run_is_up_to_date_and_sdf_edit_reruns_sdf_mesher_and_export() {
     let out = scratch("stale");
     let scene = out.join("scene.toml");
     let text = fs::read_to_string(root().join("fixtures/scenes/tiny.toml")).unwrap();
@@ -25,12 +25,12 @@ fn second_run_is_up_to_date_and_sdf_edit_reruns_sdf_and_mesher() {
 
     fs::write(&scene, format!("{text}\n[sdf]\nradius_scale = 1.25\n")).unwrap();
     let third = run(&scene, &out, &Selection::default()).unwrap();
-    assert_eq!(ran(&third), vec![StageId::Sdf, StageId::Mesher]);
+    assert_eq!(ran(&third), vec![StageId::Sdf, StageId::Mesher, StageId::Export]);
 
     let only = run(&scene, &out, &Selection { only: Some(StageId::Hydro), ..Selection::default() }).unwrap();
     assert_eq!(ran(&only), vec![StageId::Hydro]);
     let from = run(&scene, &out, &Selection { from: Some(StageId::Mesher), ..Selection::default() }).unwrap();
-    assert_eq!(ran(&from), vec![StageId::Mesher, StageId::Metrics]);
+    assert_eq!(ran(&from), vec![StageId::Mesher, StageId::Metrics, StageId::Export]);
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! karstgen's developer tasks, as a library so that tests drive exactly what `cargo xtask` does.
 //!
 //! - [`bench`]: time every stage on the benchmark scenes and each stage's budget cases;
+//! - [`peer`]: time the network half beside KarstNSim;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
 //! - [`tools`]: install the outside programs the tests check outputs with.
 //!
@@ -8,4 +9,5 @@
 
 pub mod bench;
 pub mod metrics_table;
+pub mod peer;
 pub mod tools;

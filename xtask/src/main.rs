@@ -34,6 +34,8 @@ enum Task {
     Run(karstgen::cli::RunArgs),
     /// `karstgen diff`: compare two artifacts of the same kind; exit 1 when they differ.
     Diff(karstgen::cli::DiffArgs),
+    /// `karstgen view`: write (and serve) the web viewer of a run.
+    View(karst_view::cli::ViewArgs),
     /// Regenerate the golden artifacts of the tiny scene and print what changed.
     Bless,
     /// Time every stage of the benchmark scenes (median of RUNS runs).
@@ -49,8 +51,14 @@ enum Task {
         /// Only the mesher's synthetic budget cases.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// Only the export formats, on the finished run in this folder (e.g. out/looping).
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        export: Option<PathBuf>,
+        /// Only the network half beside KarstNSim (pykarstnsim in .venv-peer), alternating runs.
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export"])]
+        peer: bool,
         /// Only the network statistics of mazes (grids of 40k and 250k nodes).
-        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "peer"])]
         mazes: bool,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
@@ -97,9 +105,15 @@ fn main() -> ExitCode {
             let (a, b) = (karstgen::cli::resolve(&here, &args.a), karstgen::cli::resolve(&here, &args.b));
             return karstgen::cli::diff_command(&karstgen::cli::DiffArgs { a, b, tol: args.tol });
         }
+        Task::View(mut args) => {
+            args.dir = karstgen::cli::resolve(&here, &args.dir);
+            args.scene = args.scene.map(|p| karstgen::cli::resolve(&here, &p));
+            karst_view::cli::view(&args)
+        }
         Task::Bless => bless(),
-        Task::Bench { runs, costgraph, sdf, mesher, mazes } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher, mazes })
+        Task::Bench { runs, peer: true, .. } => peer_bench(runs),
+        Task::Bench { runs, costgraph, sdf, mesher, export, mazes, .. } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, export, mazes })
         }
         Task::Test { args } => return test(&args),
         Task::Fuzz { minutes, seed } => fuzz(minutes, seed),
@@ -126,6 +140,41 @@ fn fuzz(minutes: f64, seed: u64) -> Result<(), StageError> {
             failures.len()
         )))
     }
+}
+
+/// karstgen's network half beside KarstNSim on `peer::SCENE` (issue 21), every case.
+fn peer_bench(runs: usize) -> Result<(), StageError> {
+    use xtask::peer;
+    let python = peer::peer_python(&workspace_root())?;
+    let binaries = peer::stage_binaries()?;
+    println!("{} vs KarstNSim (pykarstnsim 2.0.1), {runs} alternating runs each, medians", peer::SCENE);
+    println!(
+        "| case | samples (ours / theirs) | KarstNSim wall / CPU / peak | karstgen wall / CPU / peak | ratio wall / CPU | load |"
+    );
+    println!("|---|---|---|---|---|---|");
+    for case in peer::CASES {
+        let load = peer::load_average();
+        let r = peer::run_case(case, runs, &binaries, &python)?;
+        let (ours, theirs) = r.medians();
+        let show = |u: peer::Usage| {
+            format!("{:.2} s / {:.2} s / {:.0} MB", u.wall, u.cpu, u.peak_bytes as f64 / 1e6)
+        };
+        let load = match (load, peer::load_average()) {
+            (Some(a), Some(b)) => format!("{a:.1}–{b:.1}"),
+            _ => "-".into(),
+        };
+        println!(
+            "| {} | {} / {} | {} | {} | {:.1}× / {:.1}× | {load} |",
+            case.name,
+            r.our_samples,
+            r.their_samples,
+            show(theirs),
+            show(ours),
+            theirs.wall / ours.wall,
+            theirs.cpu / ours.cpu
+        );
+    }
+    Ok(())
 }
 
 fn workspace_root() -> PathBuf {

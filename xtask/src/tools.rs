@@ -21,7 +21,6 @@ const PYTHON_REQUIREMENTS: &str = "tools/python-requirements.txt";
 const APT_PACKAGES: &str = "tools/apt-packages.txt";
 const NODE_DIR: &str = "tools/node";
 const VENV: &str = ".venv";
-const STAMP: &str = ".venv/karstgen-requirements.blake3";
 
 /// Where the installed tools are.
 #[derive(Debug, Clone)]
@@ -47,23 +46,29 @@ impl Tools {
     }
 }
 
-/// The venv's Python, created and filled when the requirements changed. The path stays a path
-/// into the venv: resolving its symlink would name the base interpreter, without the packages.
 fn ensure_python(root: &Path) -> Result<PathBuf, String> {
-    let requirements = read(&root.join(PYTHON_REQUIREMENTS))?;
-    let digest = karst_artifact::hash::hex(requirements.as_bytes());
-    let python = root.join(VENV).join("bin/python");
-    let stamp = root.join(STAMP);
+    ensure_venv(root, PYTHON_REQUIREMENTS, VENV)
+}
+
+/// The Python of the venv `venv` (under `root`), created and filled with the pinned packages of
+/// `requirements` when they changed (a stamp file in the venv holds their hash). The path stays
+/// a path into the venv: resolving its symlink would name the base interpreter, without the
+/// packages.
+pub fn ensure_venv(root: &Path, requirements: &str, venv: &str) -> Result<PathBuf, String> {
+    let list = read(&root.join(requirements))?;
+    let digest = karst_artifact::hash::hex(list.as_bytes());
+    let python = root.join(venv).join("bin/python");
+    let stamp = root.join(venv).join("karstgen-requirements.blake3");
     if python.exists() && std::fs::read_to_string(&stamp).is_ok_and(|s| s.trim() == digest) {
         return Ok(python);
     }
-    eprintln!("installing the Python test tools of {PYTHON_REQUIREMENTS} into {VENV}...");
+    eprintln!("installing the Python packages of {requirements} into {venv}...");
     if !python.exists() {
-        run(root, &["python3", "-m", "venv", VENV])?;
+        run(root, &["python3", "-m", "venv", venv])?;
     }
-    let pip = root.join(VENV).join("bin/pip");
+    let pip = root.join(venv).join("bin/pip");
     let pip = pip.to_string_lossy();
-    run(root, &[&pip, "install", "--quiet", "--disable-pip-version-check", "-r", PYTHON_REQUIREMENTS])?;
+    run(root, &[&pip, "install", "--quiet", "--disable-pip-version-check", "-r", requirements])?;
     std::fs::write(&stamp, digest).map_err(|e| format!("{}: {e}", stamp.display()))?;
     Ok(python)
 }
@@ -88,25 +93,22 @@ fn ensure_apt(root: &Path) -> Result<(), String> {
     })
 }
 
-/// `npm ci` in tools/node when node_modules is missing or older than the lock file.
+/// `npm ci` in tools/node unless node_modules was installed from this very lock file (a stamp
+/// holds the lock's hash: npm's own `.package-lock.json` is rewritten by `npm install
+/// --package-lock-only` without installing anything).
 fn ensure_node(root: &Path) -> Result<PathBuf, String> {
     let dir = root.join(NODE_DIR);
     let modules = dir.join("node_modules");
-    let lock = dir.join("package-lock.json");
-    let installed = modules.join(".package-lock.json");
-    let fresh = match (std::fs::read(&lock), std::fs::metadata(&installed)) {
-        (Ok(_), Ok(_)) => modified(&installed) >= modified(&lock),
-        _ => false,
-    };
-    if !fresh {
-        eprintln!("installing the npm test tools of {NODE_DIR}/package-lock.json...");
-        run(&dir, &["npm", "ci", "--silent", "--no-audit", "--no-fund"])?;
+    let lock = read(&dir.join("package-lock.json"))?;
+    let digest = karst_artifact::hash::hex(lock.as_bytes());
+    let stamp = modules.join(".karstgen-lock.blake3");
+    if std::fs::read_to_string(&stamp).is_ok_and(|s| s.trim() == digest) {
+        return Ok(modules);
     }
+    eprintln!("installing the npm test tools of {NODE_DIR}/package-lock.json...");
+    run(&dir, &["npm", "ci", "--silent", "--no-audit", "--no-fund"])?;
+    std::fs::write(&stamp, digest).map_err(|e| format!("{}: {e}", stamp.display()))?;
     Ok(modules)
-}
-
-fn modified(path: &Path) -> std::time::SystemTime {
-    std::fs::metadata(path).and_then(|m| m.modified()).unwrap_or(std::time::UNIX_EPOCH)
 }
 
 /// The package names of a list file: one per line, `#` starts a comment.

@@ -70,14 +70,17 @@ fn remove_leftovers(path: &Path) {
 }
 
 /// Removes every `.NAME.tmp-PID` file of a process that no longer runs from `dir` and its
-/// sub-folders (exports, previews): what a killed run left behind. Returns how many.
+/// sub-folders (exports, previews), and every such folder (the viewer's staging folder
+/// `.view.tmp-PID`): what a killed run left behind. Returns how many.
 pub fn remove_stale_temporaries(dir: &Path) -> usize {
     let Ok(entries) = fs::read_dir(dir) else { return 0 };
     let mut removed = 0;
     for entry in entries.flatten() {
         let name = entry.file_name().to_string_lossy().into_owned();
         let Ok(kind) = entry.file_type() else { continue };
-        if kind.is_dir() && !kind.is_symlink() {
+        if kind.is_dir() && is_temporary(&name) && writer_is_gone(&name) {
+            removed += usize::from(fs::remove_dir_all(entry.path()).is_ok());
+        } else if kind.is_dir() {
             removed += remove_stale_temporaries(&entry.path());
         } else if kind.is_file() && is_temporary(&name) && writer_is_gone(&name) {
             removed += usize::from(fs::remove_file(entry.path()).is_ok());
@@ -176,5 +179,13 @@ mod tests {
         fs::write(&stale, b"torn").unwrap();
         assert_eq!(remove_stale_temporaries(&dir), 1);
         assert!(!stale.exists() && live.exists());
+        // A staging folder of a killed viewer goes whole; a live one stays.
+        let (dead, alive) = (dir.join(format!(".view.tmp-{}", dead_pid())), dir.join(".view.tmp-1"));
+        for staging in [&dead, &alive] {
+            fs::create_dir_all(staging.join("data")).unwrap();
+            fs::write(staging.join("data/run.json"), b"{}").unwrap();
+        }
+        assert_eq!(remove_stale_temporaries(&dir), 1);
+        assert!(!dead.exists() && alive.join("data/run.json").exists());
     }
 }

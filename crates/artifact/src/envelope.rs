@@ -259,7 +259,7 @@ struct HashSink {
 
 impl Write for HashSink {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.hasher.update(buf);
+        hash::update(&mut self.hasher, buf);
         self.len += buf.len() as u64;
         Ok(buf.len())
     }

@@ -13,6 +13,7 @@
 //! fails.
 
 pub mod atomic;
+pub mod bulk;
 pub mod check;
 pub mod envelope;
 pub mod error;

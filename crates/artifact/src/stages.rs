@@ -26,6 +26,8 @@ pub enum StageId {
     Mesher,
     #[serde(rename = "metrics")]
     Metrics,
+    #[serde(rename = "export")]
+    Export,
 }
 
 /// How an artifact's payload is encoded.
@@ -63,7 +65,7 @@ use Encoding::{Json, Postcard};
 use StageId::*;
 
 /// The table, in run order; `TABLE[id as usize]` is `id`'s row.
-const TABLE: [StageRow; 7] = [
+const TABLE: [StageRow; 8] = [
     StageRow {
         name: "sampling",
         kind: "samples",
@@ -137,11 +139,21 @@ const TABLE: [StageRow; 7] = [
         inputs: &[Skeleton, Hydro],
         sections: &[],
     },
+    StageRow {
+        name: "export",
+        kind: "export",
+        binary: "karst-export",
+        file: "export.json",
+        encoding: Json,
+        inputs: &[Sampling, Skeleton, Hydro, Mesher, Metrics],
+        // Geology: the rock layer of each sample in the GOCAD VSet.
+        sections: &["geology", "export"],
+    },
 ];
 
 impl StageId {
     /// Every stage, in run order.
-    pub const ALL: [StageId; 7] = [Sampling, Costgraph, Skeleton, Hydro, Sdf, Mesher, Metrics];
+    pub const ALL: [StageId; 8] = [Sampling, Costgraph, Skeleton, Hydro, Sdf, Mesher, Metrics, Export];
 
     /// The stage's row of the table.
     pub fn row(self) -> &'static StageRow {

@@ -53,12 +53,46 @@ fn edges(scene: &Scene, points: &[[f64; 3]], order: &[u32], done: &(dyn Fn() + S
 /// sample of an eighth of the edges describes them as well as all do, at an eighth of the cost.
 const STATS_STRIDE: usize = 8;
 
-/// What one chunk of nodes contributes: costs per set row by row, a sample of edge lengths,
-/// the term distributions.
+/// What one chunk of nodes contributes besides its costs (written in place): the least cost
+/// per metre per set, a sample of edge lengths, the term distributions.
 struct ChunkCosts {
-    costs: Vec<Vec<f32>>,
+    least_per_metre: Vec<f64>,
     lengths: Vec<f64>,
     sets: Vec<SetStats>,
+}
+
+/// The cost arrays of every set, written in place by the parallel chunks: a chunk writes the
+/// rows of its own nodes only, rows are disjoint ranges of the arrays and every node is in
+/// exactly one chunk (the chunks split a permutation of the nodes), so no element is written
+/// twice. Costing into per-chunk buffers and copying them into place held every set twice at
+/// the peak (7.5 GB for the regional scene's 5 sets).
+struct InPlace {
+    arrays: Vec<*mut f32>,
+    len: usize,
+}
+
+// SAFETY: the pointers are only written through `write`, whose callers write disjoint
+// elements (see the type's comment); the arrays outlive every chunk and are not read or moved
+// until all chunks are done.
+unsafe impl Sync for InPlace {}
+unsafe impl Send for InPlace {}
+
+impl InPlace {
+    fn new(arrays: &mut [Vec<f32>]) -> Self {
+        let len = arrays.first().map_or(0, Vec::len);
+        debug_assert!(arrays.iter().all(|a| a.len() == len));
+        InPlace { arrays: arrays.iter_mut().map(|a| a.as_mut_ptr()).collect(), len }
+    }
+
+    /// Stores `value` as the cost of `edge` in set `set`.
+    ///
+    /// # Safety
+    /// No other thread writes the same (set, edge) while the arrays are shared.
+    unsafe fn write(&self, set: usize, edge: usize, value: f32) {
+        assert!(edge < self.len, "edge {edge} beyond {} edges", self.len);
+        // SAFETY: in bounds (checked above) of a live array; exclusive by the caller's promise.
+        unsafe { *self.arrays[set].add(edge) = value };
+    }
 }
 
 /// Costs every edge of `rows` under `model`, in chunks of nodes in spatial order.
@@ -70,14 +104,17 @@ fn costed(
 ) -> Result<CostGraph, CostGraphError> {
     let fields = model.node_fields(points);
     let empty = empty_sets(model);
+    let mut arrays = vec![vec![0f32; rows.targets.len()]; model.set_count()];
+    let in_place = InPlace::new(&mut arrays);
     let chunks: Vec<Result<ChunkCosts, CostGraphError>> = order
         .par_chunks(CHUNK)
         .map(|chunk| {
-            let costs = cost_chunk(model, &fields, &rows, chunk, &empty);
+            let costs = cost_chunk(model, &fields, &rows, chunk, (&empty, &in_place));
             done();
             costs
         })
         .collect();
+    drop(in_place);
     let chunks: Vec<ChunkCosts> = chunks.into_iter().collect::<Result<_, _>>()?;
     let longest = chunks.iter().flat_map(|c| &c.lengths).copied().fold(0.0, f64::max);
     let mut summary =
@@ -85,11 +122,15 @@ fn costed(
     let cost_sets = model
         .set_water_tables()
         .into_iter()
+        .zip(arrays)
         .enumerate()
-        .map(|(s, water_table)| {
-            let mut costs = vec![0f32; rows.targets.len()];
-            knn::scatter(order, &rows.offsets, chunks.iter().map(|c| c.costs[s].as_slice()), &mut costs);
-            CostSet { water_table, costs }
+        .map(|(s, (water_table, costs))| {
+            let least = chunks.iter().map(|c| c.least_per_metre[s]).fold(f64::INFINITY, f64::min);
+            CostSet {
+                water_table,
+                costs,
+                min_cost_per_metre: Some(if least.is_finite() { least } else { 0.0 }),
+            }
         })
         .collect();
     for chunk in &chunks {
@@ -103,26 +144,32 @@ fn cost_chunk(
     fields: &NodeFields,
     rows: &Rows,
     chunk: &[u32],
-    sets: &[SetStats],
+    (sets, in_place): (&[SetStats], &InPlace),
 ) -> Result<ChunkCosts, CostGraphError> {
     let edges: usize = chunk.iter().map(|&i| rows.row(i as usize).len()).sum();
     let mut out = ChunkCosts {
-        costs: vec![Vec::with_capacity(edges); model.set_count()],
+        least_per_metre: vec![f64::INFINITY; model.set_count()],
         lengths: Vec::with_capacity(edges / STATS_STRIDE + 1),
         sets: sets.to_vec(),
     };
     let mut terms = EdgeTerms::default();
     for &i in chunk {
         let i = i as usize;
-        for &j in rows.row(i) {
+        let first = rows.offsets[i] as usize;
+        for (edge, &j) in (first..).zip(rows.row(i)) {
             model.edge(fields, i, j as usize, &mut terms);
-            for (costs, &cost) in out.costs.iter_mut().zip(&terms.cost) {
+            for (set, (least, &cost)) in out.least_per_metre.iter_mut().zip(&terms.cost).enumerate() {
                 // Caught where it happens: the artifact's costs are f32, finite and > 0.
-                let single = cost as f32;
-                if !(single.is_finite() && single > 0.0) {
+                let stored = cost as f32;
+                if !(stored.is_finite() && stored > 0.0) {
                     return Err(CostGraphError::CostOutOfRange { cost, length: terms.length });
                 }
-                costs.push(single);
+                // SAFETY: `edge` is in row i, and node i is in this chunk only.
+                unsafe { in_place.write(set, edge, stored) };
+                // As the searches would measure it: the stored cost over the length.
+                if terms.length > 0.0 {
+                    *least = least.min(f64::from(stored) / terms.length);
+                }
             }
             if !i.is_multiple_of(STATS_STRIDE) {
                 continue;

@@ -281,8 +281,12 @@ impl CostModel {
                     out.cost.push(length * shared);
                 }
                 // Depends on the direction only; acos is dear, so only when an edge has a
-                // vadose part.
-                let vadose = || 1.0 - direction.z.clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
+                // vadose part, and once for all the cost sets.
+                let vadose_term = std::cell::OnceCell::new();
+                let vadose = || {
+                    *vadose_term
+                        .get_or_init(|| 1.0 - direction.z.clamp(-1.0, 1.0).acos() / std::f64::consts::PI)
+                };
                 let first = 4 + fields.surfaces;
                 for s in first..first + fields.sets {
                     let ends = (from[s], to[s]);

@@ -17,7 +17,9 @@ use crate::stats::Summary;
 /// `targets[offsets[i]..offsets[i + 1]]`, with costs at the same indices in every cost set.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CostGraph {
+    #[serde(with = "karst_artifact::bulk")]
     pub offsets: Vec<u32>,
+    #[serde(with = "karst_artifact::bulk")]
     pub targets: Vec<u32>,
     /// At least one cost set; set 0 is the default.
     pub cost_sets: Vec<CostSet>,
@@ -31,15 +33,23 @@ pub struct CostSet {
     /// The water table whose C_WT these costs use; None for paris2021.
     pub water_table: Option<String>,
     /// One cost per edge, > 0.
+    #[serde(with = "karst_artifact::bulk")]
     pub costs: Vec<f32>,
+    /// The least cost per metre (stored cost / length) of the edges between distinct
+    /// positions, the factor of the searches' A* heuristic, recorded while the costs are made
+    /// so that no later stage goes over every edge again to find it; None when not recorded
+    /// (graphs made from lists) or after costs were changed.
+    pub min_cost_per_metre: Option<f64>,
 }
 
 impl Payload for CostGraph {
     const STAGE: StageId = StageId::Costgraph;
-    const SCHEMA: u32 = 2;
+    const SCHEMA: u32 = 3;
 
     /// Rows that start at 0, never go back and end at the last edge; targets that are nodes;
-    /// at least one cost set, each with one finite cost > 0 per edge.
+    /// at least one cost set, each with one finite cost > 0 per edge and a least cost per metre,
+    /// when recorded, finite and ≥ 0 (the A* heuristic's factor: NaN or ∞ would misdirect the
+    /// searches).
     fn validate(&self) -> Result<(), Invalid> {
         ensure(self.offsets.first() == Some(&0), || "offsets".into(), || "must start with 0".into())?;
         if let Some(i) = self.offsets.windows(2).position(|w| w[1] < w[0]) {
@@ -63,6 +73,9 @@ impl Payload for CostGraph {
                     format!("cost_sets[{s}].costs[{e}]"),
                     format!("{} is not a finite cost > 0", set.costs[e]),
                 ));
+            }
+            if let Some(least) = set.min_cost_per_metre {
+                check::within(|| format!("cost_sets[{s}].min_cost_per_metre"), least, 0.0, f64::MAX)?;
             }
             if self.cost_sets[..s].iter().any(|o| o.water_table == set.water_table) {
                 return Err(Invalid::new(
@@ -129,7 +142,7 @@ impl CostGraph {
         CostGraph {
             offsets,
             targets,
-            cost_sets: vec![CostSet { water_table: None, costs }],
+            cost_sets: vec![CostSet { water_table: None, costs, min_cost_per_metre: None }],
             summary: Summary::default(),
         }
     }
@@ -144,7 +157,11 @@ mod tests {
         let mut g = CostGraph::from_lists(vec![vec![(1, 1.0)], vec![(0, 2.0)]]);
         assert_eq!(g.cost_set_of_water_table("any"), Some(0));
         g.cost_sets[0].water_table = Some("high".into());
-        g.cost_sets.push(CostSet { water_table: Some("low".into()), costs: vec![3.0, 4.0] });
+        g.cost_sets.push(CostSet {
+            water_table: Some("low".into()),
+            costs: vec![3.0, 4.0],
+            min_cost_per_metre: None,
+        });
         assert_eq!(g.cost_set_of_water_table("low"), Some(1));
         assert_eq!(g.cost_set_of_water_table("none"), None);
         assert_eq!(g.out_edges_in(1, 1).collect::<Vec<_>>(), vec![(0, 4.0)]);

@@ -5,7 +5,8 @@
 //! Each [`Target`] feeds one of karstgen's readers with mutations of real inputs: the scene
 //! parser and validator (scenes of `fixtures/scenes`), every artifact decoder and its
 //! `Payload::validate` (the tiny goldens' payloads) followed by what `inspect` computes from a
-//! payload that passes, the network readers (karstnet, GOCAD PLine, CSV) followed by the
+//! payload that passes, what the export writers and the viewer make of payloads that pass, the
+//! viewer's ensemble grid, the network readers (karstnet, GOCAD PLine, CSV) followed by the
 //! metrics, and the data-file readers (TSurf, plain TIN, PNG heightfield). The property is the
 //! same everywhere: whatever the bytes, the reader returns (a value or an error); it never
 //! panics. Mutations ([`mutate`]) flip and overwrite bytes, splice in the numbers that break

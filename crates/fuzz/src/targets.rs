@@ -64,6 +64,15 @@ pub fn targets() -> Vec<Target> {
             text: true,
             check: check_payload::<karst_metrics::MetricsStage>,
         },
+        Target {
+            name: "manifest",
+            seeds: payload_seeds::<karst_export::ExportStage>,
+            text: true,
+            check: check_payload::<karst_export::ExportStage>,
+        },
+        Target { name: "network-out", seeds: network_out_seeds, text: true, check: check_network_out },
+        Target { name: "view-mesh", seeds: mesh_seeds, text: false, check: check_view_mesh },
+        Target { name: "ensemble-grid", seeds: grid_seeds, text: true, check: check_grid },
         Target { name: "karstnet", seeds: karstnet_seeds, text: true, check: check_karstnet },
         Target { name: "pline", seeds: pline_seeds, text: true, check: check_pline },
         Target { name: "csv", seeds: csv_seeds, text: true, check: check_csv },
@@ -173,6 +182,104 @@ fn check_sdf(input: &[u8]) {
             let _ = (field.eval(p), field.cave(p), field.water(p));
         }
     }
+}
+
+// ---- what the export and the viewer make of the artifacts ------------------------------
+
+/// The tiny goldens' skeleton and hydro payloads, one after the other.
+fn network_out_seeds() -> Vec<Vec<u8>> {
+    let (skeleton, hydro) =
+        (payload_seeds::<karst_skeleton::SkeletonStage>(), payload_seeds::<karst_hydro::HydroStage>());
+    vec![[skeleton[0].as_slice(), SPLIT.as_bytes(), hydro[0].as_slice()].concat()]
+}
+
+/// The tiny goldens the network formats read besides the skeleton and hydro.
+struct Others {
+    samples: karst_sampling::Samples,
+    mesh: karst_mesher::Mesh,
+    metrics: karst_metrics::MetricsReport,
+    scene: Scene,
+}
+
+fn others() -> &'static Others {
+    static OTHERS: std::sync::OnceLock<Others> = std::sync::OnceLock::new();
+    OTHERS.get_or_init(|| {
+        let golden = |stage: StageId| root().join("fixtures/golden/tiny").join(stage.file_name());
+        let mesh = decode_payload(Path::new("seed"), Encoding::Postcard, &mesh_seeds()[0])
+            .expect("the seed mesh reads");
+        Others {
+            samples: read_artifact(&golden(StageId::Sampling)).expect("the goldens read").1,
+            mesh,
+            metrics: read_artifact(&golden(StageId::Metrics)).expect("the goldens read").1,
+            scene: Scene::load(&root().join("fixtures/scenes/tiny.toml")).expect("the tiny scene loads"),
+        }
+    })
+}
+
+/// A skeleton and a hydro payload that pass their checks are exported in every format and
+/// turned into the viewer's run.json.
+fn check_network_out(input: &[u8]) {
+    let text = String::from_utf8_lossy(input);
+    let (a, b) = text.split_once(SPLIT).unwrap_or((&text, ""));
+    let path = Path::new("fuzz");
+    let Ok(skeleton) = decode_payload::<karst_skeleton::Skeleton>(path, Encoding::Json, a.as_bytes()) else {
+        return;
+    };
+    let Ok(hydro) = decode_payload::<karst_hydro::Hydro>(path, Encoding::Json, b.as_bytes()) else { return };
+    let o = others();
+    let inputs = karst_export::Inputs {
+        skeleton: Some(&skeleton),
+        hydro: Some(&hydro),
+        mesh: Some(&o.mesh),
+        metrics: Some(&o.metrics),
+        samples: Some(&o.samples),
+        scene: Some(&o.scene),
+    };
+    let params = karst_export::ExportParams {
+        formats: karst_export::ExportFormat::ALL.to_vec(),
+        ..karst_export::ExportParams::default()
+    };
+    let _ = karst_export::export(&inputs, &params, &scratch());
+    let run = karst_view::Run {
+        dir: scratch(),
+        scene: Some(o.scene.clone()),
+        skeleton: Some(skeleton),
+        hydro: Some(hydro),
+        mesh: None,
+        metrics: Some(o.metrics.clone()),
+        ensemble: None,
+        problems: Vec::new(),
+    };
+    let _ = serde_json::to_vec(&karst_view::data::view_data(&run, &[]));
+}
+
+/// A mesh that passes its checks is chunked, simplified and written as the viewer's glb files.
+fn check_view_mesh(input: &[u8]) {
+    if let Ok(mesh) = decode_payload::<karst_mesher::Mesh>(Path::new("fuzz"), Encoding::Postcard, input) {
+        let dir = scratch().join("view");
+        let _ = karst_view::meshes::write(&dir, &mesh);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+fn grid_seeds() -> Vec<Vec<u8>> {
+    vec![br#"{"min": [0.0, 0.0, -50.0], "cell": 10.0, "dims": [40, 30, 8], "realizations": 5}"#.to_vec()]
+}
+
+/// An ensemble's grid.json beside the tiny skeleton, read as the viewer reads it.
+fn check_grid(input: &[u8]) {
+    let run = scratch().join("run");
+    std::fs::create_dir_all(run.join("probability")).expect("scratch is writable");
+    std::fs::write(run.join("probability/grid.json"), input).expect("scratch is writable");
+    let skeleton = &others_skeleton();
+    let _ = karst_view::ensemble::load(&run, skeleton);
+}
+
+fn others_skeleton() -> &'static karst_skeleton::Skeleton {
+    static SKELETON: std::sync::OnceLock<karst_skeleton::Skeleton> = std::sync::OnceLock::new();
+    SKELETON.get_or_init(|| {
+        read_artifact(&root().join("fixtures/golden/tiny/skeleton.json")).expect("the goldens read").1
+    })
 }
 
 // ---- network files ---------------------------------------------------------------------

@@ -5,7 +5,9 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::field::{self, FieldNode, GridSpec, Layer, NoKarst};
-use crate::params::{CostgraphParams, HydroParams, MesherParams, SamplingParams, SdfParams, SkeletonParams};
+use crate::params::{
+    CostgraphParams, ExportParams, HydroParams, MesherParams, SamplingParams, SdfParams, SkeletonParams,
+};
 use crate::sections::{Reads, Section};
 use crate::validate::{self, Problem};
 use crate::{Domain, FractureFamily, KeyPoint, KeyPointKind, Surface, Terrain};
@@ -42,6 +44,8 @@ pub struct Scene {
     pub(crate) sdf: SdfParams,
     #[serde(default)]
     pub(crate) mesher: MesherParams,
+    #[serde(default)]
+    pub(crate) export: ExportParams,
     /// Which sections were read, when auditing (see [`Scene::audited`]).
     #[serde(skip)]
     pub(crate) reads: Reads,
@@ -321,4 +325,6 @@ section_accessors! {
     sdf, sdf_mut: SdfParams => Sdf;
     /// `[mesher]`.
     mesher, mesher_mut: MesherParams => Mesher;
+    /// `[export]`: which formats the export stage writes.
+    export, export_mut: ExportParams => Export;
 }

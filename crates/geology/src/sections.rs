@@ -25,11 +25,12 @@ pub enum Section {
     Hydro,
     Sdf,
     Mesher,
+    Export,
 }
 
 impl Section {
     /// Every section.
-    pub const ALL: [Section; 14] = [
+    pub const ALL: [Section; 15] = [
         Section::Seed,
         Section::Domain,
         Section::Terrain,
@@ -44,6 +45,7 @@ impl Section {
         Section::Hydro,
         Section::Sdf,
         Section::Mesher,
+        Section::Export,
     ];
 
     /// The section's name in the scene file, as the stage table writes it.
@@ -63,6 +65,7 @@ impl Section {
             Section::Hydro => "hydro",
             Section::Sdf => "sdf",
             Section::Mesher => "mesher",
+            Section::Export => "export",
         }
     }
 

@@ -110,6 +110,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     scene.hydro.check(&mut found);
     scene.sdf.check(&mut found);
     scene.mesher.check(&mut found);
+    scene.export.check(&mut found);
     found.problems
 }
 

@@ -1,6 +1,8 @@
 //! CSV export for flow models: `hydro_nodes.csv` (id, x, y, z, kind, diameter) and
 //! `hydro_links.csv` (id, from, to, length, diameter, flow), the node/link tables that SWMM,
-//! MODFLOW-CFP and openKARST converters read. Links are the wet and dry segments, directed
+//! MODFLOW-CFP and openKARST converters read. Ids are 1-based, as in every table karstgen
+//! writes (node `i` of skeleton.json is id `i + 1`), so that `karst-metrics --csv` reads them
+//! with the other exports. Links are the wet and dry segments, directed
 //! downstream (dry ones in conduit order); kind is inlet (sink), outlet (spring) or junction;
 //! diameters are in metres (a node takes its widest conduit), flows in m³/s.
 
@@ -21,7 +23,7 @@ pub const LINKS: &str = "hydro_links.csv";
 pub fn tables(skeleton: &Skeleton, hydro: &Hydro) -> (String, String) {
     let mut diameter = vec![0.0f64; skeleton.nodes.len()];
     let mut links = String::from("id,from,to,length,diameter,flow\n");
-    let mut id = 0;
+    let mut id = 1;
     for (conduit, water) in skeleton.conduits.iter().zip(&hydro.conduits) {
         let radii = water.radius.as_ref().unwrap_or(&conduit.radius);
         for (i, (w, s)) in conduit.nodes.windows(2).zip(&water.segments).enumerate() {
@@ -37,7 +39,7 @@ pub fn tables(skeleton: &Skeleton, hydro: &Hydro) -> (String, String) {
             };
             let [a, b] = [from, to].map(|n| DVec3::from_array(skeleton.nodes[n as usize].position));
             let d = radii[i] + radii[i + 1];
-            let _ = writeln!(links, "{id},{from},{to},{},{d},{}", a.distance(b), s.discharge);
+            let _ = writeln!(links, "{id},{},{},{},{d},{}", from + 1, to + 1, a.distance(b), s.discharge);
             id += 1;
         }
     }
@@ -49,7 +51,7 @@ pub fn tables(skeleton: &Skeleton, hydro: &Hydro) -> (String, String) {
             _ => "junction",
         };
         let [x, y, z] = node.position;
-        let _ = writeln!(nodes, "{i},{x},{y},{z},{kind},{}", diameter[i]);
+        let _ = writeln!(nodes, "{},{x},{y},{z},{kind},{}", i + 1, diameter[i]);
     }
     (nodes, links)
 }

@@ -66,7 +66,12 @@ impl Stage for HydroStage {
     }
 
     /// `hydro_nodes.csv` and `hydro_links.csv`, for flow models.
-    fn side_files(out: &Path, _: &Scene, (skeleton,): &(Skeleton,), hydro: &Hydro) -> std::io::Result<()> {
+    fn side_files(
+        out: &Path,
+        _: &Scene,
+        (skeleton,): &(Skeleton,),
+        hydro: &mut Hydro,
+    ) -> std::io::Result<()> {
         export::write(out, skeleton, hydro)
     }
 }

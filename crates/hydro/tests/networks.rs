@@ -412,8 +412,10 @@ fn the_csv_export_loads_back_as_nodes_and_links() {
     // Discharge in m³/s is conserved too: what leaves the inlets reaches the outlets.
     let num = |s: &str| s.parse::<f64>().unwrap();
     let mut net = vec![0.0; nodes.len()];
+    // Ids are 1-based, node i of the skeleton being id i + 1, as in every table karstgen writes.
+    assert!(nodes.iter().enumerate().all(|(i, r)| r[0] == (i + 1).to_string()));
     for l in &links {
-        let (from, to, q) = (num(&l[1]) as usize, num(&l[2]) as usize, num(&l[5]));
+        let (from, to, q) = (num(&l[1]) as usize - 1, num(&l[2]) as usize - 1, num(&l[5]));
         assert!(num(&l[3]) >= 0.0 && num(&l[4]) > 0.0 && q >= 0.0);
         net[from] -= q;
         net[to] += q;

@@ -11,8 +11,7 @@
 //! number of threads. Rock islands and sealed air pockets are then removed ([`clean`], Cui
 //! et al. 2011 §3.2–3.3).
 //! [`build`] is the entry, [`MesherStage`] the stage. Output: `mesh.bin` ([`Mesh`] of three
-//! [`TriMesh`], `payload.rs`), `mesh.obj` (the carved terrain) and `export/` (OBJ, binary PLY
-//! and .glb of the three surfaces).
+//! [`TriMesh`], `payload.rs`); the export stage writes them as glb, OBJ, PLY, VTK or TSurf.
 
 mod build;
 mod cleanup;
@@ -20,7 +19,6 @@ pub mod components;
 mod cubes;
 mod error;
 mod estimate;
-pub mod export;
 mod lattice;
 mod normals;
 mod octree;

@@ -1,7 +1,7 @@
-//! The mesher stage's contract: `sdf.bin` in; `mesh.bin`, `mesh.obj` and `export/` out;
-//! `render` draws one surface.
+//! The mesher stage's contract: `sdf.bin` in, `mesh.bin` out (the export stage writes the
+//! meshes in other formats); `render` draws one surface.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::Args;
 
@@ -13,7 +13,7 @@ use karst_stage::{Stage, StageError};
 use crate::build::build;
 use crate::error::MesherError;
 use crate::payload::{Mesh, TriMesh};
-use crate::{components, export, render, watertight};
+use crate::{components, render, watertight};
 
 /// Stage 6: watertight meshes of the carved terrain, the cave alone and the water.
 pub struct MesherStage;
@@ -52,12 +52,6 @@ impl Stage for MesherStage {
             lines.extend(surface_summary(name, surface));
         }
         lines
-    }
-
-    /// `mesh.obj` (the carved terrain) and `export/` (OBJ, binary PLY and .glb of the three
-    /// surfaces).
-    fn side_files(out: &Path, _: &Scene, _: &Self::Inputs, mesh: &Mesh) -> std::io::Result<()> {
-        export::write_all(out, mesh).map(|_| ())
     }
 }
 

@@ -3,8 +3,8 @@
 //! [`characterize`] computes every metric of `karstnet.KGraph.characterize_graph()` plus the
 //! counts printed by `basic_analysis()`, Howard's parameters, the connectivity degree DC, the
 //! Sturges entropy variants and karstnet's length-weighted average shortest path length. The
-//! definitions follow `shared/reference/karstnet-metrics.md` (the "spec" cited by section in the
-//! module docs); values match karstnet to ~1e-14 relative.
+//! definitions are written out in `docs/metrics-definitions.md` (the "spec" cited by section in
+//! the module docs); values match karstnet to ~1e-14 relative.
 //!
 //! Pipeline (one module per step):
 //! [`Network`] (validated) → `graph` (simple undirected graph in karstnet's node order) →

@@ -1,7 +1,7 @@
 //! How a network compares with real caves: the minimum and maximum of each metric of karstnet's
 //! `characterize_graph()` over the cave networks of Collon et al. 2017 (Geomorphology 283, with
-//! the 2021 corrigendum), as computed by karstnet 1.2.5 (`data/real-cave-ranges.json`, a copy of
-//! `shared/reference/real-cave-ranges.json`).
+//! the 2021 corrigendum), as computed by karstnet 1.2.5 (`data/real-cave-ranges.json`, embedded
+//! at build time).
 //!
 //! A value is inside when `min ≤ value ≤ max` up to a relative [`RANGE_SLACK`] of the bound: the
 //! bounds are themselves floating-point results of karstnet, and the same ratio (−5/9, say)

@@ -3,12 +3,17 @@
 //! * [`read_karstnet`]: karstnet's `{base}_nodes.dat` (one node per line, `x y z`; extra columns
 //!   are properties and ignored; if the first line has only `x y` the whole network is 2D with
 //!   z = 0) and `{base}_links.dat` (two **1-based** node indices per line). Blank lines and lines
-//!   starting with `#` are skipped, as `numpy.loadtxt` does.
+//!   starting with `#` are skipped, as `numpy.loadtxt` does. The base may also be given as
+//!   either file's name (`Huttes_nodes.dat`, `Huttes_links.dat`): see [`karstnet_base`].
 //! * [`read_pline`]: GOCAD PLine (`.pl`): `VRTX id x y z` (or `PVRTX`, extra values ignored) adds
 //!   a node, `ATOM id ref` makes `id` another name of `ref`'s node, `SEG a b` links two ids; ids are
 //!   global to the file and must be defined before use; `ILINE` and other keywords are ignored.
-//! * [`read_csv`]: a nodes table whose header names the columns `id,x,y,z` (any order, other
-//!   columns ignored, ids arbitrary integers) and an edges table whose header names `from,to`.
+//! * [`read_csv`]: a nodes table whose header names the columns `id,x,y` and optionally `z`
+//!   (any order, other columns ignored, ids arbitrary integers; without `z` the network is 2D
+//!   with z = 0) and an edges table whose header names `from,to`, `from_id,to_id` or
+//!   `source,target`. Each file is delimited by `;` when its header line holds one, by `,`
+//!   otherwise (the public KNdata survey tables use `id;x;y;z` and `from_id;to_id`); fields may
+//!   be quoted with `"`.
 //!
 //! # Bad input policy
 //! Errors name the file, the 1-based line number and the offending value.
@@ -49,8 +54,11 @@ pub enum ReadError {
     NoLinks { path: PathBuf },
 }
 
-/// Reads karstnet's `{base}_nodes.dat` and `{base}_links.dat`.
+/// Reads karstnet's `{base}_nodes.dat` and `{base}_links.dat`; `base` may also name either
+/// file.
 pub fn read_karstnet(base: &Path) -> Result<Network, ReadError> {
+    let base = karstnet_base(base);
+    let base = base.as_path();
     let nodes_file = TextFile::open(&with_suffix(base, "_nodes.dat"))?;
     let links_file = TextFile::open(&with_suffix(base, "_links.dat"))?;
     let nodes = dat_nodes(&nodes_file)?;
@@ -92,28 +100,42 @@ pub fn read_pline(path: &Path) -> Result<Network, ReadError> {
     Ok(Network { nodes, links: links.finish()? })
 }
 
-/// Reads a nodes CSV (`id,x,y,z` columns) and an edges CSV (`from,to` columns).
+/// Reads a nodes CSV (`id,x,y[,z]` columns) and an edges CSV (`from,to`, `from_id,to_id` or
+/// `source,target` columns), each delimited by `;` or `,`.
 pub fn read_csv(nodes_path: &Path, edges_path: &Path) -> Result<Network, ReadError> {
     let nodes_file = TextFile::open(nodes_path)?;
     let edges_file = TextFile::open(edges_path)?;
     let mut nodes = Vec::new();
     let mut ids = Ids::default();
     let mut rows = nodes_file.data_lines();
-    let columns = csv_columns(&nodes_file, rows.next(), ["id", "x", "y", "z"])?;
+    let table = CsvTable::header(&nodes_file, rows.next())?;
+    let [id, x, y] = table.columns(&nodes_file, [&["id"], &["x"], &["y"]])?;
+    let z = table.column(&["z"]);
     for (line, text) in rows {
-        let [id, x, y, z] = csv_fields(&nodes_file, line, text, &columns)?;
-        ids.define(&nodes_file, line, id, nodes.len())?;
-        nodes.push(nodes_file.point(line, [x, y, z])?);
+        let [id_text] = table.fields(&nodes_file, line, text, [id])?;
+        ids.define(&nodes_file, line, id_text, nodes.len())?;
+        nodes.push(table.point(&nodes_file, line, text, [x, y], z)?);
     }
     let mut links = Links::new(&edges_file);
     let mut rows = edges_file.data_lines();
-    let columns = csv_columns(&edges_file, rows.next(), ["from", "to"])?;
+    let table = CsvTable::header(&edges_file, rows.next())?;
+    let ends = table.edge_columns(&edges_file)?;
     for (line, text) in rows {
-        let [a, b] = csv_fields(&edges_file, line, text, &columns)?;
+        let [a, b] = table.fields(&edges_file, line, text, ends)?;
         let (a, b) = (ids.resolve(&edges_file, line, a)?, ids.resolve(&edges_file, line, b)?);
         links.push(line, text, a, b)?;
     }
     Ok(Network { nodes, links: links.finish()? })
+}
+
+/// The base name of a karstnet network given as its base (`caves/Huttes`) or as either of its
+/// files (`caves/Huttes_nodes.dat`, `caves/Huttes_links.dat`).
+pub fn karstnet_base(path: &Path) -> PathBuf {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    match ["_nodes.dat", "_links.dat"].iter().find_map(|suffix| name.strip_suffix(suffix)) {
+        Some(base) if !base.is_empty() => path.with_file_name(base),
+        _ => path.to_path_buf(),
+    }
 }
 
 /// `{base}{suffix}`, e.g. `caves/Sakany` + `_nodes.dat`.
@@ -140,40 +162,106 @@ fn dat_nodes(file: &TextFile) -> Result<Vec<[f64; 3]>, ReadError> {
     Ok(nodes)
 }
 
-/// Column positions of `names` in a CSV header line.
-fn csv_columns<const N: usize>(
-    file: &TextFile,
-    header: Option<(usize, &str)>,
-    names: [&str; N],
-) -> Result<[usize; N], ReadError> {
-    let (line, text) = header.ok_or_else(|| file.error(1, "", "missing CSV header"))?;
-    let fields: Vec<&str> = text.split(',').map(csv_unquote).collect();
-    let mut columns = [0; N];
-    for (column, name) in columns.iter_mut().zip(names) {
-        *column = fields
-            .iter()
-            .position(|f| f.eq_ignore_ascii_case(name))
-            .ok_or_else(|| file.error(line, text, format!("header has no `{name}` column")))?;
-    }
-    Ok(columns)
+/// The header of a CSV table: its delimiter and column names.
+struct CsvTable {
+    delimiter: char,
+    names: Vec<String>,
+    /// 1-based line of the header, and its text, for errors.
+    line: usize,
+    text: String,
 }
 
-/// The fields at `columns` of a CSV row.
-fn csv_fields<'a, const N: usize>(
-    file: &TextFile,
-    line: usize,
-    text: &'a str,
-    columns: &[usize; N],
-) -> Result<[&'a str; N], ReadError> {
-    let fields: Vec<&str> = text.split(',').map(csv_unquote).collect();
-    let mut picked = [""; N];
-    for (slot, &c) in picked.iter_mut().zip(columns) {
-        *slot = fields
-            .get(c)
-            .copied()
-            .ok_or_else(|| file.error(line, text, format!("missing column {}", c + 1)))?;
+/// Accepted names of the two ends of an edge, as pairs of columns.
+const EDGE_ENDS: [[&str; 2]; 3] = [["from", "to"], ["from_id", "to_id"], ["source", "target"]];
+
+impl CsvTable {
+    fn header(file: &TextFile, header: Option<(usize, &str)>) -> Result<Self, ReadError> {
+        let (line, text) = header.ok_or_else(|| file.error(1, "", "missing CSV header"))?;
+        let delimiter = if text.contains(';') { ';' } else { ',' };
+        let names = text.split(delimiter).map(|f| csv_unquote(f).to_ascii_lowercase()).collect();
+        Ok(CsvTable { delimiter, names, line, text: text.to_string() })
     }
-    Ok(picked)
+
+    /// Position of the first column named one of `names`.
+    fn column(&self, names: &[&str]) -> Option<usize> {
+        self.names.iter().position(|n| names.contains(&n.as_str()))
+    }
+
+    /// Positions of required columns, each named one of its alternatives.
+    fn columns<const N: usize>(
+        &self,
+        file: &TextFile,
+        wanted: [&[&str]; N],
+    ) -> Result<[usize; N], ReadError> {
+        let mut columns = [0; N];
+        for (column, names) in columns.iter_mut().zip(wanted) {
+            *column = self.column(names).ok_or_else(|| {
+                let problem =
+                    format!("header has no `{}` column (its columns: {})", names[0], self.names.join(", "));
+                file.error(self.line, &self.text, problem)
+            })?;
+        }
+        Ok(columns)
+    }
+
+    /// The `from`/`to` columns of an edges table, under any of the accepted names.
+    fn edge_columns(&self, file: &TextFile) -> Result<[usize; 2], ReadError> {
+        EDGE_ENDS.iter().find_map(|[a, b]| Some([self.column(&[a])?, self.column(&[b])?])).ok_or_else(|| {
+            let accepted: Vec<String> = EDGE_ENDS.iter().map(|[a, b]| format!("`{a}`/`{b}`")).collect();
+            let problem = format!(
+                "header has none of the edge column pairs {} (its columns: {})",
+                accepted.join(", "),
+                self.names.join(", ")
+            );
+            file.error(self.line, &self.text, problem)
+        })
+    }
+
+    /// The point of a row from its `x`, `y` and optional `z` columns (z = 0 without one).
+    fn point(
+        &self,
+        file: &TextFile,
+        line: usize,
+        text: &str,
+        [x, y]: [usize; 2],
+        z: Option<usize>,
+    ) -> Result<[f64; 3], ReadError> {
+        let mut p = [0.0; 3];
+        for (axis, column) in [Some(x), Some(y), z].into_iter().enumerate() {
+            let Some(column) = column else { continue };
+            let [token] = self.fields(file, line, text, [column])?;
+            p[axis] = token.parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
+                let problem =
+                    format!("not a finite coordinate in column {} (`{}`)", column + 1, self.names[column]);
+                file.error(line, token, problem)
+            })?;
+        }
+        Ok(p)
+    }
+
+    /// The fields at `columns` of a row.
+    fn fields<'a, const N: usize>(
+        &self,
+        file: &TextFile,
+        line: usize,
+        text: &'a str,
+        columns: [usize; N],
+    ) -> Result<[&'a str; N], ReadError> {
+        let fields: Vec<&str> = text.split(self.delimiter).map(csv_unquote).collect();
+        let mut picked = [""; N];
+        for (slot, c) in picked.iter_mut().zip(columns) {
+            *slot = fields.get(c).copied().ok_or_else(|| {
+                let problem = format!(
+                    "missing column {} (`{}`): the row has {} fields",
+                    c + 1,
+                    self.names[c],
+                    fields.len()
+                );
+                file.error(line, text, problem)
+            })?;
+        }
+        Ok(picked)
+    }
 }
 
 fn csv_unquote(field: &str) -> &str {

@@ -71,7 +71,7 @@ impl Stage for MetricsStage {
         out: &Path,
         _: &Scene,
         (skeleton, _): &(Skeleton, Hydro),
-        report: &MetricsReport,
+        report: &mut MetricsReport,
     ) -> std::io::Result<()> {
         write_plots(&out.join("preview"), &network_of(skeleton), &report.network)
     }
@@ -87,13 +87,14 @@ pub fn write_plots(dir: &Path, net: &Network, metrics: &Metrics) -> std::io::Res
 #[derive(Debug, Clone, clap::Args)]
 #[group(multiple = false)]
 pub struct NetworkFile {
-    /// karstnet's BASE_nodes.dat and BASE_links.dat.
+    /// karstnet's BASE_nodes.dat and BASE_links.dat (BASE, or either file's name).
     #[arg(long, value_name = "BASE")]
     pub karstnet: Option<PathBuf>,
     /// A GOCAD PLine file.
     #[arg(long, value_name = "FILE.pl")]
     pub pline: Option<PathBuf>,
-    /// CSV node table (id,x,y,z) and edge table (from,to).
+    /// CSV node table (id,x,y[,z]) and edge table (from,to | from_id,to_id | source,target),
+    /// delimited by `,` or `;`.
     #[arg(long, num_args = 2, value_names = ["NODES", "EDGES"])]
     pub csv: Option<Vec<PathBuf>>,
 }

@@ -94,8 +94,8 @@ fn csv_ids_and_columns_in_any_order() {
     assert_line_error(read_csv(&nodes, &bad_edges), "bad.csv", 3, "8");
     let loop_edges = write(&dir, "loop.csv", "from,to\n7,7\n");
     assert_line_error(read_csv(&nodes, &loop_edges), "loop.csv", 2, "7,7");
-    let no_z = write(&dir, "noz.csv", "id,x,y\n1,0,0\n");
-    assert_line_error(read_csv(&no_z, &edges), "noz.csv", 1, "id,x,y");
+    let no_y = write(&dir, "noy.csv", "id,x,z\n1,0,0\n");
+    assert_line_error(read_csv(&no_y, &edges), "noy.csv", 1, "id,x,z");
     let duplicate = write(&dir, "dup.csv", "id,x,y,z\n1,0,0,0\n1,1,1,1\n");
     assert_line_error(read_csv(&duplicate, &edges), "dup.csv", 3, "1");
 }
@@ -122,4 +122,43 @@ fn the_three_formats_agree_on_sakany() {
     assert_eq!(csv, dat);
     assert_eq!(pl, dat);
     assert_eq!(characterize(&csv), characterize(&dat));
+}
+
+/// The layouts real survey tables come in: KNdata's `id;x;y;z` and `from_id;to_id`, 2D tables,
+/// `source,target` edges; errors name the file, the line and the column.
+#[test]
+fn csv_layouts_of_real_data() {
+    let dir = temp_dir("csv-layouts");
+    let nodes = write(&dir, "kn_nodes.csv", "id;x;y;z\n1;0.0;0.0;10.5\n2;3.0;4.0;10.0\n3;3.0;8.0;9.0\n");
+    let edges = write(&dir, "kn_links.csv", "from_id;to_id\n1;2\n2;3\n");
+    let net = read_csv(&nodes, &edges).expect("KNdata layout");
+    assert_eq!(net.nodes, vec![[0.0, 0.0, 10.5], [3.0, 4.0, 10.0], [3.0, 8.0, 9.0]]);
+    assert_eq!(net.links, vec![[0, 1], [1, 2]]);
+
+    let flat = write(&dir, "flat.csv", "ID,X,Y\n1,0,0\n2,3,4\n3,3,8\n");
+    let st = write(&dir, "st.csv", "\"source\",\"target\",length\n1,2,5\n2,3,4\n");
+    let net2d = read_csv(&flat, &st).expect("2D nodes, source/target edges");
+    assert_eq!(net2d.nodes, vec![[0.0; 3], [3.0, 4.0, 0.0], [3.0, 8.0, 0.0]]);
+    assert_eq!(net2d.links, net.links);
+
+    let bad_x = write(&dir, "bad_x.csv", "id;x;y;z\n1;0;0;0\n2;1,5;0;0\n");
+    let err = read_csv(&bad_x, &edges).unwrap_err().to_string();
+    assert!(err.contains("bad_x.csv:3:") && err.contains("column 2 (`x`)") && err.contains("1,5"), "{err}");
+    let short = write(&dir, "short.csv", "id;x;y;z\n1;0;0\n");
+    let err = read_csv(&short, &edges).unwrap_err().to_string();
+    assert!(err.contains("short.csv:2:") && err.contains("missing column 4 (`z`)"), "{err}");
+    let no_ends = write(&dir, "no_ends.csv", "a;b\n1;2\n");
+    let err = read_csv(&nodes, &no_ends).unwrap_err().to_string();
+    assert!(err.contains("no_ends.csv:1:") && err.contains("`from_id`/`to_id`"), "{err}");
+}
+
+/// `--karstnet` takes the base name or either file's name.
+#[test]
+fn karstnet_base_or_either_file() {
+    let base = caves_dir().join("Sakany");
+    let whole = read_karstnet(&base).expect("Sakany");
+    for name in ["Sakany_nodes.dat", "Sakany_links.dat"] {
+        assert_eq!(read_karstnet(&caves_dir().join(name)).expect(name), whole);
+    }
+    assert_eq!(karst_metrics::readers::karstnet_base(Path::new("a/_nodes.dat")), Path::new("a/_nodes.dat"));
 }

@@ -13,6 +13,8 @@
 //!   float channel `P`): the fraction of realizations with a conduit in each cell of `--cell`
 //!   metres over the scene domain. A conduit occupies the cells its segments' axes pass through
 //!   (sampled every quarter cell), whatever its radius;
+//! - `probability/grid.json`: the grid's `min` corner, `cell` and `dims` (x, y, z) and the number
+//!   of `realizations`, so that readers (the viewer) can place the slices;
 //! - `probability-top.png`: the top view, the fraction of realizations with a conduit anywhere
 //!   in each column of cells (north up).
 //!
@@ -196,6 +198,11 @@ fn write_outputs(args: &EnsembleArgs, grid: &Grid, realizations: &[Realization])
             columns[c] += 1;
         }
     }
+    let grid_json = args.out.join("probability/grid.json");
+    let placement = serde_json::json!({
+        "min": grid.min, "cell": grid.cell, "dims": grid.dims, "realizations": realizations.len(),
+    });
+    std::fs::write(&grid_json, placement.to_string()).map_err(|e| failure(&grid_json, &e))?;
     let layer = grid.dims[0] * grid.dims[1];
     for z in 0..grid.dims[2] {
         let path = args.out.join(format!("probability/z-{z:03}.exr"));

@@ -63,6 +63,7 @@ pub fn stage(id: StageId) -> &'static dyn DynStage {
         StageId::Sdf => &Entry::<karst_sdf::SdfStage>(PhantomData),
         StageId::Mesher => &Entry::<karst_mesher::MesherStage>(PhantomData),
         StageId::Metrics => &Entry::<karst_metrics::MetricsStage>(PhantomData),
+        StageId::Export => &Entry::<karst_export::ExportStage>(PhantomData),
     }
 }
 

@@ -92,6 +92,7 @@ fn without_dead_ends(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Opt
                 if closed[u] || closed[graph.targets[edge] as usize] {
                     for set in &mut open.cost_sets {
                         set.costs[edge] = f32::INFINITY;
+                        set.min_cost_per_metre = None;
                     }
                 }
             }

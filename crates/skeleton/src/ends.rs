@@ -49,8 +49,7 @@ pub fn chosen_springs<'a>(
     springs: &[End<'a>],
     cost_to: &mut dyn FnMut(&End<'a>) -> Result<f64, SkeletonError>,
 ) -> Result<Vec<End<'a>>, SkeletonError> {
-    let allowed: Vec<(End, Link)> =
-        springs.iter().map(|t| (*t, scene.link(sink.row, t.row))).filter(|(_, l)| *l != Link::None).collect();
+    let allowed = allowed_springs(scene, sink, springs);
     let unreachable =
         |t: &End| SkeletonError::SinkCannotReachSpring { sink: sink.name.into(), spring: t.name.into() };
     if allowed.is_empty() {
@@ -77,6 +76,20 @@ pub fn chosen_springs<'a>(
         Some((_, t)) => Ok(vec![t]),
         None => Err(unreachable(&allowed[0].0)),
     }
+}
+
+/// The springs [`chosen_springs`] asks the cost of, in the order it asks: those the sink's
+/// connectivity row marks 1, else those it marks 2.
+pub fn candidate_springs<'a>(scene: &Scene, sink: &End, springs: &[End<'a>]) -> Vec<End<'a>> {
+    let allowed = allowed_springs(scene, sink, springs);
+    let connected: Vec<End> =
+        allowed.iter().filter(|(_, l)| *l == Link::Connected).map(|(t, _)| *t).collect();
+    if connected.is_empty() { allowed.into_iter().map(|(t, _)| t).collect() } else { connected }
+}
+
+/// The springs the sink's connectivity row does not forbid, with their link.
+fn allowed_springs<'a>(scene: &Scene, sink: &End, springs: &[End<'a>]) -> Vec<(End<'a>, Link)> {
+    springs.iter().map(|t| (*t, scene.link(sink.row, t.row))).filter(|(_, l)| *l != Link::None).collect()
 }
 
 /// The sample of a key point, or an error naming it.

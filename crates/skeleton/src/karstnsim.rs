@@ -28,11 +28,12 @@ use glam::DVec3;
 use karst_costgraph::CostGraph;
 use karst_geology::{KeyPointKind, Scene, Surface};
 use karst_sampling::Samples;
+use rayon::prelude::*;
 
 use crate::Route;
-use crate::ends::{End, chosen_springs, ends, sample_of};
+use crate::ends::{End, candidate_springs, chosen_springs, ends, sample_of};
 use crate::error::SkeletonError;
-use crate::search::{Cohesive, EdgeCosts, astar, dijkstra_to_set, min_cost_per_metre};
+use crate::search::{Cohesive, EdgeCosts, astar, astar_to_set, min_cost_per_metre};
 
 /// The cost set of a water table, by name.
 pub type CostSets<'g> = dyn Fn(&str) -> &'g (dyn EdgeCosts + 'g) + 'g;
@@ -90,22 +91,28 @@ pub fn route<'g>(
     let mut routes = Vec::new();
     for sink in sinks {
         let source = sample_of(samples, sink)?;
-        let mut legs: BTreeMap<usize, Leg> = BTreeMap::new();
-        let chosen = chosen_springs(scene, sink, springs, &mut |spring| {
-            let table = water_table_of(scene, spring);
+        // The legs towards every candidate spring depend only on the network before this sink:
+        // they are searched in parallel, then chosen among in the candidates' order.
+        let mut searches = Vec::new();
+        for spring in candidate_springs(scene, sink, springs) {
+            let table = water_table_of(scene, &spring);
             let base = cost_set(&table.name);
-            let costs = &Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
             let m = *per_metre
                 .entry(table.name.clone())
                 .or_insert_with(|| min_cost_per_metre(base, &samples.positions) * phase.inherited_cost);
-            let target = sample_of(samples, spring)?;
-            let leg = leg(scene, samples, costs, &used, m, table, source, target);
-            let cost = leg.as_ref().map_or(f64::INFINITY, |l| l.cost);
-            if let Some(l) = leg {
-                legs.insert(spring.row, l);
-            }
-            Ok(cost)
-        })?;
+            searches.push((spring.row, base, table, m, sample_of(samples, &spring)?));
+        }
+        let found: Vec<(usize, Option<Leg>)> = searches
+            .into_par_iter()
+            .map(|(row, base, table, m, target)| {
+                let costs = &Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
+                (row, leg(scene, samples, costs, &used, m, table, source, target))
+            })
+            .collect();
+        let costs: BTreeMap<usize, f64> =
+            found.iter().map(|(row, l)| (*row, l.as_ref().map_or(f64::INFINITY, |l| l.cost))).collect();
+        let legs: BTreeMap<usize, Leg> = found.into_iter().filter_map(|(row, l)| Some((row, l?))).collect();
+        let chosen = chosen_springs(scene, sink, springs, &mut |spring| Ok(costs[&spring.row]))?;
         for spring in chosen {
             let leg = &legs[&spring.row];
             mark_used(graph, &leg.edges, &mut used);
@@ -147,7 +154,11 @@ fn leg(
     let at = |v: usize| DVec3::from_array(samples.positions[v]);
     let phreatic = |v: usize| table.height_above(at(v)) <= 0.0;
     let vadose_costs = Cohesive { base: costs, used, factor: p.cohesion_vadose };
-    let (vadose, reached) = dijkstra_to_set(&vadose_costs, source, phreatic);
+    // Every edge costs at least this per metre of its length, and the water table is at least
+    // `depth_bound` away: A* towards it.
+    let vadose_per_metre = per_metre * p.cohesion_vadose.min(1.0);
+    let to_water_table = |v: usize| vadose_per_metre * depth_bound(table, at(v));
+    let (vadose, reached) = astar_to_set(&vadose_costs, source, to_water_table, phreatic);
     let entry = reached?;
     let phreatic_costs = Cohesive { base: costs, used, factor: p.cohesion_phreatic };
     let heuristic = per_metre * p.cohesion_phreatic.min(1.0);
@@ -157,6 +168,14 @@ fn leg(
     let mut edges = vadose.edges(entry);
     edges.extend(phreatic.edges(target));
     Some(Leg { path, edges, cost: vadose.cost(entry) + phreatic.cost(target) })
+}
+
+/// A lower bound of the distance from `p` to the water table's phreatic side that changes by at
+/// most the distance moved (so that the vadose A* heuristic is consistent): the height of `p`
+/// above a plane along its normal; 0 for a TIN (whose distance costs a search of its
+/// triangles: the vadose leg then runs as plain Dijkstra).
+fn depth_bound(table: &Surface, p: DVec3) -> f64 {
+    if table.mesh().is_some() { 0.0 } else { table.signed_distance(p).max(0.0) }
 }
 
 /// Marks `edges` and their reverse edges used.

@@ -21,6 +21,7 @@
 
 use glam::DVec3;
 use karst_costgraph::CostGraph;
+use rayon::prelude::*;
 
 /// No predecessor.
 const NONE: u32 = u32::MAX;
@@ -32,11 +33,61 @@ pub trait EdgeCosts: Sync {
     fn node_count(&self) -> usize;
     /// Calls `f(edge id, target node, cost)` for every out-edge of `node`.
     fn for_each_out(&self, node: usize, f: &mut dyn FnMut(usize, usize, f64));
-    /// The cost graph's rows and one of its cost sets when these are plain graph costs:
-    /// searches then read them directly instead of through a callback per edge (about three
-    /// times faster).
-    fn csr(&self) -> Option<(&CostGraph, &[f32])> {
+    /// The cost graph's rows, one of its cost sets and the cohesion layers on it, when the
+    /// costs are these: searches then read them directly instead of through a callback per
+    /// edge (about three times faster).
+    fn direct(&self) -> Option<Direct<'_>> {
         None
+    }
+    /// The least cost per metre of the edges, when the cost graph recorded it for these costs.
+    fn recorded_min_cost_per_metre(&self) -> Option<f64> {
+        None
+    }
+}
+
+/// Costs a search reads straight from the cost graph: edge e costs `costs[e]`, times the
+/// factor of every cohesion layer that marks e, the layers applied in order (as nested
+/// [`Cohesive`]s do, so the products are the same bits).
+#[derive(Clone, Copy)]
+pub struct Direct<'a> {
+    pub graph: &'a CostGraph,
+    pub costs: &'a [f32],
+    pub layers: [Option<Layer<'a>>; 2],
+}
+
+/// A cohesion layer: edges marked in `used` cost `factor` times more (P_red < 1: less).
+#[derive(Clone, Copy)]
+pub struct Layer<'a> {
+    pub used: &'a [bool],
+    pub factor: f64,
+}
+
+impl Layer<'_> {
+    #[inline]
+    fn apply(&self, edge: usize, cost: f64) -> f64 {
+        if self.used[edge] { cost * self.factor } else { cost }
+    }
+}
+
+impl<'a> Direct<'a> {
+    fn plain(graph: &'a CostGraph, costs: &'a [f32]) -> Self {
+        Direct { graph, costs, layers: [None, None] }
+    }
+
+    /// Calls `f(edge, target, cost)` for every out-edge of `node`, with one loop per number of
+    /// layers so that the plain loop tests nothing per edge.
+    #[inline]
+    fn for_each_out(&self, node: usize, mut f: impl FnMut(usize, usize, f64)) {
+        let g = self.graph;
+        let (first, last) = (g.offsets[node] as usize, g.offsets[node + 1] as usize);
+        let edges = (first..last).zip(g.targets[first..last].iter().zip(&self.costs[first..last]));
+        match self.layers {
+            [None, _] => edges.for_each(|(e, (&t, &c))| f(e, t as usize, f64::from(c))),
+            [Some(a), None] => edges.for_each(|(e, (&t, &c))| f(e, t as usize, a.apply(e, f64::from(c)))),
+            [Some(a), Some(b)] => {
+                edges.for_each(|(e, (&t, &c))| f(e, t as usize, b.apply(e, a.apply(e, f64::from(c)))))
+            }
+        }
     }
 }
 
@@ -49,8 +100,12 @@ impl EdgeCosts for CostGraph {
         CostSetOf { graph: self, set: 0 }.for_each_out(node, f)
     }
 
-    fn csr(&self) -> Option<(&CostGraph, &[f32])> {
-        Some((self, &self.cost_sets[0].costs))
+    fn direct(&self) -> Option<Direct<'_>> {
+        Some(Direct::plain(self, &self.cost_sets[0].costs))
+    }
+
+    fn recorded_min_cost_per_metre(&self) -> Option<f64> {
+        self.cost_sets[0].min_cost_per_metre
     }
 }
 
@@ -72,8 +127,12 @@ impl EdgeCosts for CostSetOf<'_> {
         }
     }
 
-    fn csr(&self) -> Option<(&CostGraph, &[f32])> {
-        Some((self.graph, &self.graph.cost_sets[self.set].costs))
+    fn direct(&self) -> Option<Direct<'_>> {
+        Some(Direct::plain(self.graph, &self.graph.cost_sets[self.set].costs))
+    }
+
+    fn recorded_min_cost_per_metre(&self) -> Option<f64> {
+        self.graph.cost_sets[self.set].min_cost_per_metre
     }
 }
 
@@ -93,44 +152,73 @@ impl EdgeCosts for Cohesive<'_> {
     fn for_each_out(&self, node: usize, f: &mut dyn FnMut(usize, usize, f64)) {
         self.base.for_each_out(node, &mut |e, t, c| f(e, t, if self.used[e] { c * self.factor } else { c }));
     }
+
+    fn direct(&self) -> Option<Direct<'_>> {
+        let mut direct = self.base.direct()?;
+        let free = direct.layers.iter_mut().find(|l| l.is_none())?;
+        *free = Some(Layer { used: self.used, factor: self.factor });
+        Some(direct)
+    }
 }
 
 /// The smallest cost per metre of any edge between distinct positions: the factor of the A*
 /// heuristic. Zero when the graph has no such edge (the heuristic then vanishes).
+/// The cost graph's record when it has one, else every edge is measured, the nodes in
+/// parallel (a minimum is the same in any order).
 pub fn min_cost_per_metre(graph: &dyn EdgeCosts, positions: &[[f64; 3]]) -> f64 {
-    let mut least = f64::INFINITY;
-    for u in 0..graph.node_count() {
-        let pu = DVec3::from_array(positions[u]);
-        graph.for_each_out(u, &mut |_, v, c| {
-            let length = pu.distance(DVec3::from_array(positions[v]));
-            if length > 0.0 {
-                least = least.min(c / length);
-            }
-        });
+    if let Some(least) = graph.recorded_min_cost_per_metre() {
+        return least;
     }
+    let direct = graph.direct();
+    let least = (0..graph.node_count())
+        .into_par_iter()
+        .with_min_len(1024)
+        .map(|u| {
+            let pu = DVec3::from_array(positions[u]);
+            let mut least = f64::INFINITY;
+            let mut edge = |_, v: usize, c: f64| {
+                let length = pu.distance(DVec3::from_array(positions[v]));
+                if length > 0.0 {
+                    least = least.min(c / length);
+                }
+            };
+            match &direct {
+                Some(d) => d.for_each_out(u, edge),
+                None => graph.for_each_out(u, &mut edge),
+            }
+            least
+        })
+        .reduce(|| f64::INFINITY, f64::min);
     if least.is_finite() { least } else { 0.0 }
 }
 
 /// A shortest-path tree grown from one source, possibly partial (the search stops early).
 pub struct Tree {
-    cost: Vec<f64>,
-    predecessor: Vec<u32>,
-    via: Vec<u32>,
+    /// Per node: the cost so far, the predecessor and the edge from it, side by side so that a
+    /// relaxation touches one cache line.
+    nodes: Vec<Reached>,
+}
+
+#[derive(Clone, Copy)]
+struct Reached {
+    cost: f64,
+    predecessor: u32,
+    via: u32,
 }
 
 impl Tree {
     /// Cost of the least-cost path to `target`; infinite when it was not reached.
     pub fn cost(&self, target: usize) -> f64 {
-        self.cost[target]
+        self.nodes[target].cost
     }
 
     /// The path source → target as node indices, or None when it was not reached.
     pub fn path(&self, target: usize) -> Option<Vec<usize>> {
-        self.cost[target].is_finite().then(|| {
+        self.cost(target).is_finite().then(|| {
             let mut path = vec![target];
             let mut at = target;
-            while self.predecessor[at] != NONE {
-                at = self.predecessor[at] as usize;
+            while self.nodes[at].predecessor != NONE {
+                at = self.nodes[at].predecessor as usize;
                 path.push(at);
             }
             path.reverse();
@@ -141,13 +229,13 @@ impl Tree {
     /// The edge ids of the path source → target (empty when not reached or target = source).
     pub fn edges(&self, target: usize) -> Vec<usize> {
         let mut edges = Vec::new();
-        if !self.cost[target].is_finite() {
+        if !self.cost(target).is_finite() {
             return edges;
         }
         let mut at = target;
-        while self.predecessor[at] != NONE {
-            edges.push(self.via[at] as usize);
-            at = self.predecessor[at] as usize;
+        while self.nodes[at].predecessor != NONE {
+            edges.push(self.nodes[at].via as usize);
+            at = self.nodes[at].predecessor as usize;
         }
         edges.reverse();
         edges
@@ -178,19 +266,27 @@ pub fn dijkstra_to_set(
     source: usize,
     is_target: impl Fn(usize) -> bool,
 ) -> (Tree, Option<usize>) {
+    astar_to_set(graph, source, |_| 0.0, is_target)
+}
+
+/// A* from `source` to the cheapest node for which `is_target` holds. `heuristic` must be a
+/// consistent lower bound of the cost to the set (0 on its members, and never dropping by
+/// more than an edge's cost along it): the first member settled is then the cheapest, as with
+/// [`dijkstra_to_set`], after settling fewer nodes.
+pub fn astar_to_set(
+    graph: &dyn EdgeCosts,
+    source: usize,
+    heuristic: impl Fn(usize) -> f64,
+    is_target: impl Fn(usize) -> bool,
+) -> (Tree, Option<usize>) {
     let mut reached = None;
-    let tree = grow(
-        graph,
-        source,
-        |_| 0.0,
-        |u| {
-            let hit = is_target(u);
-            if hit {
-                reached = Some(u);
-            }
-            hit
-        },
-    );
+    let tree = grow(graph, source, heuristic, |u| {
+        let hit = is_target(u);
+        if hit {
+            reached = Some(u);
+        }
+        hit
+    });
     (tree, reached)
 }
 
@@ -216,11 +312,11 @@ fn grow(
     mut settle: impl FnMut(usize) -> bool,
 ) -> Tree {
     let n = graph.node_count();
-    let mut tree = Tree { cost: vec![f64::INFINITY; n], predecessor: vec![NONE; n], via: vec![NONE; n] };
+    let mut tree = Tree { nodes: vec![Reached { cost: f64::INFINITY, predecessor: NONE, via: NONE }; n] };
     let mut settled = vec![false; n];
     let mut heap = RadixHeap::new();
-    let csr = graph.csr();
-    tree.cost[source] = 0.0;
+    let direct = graph.direct();
+    tree.nodes[source].cost = 0.0;
     heap.push(heuristic(source).to_bits(), source as u32);
     while let Some(node) = heap.pop() {
         let u = node as usize;
@@ -231,24 +327,17 @@ fn grow(
         if settle(u) {
             break;
         }
-        let here = tree.cost[u];
+        let here = tree.nodes[u].cost;
         let mut relax = |edge: usize, v: usize, c: f64| {
             let through = here + c;
-            if through < tree.cost[v] {
-                tree.cost[v] = through;
-                tree.predecessor[v] = node;
-                tree.via[v] = edge as u32;
+            let reached = &mut tree.nodes[v];
+            if through < reached.cost {
+                *reached = Reached { cost: through, predecessor: node, via: edge as u32 };
                 heap.push((through + heuristic(v)).to_bits(), v as u32);
             }
         };
-        match csr {
-            Some((g, costs)) => {
-                let (first, last) = (g.offsets[u] as usize, g.offsets[u + 1] as usize);
-                let edges = g.targets[first..last].iter().zip(&costs[first..last]);
-                for (edge, (&target, &cost)) in (first..last).zip(edges) {
-                    relax(edge, target as usize, f64::from(cost));
-                }
-            }
+        match &direct {
+            Some(d) => d.for_each_out(u, relax),
             None => graph.for_each_out(u, &mut relax),
         }
     }

@@ -75,7 +75,7 @@ impl Stage for SkeletonStage {
     }
 
     /// karstnet's `network_nodes.dat` / `network_links.dat`.
-    fn side_files(out: &Path, _: &Scene, _: &Self::Inputs, skeleton: &Skeleton) -> std::io::Result<()> {
+    fn side_files(out: &Path, _: &Scene, _: &Self::Inputs, skeleton: &mut Skeleton) -> std::io::Result<()> {
         karstnet::write(skeleton, &out.join(KARSTNET_BASE))
     }
 }

@@ -30,13 +30,14 @@ pub trait Stage: 'static {
     fn summary(header: &Header, output: &Self::Output) -> Vec<String>;
 
     /// Files written into the output folder beside the artifact (tables for other programs,
-    /// previews). The runner writes them before the artifact, so a run interrupted between the
-    /// two leaves a stale artifact and the stage runs again next time.
+    /// previews, exports). The runner writes them before the artifact, so a run interrupted
+    /// between the two leaves a stale artifact and the stage runs again next time. A stage may
+    /// record in its payload what it wrote (the export stage's manifest of files and hashes).
     fn side_files(
         _out: &Path,
         _scene: &Scene,
         _inputs: &Self::Inputs,
-        _output: &Self::Output,
+        _output: &mut Self::Output,
     ) -> std::io::Result<()> {
         Ok(())
     }

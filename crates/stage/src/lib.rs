@@ -20,6 +20,7 @@ mod error;
 pub mod human;
 mod inputs;
 pub mod progress;
+pub mod run_dir;
 pub mod runner;
 
 pub use contract::{Blame, Failure, Stage};

@@ -36,7 +36,8 @@ pub struct Ran {
     pub seconds: f64,
 }
 
-/// Runs stage `S`: reads and checks its inputs, builds, writes the side files then the
+/// Runs stage `S`: reads and checks its inputs, builds, writes the side files (after removing
+/// an artifact of other parameters that would claim them), checks the payload, then writes the
 /// artifact (atomically, keyed by the scene sections it reads and its inputs' hashes).
 pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     debug_assert_eq!(S::Inputs::stages(), S::ID.inputs(), "{}: inputs differ from its row", S::ID.name());
@@ -47,8 +48,25 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
         .iter()
         .map(|h| InputRef { name: h.kind.row().kind.into(), payload_blake3: h.payload_blake3.clone() })
         .collect();
+    let provenance = Provenance {
+        producer: producer(S::ID),
+        inputs: refs,
+        params: job.scene.sections_hash(S::ID.row().sections),
+    };
+    let path = job.artifact(S::ID);
     let start = Instant::now();
-    let output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
+    let mut output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
+    invalidate_other(
+        &path,
+        &stage_key(S::ID, &provenance.producer, S::Output::SCHEMA, &provenance.params, &provenance.inputs),
+    )?;
+    S::side_files(job.out, job.scene, &inputs, &mut output).map_err(|e| {
+        StageError::failure(format!(
+            "{}: cannot write the {} stage's files: {e}",
+            job.out.display(),
+            S::ID.name()
+        ))
+    })?;
     let seconds = start.elapsed().as_secs_f64();
     output.validate().map_err(|invalid| {
         StageError::failure(format!(
@@ -59,24 +77,8 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
             invalid.problem
         ))
     })?;
-    let provenance = Provenance {
-        producer: producer(S::ID),
-        inputs: refs,
-        params: job.scene.sections_hash(S::ID.row().sections),
-    };
-    let path = job.artifact(S::ID);
-    invalidate_other(
-        &path,
-        &stage_key(S::ID, &provenance.producer, S::Output::SCHEMA, &provenance.params, &provenance.inputs),
-    )?;
-    S::side_files(job.out, job.scene, &inputs, &output).map_err(|e| {
-        StageError::failure(format!(
-            "{}: cannot write the {} stage's files: {e}",
-            job.out.display(),
-            S::ID.name()
-        ))
-    })?;
     write_artifact(&path, &provenance, &output)?;
+    let _ = std::fs::remove_file(previous_artifact(&path));
     Ok(Ran { headline: S::headline(job.scene, &output), seconds })
 }
 
@@ -101,20 +103,29 @@ fn consistent(job: &Job, headers: &[Header]) -> Result<(), StageError> {
     Ok(())
 }
 
-/// Removes the artifact at `path` when its key is not `key`, before the side files are
-/// rewritten: an interrupted run then leaves no artifact that claims side files it did not
-/// write, and the stage runs again next time. (With the same key, the side files written are
-/// the same bytes: nothing to invalidate.)
+/// Moves the artifact at `path` aside (to [`previous_artifact`]) when its key is not `key`,
+/// before the side files are rewritten: an interrupted run then leaves no artifact that claims
+/// side files it did not write, and the stage runs again next time. The stage may still read
+/// what the previous artifact recorded (the export stage removes the files it no longer
+/// writes); the runner deletes it once the new artifact is written. (With the same key, the
+/// side files written are the same bytes: nothing to invalidate.)
 fn invalidate_other(path: &Path, key: &str) -> Result<(), StageError> {
     match read_header(path) {
         Ok(header) if header.key == key => Ok(()),
         Err(karst_artifact::Error::Open { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
             Ok(())
         }
-        _ => std::fs::remove_file(path).map_err(|e| {
-            StageError::failure(format!("{}: cannot remove the stale artifact: {e}", path.display()))
+        _ => std::fs::rename(path, previous_artifact(path)).map_err(|e| {
+            StageError::failure(format!("{}: cannot move the stale artifact aside: {e}", path.display()))
         }),
     }
+}
+
+/// Where the runner keeps the artifact at `path` of a previous run while the stage rewrites its
+/// side files: `.NAME.previous` beside it.
+pub fn previous_artifact(path: &Path) -> PathBuf {
+    let name = path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    path.with_file_name(format!(".{name}.previous"))
 }
 
 /// The error a user sees for a stage's typed error: the file at fault named first.

@@ -8,6 +8,7 @@ use karst_artifact::StageId;
 use karst_stage::StageError;
 
 mod costgraph;
+mod export;
 mod mesher;
 mod metrics;
 mod pipeline;
@@ -31,20 +32,25 @@ const COSTGRAPH_CASES: &[costgraph::CostgraphCase] = &[
 const SDF_BENCH_CONDUITS: usize = 100;
 
 /// Which benchmarks to run.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Default)]
 pub struct Only {
     pub costgraph: bool,
     pub sdf: bool,
     pub mesher: bool,
+    /// The export formats on the finished run in this folder.
+    pub export: Option<PathBuf>,
     pub mazes: bool,
 }
 
 /// `cargo xtask bench`: runs the benchmarks and prints their tables.
 pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
-    let Only { costgraph: costgraph_only, sdf: sdf_only, mesher: mesher_only, mazes } = only;
+    let Only { costgraph: costgraph_only, sdf: sdf_only, mesher: mesher_only, export, mazes } = only;
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
     if mazes {
         return maze_bench(runs);
+    }
+    if let Some(dir) = export {
+        return export_bench(&dir, runs);
     }
     if mesher_only {
         mesher_bench(runs);
@@ -182,4 +188,13 @@ fn median(mut values: Vec<f64>) -> f64 {
 fn scratch_dir(scene: &Path) -> PathBuf {
     let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     std::env::temp_dir().join(format!("karstgen-bench-{}-{name}", std::process::id()))
+}
+
+fn export_bench(dir: &Path, runs: usize) -> Result<(), StageError> {
+    println!("exports of {}, median of {runs} runs", dir.display());
+    println!("{:<14} {:>10} {:>14}", "formats", "seconds", "bytes");
+    for t in export::time_exports(dir, runs)? {
+        println!("{:<14} {:>10.3} {:>14}", t.case, t.seconds, t.bytes);
+    }
+    Ok(())
 }

@@ -3,6 +3,7 @@
 //! stage's artifact key. Each section checks its own values.
 
 mod costgraph;
+mod export;
 mod hydro;
 mod mesher;
 mod sampling;
@@ -15,6 +16,7 @@ pub const MIN_RADIUS: f64 = 1e-3;
 pub const MAX_RADIUS: f64 = 1e3;
 
 pub use costgraph::{CostModelKind, CostgraphParams};
+pub use export::{ExportFormat, ExportParams, MeshSurface};
 pub use hydro::{HydroParams, PoolOutlet, PoolWeights, Recharge};
 pub use mesher::MesherParams;
 pub use sampling::{RadiusUnit, SamplingParams};

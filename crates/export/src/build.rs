@@ -1,0 +1,122 @@
+//! The export's entry: which upstream artifacts each format reads, and writing the chosen
+//! formats into `DIR/export/`.
+
+use std::path::Path;
+
+use karst_geology::Scene;
+use karst_geology::params::{ExportFormat, ExportParams};
+use karst_hydro::Hydro;
+use karst_mesher::Mesh;
+use karst_metrics::MetricsReport;
+use karst_sampling::Samples;
+use karst_skeleton::Skeleton;
+
+use crate::error::ExportError;
+use crate::folder::{self, Folder};
+use crate::frame::Frame;
+use crate::network::NetworkView;
+use crate::payload::Manifest;
+use crate::{csv, gltf, gocad, obj, ply, survex, swmm, vtk};
+
+/// Name of the export folder inside the output folder.
+pub const FOLDER: &str = "export";
+
+/// The upstream payloads an export may read; each format says which it needs.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Inputs<'a> {
+    pub skeleton: Option<&'a Skeleton>,
+    pub hydro: Option<&'a Hydro>,
+    pub mesh: Option<&'a Mesh>,
+    pub metrics: Option<&'a MetricsReport>,
+    pub samples: Option<&'a Samples>,
+    /// The scene, for what the artifacts do not carry (the rock layer of each sample).
+    pub scene: Option<&'a Scene>,
+}
+
+/// An upstream artifact a format reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Input {
+    Skeleton,
+    Hydro,
+    Mesh,
+    Metrics,
+    Samples,
+}
+
+impl Input {
+    /// The artifact's file name in the output folder.
+    pub fn file_name(self) -> &'static str {
+        match self {
+            Input::Skeleton => "skeleton.json",
+            Input::Hydro => "hydro.json",
+            Input::Mesh => "mesh.bin",
+            Input::Metrics => "metrics.json",
+            Input::Samples => "samples.bin",
+        }
+    }
+
+    fn present(self, inputs: &Inputs) -> bool {
+        match self {
+            Input::Skeleton => inputs.skeleton.is_some(),
+            Input::Hydro => inputs.hydro.is_some(),
+            Input::Mesh => inputs.mesh.is_some(),
+            Input::Metrics => inputs.metrics.is_some(),
+            Input::Samples => inputs.samples.is_some(),
+        }
+    }
+}
+
+/// The artifacts `format` reads.
+pub fn needs(format: ExportFormat) -> &'static [Input] {
+    match format {
+        ExportFormat::Vtk | ExportFormat::Survex | ExportFormat::Swmm => &[Input::Skeleton, Input::Hydro],
+        ExportFormat::Gocad => &[Input::Skeleton, Input::Hydro, Input::Samples],
+        ExportFormat::VtkMeshes | ExportFormat::GocadMeshes | ExportFormat::Obj | ExportFormat::Ply => {
+            &[Input::Mesh]
+        }
+        ExportFormat::Gltf => &[Input::Skeleton, Input::Hydro, Input::Mesh],
+        ExportFormat::Csv => &[Input::Skeleton, Input::Hydro, Input::Metrics],
+    }
+}
+
+/// Writes the formats of `params` into `dir/export/` and returns what was written.
+pub fn export(inputs: &Inputs, params: &ExportParams, dir: &Path) -> Result<Manifest, ExportError> {
+    for &format in &params.formats {
+        if let Some(missing) = needs(format).iter().find(|i| !i.present(inputs)) {
+            return Err(ExportError::MissingInput { format: format.name(), input: missing.file_name() });
+        }
+    }
+    let frame = Frame::of(inputs);
+    let network = match (inputs.skeleton, inputs.hydro) {
+        (Some(skeleton), Some(hydro)) => Some(NetworkView::new(skeleton, hydro)?),
+        _ => None,
+    };
+    let surfaces = inputs.mesh.map(|mesh| folder::Surfaces::new(mesh, &params.surfaces, &params.formats));
+    let mut folder = Folder::create(&dir.join(FOLDER))?;
+    let mut formats = params.formats.clone();
+    formats.sort();
+    formats.dedup();
+    for format in formats {
+        let network = || network.as_ref().expect("network formats need skeleton and hydro");
+        let surfaces = || surfaces.as_ref().expect("mesh formats need the mesh");
+        match format {
+            ExportFormat::Vtk => vtk::write_network(&mut folder, &frame, network())?,
+            ExportFormat::VtkMeshes => vtk::write_meshes(&mut folder, &frame, surfaces())?,
+            ExportFormat::Gocad => {
+                gocad::write_pline(&mut folder, &frame, network())?;
+                let samples = inputs.samples.expect("checked above");
+                gocad::write_vset(&mut folder, &frame, samples, inputs.scene)?;
+            }
+            ExportFormat::GocadMeshes => gocad::write_tsurfs(&mut folder, &frame, surfaces())?,
+            ExportFormat::Survex => survex::write(&mut folder, &frame, network())?,
+            ExportFormat::Swmm => swmm::write(&mut folder, &frame, network(), params)?,
+            ExportFormat::Gltf => gltf::write(&mut folder, &frame, surfaces(), network())?,
+            ExportFormat::Obj => obj::write(&mut folder, &frame, surfaces())?,
+            ExportFormat::Ply => ply::write(&mut folder, &frame, surfaces())?,
+            ExportFormat::Csv => {
+                csv::write(&mut folder, &frame, network(), inputs.metrics.expect("checked above"))?
+            }
+        }
+    }
+    Ok(folder.finish())
+}

@@ -1,0 +1,43 @@
+//! Stage 8: exports of a run into the formats other tools read, each file checked in the test
+//! suite by the tool it targets (docs/exports.md). [`ExportStage`] is the stage: it writes the
+//! scene's `[export]` formats and records them in `export.json` ([`Manifest`], `payload.rs`);
+//! `karstgen export DIR --format …` (and `karst-export DIR`) writes any formats on demand.
+//!
+//! [`export`] writes the formats of an `ExportParams` (the scene's `[export]` section) into
+//! `DIR/export/` and returns the [`Manifest`] of what it wrote. It reads nothing itself: the
+//! upstream payloads come in an [`Inputs`], and a format whose input is missing is refused
+//! before any file is written. Every file is written atomically and hashed as it streams out.
+//!
+//! One id convention in every table a user sees: network nodes, segments and conduits are
+//! numbered from 1 (node `i` of skeleton.json is node `i + 1`), as karstnet's `.dat` files
+//! require; SWMM junction names, Survex station names, GOCAD vertex properties and CSV id
+//! columns all use it. Every coordinate goes through one [`frame::Frame`], so that a world
+//! origin can be added in one place.
+//!
+//! Modules: `network.rs` derives the per-node and per-segment attributes every network format
+//! shares; one module per format (`vtk.rs`, `gocad.rs`, `survex.rs`, `swmm.rs`, `gltf.rs`,
+//! `obj.rs`, `ply.rs`, `csv.rs`); `folder.rs` writes and records the files; `frame.rs` places
+//! every coordinate.
+
+mod build;
+mod csv;
+mod error;
+mod folder;
+mod frame;
+mod gltf;
+mod gocad;
+mod network;
+mod obj;
+mod payload;
+mod ply;
+pub mod stage;
+mod survex;
+mod swmm;
+mod vtk;
+
+pub use build::{FOLDER, Input, Inputs, export, needs};
+pub use error::ExportError;
+pub use karst_geology::params::{ExportFormat, ExportParams, MeshSurface};
+pub use network::NetworkView;
+pub use payload::{ExportedFile, Manifest};
+pub use stage::ExportStage;

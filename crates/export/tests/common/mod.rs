@@ -1,0 +1,144 @@
+//! Helpers of the export tests: runs of the fixture scenes, the exports of a run, and the
+//! outside tools (found through KARSTNET_PYTHON, KARSTGEN_NODE_MODULES and the PATH, all set
+//! up by `cargo xtask test`; a missing tool fails the test, it never passes silently).
+#![allow(dead_code)] // each test binary uses a different subset
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::{Mutex, OnceLock};
+
+use karst_artifact::{Payload, StageId, read_artifact};
+use karst_export::{ExportFormat, ExportParams, Inputs, Manifest, export};
+use karst_hydro::Hydro;
+use karst_mesher::Mesh;
+use karst_metrics::MetricsReport;
+use karst_pipeline::make::{self, Selection};
+use karst_pipeline::scene::SceneFile;
+use karst_sampling::Samples;
+use karst_skeleton::Skeleton;
+pub use karst_testkit::{root, scratch};
+
+/// The run of `fixtures/scenes/NAME.toml` up to hydro and metrics (no sdf, no mesh: the network
+/// formats need neither), made once per test binary.
+pub fn network_run(name: &str) -> PathBuf {
+    static RUNS: OnceLock<Mutex<HashMap<String, PathBuf>>> = OnceLock::new();
+    let runs = RUNS.get_or_init(Default::default);
+    let mut runs = runs.lock().unwrap_or_else(|e| e.into_inner());
+    runs.entry(name.to_string())
+        .or_insert_with(|| {
+            let scene = SceneFile::load(&root().join(format!("fixtures/scenes/{name}.toml"))).unwrap();
+            let out = scratch(&format!("run-{name}"));
+            for stage in
+                [StageId::Sampling, StageId::Costgraph, StageId::Skeleton, StageId::Hydro, StageId::Metrics]
+            {
+                let only = Selection { only: Some(stage), ..Selection::default() };
+                make::run(&scene, &out, &only, &mut |_| {})
+                    .unwrap_or_else(|e| panic!("{name}: {}: {e}", stage.name()));
+            }
+            out
+        })
+        .clone()
+}
+
+/// The blessed run of the tiny scene: every artifact, mesh included.
+pub fn tiny() -> PathBuf {
+    root().join("fixtures/golden/tiny")
+}
+
+pub fn read<P: Payload>(dir: &Path, file: &str) -> P {
+    read_artifact::<P>(&dir.join(file)).unwrap_or_else(|e| panic!("{e}")).1
+}
+
+/// The artifacts of a run; the mesh only when the run has one.
+pub struct Run {
+    pub skeleton: Skeleton,
+    pub hydro: Hydro,
+    pub metrics: MetricsReport,
+    pub samples: Samples,
+    pub mesh: Option<Mesh>,
+}
+
+impl Run {
+    pub fn load(dir: &Path) -> Run {
+        let mesh_path = dir.join("mesh.bin");
+        Run {
+            skeleton: read(dir, "skeleton.json"),
+            hydro: read(dir, "hydro.json"),
+            metrics: read(dir, "metrics.json"),
+            samples: read(dir, "samples.bin"),
+            mesh: mesh_path.exists().then(|| read(dir, "mesh.bin")),
+        }
+    }
+
+    pub fn inputs(&self) -> Inputs<'_> {
+        Inputs {
+            skeleton: Some(&self.skeleton),
+            hydro: Some(&self.hydro),
+            mesh: self.mesh.as_ref(),
+            metrics: Some(&self.metrics),
+            samples: Some(&self.samples),
+            scene: None,
+        }
+    }
+}
+
+/// Exports `formats` of `run` into a scratch folder; returns the folder and the manifest.
+pub fn export_run(run: &Run, formats: &[ExportFormat], tag: &str) -> (PathBuf, Manifest) {
+    let dir = scratch(tag);
+    let params = ExportParams { formats: formats.to_vec(), ..ExportParams::default() };
+    let manifest = export(&run.inputs(), &params, &dir).unwrap_or_else(|e| panic!("{tag}: {e}"));
+    (dir.join(karst_export::FOLDER), manifest)
+}
+
+/// The venv's Python with karstnet, vtk and swmm-toolkit.
+pub fn python() -> String {
+    std::env::var("KARSTNET_PYTHON").unwrap_or_else(|_| {
+        panic!("set KARSTNET_PYTHON (run the tests with `cargo xtask test`, which installs the tools)")
+    })
+}
+
+/// Runs a helper script of tests/tools with the venv's Python and parses its JSON output.
+pub fn python_json(script: &str, args: &[&str]) -> serde_json::Value {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/tools").join(script);
+    let name = script_name(&script).to_string();
+    run_json(Command::new(python()).arg(&script).args(args), &name)
+}
+
+/// The Khronos glTF-Validator's report of a file.
+pub fn validate_gltf(file: &Path) -> serde_json::Value {
+    let modules = std::env::var("KARSTGEN_NODE_MODULES").unwrap_or_else(|_| {
+        panic!(
+            "set KARSTGEN_NODE_MODULES (run the tests with `cargo xtask test`, which installs gltf-validator)"
+        )
+    });
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/tools/validate_gltf.mjs");
+    run_json(Command::new("node").arg(script).arg(modules).arg(file), "gltf-validator")
+}
+
+fn script_name(path: &Path) -> &str {
+    path.file_name().and_then(|n| n.to_str()).unwrap_or("script")
+}
+
+fn run_json(command: &mut Command, what: &str) -> serde_json::Value {
+    let out = command
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {what} (run `cargo xtask test` to install the tools): {e}"));
+    assert!(out.status.success(), "{what} failed:\n{}", String::from_utf8_lossy(&out.stderr));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let last = stdout
+        .lines()
+        .rev()
+        .find(|l| l.starts_with('{'))
+        .unwrap_or_else(|| panic!("{what} printed no JSON:\n{stdout}"));
+    serde_json::from_str(last).unwrap_or_else(|e| panic!("{what}: {e}"))
+}
+
+/// Runs a program of the PATH in `dir`; panics (saying how to install it) when it is missing.
+pub fn run_tool(program: &str, args: &[&str], dir: &Path) -> std::process::Output {
+    Command::new(program)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {program} (run `cargo xtask test`, which installs it): {e}"))
+}

@@ -1,0 +1,318 @@
+//! Every export format checked by the tool it targets: VTK's reader, karstnet 1.2.5, Survex's
+//! cavern, EPA SWMM 5.2's engine, the Khronos glTF-Validator; the TSurf by karstgen's own
+//! reader (the one that reads users' horizons) and the CSV tables by karst-metrics' reader.
+
+mod common;
+
+use std::path::Path;
+
+use common::{Run, export_run, network_run, python_json, run_tool, tiny, validate_gltf};
+use karst_export::ExportFormat;
+use karst_hydro::WaterType;
+use karst_skeleton::ConduitType;
+
+fn values(report: &serde_json::Value, section: &str, name: &str) -> Vec<f64> {
+    let array = &report[section][name]["values"];
+    array
+        .as_array()
+        .unwrap_or_else(|| panic!("{section}.{name} missing: {report}"))
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn vtk_reads_the_network_with_the_artifacts_counts_and_arrays() {
+    for scene in ["default", "karstnsim"] {
+        let run = Run::load(&network_run(scene));
+        let (dir, _) = export_run(&run, &[ExportFormat::Vtk], &format!("vtk-{scene}"));
+        let file = dir.join("network.vtp");
+        let report = python_json("read_vtp.py", &[file.to_str().unwrap()]);
+        assert_eq!(report["log"], "", "{scene}: VTK wrote errors or warnings");
+        let (skeleton, hydro) = (&run.skeleton, &run.hydro);
+        assert_eq!(report["points"], skeleton.nodes.len());
+        let segments: Vec<_> = hydro.conduits.iter().flat_map(|c| &c.segments).collect();
+        assert_eq!(report["lines"], segments.len());
+        assert_eq!(report["point_type"], "double");
+        let z: Vec<f64> = skeleton.nodes.iter().map(|n| n.position[2]).collect();
+        assert_eq!(values(&report, "point_data", "elevation"), z);
+        let flows: Vec<f64> = segments.iter().map(|s| s.flow).collect();
+        assert_eq!(values(&report, "cell_data", "flow"), flows);
+        let depths: Vec<f64> = segments.iter().map(|s| s.depth).collect();
+        assert_eq!(values(&report, "cell_data", "water_depth"), depths);
+        let water: Vec<f64> = segments
+            .iter()
+            .map(|s| WaterType::ALL.iter().position(|w| *w == s.water).unwrap() as f64)
+            .collect();
+        assert_eq!(values(&report, "cell_data", "water_type"), water);
+        let types: Vec<f64> = skeleton
+            .conduits
+            .iter()
+            .flat_map(|c| &c.types)
+            .map(|t| ConduitType::ALL.iter().position(|k| k == t).unwrap() as f64)
+            .collect();
+        assert_eq!(values(&report, "cell_data", "conduit_type"), types);
+        let conduit_ids: Vec<f64> = skeleton
+            .conduits
+            .iter()
+            .enumerate()
+            .flat_map(|(i, c)| std::iter::repeat_n((i + 1) as f64, c.nodes.len() - 1))
+            .collect();
+        assert_eq!(values(&report, "cell_data", "conduit_id"), conduit_ids);
+        let mut radius = vec![0.0f64; skeleton.nodes.len()];
+        for c in &skeleton.conduits {
+            for (n, r) in c.nodes.iter().zip(&c.radius) {
+                radius[*n as usize] = radius[*n as usize].max(*r);
+            }
+        }
+        assert_eq!(values(&report, "point_data", "radius"), radius);
+        let orders = values(&report, "cell_data", "strahler_order");
+        for (s, order) in segments.iter().zip(&orders) {
+            assert_eq!(s.flow > 0.0, *order >= 1.0, "{scene}: wet segments and only they have an order");
+        }
+        let sinks = hydro.sinks.len() as f64;
+        let max_order = orders.iter().copied().fold(0.0, f64::max);
+        assert!(max_order >= 1.0 && max_order <= sinks.log2().floor() + 1.0, "{scene}: order {max_order}");
+    }
+}
+
+#[test]
+fn vtk_reads_the_meshes_with_their_normals() {
+    let run = Run::load(&tiny());
+    let (dir, _) = export_run(&run, &[ExportFormat::VtkMeshes], "vtk-meshes");
+    let mesh = run.mesh.as_ref().unwrap();
+    for (name, surface) in mesh.surfaces() {
+        let file = dir.join(format!("{name}.vtp"));
+        let report = python_json("read_vtp.py", &[file.to_str().unwrap(), "--counts"]);
+        assert_eq!(report["log"], "", "{name}");
+        assert_eq!(report["points"], surface.vertices.len(), "{name}");
+        assert_eq!(report["polys"], surface.triangles.len(), "{name}");
+        if !surface.triangles.is_empty() {
+            assert_eq!(report["has_normals"], true, "{name}");
+            let first: Vec<f64> = surface.vertices[0].iter().map(|&c| f64::from(c)).collect();
+            assert_eq!(
+                report["first_points"][0]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|v| v.as_f64().unwrap())
+                    .collect::<Vec<_>>(),
+                first
+            );
+        }
+    }
+}
+
+#[test]
+fn karstnet_reads_the_pline_and_finds_metrics_json() {
+    for scene in ["default", "karstnsim", "branchwork"] {
+        let run = Run::load(&network_run(scene));
+        let (dir, _) = export_run(&run, &[ExportFormat::Gocad], &format!("pline-{scene}"));
+        let oracle = common::root().join("crates/metrics/tests/karstnet_oracle.py");
+        let out = std::process::Command::new(common::python())
+            .arg(oracle)
+            .arg(dir.join("network.pl"))
+            .output()
+            .expect("run karstnet (cargo xtask test installs it)");
+        assert!(out.status.success(), "{scene}: karstnet failed: {}", String::from_utf8_lossy(&out.stderr));
+        let theirs: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(run.metrics.karstnet.len(), 10);
+        for (key, ours) in &run.metrics.karstnet {
+            let theirs = theirs[key].as_f64().unwrap_or_else(|| panic!("{scene}: karstnet has no {key}"));
+            assert!(
+                (ours.value - theirs).abs() <= 1e-9 * theirs.abs().max(1.0),
+                "{scene}: {key}: {} vs {theirs}",
+                ours.value
+            );
+        }
+        let vset = std::fs::read_to_string(dir.join("samples.vs")).unwrap();
+        assert_eq!(vset.lines().filter(|l| l.starts_with("PVRTX ")).count(), run.samples.len());
+    }
+}
+
+#[test]
+fn tsurfs_read_back_to_the_same_vertices() {
+    let run = Run::load(&tiny());
+    let (dir, _) = export_run(&run, &[ExportFormat::GocadMeshes], "tsurf");
+    for (name, surface) in run.mesh.as_ref().unwrap().surfaces() {
+        if surface.triangles.is_empty() {
+            continue;
+        }
+        let tin =
+            karst_geology::tin::Tin::read(&dir.join(format!("{name}.ts"))).unwrap_or_else(|e| panic!("{e}"));
+        let back: Vec<[f32; 3]> = tin.vertices.iter().map(|v| v.map(|c| c as f32)).collect();
+        assert_eq!(back, surface.vertices, "{name}");
+        assert_eq!(tin.triangles, surface.triangles, "{name}");
+    }
+}
+
+/// Legs and their total length in a `dump3d` listing: every LINE from the point before it.
+fn legs_of_dump(dump: &str) -> (usize, f64) {
+    let (mut legs, mut length, mut at) = (0, 0.0, [0.0f64; 3]);
+    for line in dump.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if matches!(words.first(), Some(&"MOVE") | Some(&"LINE")) && words.len() >= 4 {
+            let p: [f64; 3] = std::array::from_fn(|i| words[i + 1].parse().unwrap());
+            if words[0] == "LINE" {
+                legs += 1;
+                length += (0..3).map(|i| (p[i] - at[i]).powi(2)).sum::<f64>().sqrt();
+            }
+            at = p;
+        }
+    }
+    (legs, length)
+}
+
+#[test]
+fn cavern_processes_the_survey_without_warning_with_every_leg() {
+    for scene in ["default", "karstnsim", "branchwork"] {
+        let run = Run::load(&network_run(scene));
+        let (dir, _) = export_run(&run, &[ExportFormat::Survex], &format!("survex-{scene}"));
+        let out = run_tool("cavern", &["network.svx"], &dir);
+        let text =
+            format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        assert!(out.status.success(), "{scene}: cavern failed:\n{text}");
+        let lower = text.to_lowercase();
+        assert!(!lower.contains("warning") && !lower.contains("error"), "{scene}: cavern said:\n{text}");
+        let dump = run_tool("dump3d", &["network.3d"], &dir);
+        assert!(dump.status.success());
+        let (legs, length) = legs_of_dump(&String::from_utf8_lossy(&dump.stdout));
+        let segments =
+            run.skeleton.conduits.iter().flat_map(|c| c.nodes.windows(2)).filter(|w| w[0] != w[1]).count();
+        assert_eq!(legs, segments, "{scene}");
+        let expected = run.skeleton.total_length();
+        assert!(
+            (length - expected).abs() <= 1e-3 * expected,
+            "{scene}: {length} m of legs, skeleton {expected} m"
+        );
+    }
+}
+
+/// The SWMM model of a run, run by the real engine: (continuity error %, outfall flows and the
+/// hydro discharge of each spring, notes).
+fn swmm_run(scene: &str) -> (f64, Vec<(String, f64, f64)>, Vec<String>) {
+    let run = Run::load(&network_run(scene));
+    let (dir, _) = export_run(&run, &[ExportFormat::Swmm], &format!("swmm-{scene}"));
+    let view = karst_export::NetworkView::new(&run.skeleton, &run.hydro).unwrap();
+    let names: Vec<String> = view.springs.iter().map(|s| s.name.clone()).collect();
+    let model = dir.join("network.inp");
+    let mut args = vec![model.to_str().unwrap()];
+    args.extend(names.iter().map(String::as_str));
+    let report = python_json("run_swmm.py", &args);
+    let flows = view
+        .springs
+        .iter()
+        .map(|s| (s.name.clone(), report["outfalls"][&s.name].as_f64().unwrap(), s.discharge))
+        .collect();
+    let notes = report["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap().to_string()).collect();
+    (report["continuity_error"].as_f64().unwrap(), flows, notes)
+}
+
+#[test]
+fn swmm_runs_to_the_end_and_springs_discharge_what_hydro_says() {
+    for scene in ["default", "karstnsim"] {
+        let (_, flows, notes) = swmm_run(scene);
+        assert!(notes.iter().all(|n| !n.contains("ERROR")), "{scene}: {notes:?}");
+        for (spring, swmm, hydro) in flows {
+            assert!(
+                (swmm - hydro).abs() <= 0.02 * hydro,
+                "{scene}: spring {spring}: SWMM {swmm} m³/s, hydro {hydro} m³/s"
+            );
+        }
+    }
+}
+
+/// Issue 17 asks for a flow-routing continuity error under 1 % on these scenes, and the
+/// branchwork preset's spring discharge within 2 %: not reached yet (the dynamic-wave solver
+/// does not converge on these steep networks of short conduits; docs/exports.md gives the
+/// figures). Run with `--ignored` to see them.
+#[test]
+#[ignore = "SWMM continuity error above 1 % and branchwork not steady (docs/exports.md)"]
+fn swmm_continuity_error_is_under_one_percent_and_branchwork_is_steady() {
+    for scene in ["default", "karstnsim", "branchwork"] {
+        let (continuity, flows, _) = swmm_run(scene);
+        for (spring, swmm, hydro) in flows {
+            assert!(
+                (swmm - hydro).abs() <= 0.02 * hydro,
+                "{scene}: spring {spring}: SWMM {swmm}, hydro {hydro}"
+            );
+        }
+        assert!(continuity.abs() < 1.0, "{scene}: continuity error {continuity} %");
+    }
+}
+
+#[test]
+fn gltf_validator_accepts_the_scene_with_named_nodes_and_typed_lines() {
+    let run = Run::load(&tiny());
+    let (dir, manifest) = export_run(&run, &[ExportFormat::Gltf], "gltf");
+    assert_eq!(manifest.files.len(), 1);
+    let file = dir.join("karst.glb");
+    let report = validate_gltf(&file);
+    let issues = &report["issues"];
+    assert_eq!(
+        (issues["numErrors"].as_u64(), issues["numWarnings"].as_u64()),
+        (Some(0), Some(0)),
+        "{issues}"
+    );
+    let bytes = std::fs::read(&file).unwrap();
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    let names: Vec<&str> =
+        doc["nodes"].as_array().unwrap().iter().map(|n| n["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["terrain", "cave", "water", "network"]);
+    assert_eq!(doc["scenes"][0]["extras"]["origin"], serde_json::json!([0.0, 0.0, 0.0]));
+    let network = &doc["meshes"][doc["nodes"][3]["mesh"].as_u64().unwrap() as usize];
+    let used: std::collections::BTreeSet<&str> =
+        run.skeleton.conduits.iter().flat_map(|c| &c.types).map(|t| t.name()).collect();
+    let primitives = network["primitives"].as_array().unwrap();
+    assert_eq!(primitives.len(), used.len());
+    for p in primitives {
+        assert_eq!(p["mode"], 1, "line primitives");
+        let material = &doc["materials"][p["material"].as_u64().unwrap() as usize];
+        assert!(used.contains(material["name"].as_str().unwrap()));
+    }
+}
+
+#[test]
+fn csv_tables_read_back_with_karst_metrics() {
+    let dir = network_run("karstnsim");
+    let run = Run::load(&dir);
+    let (export_dir, _) = export_run(&run, &[ExportFormat::Csv], "csv");
+    // Links come in another order than the skeleton's: sums may differ in the last digit.
+    let expected = run.metrics.network.to_pairs();
+    let check = |nodes: &Path, links: &Path| {
+        let net = karst_metrics::readers::read_csv(nodes, links).unwrap_or_else(|e| panic!("{e}"));
+        let found = karst_metrics::characterize(&net).unwrap().to_pairs();
+        for ((key, a), (_, b)) in found.iter().zip(&expected) {
+            assert!(a == b || (a - b).abs() <= 1e-12 * b.abs(), "{}: {key}: {a} vs {b}", nodes.display());
+        }
+    };
+    check(&export_dir.join("nodes.csv"), &export_dir.join("segments.csv"));
+    // The hydro stage's tables and the skeleton's node table share the 1-based ids.
+    check(&dir.join("hydro_nodes.csv"), &dir.join("hydro_links.csv"));
+    check(&dir.join("network_nodes.csv"), &dir.join("hydro_links.csv"));
+    let metrics = std::fs::read_to_string(export_dir.join("metrics.csv")).unwrap();
+    assert_eq!(metrics.lines().count(), 1 + run.metrics.karstnet.len());
+}
+
+#[test]
+fn manifest_names_every_file_with_its_size_and_digest_and_repeats_exactly() {
+    let run = Run::load(&tiny());
+    let all = karst_export::ExportFormat::ALL;
+    let (dir, first) = export_run(&run, &all, "manifest-a");
+    let (_, second) = export_run(&run, &all, "manifest-b");
+    assert_eq!(first, second, "the same run exports the same bytes");
+    let mut names: Vec<&str> = first.files.iter().map(|f| f.name.as_str()).collect();
+    names.sort();
+    let mut on_disk: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    on_disk.sort();
+    assert_eq!(names, on_disk);
+    for f in &first.files {
+        let bytes = std::fs::read(dir.join(&f.name)).unwrap();
+        assert_eq!(bytes.len() as u64, f.bytes, "{}", f.name);
+        assert_eq!(blake3::hash(&bytes).to_hex().to_string(), f.blake3, "{}", f.name);
+    }
+}

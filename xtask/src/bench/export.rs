@@ -1,0 +1,52 @@
+//! `cargo xtask bench --export DIR` times the export formats on a finished run (the artifacts
+//! in DIR are read once; each format is exported into a scratch folder, median of the runs).
+
+use std::path::Path;
+use std::time::Instant;
+
+use karst_artifact::read_artifact;
+use karst_export::{ExportFormat, ExportParams, Inputs, export};
+use karst_stage::StageError;
+
+/// One timed case: its name, median seconds and bytes written.
+pub struct ExportTime {
+    pub case: String,
+    pub seconds: f64,
+    pub bytes: u64,
+}
+
+/// Times the default formats together, then every format alone.
+pub fn time_exports(dir: &Path, runs: usize) -> Result<Vec<ExportTime>, StageError> {
+    let skeleton = read_artifact(&dir.join("skeleton.json"))?.1;
+    let hydro = read_artifact(&dir.join("hydro.json"))?.1;
+    let mesh = read_artifact(&dir.join("mesh.bin"))?.1;
+    let metrics = read_artifact(&dir.join("metrics.json"))?.1;
+    let samples = read_artifact(&dir.join("samples.bin"))?.1;
+    let inputs = Inputs {
+        skeleton: Some(&skeleton),
+        hydro: Some(&hydro),
+        mesh: Some(&mesh),
+        metrics: Some(&metrics),
+        samples: Some(&samples),
+        scene: None,
+    };
+    let scratch = std::env::temp_dir().join(format!("karstgen-bench-export-{}", std::process::id()));
+    let mut cases = vec![("default".to_string(), ExportParams::default().formats)];
+    cases.extend(ExportFormat::ALL.iter().map(|f| (f.name().to_string(), vec![*f])));
+    let mut times = Vec::new();
+    for (case, formats) in cases {
+        let params = ExportParams { formats, ..ExportParams::default() };
+        let mut seconds = Vec::new();
+        let mut bytes = 0;
+        for _ in 0..runs.max(1) {
+            let start = Instant::now();
+            let manifest = export(&inputs, &params, &scratch).map_err(StageError::input)?;
+            seconds.push(start.elapsed().as_secs_f64());
+            bytes = manifest.files.iter().map(|f| f.bytes).sum();
+            let _ = std::fs::remove_dir_all(&scratch);
+        }
+        seconds.sort_by(f64::total_cmp);
+        times.push(ExportTime { case, seconds: seconds[seconds.len() / 2], bytes });
+    }
+    Ok(times)
+}
