@@ -35,10 +35,12 @@ fn a_second_run_into_the_same_folder_is_refused_while_the_first_writes() {
     };
     let err = karst_export::stage::export_run(&args).unwrap_err();
     assert!(err.to_string().contains("another run is writing to"), "{err}");
-    let err = karst_view::write_view(&out, Some(&scene)).unwrap_err();
-    assert!(err.to_string().contains("another run is writing to"), "{err}");
     drop(first);
     run(&scene, &out, &Selection { to: Some(StageId::Sampling), ..Selection::default() }).unwrap();
+    let second = karst_artifact::lock_output(&out).unwrap();
+    let err = karst_view::write_view(&out, Some(&scene)).unwrap_err();
+    assert!(err.to_string().contains("another run is writing to"), "{err}");
+    drop(second);
     fs::remove_dir_all(&out).unwrap();
 }
 

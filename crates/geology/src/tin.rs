@@ -349,7 +349,7 @@ fn numbers<T: std::str::FromStr>(
 
 fn finite_vertex(xyz: Vec<f64>, file: &str, line: usize) -> Result<[f64; 3], TinError> {
     let limit = crate::validate::MAX_COORDINATE;
-    if let Some(v) = xyz.iter().find(|v| !(v.abs() <= limit)) {
+    if let Some(v) = xyz.iter().find(|v| v.is_nan() || v.abs() > limit) {
         return Err(syntax(file, line, format!("coordinate {v} is not a finite number within ±{limit:e}")));
     }
     Ok([xyz[0], xyz[1], xyz[2]])

@@ -260,7 +260,7 @@ impl Checks<'_> {
         };
         // A derived quantity, checked where it is made: the steepest slope of the ground.
         let lambda = scene.terrain.lipschitz();
-        if ok && !(lambda <= MAX_TERRAIN_SLOPE) {
+        if ok && (lambda.is_nan() || lambda > MAX_TERRAIN_SLOPE) {
             let driver = match scene.terrain {
                 Terrain::Noise { .. } => "terrain.wavelength",
                 Terrain::Heightfield { .. } => "terrain.cell_size",
