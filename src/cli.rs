@@ -30,8 +30,8 @@ enum Command {
     Diff(DiffArgs),
     /// karstnet's statistics of any network file (karstnet .dat, GOCAD PLine or CSV), as JSON.
     Metrics(MetricsArgs),
-    /// Run N seeds of SCENE in parallel: every realization's metrics, their summary and the
-    /// conduit probability grid.
+    /// Many seeds of SCENE in parallel (resumable), or `merge` ensemble folders: every
+    /// realization's metrics and hydro figures, their summary and the conduit probability.
     Ensemble(EnsembleArgs),
     /// Write a run's outputs in other tools' formats (VTK, GOCAD, Survex, SWMM, glTF, OBJ, PLY,
     /// CSV) into DIR/export/.
@@ -89,19 +89,64 @@ pub struct MetricsArgs {
     plots: Option<PathBuf>,
 }
 
-/// `karstgen ensemble`.
+/// `karstgen ensemble`: run realizations, or merge ensemble folders.
 #[derive(Debug, Clone, clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct EnsembleArgs {
-    scene: PathBuf,
-    /// Number of realizations (seeds scene seed .. scene seed + N − 1).
-    #[arg(long, default_value_t = 50)]
-    n: usize,
+    #[command(subcommand)]
+    merge: Option<EnsembleMerge>,
+    #[command(flatten)]
+    run: EnsembleRunArgs,
+}
+
+#[derive(Debug, Clone, Subcommand)]
+enum EnsembleMerge {
+    /// Gather ensemble folders of one scene and settings (e.g. seed ranges run on several
+    /// machines) into one, and summarise it.
+    Merge {
+        /// Ensemble folders to merge.
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// The merged folder (may be one of DIRS).
+        #[arg(long)]
+        out: PathBuf,
+    },
+}
+
+/// `karstgen ensemble SCENE`.
+#[derive(Debug, Clone, clap::Args)]
+struct EnsembleRunArgs {
+    #[arg(required = true)]
+    scene: Option<PathBuf>,
+    /// Number of realizations: seeds scene seed .. scene seed + N − 1 [default: 50].
+    #[arg(long, conflicts_with = "seeds")]
+    n: Option<usize>,
+    /// Seeds to run: a range 100..200 (end excluded), 100..=199, a list 1,5,7, or a mix.
+    #[arg(long)]
+    seeds: Option<String>,
+    /// Run each realization to this stage and the stages it needs, or `all` [default: hydro,
+    /// what the metrics read].
+    #[arg(long, value_parser = parse_to)]
+    to: Option<ToStage>,
     /// Edge of a probability-grid cell, metres.
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, default_value_t = ensemble::DEFAULT_CELL)]
     cell: f64,
-    /// Output folder (default out/ensemble-<scene name>).
+    /// Artifacts each realization keeps beside its record: stage names separated by commas,
+    /// `all` (the whole folder) or `none`.
+    #[arg(long, default_value = "none", value_parser = ensemble::Keep::parse)]
+    keep: ensemble::Keep,
+    /// Output folder (default out/ensemble-<scene name>). A rerun into it skips the complete
+    /// realizations.
     #[arg(long)]
     out: Option<PathBuf>,
+}
+
+/// `--to`: a stage, or every stage.
+#[derive(Debug, Clone, Copy)]
+struct ToStage(Option<StageId>);
+
+fn parse_to(name: &str) -> Result<ToStage, String> {
+    if name == "all" { Ok(ToStage(None)) } else { parse_stage(name).map(|s| ToStage(Some(s))) }
 }
 
 /// `karstgen render`.
@@ -204,11 +249,22 @@ pub fn diff_command(args: &DiffArgs) -> ExitCode {
 }
 
 fn ensemble_command(args: EnsembleArgs) -> Result<(), StageError> {
-    let name = SceneFile::load(&args.scene)?.scene.name().to_string();
-    let out = args.out.unwrap_or_else(|| PathBuf::from("out").join(format!("ensemble-{name}")));
-    let summary =
-        ensemble::run(&ensemble::EnsembleArgs { scene: args.scene, n: args.n, cell: args.cell, out })?;
-    println!("{summary}");
+    if let Some(EnsembleMerge::Merge { dirs, out }) = args.merge {
+        println!("{}", ensemble::merge(&dirs, &out)?.line(&out));
+        return Ok(());
+    }
+    let run = args.run;
+    let scene = SceneFile::load(run.scene.as_deref().unwrap_or(Path::new("")))?;
+    let seeds = match &run.seeds {
+        Some(spec) => ensemble::parse_seeds(spec),
+        None => ensemble::first_n(scene.scene.seed(), run.n.unwrap_or(50)),
+    }
+    .map_err(|e| StageError::input(format!("ensemble: {e}")))?;
+    let out =
+        run.out.unwrap_or_else(|| PathBuf::from("out").join(format!("ensemble-{}", scene.scene.name())));
+    let to = run.to.map_or(Some(ensemble::DEFAULT_TO), |t| t.0);
+    let plan = ensemble::Plan::new(scene, to, run.cell, run.keep)?;
+    println!("{}", ensemble::run(&plan, &out, &seeds)?.line(&out));
     Ok(())
 }
 

@@ -3,6 +3,7 @@
 //! - [`bench`]: time every stage on the benchmark scenes and each stage's budget cases;
 //! - [`peer`]: time the network half beside KarstNSim;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
+//! - [`python`]: build and install the Python package's wheel and run its pytest suite;
 //! - [`tools`]: install the outside programs the tests check outputs with.
 //!
 //! Running the pipeline, diffs and ensembles are `karstgen`'s (crates/pipeline).
@@ -10,4 +11,5 @@
 pub mod bench;
 pub mod metrics_table;
 pub mod peer;
+pub mod python;
 pub mod tools;

@@ -76,10 +76,14 @@ enum Task {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
-    /// Run the test suite (`cargo test --release --workspace`), after installing the outside
-    /// tools the tests check outputs with (tools/: Python packages, Debian packages, npm).
+    /// Run the test suite (`cargo test --release --workspace`, then the Python package's
+    /// pytest suite), after installing the outside tools the tests check outputs with
+    /// (tools/: Python packages, Debian packages, npm).
     Test {
-        /// Extra arguments for cargo test.
+        /// Only the Python package: build and install its wheel, run pytest.
+        #[arg(long)]
+        python: bool,
+        /// Extra arguments for cargo test (then the Python suite does not run).
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
     },
@@ -115,7 +119,7 @@ fn main() -> ExitCode {
         Task::Bench { runs, costgraph, sdf, mesher, export, mazes, .. } => {
             bench::run(runs, bench::Only { costgraph, sdf, mesher, export, mazes })
         }
-        Task::Test { args } => return test(&args),
+        Task::Test { python, args } => return test(python, &args),
         Task::Fuzz { minutes, seed } => fuzz(minutes, seed),
         Task::MetricsTable { write } => metrics_table_command(write),
     };
@@ -229,22 +233,40 @@ fn metrics_table_command(write: bool) -> Result<(), StageError> {
     Ok(())
 }
 
-fn test(args: &[String]) -> ExitCode {
-    let tools = match Tools::ensure(&workspace_root()) {
+fn test(python_only: bool, args: &[String]) -> ExitCode {
+    let root = workspace_root();
+    let tools = match Tools::ensure(&root) {
         Ok(tools) => tools,
         Err(e) => {
             eprintln!("error: cannot install the test tools: {e}");
             return ExitCode::from(1);
         }
     };
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let status =
-        Command::new(cargo).args(["test", "--release", "--workspace"]).args(args).envs(tools.env()).status();
-    match status {
-        Ok(s) if s.success() => ExitCode::SUCCESS,
-        Ok(_) => ExitCode::from(1),
+    if !python_only {
+        // The Python package's crate has no Rust tests: its tests are pytest, run below.
+        let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+        let status = Command::new(cargo)
+            .args(["test", "--release", "--workspace", "--exclude", "karstgen-python"])
+            .args(args)
+            .envs(tools.env())
+            .status();
+        match status {
+            Ok(s) if s.success() => {}
+            Ok(_) => return ExitCode::from(1),
+            Err(e) => {
+                eprintln!("error: cannot run cargo test: {e}");
+                return ExitCode::from(1);
+            }
+        }
+        if !args.is_empty() {
+            return ExitCode::SUCCESS;
+        }
+    }
+    match xtask::python::test(&root, &tools) {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::from(1),
         Err(e) => {
-            eprintln!("error: cannot run cargo test: {e}");
+            eprintln!("error: the Python package: {e}");
             ExitCode::from(1)
         }
     }

@@ -111,7 +111,8 @@ pub fn expected_key(job: &Job, stage: StageId) -> Option<String> {
     Some(stage_key(stage, &producer(stage), registry::stage(stage).schema(), &params, &inputs))
 }
 
-fn up_to_date(job: &Job, stage: StageId) -> bool {
+/// True when `stage`'s artifact exists and its key is the one it would write now.
+pub fn up_to_date(job: &Job, stage: StageId) -> bool {
     let existing = read_header(&job.artifact(stage)).ok();
     match (existing, expected_key(job, stage)) {
         (Some(header), Some(key)) => header.key == key,

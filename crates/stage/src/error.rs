@@ -25,6 +25,34 @@ impl StageError {
         StageError::Failure(anyhow::anyhow!("{message}"))
     }
 
+    /// Bad input where the scene (or a data file it names) is at fault.
+    pub fn scene(message: impl std::fmt::Display) -> Self {
+        StageError::BadInput(anyhow::Error::new(Blamed { input: Input::Scene, message: message.to_string() }))
+    }
+
+    /// Bad input where an artifact is at fault.
+    pub fn artifact(message: impl std::fmt::Display) -> Self {
+        StageError::BadInput(anyhow::Error::new(Blamed {
+            input: Input::Artifact,
+            message: message.to_string(),
+        }))
+    }
+
+    /// Which input is at fault, for bad input (callers that tell them apart: the Python
+    /// package raises `SceneError` or `ArtifactError`); `None` for a failure.
+    pub fn input_at_fault(&self) -> Option<Input> {
+        let StageError::BadInput(e) = self else { return None };
+        Some(if let Some(blamed) = e.downcast_ref::<Blamed>() {
+            blamed.input
+        } else if e.downcast_ref::<karst_geology::SceneError>().is_some() {
+            Input::Scene
+        } else if e.downcast_ref::<karst_artifact::Error>().is_some() {
+            Input::Artifact
+        } else {
+            Input::Other
+        })
+    }
+
     /// The process exit code for this error.
     pub fn exit_code(&self) -> u8 {
         match self {
@@ -32,6 +60,25 @@ impl StageError {
             StageError::Failure(_) => 1,
         }
     }
+}
+
+/// The input at fault in a [`StageError::BadInput`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Input {
+    /// The scene file or a data file it names.
+    Scene,
+    /// An artifact.
+    Artifact,
+    /// Another file (a network file, an argument).
+    Other,
+}
+
+/// A bad input's message and which input it blames.
+#[derive(Debug, thiserror::Error)]
+#[error("{message}")]
+struct Blamed {
+    input: Input,
+    message: String,
 }
 
 impl From<karst_artifact::Error> for StageError {
@@ -43,5 +90,21 @@ impl From<karst_artifact::Error> for StageError {
 impl From<karst_geology::SceneError> for StageError {
     fn from(e: karst_geology::SceneError) -> Self {
         StageError::BadInput(e.into())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_input_says_which_input_is_at_fault() {
+        assert_eq!(StageError::scene("s").input_at_fault(), Some(Input::Scene));
+        assert_eq!(StageError::artifact("a").input_at_fault(), Some(Input::Artifact));
+        assert_eq!(StageError::input("x").input_at_fault(), Some(Input::Other));
+        assert_eq!(StageError::failure("f").input_at_fault(), None);
+        let scene = karst_geology::Scene::parse("name = 1", std::path::Path::new("s.toml")).unwrap_err();
+        assert_eq!(StageError::from(scene).input_at_fault(), Some(Input::Scene));
+        assert_eq!(StageError::scene("line 3: bad").to_string(), "line 3: bad");
     }
 }

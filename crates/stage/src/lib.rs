@@ -24,6 +24,6 @@ pub mod run_dir;
 pub mod runner;
 
 pub use contract::{Blame, Failure, Stage};
-pub use error::StageError;
+pub use error::{Input, StageError};
 pub use inputs::Inputs;
 pub use runner::{Job, Ran};

@@ -131,8 +131,8 @@ pub fn previous_artifact(path: &Path) -> PathBuf {
 /// The error a user sees for a stage's typed error: the file at fault named first.
 pub fn blame(job: &Job, e: &impl Failure) -> StageError {
     match e.blame() {
-        Blame::Scene => StageError::input(format!("{}: {e}", job.scene_path.display())),
-        Blame::Artifact(stage) => StageError::input(format!(
+        Blame::Scene => StageError::scene(format!("{}: {e}", job.scene_path.display())),
+        Blame::Artifact(stage) => StageError::artifact(format!(
             "{}: {e}: rerun the pipeline from {} (`karstgen run SCENE --from {}`)",
             job.artifact(stage).display(),
             stage.name(),

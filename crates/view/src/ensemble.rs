@@ -1,11 +1,11 @@
 //! The ensemble probability of every conduit segment, when the run folder also holds the
-//! outputs of `cargo xtask ensemble SCENE --out RUN` (docs/metrics.md): `probability/grid.json`
+//! outputs of `karstgen ensemble SCENE --out RUN` (docs/ensembles.md): `probability/grid.json`
 //! places the grid, `probability/z-NNN.exr` holds, per cell, the fraction of realizations with
 //! a conduit there.
 //!
 //! A segment's probability is the largest over the cells its axis passes through, sampled every
-//! quarter cell as the ensemble itself marks a conduit's cells; so a segment of realization 0
-//! (the scene's own seed) gets at least 1/n.
+//! quarter cell as the ensemble itself marks a conduit's cells; so when the ensemble's seeds
+//! include the scene's own (the default `--n` does), each segment of the run gets at least 1/n.
 
 use std::path::Path;
 

@@ -5,6 +5,8 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use karst_pipeline::ensemble;
+use karst_pipeline::scene::SceneFile;
 use karst_view::{ViewError, write_view};
 use serde_json::Value;
 
@@ -186,9 +188,10 @@ fn writing_again_replaces_the_view() {
 #[test]
 fn an_ensemble_in_the_run_folder_colours_every_segment() {
     let dir = tiny_run("ensemble", &[]);
-    let args =
-        karst_pipeline::ensemble::EnsembleArgs { scene: tiny_scene(), n: 3, cell: 10.0, out: dir.clone() };
-    karst_pipeline::ensemble::run(&args).unwrap();
+    let scene = SceneFile::load(&tiny_scene()).unwrap();
+    let seed = scene.scene.seed();
+    let plan = ensemble::Plan::new(scene, None, 10.0, ensemble::Keep::All).unwrap();
+    ensemble::run(&plan, &dir, &[seed, seed + 1, seed + 2]).unwrap();
     let report = write_view(&dir, Some(&tiny_scene())).unwrap();
     assert!(report.problems.is_empty(), "{:?}", report.problems);
     let data = run_json(&dir);
@@ -199,7 +202,7 @@ fn an_ensemble_in_the_run_folder_colours_every_segment() {
         let expected = data["skeleton"]["conduits"][c]["nodes"].as_array().unwrap().len() - 1;
         assert_eq!(segments.as_array().unwrap().len(), expected);
         for p in segments.as_array().unwrap() {
-            // The run is realization 0 (the scene's own seed): each of its segments counts once.
+            // The run is the realization of the scene's own seed: each of its segments counts once.
             let p = p.as_f64().unwrap();
             assert!((1.0 / 3.0 - 1e-6..=1.0 + 1e-6).contains(&p), "conduit {c}: probability {p}");
         }
