@@ -8,7 +8,7 @@ use clap::{Parser, Subcommand};
 use karst_artifact::StageId;
 use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::{self, SceneFile};
-use karst_pipeline::{diff, ensemble, registry};
+use karst_pipeline::{calibrate, diff, ensemble, registry};
 use karst_stage::StageError;
 use karst_stage::cli::{default_sigpipe, finish};
 
@@ -33,6 +33,9 @@ enum Command {
     /// Many seeds of SCENE in parallel (resumable), or `merge` ensemble folders: every
     /// realization's metrics and hydro figures, their summary and the conduit probability.
     Ensemble(EnsembleArgs),
+    /// Search the network parameters of SCENE's [calibrate] box that bring its networks closest
+    /// to a surveyed cave (CMA-ES over karstnet's statistics).
+    Calibrate(CalibrateArgs),
     /// Write a run's outputs in other tools' formats (VTK, GOCAD, Survex, SWMM, glTF, OBJ, PLY,
     /// CSV) into DIR/export/.
     Export(karst_export::stage::ExportArgs),
@@ -141,6 +144,19 @@ struct EnsembleRunArgs {
     out: Option<PathBuf>,
 }
 
+/// `karstgen calibrate`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct CalibrateArgs {
+    scene: PathBuf,
+    /// The surveyed cave: karstnet's BASE_nodes.dat (or BASE), a GOCAD PLine .pl, or two CSV
+    /// files NODES EDGES.
+    #[arg(long, required = true, num_args = 1..=2, value_name = "CAVE")]
+    target: Vec<PathBuf>,
+    /// Output folder (default out/calibrate-<scene name>).
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
 /// `--to`: a stage, or every stage.
 #[derive(Debug, Clone, Copy)]
 struct ToStage(Option<StageId>);
@@ -156,6 +172,8 @@ enum Render {
     Skeleton(karst_skeleton::stage::RenderArgs),
     /// A run's network coloured by water type (top and side views).
     Hydro(karst_hydro::stage::RenderArgs),
+    /// The map of a run's surface streams over the scene's terrain, coloured by water type.
+    Streams(karst_streams::stage::RenderArgs),
     /// One surface of a mesh artifact, shaded.
     Mesh(karst_mesher::stage::RenderArgs),
     /// A horizontal (--z) or vertical (--y, --x) slice of an sdf artifact, as PNG and/or EXR.
@@ -192,11 +210,13 @@ fn execute(command: Command) -> Result<(), StageError> {
             karst_metrics::stage::characterize_file(&args.network, args.plots.as_deref())
         }
         Command::Ensemble(args) => ensemble_command(args),
+        Command::Calibrate(args) => calibrate_command(args),
         Command::Export(args) => karst_export::stage::export_run(&args),
         Command::View(args) => karst_view::cli::view(&args),
         Command::Render(render) => match render {
             Render::Skeleton(args) => karst_skeleton::stage::render(&args),
             Render::Hydro(args) => karst_hydro::stage::render(&args),
+            Render::Streams(args) => karst_streams::stage::render(&args),
             Render::Mesh(args) => karst_mesher::stage::render(&args),
             Render::Slice(args) => karst_sdf::stage::slice(&args),
             Render::Sections(args) => karst_sdf::stage::sections(&args),
@@ -265,6 +285,14 @@ fn ensemble_command(args: EnsembleArgs) -> Result<(), StageError> {
     let to = run.to.map_or(Some(ensemble::DEFAULT_TO), |t| t.0);
     let plan = ensemble::Plan::new(scene, to, run.cell, run.keep)?;
     println!("{}", ensemble::run(&plan, &out, &seeds)?.line(&out));
+    Ok(())
+}
+
+fn calibrate_command(args: CalibrateArgs) -> Result<(), StageError> {
+    let name = SceneFile::load(&args.scene)?.scene.name().to_string();
+    let out = args.out.unwrap_or_else(|| PathBuf::from("out").join(format!("calibrate-{name}")));
+    let summary = calibrate::run(&calibrate::CalibrateArgs { scene: args.scene, target: args.target, out })?;
+    println!("{summary}");
     Ok(())
 }
 

@@ -130,7 +130,7 @@ fn pipeline(
 
 fn line(report: &StageReport) -> Line {
     let (status, headline) = match &report.outcome {
-        Outcome::Ran { headline } => ("ran", headline.clone()),
+        Outcome::Ran { headline, .. } => ("ran", headline.clone()),
         Outcome::UpToDate => ("up to date", String::new()),
         Outcome::Skipped => ("skipped", String::new()),
     };

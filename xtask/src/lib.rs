@@ -3,12 +3,14 @@
 //! - [`bench`]: time every stage on the benchmark scenes and each stage's budget cases;
 //! - [`peer`]: time the network half beside KarstNSim;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
+//! - [`ensemble_table`]: the presets' metrics over many seeds against the real caves;
 //! - [`python`]: build and install the Python package's wheel and run its pytest suite;
 //! - [`tools`]: install the outside programs the tests check outputs with.
 //!
 //! Running the pipeline, diffs and ensembles are `karstgen`'s (crates/pipeline).
 
 pub mod bench;
+pub mod ensemble_table;
 pub mod metrics_table;
 pub mod peer;
 pub mod python;

@@ -2,6 +2,7 @@
 //! same code); `bless` regenerates the golden artifacts, `bench` times every stage, `test`
 //! installs the test tools and runs the suite, `metrics-table` tables every scene's metrics,
 //! `fuzz` runs the fuzz targets for a while.
+//! `ensemble` the presets' metrics over many seeds.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -51,15 +52,24 @@ enum Task {
         /// Only the mesher's synthetic budget cases.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// Only the streams budgets (surface network, pipeline overhead, carved terrain).
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        streams: bool,
+        /// Only the GeoTIFF terrain budget (a 4000 × 4000 float32 LZW raster).
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "streams"])]
+        geotiff: bool,
         /// Only the export formats, on the finished run in this folder (e.g. out/looping).
-        #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher"])]
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher", "streams"])]
         export: Option<PathBuf>,
         /// Only the network half beside KarstNSim (pykarstnsim in .venv-peer), alternating runs.
-        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export"])]
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "streams", "export"])]
         peer: bool,
         /// Only the network statistics of mazes (grids of 40k and 250k nodes).
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "peer"])]
         mazes: bool,
+        /// Only the calibration budget: the default scene's [calibrate] box to the Sakany cave.
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "peer", "mazes"])]
+        calibrate: bool,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
     MetricsTable {
@@ -75,6 +85,16 @@ enum Task {
         /// First random seed (later rounds take the next ones).
         #[arg(long, default_value_t = 1)]
         seed: u64,
+    },
+    /// Table the presets' metrics over N seeds each (`karstgen ensemble`) against the real-cave
+    /// ranges: median, 10th–90th percentile, share inside.
+    Ensemble {
+        /// Realizations per preset.
+        #[arg(long, default_value_t = 20)]
+        n: usize,
+        /// Also replace the table in docs/metrics.md.
+        #[arg(long)]
+        write: bool,
     },
     /// Run the test suite (`cargo test --release --workspace`, then the Python package's
     /// pytest suite), after installing the outside tools the tests check outputs with
@@ -116,12 +136,13 @@ fn main() -> ExitCode {
         }
         Task::Bless => bless(),
         Task::Bench { runs, peer: true, .. } => peer_bench(runs),
-        Task::Bench { runs, costgraph, sdf, mesher, export, mazes, .. } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher, export, mazes })
+        Task::Bench { runs, costgraph, sdf, mesher, streams, geotiff, export, calibrate, mazes, .. } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, streams, geotiff, export, calibrate, mazes })
         }
         Task::Test { python, args } => return test(python, &args),
         Task::Fuzz { minutes, seed } => fuzz(minutes, seed),
         Task::MetricsTable { write } => metrics_table_command(write),
+        Task::Ensemble { n, write } => ensemble_table_command(n, write),
     };
     finish(result)
 }
@@ -229,6 +250,25 @@ fn metrics_table_command(write: bool) -> Result<(), StageError> {
         let readme = Path::new("README.md");
         let text = std::fs::read_to_string(readme).map_err(|e| fail(readme, e))?;
         scene::write_if_changed(readme, metrics_table::replace_section(&text, &table).as_bytes())?;
+    }
+    Ok(())
+}
+
+fn ensemble_table_command(n: usize, write: bool) -> Result<(), StageError> {
+    use xtask::ensemble_table::{self, BEGIN, END, PRESETS};
+    let mut sets = Vec::new();
+    for preset in PRESETS {
+        eprintln!("{preset}: {n} realizations");
+        sets.push(ensemble_table::realize(preset, n)?);
+    }
+    let table = ensemble_table::markdown(&sets);
+    print!("{table}");
+    if write {
+        let doc = Path::new("docs/metrics.md");
+        let text = std::fs::read_to_string(doc)
+            .map_err(|e| StageError::failure(format!("{}: {e}", doc.display())))?;
+        let updated = metrics_table::replace_between(&text, BEGIN, END, &table);
+        scene::write_if_changed(doc, updated.as_bytes())?;
     }
     Ok(())
 }

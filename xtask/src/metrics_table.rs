@@ -35,8 +35,15 @@ pub fn scenes(dir: &Path) -> Result<Vec<PathBuf>, StageError> {
 pub fn scene_report(scene: &Path, out: &Path) -> Result<MetricsReport, StageError> {
     let loaded = SceneFile::load(scene)?;
     let job = Job { scene_path: scene, scene: &loaded.scene, out };
-    for stage in [StageId::Sampling, StageId::Costgraph, StageId::Skeleton, StageId::Hydro, StageId::Metrics]
-    {
+    let stages = [
+        StageId::Sampling,
+        StageId::Costgraph,
+        StageId::Skeleton,
+        StageId::Hydro,
+        StageId::Streams,
+        StageId::Metrics,
+    ];
+    for stage in stages {
         registry::stage(stage).run(&job)?;
     }
     Ok(read_artifact::<MetricsReport>(&job.artifact(StageId::Metrics))?.1)
@@ -83,10 +90,16 @@ pub fn markdown(reports: &[(String, MetricsReport)]) -> String {
 
 /// Replaces the README section between the markers (appending it when missing).
 pub fn replace_section(readme: &str, table: &str) -> String {
-    let block = format!("{BEGIN}\n{table}{END}");
-    match (readme.find(BEGIN), readme.find(END)) {
-        (Some(a), Some(b)) if a < b => format!("{}{block}{}", &readme[..a], &readme[b + END.len()..]),
-        _ => format!("{readme}\n{block}\n"),
+    replace_between(readme, BEGIN, END, table)
+}
+
+/// Replaces the section of `text` between the markers `begin` and `end` (appending it when
+/// missing).
+pub fn replace_between(text: &str, begin: &str, end: &str, table: &str) -> String {
+    let block = format!("{begin}\n{table}{end}");
+    match (text.find(begin), text.find(end)) {
+        (Some(a), Some(b)) if a < b => format!("{}{block}{}", &text[..a], &text[b + end.len()..]),
+        _ => format!("{text}\n{block}\n"),
     }
 }
 

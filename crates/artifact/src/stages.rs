@@ -20,6 +20,8 @@ pub enum StageId {
     Skeleton,
     #[serde(rename = "hydro")]
     Hydro,
+    #[serde(rename = "streams")]
+    Streams,
     #[serde(rename = "sdf")]
     Sdf,
     #[serde(rename = "mesh")]
@@ -65,7 +67,7 @@ use Encoding::{Json, Postcard};
 use StageId::*;
 
 /// The table, in run order; `TABLE[id as usize]` is `id`'s row.
-const TABLE: [StageRow; 8] = [
+const TABLE: [StageRow; 9] = [
     StageRow {
         name: "sampling",
         kind: "samples",
@@ -112,13 +114,24 @@ const TABLE: [StageRow; 8] = [
         sections: &["domain", "terrain", "keypoints", "hydro"],
     },
     StageRow {
+        name: "streams",
+        kind: "streams",
+        binary: "karst-streams",
+        file: "streams.json",
+        encoding: Json,
+        inputs: &[Hydro],
+        // Key points: the springs; hydro.total_discharge: their discharge in m³/s.
+        sections: &["domain", "terrain", "keypoints", "hydro.total_discharge", "streams"],
+    },
+    StageRow {
         name: "sdf",
         kind: "sdf",
         binary: "karst-sdf",
         file: "sdf.bin",
         encoding: Postcard,
-        inputs: &[Skeleton, Hydro],
-        sections: &["seed", "domain", "terrain", "sdf"],
+        inputs: &[Skeleton, Hydro, Streams],
+        // Streams: the banks' slope, the sheets' thickness and the mouths' radius.
+        sections: &["seed", "domain", "terrain", "streams", "sdf"],
     },
     StageRow {
         name: "mesher",
@@ -136,7 +149,7 @@ const TABLE: [StageRow; 8] = [
         binary: "karst-metrics",
         file: "metrics.json",
         encoding: Json,
-        inputs: &[Skeleton, Hydro],
+        inputs: &[Skeleton, Hydro, Streams],
         sections: &[],
     },
     StageRow {
@@ -145,7 +158,7 @@ const TABLE: [StageRow; 8] = [
         binary: "karst-export",
         file: "export.json",
         encoding: Json,
-        inputs: &[Sampling, Skeleton, Hydro, Mesher, Metrics],
+        inputs: &[Sampling, Skeleton, Hydro, Streams, Mesher, Metrics],
         // Geology: the rock layer of each sample in the GOCAD VSet.
         sections: &["geology", "export"],
     },
@@ -153,7 +166,8 @@ const TABLE: [StageRow; 8] = [
 
 impl StageId {
     /// Every stage, in run order.
-    pub const ALL: [StageId; 8] = [Sampling, Costgraph, Skeleton, Hydro, Sdf, Mesher, Metrics, Export];
+    pub const ALL: [StageId; 9] =
+        [Sampling, Costgraph, Skeleton, Hydro, Streams, Sdf, Mesher, Metrics, Export];
 
     /// The stage's row of the table.
     pub fn row(self) -> &'static StageRow {
@@ -189,11 +203,19 @@ pub fn stage_key(
     producer: &str,
     schema: u32,
     params: &str,
+    frame: &crate::Frame,
     inputs: &[crate::InputRef],
 ) -> String {
     let schema = schema.to_le_bytes();
-    let mut parts: Vec<&[u8]> =
-        vec![b"karstgen-key-1", stage.name().as_bytes(), producer.as_bytes(), &schema, params.as_bytes()];
+    let frame = frame.key_text();
+    let mut parts: Vec<&[u8]> = vec![
+        b"karstgen-key-1",
+        stage.name().as_bytes(),
+        producer.as_bytes(),
+        &schema,
+        params.as_bytes(),
+        frame.as_bytes(),
+    ];
     for input in inputs {
         parts.push(input.name.as_bytes());
         parts.push(input.payload_blake3.as_bytes());
@@ -232,12 +254,15 @@ mod tests {
     #[test]
     fn key_depends_on_everything() {
         let input = |h: &str| InputRef { name: "samples".into(), payload_blake3: h.into() };
-        let base = stage_key(Costgraph, "p 1", 1, "params", &[input("a")]);
-        assert_ne!(base, stage_key(Costgraph, "p 2", 1, "params", &[input("a")]));
-        assert_ne!(base, stage_key(Costgraph, "p 1", 2, "params", &[input("a")]));
-        assert_ne!(base, stage_key(Costgraph, "p 1", 1, "other", &[input("a")]));
-        assert_ne!(base, stage_key(Costgraph, "p 1", 1, "params", &[input("b")]));
-        assert_ne!(base, stage_key(Skeleton, "p 1", 1, "params", &[input("a")]));
-        assert_eq!(base, stage_key(Costgraph, "p 1", 1, "params", &[input("a")]));
+        let local = crate::Frame::default();
+        let moved = crate::Frame { origin: [650000.0, 5100000.0, 0.0], crs: None };
+        let base = stage_key(Costgraph, "p 1", 1, "params", &local, &[input("a")]);
+        assert_ne!(base, stage_key(Costgraph, "p 2", 1, "params", &local, &[input("a")]));
+        assert_ne!(base, stage_key(Costgraph, "p 1", 2, "params", &local, &[input("a")]));
+        assert_ne!(base, stage_key(Costgraph, "p 1", 1, "other", &local, &[input("a")]));
+        assert_ne!(base, stage_key(Costgraph, "p 1", 1, "params", &moved, &[input("a")]));
+        assert_ne!(base, stage_key(Costgraph, "p 1", 1, "params", &local, &[input("b")]));
+        assert_ne!(base, stage_key(Skeleton, "p 1", 1, "params", &local, &[input("a")]));
+        assert_eq!(base, stage_key(Costgraph, "p 1", 1, "params", &local, &[input("a")]));
     }
 }

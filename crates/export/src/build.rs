@@ -10,6 +10,7 @@ use karst_mesher::Mesh;
 use karst_metrics::MetricsReport;
 use karst_sampling::Samples;
 use karst_skeleton::Skeleton;
+use karst_streams::Streams;
 
 use crate::error::ExportError;
 use crate::folder::{self, Folder};
@@ -22,15 +23,18 @@ use crate::{csv, gltf, gocad, obj, ply, survex, swmm, vtk};
 pub const FOLDER: &str = "export";
 
 /// The upstream payloads an export may read; each format says which it needs.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 pub struct Inputs<'a> {
     pub skeleton: Option<&'a Skeleton>,
     pub hydro: Option<&'a Hydro>,
+    pub streams: Option<&'a Streams>,
     pub mesh: Option<&'a Mesh>,
     pub metrics: Option<&'a MetricsReport>,
     pub samples: Option<&'a Samples>,
     /// The scene, for what the artifacts do not carry (the rock layer of each sample).
     pub scene: Option<&'a Scene>,
+    /// The local frame the artifacts are in (the origin exports add back, the CRS).
+    pub frame: &'a karst_artifact::Frame,
 }
 
 /// An upstream artifact a format reads.
@@ -38,6 +42,7 @@ pub struct Inputs<'a> {
 pub enum Input {
     Skeleton,
     Hydro,
+    Streams,
     Mesh,
     Metrics,
     Samples,
@@ -49,6 +54,7 @@ impl Input {
         match self {
             Input::Skeleton => "skeleton.json",
             Input::Hydro => "hydro.json",
+            Input::Streams => "streams.json",
             Input::Mesh => "mesh.bin",
             Input::Metrics => "metrics.json",
             Input::Samples => "samples.bin",
@@ -59,6 +65,7 @@ impl Input {
         match self {
             Input::Skeleton => inputs.skeleton.is_some(),
             Input::Hydro => inputs.hydro.is_some(),
+            Input::Streams => inputs.streams.is_some(),
             Input::Mesh => inputs.mesh.is_some(),
             Input::Metrics => inputs.metrics.is_some(),
             Input::Samples => inputs.samples.is_some(),
@@ -66,16 +73,18 @@ impl Input {
     }
 }
 
-/// The artifacts `format` reads.
+/// The artifacts `format` reads. VTK and CSV carry the surface streams beside the conduits;
+/// the other network formats are the underground network alone (docs/exports.md).
 pub fn needs(format: ExportFormat) -> &'static [Input] {
     match format {
-        ExportFormat::Vtk | ExportFormat::Survex | ExportFormat::Swmm => &[Input::Skeleton, Input::Hydro],
+        ExportFormat::Vtk => &[Input::Skeleton, Input::Hydro, Input::Streams],
+        ExportFormat::Survex | ExportFormat::Swmm => &[Input::Skeleton, Input::Hydro],
         ExportFormat::Gocad => &[Input::Skeleton, Input::Hydro, Input::Samples],
         ExportFormat::VtkMeshes | ExportFormat::GocadMeshes | ExportFormat::Obj | ExportFormat::Ply => {
             &[Input::Mesh]
         }
         ExportFormat::Gltf => &[Input::Skeleton, Input::Hydro, Input::Mesh],
-        ExportFormat::Csv => &[Input::Skeleton, Input::Hydro, Input::Metrics],
+        ExportFormat::Csv => &[Input::Skeleton, Input::Hydro, Input::Streams, Input::Metrics],
     }
 }
 
@@ -100,7 +109,10 @@ pub fn export(inputs: &Inputs, params: &ExportParams, dir: &Path) -> Result<Mani
         let network = || network.as_ref().expect("network formats need skeleton and hydro");
         let surfaces = || surfaces.as_ref().expect("mesh formats need the mesh");
         match format {
-            ExportFormat::Vtk => vtk::write_network(&mut folder, &frame, network())?,
+            ExportFormat::Vtk => {
+                vtk::write_network(&mut folder, &frame, network())?;
+                vtk::write_streams(&mut folder, &frame, inputs.streams.expect("checked above"))?;
+            }
             ExportFormat::VtkMeshes => vtk::write_meshes(&mut folder, &frame, surfaces())?,
             ExportFormat::Gocad => {
                 gocad::write_pline(&mut folder, &frame, network())?;
@@ -114,7 +126,8 @@ pub fn export(inputs: &Inputs, params: &ExportParams, dir: &Path) -> Result<Mani
             ExportFormat::Obj => obj::write(&mut folder, &frame, surfaces())?,
             ExportFormat::Ply => ply::write(&mut folder, &frame, surfaces())?,
             ExportFormat::Csv => {
-                csv::write(&mut folder, &frame, network(), inputs.metrics.expect("checked above"))?
+                csv::write(&mut folder, &frame, network(), inputs.metrics.expect("checked above"))?;
+                csv::write_streams(&mut folder, &frame, inputs.streams.expect("checked above"))?;
             }
         }
     }

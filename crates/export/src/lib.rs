@@ -1,4 +1,4 @@
-//! Stage 8: exports of a run into the formats other tools read, each file checked in the test
+//! Stage 9: exports of a run into the formats other tools read, each file checked in the test
 //! suite by the tool it targets (docs/exports.md). [`ExportStage`] is the stage: it writes the
 //! scene's `[export]` formats and records them in `export.json` ([`Manifest`], `payload.rs`);
 //! `karstgen export DIR --format …` (and `karst-export DIR`) writes any formats on demand.
@@ -15,7 +15,9 @@
 //! origin can be added in one place.
 //!
 //! Modules: `network.rs` derives the per-node and per-segment attributes every network format
-//! shares; one module per format (`vtk.rs`, `gocad.rs`, `survex.rs`, `swmm.rs`, `gltf.rs`,
+//! shares, `surface.rs` the codes and names of the surface streams' categories (streams.json,
+//! written by VTK as `streams.vtp` and by CSV as `stream_nodes.csv`, `stream_segments.csv`);
+//! one module per format (`vtk.rs`, `gocad.rs`, `survex.rs`, `swmm.rs`, `gltf.rs`,
 //! `obj.rs`, `ply.rs`, `csv.rs`); `folder.rs` writes and records the files; `frame.rs` places
 //! every coordinate.
 
@@ -31,6 +33,7 @@ mod obj;
 mod payload;
 mod ply;
 pub mod stage;
+mod surface;
 mod survex;
 mod swmm;
 mod vtk;

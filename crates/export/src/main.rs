@@ -1,4 +1,4 @@
-//! `karst-export`: stage 8 of karstgen, and exports of any run on demand.
+//! `karst-export`: stage 9 of karstgen, and exports of any run on demand.
 //!
 //! - `run SCENE --out DIR` writes the scene's `[export]` formats into DIR/export/ and their
 //!   manifest into DIR/export.json;

@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use karst_artifact::{Header, Payload, StageId, read_artifact};
+use karst_artifact::{Header, Payload, StageId, check_frame, read_artifact};
 use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_mesher::Mesh;
@@ -12,6 +12,7 @@ use karst_metrics::MetricsReport;
 use karst_sampling::Samples;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
+use karst_streams::Streams;
 
 use crate::build::{FOLDER, Input, Inputs, export, needs};
 use crate::error::ExportError;
@@ -20,9 +21,9 @@ use crate::payload::Manifest;
 use crate::{ExportFormat, ExportParams};
 
 /// The upstream payloads of the export stage.
-type Upstream = (Samples, Skeleton, Hydro, Mesh, MetricsReport);
+type Upstream = (Samples, Skeleton, Hydro, Streams, Mesh, MetricsReport);
 
-/// Stage 8: the run in the formats other tools read.
+/// Stage 9: the run in the formats other tools read.
 pub struct ExportStage;
 
 impl Stage for ExportStage {
@@ -54,14 +55,17 @@ impl Stage for ExportStage {
         upstream: &Upstream,
         manifest: &mut Manifest,
     ) -> std::io::Result<()> {
-        let (samples, skeleton, hydro, mesh, metrics) = upstream;
+        let (samples, skeleton, hydro, streams, mesh, metrics) = upstream;
+        let frame = scene.frame();
         let inputs = Inputs {
             skeleton: Some(skeleton),
             hydro: Some(hydro),
+            streams: Some(streams),
             mesh: Some(mesh),
             metrics: Some(metrics),
             samples: Some(samples),
             scene: Some(scene),
+            frame: &frame,
         };
         // The last export's manifest: moved aside by the runner when this export differs.
         let file = out.join(StageId::Export.file_name());
@@ -84,7 +88,7 @@ impl Stage for ExportStage {
 /// `karstgen export DIR [--format a,b] [--scene SCENE] [--json]`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ExportArgs {
-    /// The run's output folder (holding skeleton.json, hydro.json, mesh.bin, ...).
+    /// The run's output folder (holding skeleton.json, hydro.json, streams.json, mesh.bin, ...).
     pub dir: PathBuf,
     /// Comma-separated formats: vtk, vtk-meshes, gocad, gocad-meshes, survex, swmm, gltf, obj,
     /// ply, csv (default: the scene's [export] formats, or the cheap ones).
@@ -119,6 +123,8 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
         params.formats = args.format.iter().map(|f| parse_format(f)).collect::<Result<_, _>>()?;
     }
     let wanted = |input: Input| params.formats.iter().find(|f| needs(**f).contains(&input)).copied();
+    // Every artifact read must be in one frame: the scene's when one is known, else the first's.
+    let frame = std::cell::RefCell::new(scene.as_ref().map(Scene::frame));
     let read = |input: Input| -> Result<Option<Box<dyn std::any::Any>>, StageError> {
         let Some(format) = wanted(input) else { return Ok(None) };
         let path = args.dir.join(input.file_name());
@@ -130,23 +136,34 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
                 args.dir.display()
             )));
         }
-        Ok(Some(match input {
+        let (header, payload) = match input {
             Input::Skeleton => load::<Skeleton>(&path)?,
             Input::Hydro => load::<Hydro>(&path)?,
+            Input::Streams => load::<Streams>(&path)?,
             Input::Mesh => load::<Mesh>(&path)?,
             Input::Metrics => load::<MetricsReport>(&path)?,
             Input::Samples => load::<Samples>(&path)?,
-        }))
+        };
+        let mut frame = frame.borrow_mut();
+        match frame.as_ref() {
+            Some(expected) => check_frame(&path, &header, expected)?,
+            None => *frame = Some(header.frame()),
+        }
+        Ok(Some(payload))
     };
-    let (skeleton, hydro, mesh) = (read(Input::Skeleton)?, read(Input::Hydro)?, read(Input::Mesh)?);
+    let (skeleton, hydro, streams) = (read(Input::Skeleton)?, read(Input::Hydro)?, read(Input::Streams)?);
+    let mesh = read(Input::Mesh)?;
     let (metrics, samples) = (read(Input::Metrics)?, read(Input::Samples)?);
+    let frame = frame.into_inner().unwrap_or_default();
     let inputs = Inputs {
         skeleton: skeleton.as_deref().and_then(|a| a.downcast_ref()),
         hydro: hydro.as_deref().and_then(|a| a.downcast_ref()),
+        streams: streams.as_deref().and_then(|a| a.downcast_ref()),
         mesh: mesh.as_deref().and_then(|a| a.downcast_ref()),
         metrics: metrics.as_deref().and_then(|a| a.downcast_ref()),
         samples: samples.as_deref().and_then(|a| a.downcast_ref()),
         scene: scene.as_ref(),
+        frame: &frame,
     };
     // Every failure here is about the user's folder or files, an unwritable path included.
     let manifest = export(&inputs, &params, &args.dir).map_err(StageError::input)?;
@@ -173,6 +190,9 @@ fn parse_format(name: &str) -> Result<ExportFormat, StageError> {
     })
 }
 
-fn load<P: Payload + 'static>(path: &Path) -> Result<Box<dyn std::any::Any>, StageError> {
-    Ok(Box::new(read_artifact::<P>(path)?.1))
+type Loaded = (Header, Box<dyn std::any::Any>);
+
+fn load<P: Payload + 'static>(path: &Path) -> Result<Loaded, StageError> {
+    let (header, payload) = read_artifact::<P>(path)?;
+    Ok((header, Box::new(payload)))
 }

@@ -1,107 +1,32 @@
 //! EPA SWMM 5 (`network.inp`, SWMM 5.2's engine and GUI): the network as a dynamic-wave model
-//! of constant sink inflows draining to free outfalls at the springs.
+//! of constant sink inflows draining to free outfalls at the springs, started at its own
+//! steady state.
 //!
-//! - Junctions at the network nodes, named by their 1-based node id; invert = the lowest
-//!   conduit floor at the node, maximum depth up to the highest conduit crown there, surcharge
-//!   depth up to the highest crown of the network (the rock is closed: phreatic conduits may be
-//!   pressurized that far; lower it to the terrain to let water flood out).
-//! - Conduits are the segments, named by their 1-based segment id and pointing downstream
-//!   (conduit order when dry). Cross-section from the conduit type and the mean radius r of the
-//!   segment's ends: `canyon` a closed rectangle 2r high and 1.2r wide, `bed` a closed
-//!   rectangle 0.9r high and 2.4r wide (karstgen's canyon and bedding-plane sections), every
-//!   other type a circle of diameter 2r. The centreline passes through the nodes. Segments
-//!   steeper than `export.swmm_max_slope` (shafts) keep that slope and fall the rest at their
-//!   lower junction, as drop structures are modelled in SWMM. Manning's n is `export.manning`.
-//! - Each spring is a junction drained by a short conduit (`SPRING_outlet`) to a free outfall
-//!   `SPRING` (an outfall may have one link only, and a spring may have several conduits).
-//! - Sinks get constant inflows equal to karstgen's recharge in m³/s; pools (hydro's ponds,
-//!   chambers) are storage units with the horizontal area of their widest conduit.
-//! - Initial state: junctions hold hydro's water level, so that ponds and flooded conduits do
-//!   not have to fill first (initial conduit flows made the engine's continuity worse: left
-//!   at 0).
+//! - `swmm/model.rs`: the model as numbers (junctions, storage units, outfalls, conduits with
+//!   their sections, offsets and drops, inflows);
+//! - `swmm/chains.rs`: the chains of short segments merged into conduits the engine can route;
+//! - `swmm/section.rs`: the cross-sections and their open-channel hydraulics;
+//! - `swmm/steady.rs`: the steady state of hydro's discharges, which the model starts at
+//!   (initial depths and flows), so that the engine's continuity balance does not count the
+//!   filling of the network as an error, with the roughness of split conduits and the closed
+//!   relict conduits that make the engine keep hydro's flows;
+//! - this file writes the `.inp` sections.
 
-use std::collections::BTreeMap;
-use std::f64::consts::PI;
+mod chains;
+mod model;
+mod section;
+mod steady;
+
 use std::io::{self, Write};
 
 use karst_geology::params::{ExportFormat, ExportParams};
-use karst_hydro::Role;
-use karst_skeleton::ConduitType;
 
 use crate::ExportError;
 use crate::folder::Folder;
 use crate::frame::Frame;
-use crate::network::{NetworkView, SegmentRecord};
-
-/// A SWMM cross-section: its shape line and full height.
-struct Section {
-    shape: &'static str,
-    height: f64,
-    width: f64,
-}
-
-fn section(kind: ConduitType, r: f64) -> Section {
-    match kind {
-        ConduitType::Canyon => Section { shape: "RECT_CLOSED", height: 2.0 * r, width: 1.2 * r },
-        ConduitType::Bed => Section { shape: "RECT_CLOSED", height: 0.9 * r, width: 2.4 * r },
-        _ => Section { shape: "CIRCULAR", height: 2.0 * r, width: 0.0 },
-    }
-}
-
-/// One conduit of the model: its ends in water order and their inverts.
-struct Link<'a> {
-    segment: &'a SegmentRecord,
-    ends: [u32; 2],
-    inverts: [f64; 2],
-    section: Section,
-}
-
-/// The vertical layout of the model: conduit end inverts and the junctions around them.
-struct Layout<'a> {
-    links: Vec<Link<'a>>,
-    invert: Vec<f64>,
-    crown: Vec<f64>,
-    top: f64,
-}
-
-/// Length below which a conduit is given this length (SWMM refuses zero-length conduits).
-const MIN_LENGTH: f64 = 0.1;
-
-fn layout<'a>(net: &'a NetworkView, frame: &Frame, max_slope: f64) -> Layout<'a> {
-    let z = |n: u32| frame.world(net.nodes[n as usize].position)[2];
-    let links: Vec<Link> = net
-        .segments
-        .iter()
-        .filter(|s| !s.is_loop())
-        .map(|s| {
-            let section = section(s.conduit_type, 0.5 * (s.radius[0] + s.radius[1]));
-            let ends = s.flow_ends();
-            let mut inverts = ends.map(|n| z(n) - section.height / 2.0);
-            let length = s.length.max(MIN_LENGTH);
-            let drop = inverts[0] - inverts[1];
-            if drop.abs() > max_slope * length {
-                let (low, high) = if drop > 0.0 { (1, 0) } else { (0, 1) };
-                inverts[low] = inverts[high] - max_slope * length;
-            }
-            Link { segment: s, ends, inverts, section }
-        })
-        .collect();
-    let mut invert = vec![f64::INFINITY; net.nodes.len()];
-    let mut crown = vec![f64::NEG_INFINITY; net.nodes.len()];
-    for l in &links {
-        for (n, i) in l.ends.iter().zip(l.inverts) {
-            invert[*n as usize] = invert[*n as usize].min(i);
-            crown[*n as usize] = crown[*n as usize].max(i + l.section.height);
-        }
-    }
-    let top = crown.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    Layout { links, invert, crown, top }
-}
-
-/// A SWMM name: no spaces.
-fn name(text: &str) -> String {
-    text.chars().map(|c| if c.is_whitespace() || c == ';' || c == '"' { '_' } else { c }).collect()
-}
+use crate::network::NetworkView;
+use model::{Model, NodeKind};
+use steady::SteadyState;
 
 /// `network.inp`.
 pub fn write(
@@ -110,17 +35,19 @@ pub fn write(
     net: &NetworkView,
     params: &ExportParams,
 ) -> Result<(), ExportError> {
-    let lay = layout(net, frame, params.swmm_max_slope);
+    let model = model::build(net, frame, params);
+    let state = steady::steady_state(&model, params.manning);
+    let model = model.along(&state.flow);
     folder.write("network.inp", ExportFormat::Swmm, |w| {
         options(w, params.swmm_hours)?;
-        nodes(w, net, &lay)?;
-        conduits(w, net, &lay, params.manning)?;
+        nodes(w, &model, &state)?;
+        conduits(w, &model, &state)?;
         writeln!(w, "\n[INFLOWS]\n;;Node Constituent TimeSeries Type Mfactor Sfactor Baseline")?;
-        for sink in &net.sinks {
-            writeln!(w, "{} FLOW \"\" FLOW 1.0 1.0 {}", sink.node + 1, sink.discharge)?;
+        for &(node, flow) in &model.inflows {
+            writeln!(w, "{} FLOW \"\" FLOW 1.0 1.0 {flow}", model.nodes[node].name)?;
         }
         writeln!(w, "\n[REPORT]\nINPUT NO\nCONTROLS NO\nSUBCATCHMENTS NONE\nNODES ALL\nLINKS ALL")?;
-        coordinates(w, frame, net, &lay)
+        coordinates(w, &model)
     })
 }
 
@@ -163,138 +90,63 @@ fn end_date(days: u64) -> String {
     format!("{:02}/{:02}/2000", month + 1, day + 1)
 }
 
-/// Depth with 4 decimals, never below what SWMM needs to hold the conduits: rounded up, plus
-/// 1 mm so that SWMM's own unit conversions never find a crown above it.
-fn up(x: f64) -> f64 {
-    (x.max(0.0) * 1e4).ceil() / 1e4 + 0.001
-}
-
-fn nodes(w: &mut dyn Write, net: &NetworkView, lay: &Layout) -> io::Result<()> {
-    let init = initial_depths(net, lay);
-    let storage = storage_nodes(net);
-    let used: Vec<bool> = (0..net.nodes.len()).map(|n| lay.invert[n].is_finite()).collect();
-    let depth = |n: usize| up(lay.crown[n] - round4(lay.invert[n]));
-    let surcharge = |n: usize| up(lay.top - lay.crown[n]);
+fn nodes(w: &mut dyn Write, model: &Model, state: &SteadyState) -> io::Result<()> {
+    let of_kind = |kind: fn(&NodeKind) -> bool| {
+        model.nodes.iter().zip(&state.depth).filter(move |(n, _)| kind(&n.kind))
+    };
     writeln!(w, "\n[JUNCTIONS]\n;;Name Elevation MaxDepth InitDepth SurDepth Aponded")?;
-    for n in (0..net.nodes.len()).filter(|&n| used[n] && !storage.contains_key(&n)) {
-        let d = depth(n);
-        writeln!(w, "{} {:.4} {d:.4} {:.4} {:.4} 0", n + 1, lay.invert[n], init[n].min(d), surcharge(n))?;
+    for (n, init) in of_kind(|k| *k == NodeKind::Junction) {
+        writeln!(w, "{} {:.4} {:.4} {init:.4} {:.4} 0", n.name, n.invert, n.depth, n.surcharge)?;
     }
     writeln!(w, "\n[OUTFALLS]\n;;Name Elevation Type Gated")?;
-    for spring in &net.springs {
-        writeln!(w, "{} {:.4} FREE NO", name(&spring.name), lay.invert[spring.node as usize] - OUTLET_DROP)?;
+    for (n, _) in of_kind(|k| *k == NodeKind::Outfall) {
+        writeln!(w, "{} {:.4} FREE NO", n.name, n.invert)?;
     }
     writeln!(w, "\n[STORAGE]\n;;Name Elev MaxDepth InitDepth Shape A1 A2 A0 SurDepth Fevap")?;
-    for (&n, &area) in storage.iter().filter(|(n, _)| used[**n]) {
-        let d = depth(n);
+    for (n, init) in of_kind(|k| matches!(k, NodeKind::Storage(_))) {
+        let NodeKind::Storage(area) = n.kind else { continue };
         writeln!(
             w,
-            "{} {:.4} {d:.4} {:.4} FUNCTIONAL 0 0 {area:.4} {:.4} 0",
-            n + 1,
-            lay.invert[n],
-            init[n].min(d),
-            surcharge(n)
+            "{} {:.4} {:.4} {init:.4} FUNCTIONAL 0 0 {area:.4} {:.4} 0",
+            n.name, n.invert, n.depth, n.surcharge
         )?;
     }
     Ok(())
 }
 
-fn round4(x: f64) -> f64 {
-    (x * 1e4).round() / 1e4
-}
+/// The `MaxFlow` of a closed conduit, m³/s (SWMM reads 0 as no limit).
+const CLOSED_FLOW: f64 = 1e-6;
 
-/// Drop of a spring's outlet conduit, metres.
-const OUTLET_DROP: f64 = 0.01;
-
-/// Pools (hydro's ponds and chambers) with the horizontal area of their widest conduit, m².
-fn storage_nodes(net: &NetworkView) -> BTreeMap<usize, f64> {
-    let mut pools = BTreeMap::new();
-    for s in &net.segments {
-        for (n, r) in s.nodes.iter().zip(s.radius) {
-            let node = &net.nodes[*n as usize];
-            if node.role == Role::Pool || s.conduit_type == ConduitType::Chamber {
-                let area = pools.entry(*n as usize).or_insert(0.0f64);
-                *area = area.max(PI * r * r);
-            }
-        }
-    }
-    for t in net.sinks.iter().chain(&net.springs) {
-        pools.remove(&(t.node as usize));
-    }
-    pools
-}
-
-/// Water depth at each junction from hydro's water levels (0 where dry).
-fn initial_depths(net: &NetworkView, lay: &Layout) -> Vec<f64> {
-    let mut depth = vec![0.0f64; net.nodes.len()];
-    for s in net.segments.iter().filter(|s| s.wet) {
-        if let Some(level) = s.level {
-            for (n, l) in s.nodes.iter().zip(level) {
-                let n = *n as usize;
-                depth[n] = depth[n].max(l - lay.invert[n]);
-            }
-        }
-    }
-    depth.iter().map(|d| d.max(0.0)).collect()
-}
-
-fn conduits(w: &mut dyn Write, net: &NetworkView, lay: &Layout, manning: f64) -> io::Result<()> {
+fn conduits(w: &mut dyn Write, model: &Model, state: &SteadyState) -> io::Result<()> {
     writeln!(w, "\n[CONDUITS]\n;;Name From To Length Roughness InOffset OutOffset InitFlow MaxFlow")?;
-    for l in &lay.links {
-        let [a, b] = l.ends.map(|n| n as usize);
-        let offsets =
-            [l.inverts[0] - round4(lay.invert[a]), l.inverts[1] - round4(lay.invert[b])].map(|o| o.max(0.0));
-        let length = l.segment.length.max(MIN_LENGTH);
+    for (k, c) in model.conduits.iter().enumerate() {
+        let [a, b] = c.ends.map(|n| &model.nodes[n].name);
+        let flow = if state.starts_flowing[k] { state.flow[k].abs() } else { 0.0 };
+        let max_flow = if state.closed[k] { CLOSED_FLOW } else { 0.0 };
         writeln!(
             w,
-            "{} {} {} {length:.4} {manning} {:.4} {:.4} 0 0",
-            l.segment.id,
-            a + 1,
-            b + 1,
-            offsets[0],
-            offsets[1]
-        )?;
-    }
-    for spring in &net.springs {
-        let n = spring.node as usize;
-        let length = (lay.crown[n] - lay.invert[n]).max(1.0);
-        writeln!(
-            w,
-            "{}_outlet {} {} {length:.4} {manning} 0 0 0 0",
-            name(&spring.name),
-            n + 1,
-            name(&spring.name)
+            "{} {a} {b} {:.4} {:.6} {:.4} {:.4} {flow:.6} {max_flow}",
+            c.name, c.length, state.roughness[k], c.offsets[0], c.offsets[1]
         )?;
     }
     writeln!(w, "\n[XSECTIONS]\n;;Link Shape Geom1 Geom2 Geom3 Geom4 Barrels")?;
-    for l in &lay.links {
-        writeln!(
-            w,
-            "{} {} {:.4} {:.4} 0 0 1",
-            l.segment.id, l.section.shape, l.section.height, l.section.width
-        )?;
-    }
-    for spring in &net.springs {
-        let n = spring.node as usize;
-        writeln!(
-            w,
-            "{}_outlet CIRCULAR {:.4} 0 0 0 1",
-            name(&spring.name),
-            up(lay.crown[n] - lay.invert[n])
-        )?;
+    for c in &model.conduits {
+        let s = &c.section;
+        writeln!(w, "{} {} {:.4} {:.4} 0 0 1", c.name, s.keyword(), s.height, s.width)?;
     }
     Ok(())
 }
 
-fn coordinates(w: &mut dyn Write, frame: &Frame, net: &NetworkView, lay: &Layout) -> io::Result<()> {
+fn coordinates(w: &mut dyn Write, model: &Model) -> io::Result<()> {
     writeln!(w, "\n[COORDINATES]\n;;Node X Y")?;
-    for (n, node) in net.nodes.iter().enumerate().filter(|(n, _)| lay.invert[*n].is_finite()) {
-        let [x, y, _] = frame.world(node.position);
-        writeln!(w, "{} {x:.3} {y:.3}", n + 1)?;
+    for n in &model.nodes {
+        writeln!(w, "{} {:.3} {:.3}", n.name, n.xy[0], n.xy[1])?;
     }
-    for spring in &net.springs {
-        let [x, y, _] = frame.world(net.nodes[spring.node as usize].position);
-        writeln!(w, "{} {:.3} {y:.3}", name(&spring.name), x + 1.0)?;
+    writeln!(w, "\n[VERTICES]\n;;Link X Y")?;
+    for c in &model.conduits {
+        for [x, y] in &c.vertices {
+            writeln!(w, "{} {x:.3} {y:.3}", c.name)?;
+        }
     }
     Ok(())
 }

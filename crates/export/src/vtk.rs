@@ -1,6 +1,7 @@
 //! VTK XML PolyData (`.vtp`, ParaView, VTK 9): `network.vtp`, one line cell per conduit
 //! segment with point and cell data, and `terrain.vtp` / `cave.vtp` / `water.vtp`, triangles
-//! with normals. Points are Float64 world coordinates. The data is appended raw (little-endian,
+//! with normals; `streams.vtp`, one line cell per segment of the surface streams (a free fall
+//! as the chord from its lip to its impact, its parabola's drop and throw as cell data). Points are Float64 world coordinates. The data is appended raw (little-endian,
 //! each block prefixed by its UInt64 byte count) and streamed: the XML header's offsets are
 //! computed from the counts before a byte of data is written. The origin is recorded as field
 //! data (`origin`).
@@ -10,11 +11,13 @@ use std::io::{self, Write};
 use karst_geology::params::ExportFormat;
 use karst_hydro::WaterType;
 use karst_skeleton::{ConduitType, Zone};
+use karst_streams::{Segment, Streams};
 
 use crate::ExportError;
 use crate::folder::{Fill, Folder, Surfaces};
 use crate::frame::Frame;
 use crate::network::{NetworkView, NodeKind, SegmentZone, code};
+use crate::surface::{MOTIONS, ROLES};
 
 /// One data array: its VTK type, name, components, tuples and how to write its values.
 struct Array<'a> {
@@ -212,6 +215,50 @@ pub fn write_network(folder: &mut Folder, frame: &Frame, net: &NetworkView) -> R
         normals: None,
     };
     folder.write("network.vtp", ExportFormat::Vtk, |w| piece.write(w, frame))
+}
+
+/// `streams.vtp`: the surface streams, one line per segment, with the rendering attributes of
+/// Table 1 (0 for pools and dry segments, which have none).
+pub fn write_streams(folder: &mut Folder, frame: &Frame, streams: &Streams) -> Result<(), ExportError> {
+    let (nodes, segments) = (&streams.nodes, &streams.segments);
+    let seg_f64 = |f: &dyn Fn(&Segment) -> f64| segments.iter().map(f).collect::<Vec<_>>();
+    let look = |f: fn(&karst_hydro::Look) -> f64| seg_f64(&|s| s.look.as_ref().map_or(0.0, f));
+    let fall = |f: fn(&karst_streams::Fall) -> f64| seg_f64(&|s| s.fall.as_ref().map_or(0.0, f));
+    let piece = Piece {
+        points: Array::points(nodes.len(), |i| frame.world(nodes[i].position)),
+        cell_section: "Lines",
+        cells: segments.len(),
+        connectivity: Array::connectivity(segments.len(), 2, |c, k| [segments[c].from, segments[c].to][k]),
+        offsets: Array::offsets(segments.len(), 2),
+        point_data: vec![
+            Array::i32s("node_id", (1..=nodes.len() as i32).collect()),
+            Array::f64s("elevation", nodes.iter().map(|n| frame.world(n.position)[2]).collect()),
+            Array::i32s("role", nodes.iter().map(|n| code(&ROLES, n.role)).collect()),
+            Array::f64s("source", nodes.iter().map(|n| n.source).collect()),
+            Array::f64s("lateral", nodes.iter().map(|n| n.lateral).collect()),
+            Array::f64s("inflow", nodes.iter().map(|n| n.inflow).collect()),
+        ],
+        cell_data: vec![
+            Array::i32s("segment_id", (1..=segments.len() as i32).collect()),
+            Array::i32s("motion", segments.iter().map(|s| code(&MOTIONS, s.motion)).collect()),
+            Array::i32s("water_type", segments.iter().map(|s| code(&WaterType::ALL, s.water)).collect()),
+            Array::f64s("flow", seg_f64(&|s| s.flow)),
+            Array::f64s("flow_units", seg_f64(&|s| s.flow_units)),
+            Array::f64s("slope", seg_f64(&|s| s.slope)),
+            Array::f64s("speed", seg_f64(&|s| s.speed)),
+            Array::f64s("width", seg_f64(&|s| s.width)),
+            Array::f64s("water_depth", seg_f64(&|s| s.depth)),
+            Array::f64s("length", seg_f64(&|s| streams.length(s))),
+            Array::f64s("drop", fall(|f| f.drop)),
+            Array::f64s("throw", fall(|f| f.throw)),
+            Array::f64s("foam", look(|l| l.foam)),
+            Array::f64s("rocks", look(|l| l.rocks)),
+            Array::f64s("disturbance", look(|l| l.disturbance)),
+            Array::f64s("particles", look(|l| l.particles)),
+        ],
+        normals: None,
+    };
+    folder.write("streams.vtp", ExportFormat::Vtk, |w| piece.write(w, frame))
 }
 
 /// `terrain.vtp`, `cave.vtp`, `water.vtp`: triangles with vertex normals.

@@ -41,7 +41,8 @@ fn digest(dir: &Path) -> Vec<(String, String)> {
     files
 }
 
-const ALL: [&str; 5] = ["skeleton.json", "hydro.json", "metrics.json", "samples.bin", "mesh.bin"];
+const ALL: [&str; 6] =
+    ["skeleton.json", "hydro.json", "streams.json", "metrics.json", "samples.bin", "mesh.bin"];
 
 #[test]
 fn default_formats_of_the_tiny_run() {
@@ -76,6 +77,10 @@ fn a_format_whose_input_the_run_lacks_is_refused() {
     assert!(stderr(&out).contains("`gltf` needs mesh.bin"), "{}", stderr(&out));
     assert!(!dir.join("export").exists(), "nothing written");
     assert_eq!(digest(&dir), before);
+    let out = karst_export(&[dir.to_str().unwrap(), "--format", "vtk"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("`vtk` needs streams.json"), "{}", stderr(&out));
+    assert!(!dir.join("export").exists(), "nothing written");
 }
 
 #[test]

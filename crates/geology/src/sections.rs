@@ -8,7 +8,8 @@
 
 use std::sync::atomic::{AtomicU32, Ordering};
 
-/// A top-level section of the scene file (or one field of one, for `skeleton.forced_links`).
+/// A top-level section of the scene file (or one field of one: `skeleton.forced_links`,
+/// `hydro.total_discharge`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Section {
     Seed,
@@ -23,14 +24,17 @@ pub enum Section {
     Skeleton,
     ForcedLinks,
     Hydro,
+    TotalDischarge,
+    Streams,
     Sdf,
     Mesher,
     Export,
+    Calibrate,
 }
 
 impl Section {
     /// Every section.
-    pub const ALL: [Section; 15] = [
+    pub const ALL: [Section; 18] = [
         Section::Seed,
         Section::Domain,
         Section::Terrain,
@@ -43,9 +47,12 @@ impl Section {
         Section::Skeleton,
         Section::ForcedLinks,
         Section::Hydro,
+        Section::TotalDischarge,
+        Section::Streams,
         Section::Sdf,
         Section::Mesher,
         Section::Export,
+        Section::Calibrate,
     ];
 
     /// The section's name in the scene file, as the stage table writes it.
@@ -63,9 +70,12 @@ impl Section {
             Section::Skeleton => "skeleton",
             Section::ForcedLinks => "skeleton.forced_links",
             Section::Hydro => "hydro",
+            Section::TotalDischarge => "hydro.total_discharge",
+            Section::Streams => "streams",
             Section::Sdf => "sdf",
             Section::Mesher => "mesher",
             Section::Export => "export",
+            Section::Calibrate => "calibrate",
         }
     }
 

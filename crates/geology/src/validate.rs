@@ -34,6 +34,27 @@ impl fmt::Display for Problem {
     }
 }
 
+/// "NaN is not a finite number" for the first value that is not finite.
+fn not_finite(values: &[f64]) -> Option<String> {
+    values.iter().find(|v| !v.is_finite()).map(|v| format!("{v} is not a finite number"))
+}
+
+/// Why `value` is not a finite number within `[lo, hi]`, if it is not.
+fn outside(value: f64, lo: f64, hi: f64) -> Option<String> {
+    not_finite(&[value]).or_else(|| {
+        (!(lo..=hi).contains(&value))
+            .then(|| format!("must be in [{}, {}], got {}", number(lo), number(hi), number(value)))
+    })
+}
+
+/// Why `values` are not coordinates (finite, within ±[`MAX_COORDINATE`]), if they are not.
+fn beyond_limits(values: &[f64]) -> Option<String> {
+    not_finite(values).or_else(|| {
+        let v = values.iter().find(|v| v.abs() > MAX_COORDINATE)?;
+        Some(format!("{v:e} is beyond ±{MAX_COORDINATE:e} m (docs/limits.md)"))
+    })
+}
+
 /// Turns a TOML parse or type error into a problem with its line and field.
 pub(crate) fn from_toml(text: &str, error: &toml::de::Error) -> Problem {
     let span = error.span();
@@ -100,6 +121,9 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     found.layers(scene);
     found.field_nodes(scene, "geology.potential", &scene.geology.potential, false);
     found.field_nodes(scene, "geology.no_karst", &scene.geology.no_karst, true);
+    if let Some(lithology) = &scene.geology.lithology {
+        lithology.check(&mut found);
+    }
     found.keypoints(scene, terrain);
     found.connectivity(scene);
     found.forced_links(scene);
@@ -107,10 +131,15 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     scene.sampling.check(&mut found);
     scene.costgraph.check(&mut found);
     scene.skeleton.check(&mut found);
+    found.amplification(scene);
     scene.hydro.check(&mut found);
+    scene.streams.check(scene, &mut found);
     scene.sdf.check(&mut found);
     scene.mesher.check(&mut found);
     scene.export.check(&mut found);
+    if let Some(calibrate) = &scene.calibrate {
+        calibrate.check(scene, &mut found);
+    }
     found.problems
 }
 
@@ -125,6 +154,9 @@ pub const MAX_COORDINATE: f64 = 1e8;
 pub const MAX_EXTENT: f64 = 1e6;
 /// Largest length, distance, weight or factor without a range of its own.
 pub const MAX_LENGTH: f64 = 1e8;
+/// Shortest length a `[min, max]` range of lengths (branch lengths, wavelengths) may start at,
+/// metres.
+pub const MIN_LENGTH: f64 = 1e-3;
 /// Most key points in a scene.
 pub const MAX_KEYPOINTS: usize = 10_000;
 /// Steepest terrain slope λ (|∇h|): the terrain's distance is (z − h)/√(1 + λ²), which
@@ -145,11 +177,13 @@ impl Checks<'_> {
     }
 
     pub(crate) fn finite(&mut self, field: &str, values: &[f64]) -> bool {
-        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-            self.report(field, format!("{v} is not a finite number"));
-            return false;
+        match not_finite(values) {
+            Some(message) => {
+                self.report(field, message);
+                false
+            }
+            None => true,
         }
-        true
     }
 
     /// Finite, > 0 and at most [`MAX_LENGTH`] (every length, weight and factor without a
@@ -171,6 +205,22 @@ impl Checks<'_> {
         }
     }
 
+    /// Amplification branches shorter than the sampling radius could not be drawn: the
+    /// samples are that far apart.
+    fn amplification(&mut self, scene: &Scene) {
+        let radius = scene.sampling.radius;
+        if let Some([lo, _]) = scene.skeleton.amplification_length
+            && lo.is_finite()
+            && radius.is_finite()
+            && lo < radius
+        {
+            self.report(
+                "skeleton.amplification_length",
+                format!("the shortest branch ({lo} m) must be at least sampling.radius ({radius} m)"),
+            );
+        }
+    }
+
     fn at_most(&mut self, field: &str, value: f64, most: f64) {
         if value > most {
             self.report(field, format!("must be at most {most:e}, got {value:e} (docs/limits.md)"));
@@ -179,11 +229,18 @@ impl Checks<'_> {
 
     /// Finite and within `[lo, hi]`; returns whether it is.
     pub(crate) fn within(&mut self, field: &str, value: f64, lo: f64, hi: f64) -> bool {
-        let ok = self.finite(field, &[value]) && (lo..=hi).contains(&value);
-        if value.is_finite() && !ok {
-            self.report(field, format!("must be in [{}, {}], got {}", number(lo), number(hi), number(value)));
+        self.holds(field, outside(value, lo, hi))
+    }
+
+    /// Reports `problem` at `field` if there is one; returns whether there was none.
+    fn holds(&mut self, field: &str, problem: Option<String>) -> bool {
+        match problem {
+            Some(message) => {
+                self.report(field, message);
+                false
+            }
+            None => true,
         }
-        ok
     }
 
     /// A `[min, max]` range whose ends are within `[lo, hi]`, min ≤ max.
@@ -195,14 +252,7 @@ impl Checks<'_> {
 
     /// Coordinates: finite and within ±[`MAX_COORDINATE`].
     pub(crate) fn coordinates(&mut self, field: &str, values: &[f64]) -> bool {
-        if !self.finite(field, values) {
-            return false;
-        }
-        if let Some(v) = values.iter().find(|v| v.abs() > MAX_COORDINATE) {
-            self.report(field, format!("{v:e} is beyond ±{MAX_COORDINATE:e} m (docs/limits.md)"));
-            return false;
-        }
-        true
+        self.holds(field, beyond_limits(values))
     }
 
     fn domain(&mut self, scene: &Scene) {
@@ -238,11 +288,13 @@ impl Checks<'_> {
                     & self.within("terrain.gradient", gradient[0].hypot(gradient[1]), 0.0, MAX_TERRAIN_SLOPE)
             }
             Terrain::Heightfield { origin, cell_size, vertical_scale, offset, grid, .. } => {
-                let ok = self.coordinates("terrain.origin", origin)
+                let ok = origin.is_none_or(|o| self.coordinates("terrain.origin", &o))
                     & self.within("terrain.vertical_scale", *vertical_scale, -MAX_LENGTH, MAX_LENGTH)
                     & self.coordinates("terrain.offset", &[*offset]);
-                self.positive("terrain.cell_size", *cell_size);
-                ok && *cell_size > 0.0 && grid.nx > 0 && self.heightfield_covers(scene, grid)
+                if let Some(c) = cell_size {
+                    self.positive("terrain.cell_size", *c);
+                }
+                ok && cell_size.is_none_or(|c| c > 0.0) && grid.nx > 0 && self.heightfield_covers(scene, grid)
             }
             Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient } => {
                 let ok = self.coordinates("terrain.elevation", &[*elevation])
@@ -441,35 +493,51 @@ impl Checks<'_> {
         }
     }
 
+    /// Reports `message` about field `f` of key point `i`: at `keypoints[i].f`, or, for a point
+    /// read from a table, at the table's `keypoints_from[t].file` with the file's row and column.
+    fn keypoint(&mut self, scene: &Scene, i: usize, f: &str, message: String) {
+        match crate::point_table::source_of(scene, i) {
+            None => self.report(&format!("keypoints[{i}].{f}"), message),
+            Some((t, row)) => {
+                let column = if f == "position" { "x, y, z" } else { f };
+                self.report(&format!("keypoints_from[{t}].file"), format!("{row}: {column}: {message}"))
+            }
+        }
+    }
+
     fn keypoints(&mut self, scene: &Scene, terrain: bool) {
         for (i, k) in scene.keypoints.iter().enumerate() {
-            let at = |f: &str| format!("keypoints[{i}].{f}");
             if scene.keypoints[..i].iter().any(|o| o.name == k.name) {
-                self.report(&at("name"), format!("\"{}\" is used twice", k.name));
+                self.keypoint(scene, i, "name", format!("\"{}\" is used twice", k.name));
             }
-            self.within(&at("weight"), k.weight, 0.0, MAX_WEIGHT);
-            if self.coordinates(&at("position"), &k.position) {
-                self.keypoint_position(scene, i, terrain);
-                if let Some(o) = scene.keypoints[..i].iter().find(|o| o.position == k.position) {
-                    self.report(
-                        &at("position"),
-                        format!(
+            if let Some(message) = outside(k.weight, 0.0, MAX_WEIGHT) {
+                self.keypoint(scene, i, "weight", message);
+            }
+            match beyond_limits(&k.position) {
+                Some(message) => self.keypoint(scene, i, "position", message),
+                None => {
+                    self.keypoint_position(scene, i, terrain);
+                    if let Some(o) = scene.keypoints[..i].iter().find(|o| o.position == k.position) {
+                        let message = format!(
                             "\"{}\" lies where \"{}\" does, {:?}: two key points need two places",
                             k.name, o.name, k.position
-                        ),
-                    );
+                        );
+                        self.keypoint(scene, i, "position", message);
+                    }
                 }
             }
             match (&k.kind, &k.water_table) {
                 (KeyPointKind::Spring, None) => {
-                    self.report(&at("water_table"), format!("spring \"{}\" names no water table", k.name))
+                    self.keypoint(scene, i, "water_table", format!("spring \"{}\" names no water table", k.name))
                 }
-                (KeyPointKind::Spring, Some(w)) if scene.water_table(w).is_none() => self.report(
-                    &at("water_table"),
+                (KeyPointKind::Spring, Some(w)) if scene.water_table(w).is_none() => self.keypoint(
+                    scene,
+                    i,
+                    "water_table",
                     format!("spring \"{}\" names water table \"{w}\", which [geology.water_tables] does not define", k.name),
                 ),
                 (KeyPointKind::Sink | KeyPointKind::Waypoint | KeyPointKind::DeadEnd, Some(_)) => {
-                    self.report(&at("water_table"), "only springs have a water table".into())
+                    self.keypoint(scene, i, "water_table", "only springs have a water table".into())
                 }
                 _ => {}
             }
@@ -489,10 +557,14 @@ impl Checks<'_> {
 
     fn keypoint_position(&mut self, scene: &Scene, i: usize, terrain: bool) {
         let k = &scene.keypoints[i];
-        let field = format!("keypoints[{i}].position");
         let [x, y, z] = k.position;
         if !scene.domain.contains(k.point()) {
-            self.report(&field, format!("\"{}\" at [{x}, {y}, {z}] is outside the domain", k.name));
+            self.keypoint(
+                scene,
+                i,
+                "position",
+                format!("\"{}\" at [{x}, {y}, {z}] is outside the domain", k.name),
+            );
             return;
         }
         if let Some(v) = scene
@@ -501,17 +573,19 @@ impl Checks<'_> {
             .iter()
             .find(|v| v.shape().is_some_and(|s| s.signed_distance(k.point(), &scene.geology) <= 0.0))
         {
-            self.report(
-                &field,
-                format!("\"{}\" at [{x}, {y}, {z}] is inside no-karst volume \"{}\"", k.name, v.name),
-            );
+            let message =
+                format!("\"{}\" at [{x}, {y}, {z}] is inside no-karst volume \"{}\"", k.name, v.name);
+            self.keypoint(scene, i, "position", message);
+        }
+        if let Some(unit) = scene.geology.lithology.as_ref().and_then(|l| l.grid.no_karst_at(k.point())) {
+            let message =
+                format!("\"{}\" at [{x}, {y}, {z}] is in no-karst lithology unit \"{unit}\"", k.name);
+            self.keypoint(scene, i, "position", message);
         }
         let ground = if terrain { scene.terrain.height(x, y) } else { f64::INFINITY };
         if z > ground {
-            self.report(
-                &field,
-                format!("\"{}\" at z = {z} is above the terrain (ground at {ground:.3})", k.name),
-            );
+            let message = format!("\"{}\" at z = {z} is above the terrain (ground at {ground:.3})", k.name);
+            self.keypoint(scene, i, "position", message);
         }
     }
 

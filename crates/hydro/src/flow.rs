@@ -147,7 +147,7 @@ pub fn propagate<'a>(
 
 /// Normalized weights of one inflow of direction `u` over the outgoing directions `out`
 /// (`user`: the user weights of a [`Split::User`] pool).
-fn split(u: DVec3, out: &[DVec3], rule: Split, user: Option<&[f64]>) -> Vec<f64> {
+pub fn split(u: DVec3, out: &[DVec3], rule: Split, user: Option<&[f64]>) -> Vec<f64> {
     let raw: Vec<f64> = match (rule, user) {
         (Split::Directional, _) => out.iter().map(|v| 1.0 + u.dot(*v)).collect(),
         (Split::User(_), Some(user)) => user.to_vec(),

@@ -29,9 +29,10 @@ mod water;
 
 pub use build::build;
 pub use error::HydroError;
-pub use geometry::FreeSurface;
+pub use flow::{Split, split};
+pub use geometry::{FreeSurface, G};
 pub use hydraulics::{Inputs, compute};
 pub use payload::{ConduitWater, FlowUnits, Hydro, NodeWater, Role, SegmentWater, Sink, Spring};
 pub use render::{colour, picture};
 pub use stage::HydroStage;
-pub use water::{Look, WaterType};
+pub use water::{FlowScale, Look, WaterType, classify};

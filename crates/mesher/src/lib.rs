@@ -1,4 +1,4 @@
-//! Stage 6: polygonizing the signed-distance model into watertight triangle meshes.
+//! Stage 7: polygonizing the signed-distance model into watertight triangle meshes.
 //!
 //! Three solids are meshed (see `docs/mesher.md`): the carved terrain (rock, with its caves),
 //! the cave alone (the karst volume under the ground) and the water in the conduits. Each

@@ -1,4 +1,4 @@
-//! `karst-mesher`: stage 6 of karstgen. `run SCENE --out DIR` writes DIR/mesh.bin, DIR/mesh.obj
+//! `karst-mesher`: stage 7 of karstgen. `run SCENE --out DIR` writes DIR/mesh.bin, DIR/mesh.obj
 //! and DIR/export/; `inspect FILE [--json]` prints a summary or the whole artifact;
 //! `render FILE --png OUT` draws a preview.
 
@@ -8,7 +8,7 @@ use clap::Parser;
 use karst_mesher::{MesherStage, stage};
 use karst_stage::cli::{self, InspectArgs, RunArgs, default_sigpipe, finish};
 
-/// Sparse polygonization of the carved terrain and its caves (karstgen stage 6).
+/// Sparse polygonization of the carved terrain and its caves (karstgen stage 7).
 #[derive(Parser)]
 #[command(name = "karst-mesher", version)]
 enum Cli {

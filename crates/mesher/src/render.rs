@@ -1,6 +1,7 @@
-//! A preview picture of a surface: orthographic view from above one corner, software z-buffer,
-//! flat Lambert shading, tinted by elevation (deep passages dark blue, shallow ones sand), with
-//! a caption and the elevation tint's colour bar (karst-plot).
+//! A preview picture of one surface or several: orthographic view from above one corner,
+//! software z-buffer shared by the surfaces, flat Lambert shading; the first surface tinted by
+//! elevation (deep passages dark blue, shallow ones sand), any other in one colour (the water
+//! over the carved terrain), with a caption and the elevation tint's colour bar (karst-plot).
 
 use glam::DVec3;
 use karst_plot::colour_bar::{BAR_WIDTH, ColourBar, ColourMap};
@@ -29,8 +30,19 @@ fn tint(zlo: f64, zhi: f64) -> ColourBar {
     }
 }
 
-/// Renders `surface` on a `width` × `height` canvas with a caption.
-pub fn render(surface: &TriMesh, width: u32, height: u32, caption: &str) -> Canvas {
+/// The colour of the water drawn over another surface, before shading.
+pub const WATER: DVec3 = DVec3::new(60.0, 140.0, 230.0);
+
+/// Renders `first` tinted by elevation and each of `others` in its colour, hiding one another,
+/// on a `width` × `height` canvas with a caption.
+pub fn render(
+    first: &TriMesh,
+    others: &[(&TriMesh, DVec3)],
+    width: u32,
+    height: u32,
+    caption: &str,
+) -> Canvas {
+    let surface = first;
     let mut canvas = Canvas::new(width, height, BACKGROUND);
     let (az, el) = (AZIMUTH.to_radians(), ELEVATION.to_radians());
     let toward_viewer = DVec3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
@@ -38,10 +50,14 @@ pub fn render(surface: &TriMesh, width: u32, height: u32, caption: &str) -> Canv
     let up = toward_viewer.cross(right);
     let light = (toward_viewer + up * 0.6 - right * 0.4).normalize();
     let project = |p: DVec3| DVec3::new(p.dot(right), -p.dot(up), p.dot(toward_viewer));
-    let screen: Vec<DVec3> =
-        (0..surface.vertices.len() as u32).map(|v| project(surface.position(v))).collect();
-    let (lo, hi) =
-        screen.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let screens: Vec<Vec<DVec3>> = std::iter::once(surface)
+        .chain(others.iter().map(|(s, _)| *s))
+        .map(|s| (0..s.vertices.len() as u32).map(|v| project(s.position(v))).collect())
+        .collect();
+    let (lo, hi) = screens
+        .iter()
+        .flatten()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
     let (zlo, zhi) = (0..surface.vertices.len() as u32)
         .map(|v| surface.position(v).z)
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| (a.min(z), b.max(z)));
@@ -52,18 +68,23 @@ pub fn render(surface: &TriMesh, width: u32, height: u32, caption: &str) -> Canv
         .min((height as f64 - top - margin) / (hi.y - lo.y));
     let to_pixel = |p: DVec3| DVec3::new(margin + (p.x - lo.x) * scale, top + (p.y - lo.y) * scale, p.z);
     let mut depth = vec![f64::NEG_INFINITY; width as usize * height as usize];
-    for t in &surface.triangles {
-        let n = surface.normal(t).normalize_or_zero();
-        if n.dot(toward_viewer) <= 0.0 {
-            continue;
+    let layers = std::iter::once((surface, None)).chain(others.iter().map(|(s, c)| (*s, Some(*c))));
+    for ((surface, flat), screen) in layers.zip(&screens) {
+        for t in &surface.triangles {
+            let n = surface.normal(t).normalize_or_zero();
+            if n.dot(toward_viewer) <= 0.0 {
+                continue;
+            }
+            let base = flat.unwrap_or_else(|| {
+                let z = t.iter().map(|&v| surface.position(v).z).sum::<f64>() / 3.0;
+                DEEP.lerp(SHALLOW, if zhi > zlo { (z - zlo) / (zhi - zlo) } else { 0.5 })
+            });
+            let shade = 0.3 + 0.7 * n.dot(light).max(0.0);
+            let colour = (base * shade).min(DVec3::splat(255.0));
+            let colour = [colour.x as u8, colour.y as u8, colour.z as u8];
+            let corners = t.map(|v| to_pixel(screen[v as usize]));
+            fill(&mut canvas, &mut depth, corners, colour);
         }
-        let z = t.iter().map(|&v| surface.position(v).z).sum::<f64>() / 3.0;
-        let s = if zhi > zlo { (z - zlo) / (zhi - zlo) } else { 0.5 };
-        let shade = 0.3 + 0.7 * n.dot(light).max(0.0);
-        let colour = (DEEP.lerp(SHALLOW, s) * shade).min(DVec3::splat(255.0));
-        let colour = [colour.x as u8, colour.y as u8, colour.z as u8];
-        let corners = t.map(|v| to_pixel(screen[v as usize]));
-        fill(&mut canvas, &mut depth, corners, colour);
     }
     text::draw(&mut canvas, caption, (margin, 12.0), TITLE, Align::Left, Valign::Top);
     if key > 0.0 && zhi > zlo {
@@ -122,7 +143,7 @@ mod tests {
 
     #[test]
     fn the_render_decodes_at_its_size_with_the_surface_and_its_key() {
-        let canvas = render(&tetrahedron(), 480, 320, "cave: 4 triangles at 1 m");
+        let canvas = render(&tetrahedron(), &[], 480, 320, "cave 4 triangles at 1 m");
         let mut bytes = Vec::new();
         canvas.encode_png(&mut bytes).unwrap();
         let (w, h, colours) = karst_plot::testing::png_summary(&bytes);
@@ -138,5 +159,25 @@ mod tests {
             (0..3).all(|k| got[k].abs_diff(want[k]) <= 6)
         };
         assert!(near(y0 + 2.0, 10.0) && near(y1 - 2.0, 0.0));
+    }
+
+    #[test]
+    fn a_second_surface_in_front_hides_the_first_in_its_colour() {
+        // A small tetrahedron of water in front of (towards the viewer from) a large one.
+        let rock = tetrahedron();
+        let mut water = tetrahedron();
+        for v in &mut water.vertices {
+            *v = [v[0] * 0.3 + 8.0, v[1] * 0.3 - 6.0, v[2] * 0.3 + 4.0];
+        }
+        let alone = render(&rock, &[], 480, 320, "rock");
+        let both = render(&rock, &[(&water, WATER)], 480, 320, "rock and water");
+        let blue = |c: Rgb| c[2] > c[0] + 60 && c[2] > c[1] + 20;
+        let count = |c: &Canvas| {
+            (0..320)
+                .flat_map(|y| (0..480).map(move |x| (x, y)))
+                .filter(|&(x, y)| blue(c.get(x, y).unwrap()))
+                .count()
+        };
+        assert!(count(&both) > count(&alone) + 50, "{} vs {}", count(&both), count(&alone));
     }
 }

@@ -15,7 +15,7 @@ use crate::error::MesherError;
 use crate::payload::{Mesh, TriMesh};
 use crate::{components, render, watertight};
 
-/// Stage 6: watertight meshes of the carved terrain, the cave alone and the water.
+/// Stage 7: watertight meshes of the carved terrain, the cave alone and the water.
 pub struct MesherStage;
 
 impl Stage for MesherStage {
@@ -87,7 +87,8 @@ pub struct RenderArgs {
     /// The PNG to write.
     #[arg(long)]
     pub png: PathBuf,
-    /// Which surface: `cave`, `terrain` or `water`.
+    /// Which surface: `cave`, `terrain` or `water`; or two joined by `+` (`terrain+water`): the
+    /// first tinted by elevation, the second in blue over it.
     #[arg(long, default_value = "cave")]
     pub surface: String,
     /// Picture width and height, pixels.
@@ -100,21 +101,25 @@ pub struct RenderArgs {
 /// `karst-mesher render`.
 pub fn render(args: &RenderArgs) -> Result<(), StageError> {
     let (_, mesh) = read_artifact::<Mesh>(&args.file)?;
-    let surface = match args.surface.as_str() {
-        "cave" => &mesh.cave,
-        "terrain" => &mesh.terrain,
-        "water" => &mesh.water,
-        other => {
-            return Err(StageError::input(format!(
-                "--surface {other}: expected `cave`, `terrain` or `water`"
-            )));
-        }
+    let pick = |name: &str| match name {
+        "cave" => Ok(&mesh.cave),
+        "terrain" => Ok(&mesh.terrain),
+        "water" => Ok(&mesh.water),
+        other => Err(StageError::input(format!(
+            "--surface {other}: expected `cave`, `terrain` or `water`, or two of them joined by `+`"
+        ))),
     };
+    let names: Vec<&str> = args.surface.split('+').collect();
+    if names.len() > 2 {
+        return Err(StageError::input(format!("--surface {}: at most two surfaces", args.surface)));
+    }
+    let surface = pick(names[0])?;
+    let over = names.get(1).map(|n| pick(n)).transpose()?;
     if surface.triangles.is_empty() {
         return Err(StageError::input(format!(
             "{}: the {} surface is empty: nothing to draw",
             args.file.display(),
-            args.surface
+            names[0]
         )));
     }
     if !(16..=8192).contains(&args.width) || !(16..=8192).contains(&args.height) {
@@ -123,9 +128,17 @@ pub fn render(args: &RenderArgs) -> Result<(), StageError> {
             args.width, args.height
         )));
     }
-    let cell = if args.surface == "terrain" { mesh.cell_size } else { mesh.cave_cell_size };
-    let caption = format!("{}: {} triangles at {} m", args.surface, surface.triangles.len(), cell);
-    let canvas = render::render(surface, args.width, args.height, &caption);
+    let cell = |name: &str| if name == "terrain" { mesh.cell_size } else { mesh.cave_cell_size };
+    let described: Vec<String> = names
+        .iter()
+        .map(|&n| {
+            let triangles = pick(n).map_or(0, |s| s.triangles.len());
+            format!("{n} {triangles} triangles at {} m", karst_stage::human::round(cell(n)))
+        })
+        .collect();
+    let caption = described.join(", ");
+    let others: Vec<(&TriMesh, glam::DVec3)> = over.into_iter().map(|s| (s, render::WATER)).collect();
+    let canvas = render::render(surface, &others, args.width, args.height, &caption);
     canvas
         .write_png(&args.png)
         .map_err(|e| StageError::failure(format!("{}: cannot write: {e}", args.png.display())))

@@ -24,6 +24,7 @@ fn preset_model(name: &str) -> (Scene, SdfModel) {
     karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_hydro::HydroStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_streams::StreamsStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_sdf::SdfStage>(&args.0, &args.1).unwrap();
     let (_, model): (_, SdfModel) = read_artifact(&out.join("sdf.bin")).unwrap();
     let _ = std::fs::remove_dir_all(&out);
@@ -53,9 +54,10 @@ fn check_preset(name: &str) {
 }
 
 macro_rules! preset_tests {
-    ($($test:ident: $name:literal;)*) => {
+    ($($(#[$attribute:meta])* $test:ident: $name:literal;)*) => {
         $(
             #[test]
+            $(#[$attribute])*
             fn $test() {
                 check_preset($name);
             }
@@ -86,4 +88,8 @@ preset_tests! {
     superimposed_meshes_are_watertight: "superimposed";
     karstnsim_meshes_are_watertight: "karstnsim";
     karstnsim_2phase_meshes_are_watertight: "karstnsim-2phase";
+    waterfall_meshes_are_watertight: "waterfall";
+    // In Lambert-93 (y ≈ 6.86e6, where an f32 steps by 0.5 m): watertight because the scene
+    // is meshed in its local frame (issue 16).
+    geotiff_meshes_are_watertight: "geotiff";
 }

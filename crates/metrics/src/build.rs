@@ -9,23 +9,37 @@
 //! each zone.
 //!
 //! The length per water type (`water_types`: stream, rapid, plunge, sump, pool, dry... of the
-//! hydro stage, Emilien et al. 2015 Table 1) sums each segment under the type hydro gave it.
+//! hydro stage, Emilien et al. 2015 Table 1) sums each segment under the type hydro gave it;
+//! `surface` does the same for the streams on the terrain (streams.json) and counts their free
+//! falls.
 
 use std::collections::BTreeMap;
 
 use karst_hydro::{Hydro, WaterType};
 use karst_skeleton::{ConduitType, Skeleton, Zone};
+use karst_streams::Streams;
 
 use crate::error::ReportError;
-use crate::payload::{MetricsReport, ZoneLengths};
+use crate::payload::{MetricsReport, SurfaceWater, ZoneLengths};
 use crate::ranges;
 use crate::{Network, characterize};
 
-/// The report of `skeleton` and of its water in `hydro`.
-pub fn build(skeleton: &Skeleton, hydro: &Hydro) -> Result<MetricsReport, ReportError> {
+/// The report of `skeleton`, of its water in `hydro` and of the surface water in `streams`.
+pub fn build(skeleton: &Skeleton, hydro: &Hydro, streams: &Streams) -> Result<MetricsReport, ReportError> {
     let mut report = report(skeleton).map_err(ReportError::Network)?;
     report.water_types = water_type_lengths(skeleton, hydro)?;
+    report.surface = surface_water(streams);
     Ok(report)
+}
+
+/// The surface streams' length per water type and their falls.
+pub fn surface_water(streams: &Streams) -> SurfaceWater {
+    let mut water_types: BTreeMap<String, f64> =
+        WaterType::ALL.iter().map(|t| (t.name().to_string(), 0.0)).collect();
+    for (t, length) in streams.lengths() {
+        water_types.insert(t.name().to_string(), length);
+    }
+    SurfaceWater { water_types, falls: streams.falls() }
 }
 
 /// The network of a skeleton as karstnet sees it.
@@ -48,6 +62,7 @@ pub fn report(skeleton: &Skeleton) -> Result<MetricsReport, crate::MetricsError>
             .map(|&t| (t.name().to_string(), skeleton.length_of_type(t) + 0.0)) // + 0.0: no -0 for an empty sum
             .collect(),
         water_types: BTreeMap::new(),
+        surface: SurfaceWater::default(),
     })
 }
 

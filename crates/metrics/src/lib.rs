@@ -33,10 +33,10 @@ mod shortest_paths;
 pub mod stage;
 mod topology;
 
-pub use build::{build, network_of, report, water_type_lengths, zone_lengths};
+pub use build::{build, network_of, report, surface_water, water_type_lengths, zone_lengths};
 pub use error::ReportError;
 pub use metrics::{Distributions, Metrics, characterize, distributions};
 pub use network::{MetricsError, Network};
-pub use payload::{MetricsReport, ZoneLengths};
+pub use payload::{MetricsReport, SurfaceWater, ZoneLengths};
 pub use readers::ReadError;
 pub use stage::{MetricsStage, write_plots};

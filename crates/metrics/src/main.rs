@@ -1,6 +1,6 @@
-//! `karst-metrics`: stage 7 of karstgen, and karstnet's statistics for any network.
+//! `karst-metrics`: stage 8 of karstgen, and karstnet's statistics for any network.
 //!
-//! - `run SCENE --out DIR` writes DIR/metrics.json from DIR/skeleton.json;
+//! - `run SCENE --out DIR` writes DIR/metrics.json from DIR/skeleton.json, hydro.json and streams.json;
 //! - `inspect FILE [--json]` prints a summary or the whole artifact;
 //! - `--karstnet BASE`, `--pline FILE.pl`, `--csv NODES EDGES` print the metrics of a surveyed or
 //!   simulated network as JSON, with karstnet's key names, each `characterize_graph()` metric
@@ -15,7 +15,7 @@ use karst_metrics::MetricsStage;
 use karst_metrics::stage::{NetworkFile, characterize_file};
 use karst_stage::cli::{self, InspectArgs, RunArgs, default_sigpipe, finish};
 
-/// Karst network statistics identical to karstnet 1.2.5 (karstgen stage 7).
+/// Karst network statistics identical to karstnet 1.2.5 (karstgen stage 8).
 #[derive(Parser)]
 #[command(name = "karst-metrics", version, args_conflicts_with_subcommands = true)]
 struct Cli {
@@ -30,7 +30,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Compute the statistics of DIR/skeleton.json into DIR/metrics.json.
+    /// Compute the statistics of DIR/skeleton.json (with its water and the surface streams) into DIR/metrics.json.
     Run(RunArgs),
     /// Summarize a metrics artifact (or print it whole with --json).
     Inspect(InspectArgs),

@@ -1,5 +1,6 @@
 //! The metrics artifact, `metrics.json`: karstnet's statistics beside their real-cave ranges,
-//! and what only a karstgen network knows (lengths per zone, conduit type and water type).
+//! and what only a karstgen network knows (lengths per zone, conduit type and water type, and
+//! the surface streams' lengths per water type and falls).
 
 use std::collections::BTreeMap;
 
@@ -26,6 +27,19 @@ pub struct MetricsReport {
     /// when the report is made from a skeleton alone (ensembles).
     #[serde(default)]
     pub water_types: BTreeMap<String, f64>,
+    /// The surface streams of the streams stage; empty when the report is made from a skeleton
+    /// alone (ensembles).
+    #[serde(default)]
+    pub surface: SurfaceWater,
+}
+
+/// The surface streams fed by the springs (streams.json).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct SurfaceWater {
+    /// Length per water type (every type, zero when absent; a fall along its parabola), metres.
+    pub water_types: BTreeMap<String, f64>,
+    /// Number of free falls.
+    pub falls: usize,
 }
 
 /// Conduit length above (vadose) and below (phreatic) the water table, metres.
@@ -37,7 +51,7 @@ pub struct ZoneLengths {
 
 impl Payload for MetricsReport {
     const STAGE: StageId = StageId::Metrics;
-    const SCHEMA: u32 = 3;
+    const SCHEMA: u32 = 4;
 
     /// Lengths finite and ≥ 0 (the statistics themselves may be undefined, written `null`).
     fn validate(&self) -> Result<(), Invalid> {
@@ -49,6 +63,9 @@ impl Payload for MetricsReport {
         }
         for (kind, value) in &self.water_types {
             length(format!("water_types.{kind}"), *value)?;
+        }
+        for (kind, value) in &self.surface.water_types {
+            length(format!("surface.water_types.{kind}"), *value)?;
         }
         Ok(())
     }

@@ -1,5 +1,5 @@
-//! The metrics stage's contract: `skeleton.json` and `hydro.json` in, `metrics.json` and three
-//! pictures (DIR/preview/) out; and the statistics of any network file.
+//! The metrics stage's contract: `skeleton.json`, `hydro.json` and `streams.json` in,
+//! `metrics.json` and three pictures (DIR/preview/) out; and the statistics of any network file.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -11,6 +11,7 @@ use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
+use karst_streams::Streams;
 
 use crate::build::{build, network_of};
 use crate::error::ReportError;
@@ -19,17 +20,20 @@ use crate::ranges::Compared;
 use crate::readers::{self, ReadError};
 use crate::{Metrics, Network, characterize, distributions, plots, ranges};
 
-/// Stage 7: karstnet's statistics of the network against real caves.
+/// Stage 8: karstnet's statistics of the network against real caves.
 pub struct MetricsStage;
 
 impl Stage for MetricsStage {
     const ID: StageId = StageId::Metrics;
-    type Inputs = (Skeleton, Hydro);
+    type Inputs = (Skeleton, Hydro, Streams);
     type Output = MetricsReport;
     type Error = ReportError;
 
-    fn build(_: &Scene, (skeleton, hydro): &(Skeleton, Hydro)) -> Result<MetricsReport, ReportError> {
-        build(skeleton, hydro)
+    fn build(
+        _: &Scene,
+        (skeleton, hydro, streams): &(Skeleton, Hydro, Streams),
+    ) -> Result<MetricsReport, ReportError> {
+        build(skeleton, hydro, streams)
     }
 
     fn headline(_: &Scene, report: &MetricsReport) -> String {
@@ -63,6 +67,16 @@ impl Stage for MetricsStage {
         {
             lines.push(format!("{kind} {length:.1} m"));
         }
+        let surface: Vec<String> = report
+            .surface
+            .water_types
+            .iter()
+            .filter(|(_, l)| **l > 0.0)
+            .map(|(kind, length)| format!("{kind} {length:.1} m"))
+            .collect();
+        if !surface.is_empty() {
+            lines.push(format!("surface: {}, {} falls", surface.join(", "), report.surface.falls));
+        }
         lines
     }
 
@@ -70,7 +84,7 @@ impl Stage for MetricsStage {
     fn side_files(
         out: &Path,
         _: &Scene,
-        (skeleton, _): &(Skeleton, Hydro),
+        (skeleton, ..): &(Skeleton, Hydro, Streams),
         report: &mut MetricsReport,
     ) -> std::io::Result<()> {
         write_plots(&out.join("preview"), &network_of(skeleton), &report.network)

@@ -39,6 +39,8 @@ fn run_stages(scene: &Path, out: &Path) {
         .unwrap_or_else(|e| panic!("{name}: skeleton: {e}"));
     karst_testkit::run::<karst_hydro::HydroStage>(&args.0, &args.1)
         .unwrap_or_else(|e| panic!("{name}: hydro: {e}"));
+    karst_testkit::run::<karst_streams::StreamsStage>(&args.0, &args.1)
+        .unwrap_or_else(|e| panic!("{name}: streams: {e}"));
     karst_testkit::run::<karst_metrics::MetricsStage>(&args.0, &args.1)
         .unwrap_or_else(|e| panic!("{name}: metrics: {e}"));
 }

@@ -28,7 +28,11 @@ pub struct Selection {
 /// What happened to one stage.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Outcome {
-    Ran { headline: String },
+    /// The stage ran: its headline and notes.
+    Ran {
+        headline: String,
+        notes: Vec<String>,
+    },
     UpToDate,
     Skipped,
 }
@@ -42,16 +46,21 @@ pub struct StageReport {
 }
 
 impl StageReport {
-    /// The line printed for it: name, status, seconds, headline.
+    /// The line printed for it: name, status, seconds, headline; then one indented line per
+    /// note of the stage.
     pub fn line(&self) -> String {
-        let (status, detail) = match &self.outcome {
-            Outcome::Ran { headline } => ("ran", headline.as_str()),
-            Outcome::UpToDate => ("up to date", ""),
-            Outcome::Skipped => ("skipped", ""),
+        let (status, detail, notes) = match &self.outcome {
+            Outcome::Ran { headline, notes } => ("ran", headline.as_str(), notes.as_slice()),
+            Outcome::UpToDate => ("up to date", "", &[][..]),
+            Outcome::Skipped => ("skipped", "", &[][..]),
         };
-        format!("{:<10} {:<11} {:>7.2} s  {detail}", self.stage.name(), status, self.seconds)
+        let mut line = format!("{:<10} {:<11} {:>7.2} s  {detail}", self.stage.name(), status, self.seconds)
             .trim_end()
-            .to_string()
+            .to_string();
+        for note in notes {
+            line.push_str(&format!("\n{:<10} note: {note}", ""));
+        }
+        line
     }
 }
 
@@ -80,7 +89,8 @@ pub fn run(
         } else if !forced(stage, selection) && up_to_date(&job, stage) {
             Outcome::UpToDate
         } else {
-            Outcome::Ran { headline: registry::stage(stage).run(&job)?.headline }
+            let ran = registry::stage(stage).run(&job)?;
+            Outcome::Ran { headline: ran.headline, notes: ran.notes }
         };
         let line = StageReport { stage, outcome, seconds: start.elapsed().as_secs_f64() };
         report(&line);
@@ -108,7 +118,8 @@ pub fn expected_key(job: &Job, stage: StageId) -> Option<String> {
         })
         .collect::<Option<Vec<_>>>()?;
     let params = job.scene.sections_hash(stage.row().sections);
-    Some(stage_key(stage, &producer(stage), registry::stage(stage).schema(), &params, &inputs))
+    let frame = job.scene.frame();
+    Some(stage_key(stage, &producer(stage), registry::stage(stage).schema(), &params, &frame, &inputs))
 }
 
 /// True when `stage`'s artifact exists and its key is the one it would write now.
@@ -117,5 +128,21 @@ pub fn up_to_date(job: &Job, stage: StageId) -> bool {
     match (existing, expected_key(job, stage)) {
         (Some(header), Some(key)) => header.key == key,
         _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_stage_s_notes_follow_its_line() {
+        let outcome =
+            Outcome::Ran { headline: "2 falls".into(), notes: vec!["a lake".into(), "a fall".into()] };
+        let report = StageReport { stage: StageId::Streams, outcome, seconds: 0.25 };
+        assert_eq!(
+            report.line(),
+            "streams    ran            0.25 s  2 falls\n           note: a lake\n           note: a fall"
+        );
     }
 }

@@ -60,6 +60,7 @@ pub fn stage(id: StageId) -> &'static dyn DynStage {
         StageId::Costgraph => &Entry::<karst_costgraph::CostgraphStage>(PhantomData),
         StageId::Skeleton => &Entry::<karst_skeleton::SkeletonStage>(PhantomData),
         StageId::Hydro => &Entry::<karst_hydro::HydroStage>(PhantomData),
+        StageId::Streams => &Entry::<karst_streams::StreamsStage>(PhantomData),
         StageId::Sdf => &Entry::<karst_sdf::SdfStage>(PhantomData),
         StageId::Mesher => &Entry::<karst_mesher::MesherStage>(PhantomData),
         StageId::Metrics => &Entry::<karst_metrics::MetricsStage>(PhantomData),

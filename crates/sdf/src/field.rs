@@ -18,6 +18,7 @@ use crate::bvh::{Bvh, Candidate};
 use crate::chamber::Chamber;
 use crate::payload::detail_factor;
 use crate::primitive::{Context, Leaf, WaterLeaf};
+use crate::surface_water::SurfaceField;
 use crate::sweep::SweepTable;
 use crate::{SdfModel, ops};
 use karst_skeleton::ConduitType;
@@ -49,6 +50,8 @@ pub struct CarvedTerrain {
     terrain_scale: f64,
     /// The detail noise's gradient bound, likewise.
     detail_gradient: f64,
+    /// The streams' riverbeds, basins, overhangs and water.
+    surface: SurfaceField,
 }
 
 impl CarvedTerrain {
@@ -67,7 +70,8 @@ impl CarvedTerrain {
         let caves = Bvh::build(karst, &ctx);
         let water = Bvh::build(water, &ctx);
         let terrain_scale = model.terrain.scale();
-        CarvedTerrain { model, caves, water, sweeps, amplitude, terrain_scale, detail_gradient }
+        let surface = SurfaceField::new(&model.surface);
+        CarvedTerrain { model, caves, water, sweeps, amplitude, terrain_scale, detail_gradient, surface }
     }
 
     pub fn model(&self) -> &SdfModel {
@@ -86,15 +90,23 @@ impl CarvedTerrain {
         )
     }
 
-    /// Rock before the caves: below the terrain and inside the domain (negative inside).
-    fn uncarved(&self, p: DVec3) -> f64 {
+    /// Rock before the caves: below the terrain and inside the domain, less the riverbeds,
+    /// basins and overhangs of the surface water (negative inside).
+    pub fn rock(&self, p: DVec3) -> f64 {
         let terrain = (p.z - self.model.terrain.height(p.x, p.y)) * self.terrain_scale;
-        terrain.max(self.model.domain.signed_distance(p))
+        let rock = terrain.max(self.model.domain.signed_distance(p));
+        if self.surface.is_empty() { rock } else { rock.max(-self.surface.carve(p)) }
+    }
+
+    /// The surface water, in the air of the carved terrain and inside the domain (negative
+    /// inside): like the cave, it is closed where a river leaves the domain.
+    fn surface_water(&self, p: DVec3) -> f64 {
+        self.surface.water(p).max(-self.rock(p)).max(self.model.domain.signed_distance(p))
     }
 
     /// f(p): negative in rock, positive in air; 1-Lipschitz.
     pub fn eval(&self, p: DVec3) -> f64 {
-        let rock = self.uncarved(p);
+        let rock = self.rock(p);
         let blend = self.model.blend;
         // The smooth union equals −rock wherever the caves stay above −rock + blend.
         let caves = self.caves.min_value(p, (-rock + blend).min(REACH), &self.context());
@@ -127,7 +139,7 @@ impl CarvedTerrain {
     }
 
     fn carved(&self, p: DVec3, reach: f64, caves: impl FnOnce(f64) -> f64) -> f64 {
-        let rock = self.uncarved(p);
+        let rock = self.rock(p);
         if rock >= reach {
             return rock;
         }
@@ -187,7 +199,7 @@ impl CarvedTerrain {
     /// that the search for the nearest conduit can stop early (the mesher asks for a cell or a
     /// half diagonal). Still 1-Lipschitz, so box pruning on it stays exact.
     pub fn cave_below_ground(&self, p: DVec3, reach: f64) -> f64 {
-        let rock = self.uncarved(p);
+        let rock = self.rock(p);
         if rock >= reach {
             return rock;
         }
@@ -197,7 +209,7 @@ impl CarvedTerrain {
     /// [`CarvedTerrain::cave_below_ground`] for a point of the box `near` was gathered for.
     pub fn cave_below_ground_near(&self, near: &Near, p: DVec3, reach: f64) -> f64 {
         debug_assert!(reach <= near.reach);
-        let rock = self.uncarved(p);
+        let rock = self.rock(p);
         if rock >= reach {
             return rock;
         }
@@ -209,20 +221,24 @@ impl CarvedTerrain {
     /// alone is already at least `reach` away (deep in rock) the water pieces are not searched.
     pub fn water_within(&self, p: DVec3, reach: f64) -> f64 {
         let cave = self.cave_below_ground(p, reach);
-        if cave >= reach {
-            return cave;
-        }
-        self.water.min_value(p, reach.min(REACH), &self.context()).max(cave)
+        let under = if cave >= reach {
+            cave
+        } else {
+            self.water.min_value(p, reach.min(REACH), &self.context()).max(cave)
+        };
+        if self.surface.is_empty() { under } else { under.min(self.surface_water(p)) }
     }
 
     /// [`CarvedTerrain::water_within`] for a point of the box `near` (from
     /// [`CarvedTerrain::near_water`]) was gathered for.
     pub fn water_near(&self, near: &Near, p: DVec3, reach: f64) -> f64 {
         let cave = self.cave_below_ground_near(near, p, reach);
-        if cave >= reach {
-            return cave;
-        }
-        self.water.min_value_among(&near.water, p, reach.min(REACH), &self.context()).max(cave)
+        let under = if cave >= reach {
+            cave
+        } else {
+            self.water.min_value_among(&near.water, p, reach.min(REACH), &self.context()).max(cave)
+        };
+        if self.surface.is_empty() { under } else { under.min(self.surface_water(p)) }
     }
 
     /// A guaranteed lower bound of |f| over the box [lo, hi] (0 when the surface may cross it).

@@ -1,4 +1,4 @@
-//! Stage 5: the signed-distance model of the carved terrain (Paris et al. 2021 §6).
+//! Stage 6: the signed-distance model of the carved terrain (Paris et al. 2021 §6).
 //!
 //! Convention: the field f is negative in rock and positive in air (above the ground, inside
 //! the caves, outside the domain). The construction tree is the terrain (appendix A:
@@ -26,6 +26,7 @@ mod primitive;
 mod section;
 mod slice;
 pub mod stage;
+mod surface_water;
 mod sweep;
 pub mod synthetic;
 mod terrain;
@@ -41,5 +42,6 @@ pub use field::{CarvedTerrain, Near};
 pub use payload::SdfModel;
 pub use section::{Section, Shape};
 pub use stage::SdfStage;
+pub use surface_water::{Bed, PoolWater, Sheet, SurfacePieces, add as add_streams};
 pub use sweep::SectionSpec;
 pub use terrain::TerrainField;

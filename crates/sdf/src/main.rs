@@ -1,4 +1,4 @@
-//! `karst-sdf`: stage 5 of karstgen. `run SCENE --out DIR` writes DIR/sdf.bin;
+//! `karst-sdf`: stage 6 of karstgen. `run SCENE --out DIR` writes DIR/sdf.bin;
 //! `inspect FILE [--json]` prints a summary or the whole artifact;
 //! `slice FILE --z Z | --y Y | --x X --png PNG [--exr EXR]` writes a cross-section image;
 //! `sections --png PNG` draws the cross-section library.
@@ -9,11 +9,11 @@ use clap::Parser;
 use karst_sdf::{SdfStage, stage};
 use karst_stage::cli::{self, InspectArgs, RunArgs, default_sigpipe, finish};
 
-/// The signed-distance model of the carved terrain (karstgen stage 5).
+/// The signed-distance model of the carved terrain (karstgen stage 6).
 #[derive(Parser)]
 #[command(name = "karst-sdf", version)]
 enum Cli {
-    /// Build the SDF model of DIR/skeleton.json and DIR/hydro.json into DIR/sdf.bin.
+    /// Build the SDF model of DIR/skeleton.json, DIR/hydro.json and DIR/streams.json into DIR/sdf.bin.
     Run(RunArgs),
     /// Summarize an sdf artifact (or print it whole with --json).
     Inspect(InspectArgs),

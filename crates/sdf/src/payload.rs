@@ -13,6 +13,7 @@ use karst_skeleton::ConduitType;
 use crate::Capsule;
 use crate::chamber::ChamberSpec;
 use crate::noise::WaveNoise;
+use crate::surface_water::SurfacePieces;
 use crate::sweep::SweepSpec;
 use crate::terrain::TerrainField;
 
@@ -60,15 +61,18 @@ pub struct SdfModel {
     pub chamber_noise: WaveNoise,
     /// Cui et al.'s bias b of the chambers, in (0, 0.5].
     pub chamber_bias: f64,
+    /// Riverbeds, plunge basins, overhangs and surface water from the streams stage
+    /// ([`crate::surface_water`]); empty without streams.
+    pub surface: SurfacePieces,
 }
 
 impl Payload for SdfModel {
     const STAGE: StageId = StageId::Sdf;
-    const SCHEMA: u32 = 2;
+    const SCHEMA: u32 = 3;
 
     /// A finite domain of positive extent, a terrain with a finite Lipschitz bound, finite
-    /// leaves of positive size with sections that do not intersect themselves, and the noises
-    /// the 1-Lipschitz bound assumes: what the mesher and the slices evaluate without checking.
+    /// leaves and surface-water pieces of positive size with sections that do not intersect
+    /// themselves, and the noises the 1-Lipschitz bound assumes: what the mesher and the slices evaluate without checking.
     fn validate(&self) -> Result<(), Invalid> {
         check::position(|| "domain.min".into(), &self.domain.min)?;
         check::position(|| "domain.max".into(), &self.domain.max)?;
@@ -79,9 +83,7 @@ impl Payload for SdfModel {
         )?;
         self.terrain.validate()?;
         for (i, c) in self.capsules.iter().enumerate() {
-            check::position(|| format!("capsules[{i}].a"), &c.a)?;
-            check::position(|| format!("capsules[{i}].b"), &c.b)?;
-            check::positive(|| format!("capsules[{i}].radius"), c.radius, MAX_COORDINATE)?;
+            c.validate(&|| format!("capsules[{i}]"))?;
         }
         for (i, s) in self.sweeps.iter().enumerate() {
             validate_sweep(&|| format!("sweeps[{i}].sweep"), &s.sweep)?;
@@ -107,7 +109,8 @@ impl Payload for SdfModel {
         check::within(|| "detail".into(), self.detail, 0.0, MAX_COORDINATE)?;
         self.detail_noise.validate("detail_noise")?;
         self.chamber_noise.validate("chamber_noise")?;
-        check::within(|| "chamber_bias".into(), self.chamber_bias, f64::MIN_POSITIVE, 0.5)
+        check::within(|| "chamber_bias".into(), self.chamber_bias, f64::MIN_POSITIVE, 0.5)?;
+        self.surface.validate()
     }
 }
 
@@ -143,6 +146,7 @@ impl SdfModel {
             detail_noise: WaveNoise { wavelength: 1.0, waves: Vec::new() },
             chamber_noise: WaveNoise { wavelength: 1.0, waves: Vec::new() },
             chamber_bias: 0.5,
+            surface: SurfacePieces::default(),
         }
     }
 

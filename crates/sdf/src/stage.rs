@@ -1,5 +1,5 @@
-//! The sdf stage's contract: `skeleton.json` and `hydro.json` in, `sdf.bin` out; `slice` and
-//! `sections` draw a model and the cross-section library.
+//! The sdf stage's contract: `skeleton.json`, `hydro.json` and `streams.json` in, `sdf.bin`
+//! out; `slice` and `sections` draw a model and the cross-section library.
 
 use std::path::PathBuf;
 
@@ -8,24 +8,32 @@ use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
+use karst_streams::Streams;
 
 use crate::build::build;
 use crate::error::SdfError;
 use crate::field::CarvedTerrain;
 use crate::payload::SdfModel;
 use crate::slice::{self, Plane};
+use crate::surface_water;
 
-/// Stage 5: the signed-distance model of the carved terrain and of the water.
+/// Stage 6: the signed-distance model of the carved terrain and of the water.
 pub struct SdfStage;
 
 impl Stage for SdfStage {
     const ID: StageId = StageId::Sdf;
-    type Inputs = (Skeleton, Hydro);
+    type Inputs = (Skeleton, Hydro, Streams);
     type Output = SdfModel;
     type Error = SdfError;
 
-    fn build(scene: &Scene, (skeleton, hydro): &(Skeleton, Hydro)) -> Result<SdfModel, SdfError> {
-        build(scene, skeleton, hydro)
+    /// The caves and their water, then the surface water carved into the terrain.
+    fn build(
+        scene: &Scene,
+        (skeleton, hydro, streams): &(Skeleton, Hydro, Streams),
+    ) -> Result<SdfModel, SdfError> {
+        let mut model = build(scene, skeleton, hydro)?;
+        surface_water::add(&mut model, streams, scene.streams());
+        Ok(model)
     }
 
     fn headline(_: &Scene, model: &SdfModel) -> String {

@@ -1,7 +1,8 @@
-//! Whole construction trees: the tiny scene's network (its golden skeleton and flows), every
-//! other preset of fixtures/scenes (run through the upstream stages) and a synthetic network of
-//! a few thousand primitives. On each, the field, the karst volume and the water are
-//! 1-Lipschitz on random pairs, most of them near the leaves where the field is intricate; the
+//! Whole construction trees: the tiny scene's network (its golden skeleton, flows and streams),
+//! every other preset of fixtures/scenes (run through the upstream stages, their surface
+//! streams carved in) and a synthetic network of a few thousand primitives. On each, the field,
+//! the karst volume and the water are 1-Lipschitz on random pairs, most of them near the
+//! leaves (and the riverbeds, basins, alcoves and sheets) where the field is intricate; the
 //! BVH's pruning changes nothing and the sign agrees with a brute-force inside test over every
 //! leaf.
 
@@ -11,15 +12,21 @@ use glam::DVec3;
 use karst_artifact::read_artifact;
 use karst_geology::Scene;
 use karst_hydro::Hydro;
-use karst_sdf::{CarvedTerrain, build, synthetic};
+use karst_sdf::{CarvedTerrain, add_streams, build, synthetic};
 use karst_skeleton::Skeleton;
+use karst_streams::Streams;
 use karst_testkit::root;
 
+/// The tree of `scene` from the skeleton, hydro and streams artifacts in `dir`, as the sdf
+/// stage builds it.
 fn field_of(scene: &Path, dir: &Path) -> CarvedTerrain {
     let scene = Scene::load(scene).unwrap();
     let (_, skeleton): (_, Skeleton) = read_artifact(&dir.join("skeleton.json")).unwrap();
     let (_, hydro): (_, Hydro) = read_artifact(&dir.join("hydro.json")).unwrap();
-    CarvedTerrain::new(build(&scene, &skeleton, &hydro).unwrap())
+    let (_, streams): (_, Streams) = read_artifact(&dir.join("streams.json")).unwrap();
+    let mut model = build(&scene, &skeleton, &hydro).unwrap();
+    add_streams(&mut model, &streams, scene.streams());
+    CarvedTerrain::new(model)
 }
 
 fn synthetic_field(conduits: usize) -> CarvedTerrain {
@@ -51,6 +58,9 @@ fn points(field: &CarvedTerrain, n: usize, seed: u64) -> Vec<DVec3> {
         .map(|s| v(s.sweep.a))
         .chain(model.spheres.iter().flat_map(|g| g.spheres.iter()).map(|s| v([s[0], s[1], s[2]])))
         .chain(model.chambers.iter().map(|c| v(c.a)))
+        .chain(model.surface.beds.iter().map(|b| DVec3::from_array(b.a)))
+        .chain(model.surface.alcoves.iter().map(|c| DVec3::from_array(c.a)))
+        .chain(model.surface.sheets.iter().map(|s| DVec3::from_array(s.a)))
         .collect();
     let (lo, hi) = (DVec3::from_array(model.domain.min), DVec3::from_array(model.domain.max));
     let mut rng = Lcg(seed);
@@ -129,6 +139,7 @@ fn preset_field(name: &str) -> CarvedTerrain {
     karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_hydro::HydroStage>(&args.0, &args.1).unwrap();
+    karst_testkit::run::<karst_streams::StreamsStage>(&args.0, &args.1).unwrap();
     let field = field_of(&scene, &out);
     let _ = std::fs::remove_dir_all(&out);
     field
@@ -161,6 +172,70 @@ preset_tests! {
     karstnsim_tree_is_one_lipschitz: "karstnsim", 5000, 200;
     karstnsim_2phase_tree_is_one_lipschitz: "karstnsim-2phase", 5000, 200;
     layered_tree_is_one_lipschitz: "layered", 5000, 200;
+    geotiff_tree_is_one_lipschitz: "geotiff", 5000, 200;
+}
+
+/// The waterfall preset with its streams carved in: riverbeds, an alcove behind each fall and
+/// the falling sheets are in the tree; 1-Lipschitz on pairs around them (the preset test's
+/// points include the surface pieces) and the gathered leaves agree with the hierarchy.
+#[test]
+fn waterfall_tree_with_its_streams_is_one_lipschitz() {
+    let field = preset_field("waterfall");
+    let surface = &field.model().surface;
+    assert!(!surface.beds.is_empty() && !surface.alcoves.is_empty() && !surface.sheets.is_empty());
+    check_tree(&field, 20_000);
+    check_sign(&field, 200, "waterfall");
+}
+
+/// A pool controller (a flat closed curve with its own flow) is dug into a flat terrain: air
+/// and water down to its floor, rock below it and outside its banks; 1-Lipschitz around it.
+#[test]
+fn a_pool_controller_is_dug_into_the_terrain() {
+    let dir = karst_testkit::scratch("pool-curve");
+    let text = karst_testkit::SceneText::new("pool")
+        .with(
+            "[[streams.curves]]\nname = \"tarn\"\nkind = \"pool\"\nflow = 0.2\ntension = 1\n\
+             points = [[40, 40, 39.5], [60, 40, 39.5], [60, 60, 39.5], [40, 60, 39.5]]",
+        )
+        .text();
+    let scene = Scene::parse(&text, &dir.join("pool.toml")).unwrap();
+    let hydro = Hydro {
+        flow_units: karst_hydro::FlowUnits { min: 1.0, max: 1.0 },
+        conduits: Vec::new(),
+        nodes: Vec::new(),
+        sinks: Vec::new(),
+        springs: Vec::new(),
+    };
+    let skeleton = Skeleton { nodes: Vec::new(), conduits: Vec::new(), routes: Vec::new() };
+    let streams = karst_streams::build(&scene, &hydro).unwrap();
+    let pool = streams.pools.iter().find(|p| p.kind == karst_streams::PoolKind::Curve).unwrap();
+    let floor = pool.level - pool.depth;
+    assert!(pool.depth > 2.0 && (pool.level - 39.5).abs() < 1e-9, "{pool:?}");
+    let bare = CarvedTerrain::new(build(&scene, &skeleton, &hydro).unwrap());
+    let mut model = build(&scene, &skeleton, &hydro).unwrap();
+    add_streams(&mut model, &streams, scene.streams());
+    assert_eq!(model.surface.basins.len(), 1);
+    let field = CarvedTerrain::new(model);
+    let centre = DVec3::new(50.0, 50.0, 0.5 * (pool.level + floor));
+    assert!(bare.eval(centre) < 0.0, "rock before the pool is dug");
+    assert!(field.eval(centre) > 0.0 && field.water(centre) < 0.0, "dug and full at {centre}");
+    assert!(field.eval(centre.with_z(floor - 0.3)) < 0.0, "rock under the floor");
+    assert!(
+        field.eval(DVec3::new(50.0, 50.0, 39.8)) > 0.0 && field.water(DVec3::new(50.0, 50.0, 39.8)) > 0.0
+    );
+    assert!(field.eval(DVec3::new(20.0, 50.0, 39.5)) < 0.0, "rock beyond the banks");
+    let mut rng = Lcg(7);
+    for _ in 0..20_000 {
+        let p = DVec3::new(30.0, 30.0, 35.0)
+            + DVec3::new(rng.unit(), rng.unit(), rng.unit()) * DVec3::new(40.0, 40.0, 8.0);
+        let reach = [0.05, 0.5, 3.0][(rng.unit() * 3.0) as usize % 3];
+        let q = p + rng.offset(reach);
+        for (what, f) in [("eval", field.eval(p) - field.eval(q)), ("water", field.water(p) - field.water(q))]
+        {
+            assert!(f.abs() <= p.distance(q) * (1.0 + 1e-5), "{what}: {p} {q}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// Every fixtures/scenes/*.toml preset has its test above.
@@ -176,6 +251,8 @@ fn every_preset_is_tested() {
         "karstnsim",
         "karstnsim-2phase",
         "layered",
+        "waterfall",
+        "geotiff",
     ];
     for entry in std::fs::read_dir(root().join("fixtures/scenes")).unwrap() {
         let path = entry.unwrap().path();
@@ -208,7 +285,7 @@ fn check_sign(field: &CarvedTerrain, n: usize, name: &str) {
     for p in points(field, n, 3) {
         let cave = field.cave_without_bvh(p);
         assert_eq!(cave, field.cave(p), "{name}: the BVH changed the union at {p}");
-        let rock = model.terrain.distance(p).max(model.domain.signed_distance(p));
+        let rock = field.rock(p);
         let f = field.eval(p);
         // The entrance blend only acts where −rock and cave are within `blend` of each other.
         if (-rock - cave).abs() >= model.blend {

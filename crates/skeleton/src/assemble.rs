@@ -11,7 +11,7 @@ use crate::classify::classify;
 use crate::nodes::{is_keypoint, node};
 use crate::payload::{Conduit, Node, Route, Skeleton};
 use crate::radii::ConduitRadii;
-use crate::tortuosity;
+use crate::{meander, tortuosity};
 
 /// The network as it grows: nodes in order of first appearance, undirected links.
 #[derive(Default)]
@@ -69,7 +69,13 @@ impl NetworkBuilder {
         let phases: Vec<u32> = chains.iter().map(|c| self.phase_of(c[0], c[1])).collect();
         let mut nodes: Vec<Node> = self.samples.iter().map(|&s| node(scene, samples, s)).collect();
         if let Some(theta) = scene.skeleton().tortuosity {
-            tortuosity::refine(scene, theta, &mut nodes, &mut chains, &mut routes);
+            let inserted = tortuosity::refine(scene, theta, &mut nodes, &mut chains);
+            tortuosity::reroute(&mut routes, &inserted);
+        }
+        let sinuosity = scene.skeleton().sinuosity;
+        if sinuosity > 1.0 {
+            let inserted = meander::bend(scene, sinuosity, &mut nodes, &mut chains);
+            tortuosity::reroute(&mut routes, &inserted);
         }
         let mut radii = ConduitRadii::new(scene, nodes.len());
         let at = |i: u32| Point::from_array(nodes[i as usize].position);

@@ -10,11 +10,19 @@
 //!    so a smaller γ never removes a pair that a larger γ keeps (tested).
 //! 3. Pairs of `skeleton.forced_links` are always kept; every kept pair contributes the
 //!    least-cost path from its first to its second key point (scene order).
+//! 4. Cohesion (KarstNSim's P_red, here in gamma mode too): a conduit drains the rock around
+//!    it and captures the flow paths that come near (conduit piracy), so passages merge into
+//!    trunks instead of running side by side to meet at one key point. With
+//!    `skeleton.cohesion_vadose` / `cohesion_phreatic` below 1 the kept pairs are drawn
+//!    shortest first (the shortest connections break through first), each on costs where the
+//!    edges already used cost P_red times less. Junctions then sit where a path leaves a
+//!    trunk, and key points are not hubs of many parallel passages.
 //!
 //! Dead-end key points are not vertices of the γ-skeleton: they join the finished network once.
 //! The routes (sink → spring) that hydrology needs are then drawn inside the network: the
 //! least-cost path along its links, springs chosen by the connectivity matrix.
 
+use glam::DVec3;
 use rayon::prelude::*;
 
 use karst_costgraph::CostGraph;
@@ -25,7 +33,9 @@ use crate::Route;
 use crate::assemble::NetworkBuilder;
 use crate::ends::{End, chosen_springs, ends, sample_of, sinks_in_order};
 use crate::error::SkeletonError;
-use crate::search::{Tree, dijkstra};
+use crate::karstnsim::mark_used;
+use crate::nodes::is_phreatic;
+use crate::search::{Tree, ZonedCohesive, astar, dijkstra, min_cost_per_metre};
 
 /// The pairs (i, j), i < j, of the γ-skeleton of the distance matrix `d` (symmetric, zero
 /// diagonal); pairs at infinite distance are never kept.
@@ -82,10 +92,52 @@ pub fn network(
     }
     pairs.sort_unstable();
     pairs.dedup();
-    for (a, b) in pairs {
-        network.add_path(&trees[a].path(sources[b]).expect("finite distance"));
-    }
+    draw_paths(scene, samples, graph, &d, &sources, &trees, &pairs, network);
     routes_along(scene, samples, graph, network)
+}
+
+/// Adds the least-cost path of every kept pair to `network`. Without cohesion (P_red = 1 in both
+/// zones) they are the paths of the distance trees. With cohesion the pairs are drawn shortest
+/// first, each on costs where the edges of the paths drawn before it cost P_red times less
+/// (`skeleton.cohesion_vadose` out of a vadose sample, `skeleton.cohesion_phreatic` out of a
+/// phreatic one), so that a later path follows an existing conduit as long as it leads its
+/// way, and leaves it at a junction.
+#[allow(clippy::too_many_arguments)]
+fn draw_paths(
+    scene: &Scene,
+    samples: &Samples,
+    graph: &CostGraph,
+    d: &[Vec<f64>],
+    sources: &[usize],
+    trees: &[Tree],
+    pairs: &[(usize, usize)],
+    network: &mut NetworkBuilder,
+) {
+    let p = scene.skeleton();
+    if p.cohesion_vadose >= 1.0 && p.cohesion_phreatic >= 1.0 {
+        for &(a, b) in pairs {
+            network.add_path(&trees[a].path(sources[b]).expect("finite distance"));
+        }
+        return;
+    }
+    let mut order = pairs.to_vec();
+    order.sort_by(|x, y| d[x.0][x.1].total_cmp(&d[y.0][y.1]).then(x.cmp(y)));
+    let phreatic: Vec<bool> =
+        samples.positions.iter().map(|&q| is_phreatic(scene, DVec3::from_array(q))).collect();
+    let per_metre =
+        min_cost_per_metre(graph, &samples.positions) * p.cohesion_vadose.min(p.cohesion_phreatic);
+    let mut used = vec![false; graph.edge_count()];
+    for (a, b) in order {
+        let costs = ZonedCohesive {
+            base: graph,
+            used: &used,
+            phreatic: &phreatic,
+            factors: [p.cohesion_vadose, p.cohesion_phreatic],
+        };
+        let tree = astar(&costs, &samples.positions, per_metre, sources[a], sources[b]);
+        network.add_path(&tree.path(sources[b]).expect("finite distance"));
+        mark_used(graph, &tree.edges(sources[b]), &mut used);
+    }
 }
 
 /// Every key point must reach every other: name the first that cannot.

@@ -179,7 +179,7 @@ fn depth_bound(table: &Surface, p: DVec3) -> f64 {
 }
 
 /// Marks `edges` and their reverse edges used.
-fn mark_used(graph: &CostGraph, edges: &[usize], used: &mut [bool]) {
+pub fn mark_used(graph: &CostGraph, edges: &[usize], used: &mut [bool]) {
     for &e in edges {
         used[e] = true;
         let v = graph.targets[e] as usize;

@@ -18,10 +18,12 @@ mod error;
 mod gamma;
 mod karstnet;
 mod karstnsim;
+mod meander;
 #[cfg(test)]
 mod modes_tests;
 mod nodes;
 mod payload;
+mod planes;
 mod radii;
 mod render;
 mod search;

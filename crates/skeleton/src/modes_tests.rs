@@ -1,5 +1,7 @@
 //! Both synthesis modes on a small two-spring scene: reachability under the connectivity
-//! matrix, order independence without cohesion, the effect of cohesion, forced links.
+//! matrix, order independence without cohesion, the effect of cohesion, forced links, and the
+//! mechanisms that make networks pass for real caves (tributaries, gamma-mode cohesion,
+//! meanders).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -377,4 +379,84 @@ fn waypoints_and_dead_ends_join_the_network() {
         let passage = node_of("passage").unwrap_or_else(|| panic!("{mode}: waypoint missing"));
         assert!(degree(passage) >= 2, "{mode}: a waypoint is passed through");
     }
+}
+
+fn degrees(s: &Skeleton) -> Vec<usize> {
+    let mut degree = vec![0; s.nodes.len()];
+    for [a, b] in s.links() {
+        degree[a as usize] += 1;
+        degree[b as usize] += 1;
+    }
+    degree
+}
+
+#[test]
+fn hierarchical_tributaries_meet_passages_at_t_junctions() {
+    let base = scene("");
+    let (samples, graph) = inputs(&base);
+    let plain = build(&base, &samples, &graph).unwrap();
+    let tributaries = |ratio: f64| {
+        let extra = format!(
+            "[skeleton]\namplification_steps = 3\namplification_points = 2\ndead_end_fraction = 1.0\n\
+             amplification_length = [18.0, 120.0]\namplification_exponent = 1.2\namplification_ratio = {ratio}\n"
+        );
+        build(&scene(&extra), &samples, &graph).unwrap()
+    };
+    let (flat, horton) = (tributaries(1.0), tributaries(2.0));
+    let count = |s: &Skeleton, f: &dyn Fn(usize) -> bool| degrees(s).into_iter().filter(|d| f(*d)).count();
+    for s in [&flat, &horton] {
+        assert_eq!(route_positions(s), route_positions(&plain), "tributaries are dry");
+        assert_eq!(cycles(s), cycles(&plain), "dead ends close no loop");
+        // Joins land on a passage (degree 2 → 3), never on a junction: no new node of degree 4+.
+        assert_eq!(count(s, &|d| d >= 4), count(&plain, &|d| d >= 4));
+    }
+    let ends = |s: &Skeleton| count(s, &|d| d == 1) - count(&plain, &|d| d == 1);
+    assert!(ends(&flat) >= 4 && ends(&horton) > ends(&flat), "{} vs {}", ends(&horton), ends(&flat));
+}
+
+#[test]
+fn cohesion_in_gamma_mode_merges_paths_into_trunks() {
+    let free = scene("[skeleton]\nmode = \"gamma\"\ngamma = 1.5\n");
+    let (samples, graph) = inputs(&free);
+    let tight =
+        scene("[skeleton]\nmode = \"gamma\"\ngamma = 1.5\ncohesion_vadose = 0.3\ncohesion_phreatic = 0.3\n");
+    let (a, b) = (build(&free, &samples, &graph).unwrap(), build(&tight, &samples, &graph).unwrap());
+    let joined = |s: &Skeleton| s.nodes.iter().filter(|n| n.keypoint.is_some()).count();
+    assert_eq!(joined(&b), joined(&a), "every key point stays on the network");
+    assert!(b.total_length() < 0.9 * a.total_length(), "{} vs {}", b.total_length(), a.total_length());
+}
+
+#[test]
+fn meanders_lengthen_conduits_within_the_bedding_plane() {
+    let base = scene("");
+    let (samples, graph) = inputs(&base);
+    let straight = build(&base, &samples, &graph).unwrap();
+    let bent = build(&scene("[skeleton]\nsinuosity = 1.2\n"), &samples, &graph).unwrap();
+    let ratio = bent.total_length() / straight.total_length();
+    assert!(ratio > 1.05 && ratio < 1.25, "{ratio}");
+    // No horizon: the bedding is horizontal, so every original node keeps its elevation.
+    let mut moved = 0;
+    for (a, b) in straight.nodes.iter().zip(&bent.nodes) {
+        assert!((a.position[2] - b.position[2]).abs() < 1e-9, "{:?} → {:?}", a.position, b.position);
+        moved += usize::from(a.position != b.position);
+    }
+    assert!(moved > 0);
+    for r in &bent.routes {
+        assert!(r.nodes.windows(2).all(|w| linked(&bent, w[0], w[1])), "routes follow the bent links");
+    }
+    assert!(bent.nodes.iter().all(|n| base.in_bedrock(glam::DVec3::from_array(n.position))));
+}
+
+#[test]
+fn realism_parameters_out_of_range_are_refused() {
+    let bad = |extra: &str| {
+        Scene::parse(&format!("{SCENE}\n{extra}"), Path::new("x.toml")).unwrap_err().to_string()
+    };
+    let e = bad("[skeleton]\namplification_length = [5.0, 100.0]\n");
+    assert!(e.contains("skeleton.amplification_length") && e.contains("sampling.radius"), "{e}");
+    assert!(bad("[skeleton]\namplification_length = [50.0, 20.0]\n").contains("not a range"));
+    assert!(bad("[skeleton]\namplification_ratio = 0.5\n").contains("skeleton.amplification_ratio"));
+    assert!(bad("[skeleton]\nconfluence_attraction = 2.0\n").contains("skeleton.confluence_attraction"));
+    assert!(bad("[skeleton]\nsinuosity = 0.9\n").contains("skeleton.sinuosity"));
+    assert!(bad("[skeleton]\nmeander_wavelength = [0.0, 10.0]\n").contains("skeleton.meander_wavelength"));
 }

@@ -18,7 +18,11 @@ pub fn node(scene: &Scene, samples: &Samples, sample: u32) -> Node {
 
 /// A node at `position`, in the zone of the water tables there.
 pub fn node_at(scene: &Scene, position: [f64; 3], sample: u32, keypoint: Option<String>) -> Node {
-    let p = Point::from_array(position);
-    let phreatic = scene.geology().water_tables.iter().any(|w| w.height_above(p) < 0.0);
-    Node { position, sample, keypoint, zone: if phreatic { Zone::Phreatic } else { Zone::Vadose } }
+    let zone = if is_phreatic(scene, Point::from_array(position)) { Zone::Phreatic } else { Zone::Vadose };
+    Node { position, sample, keypoint, zone }
+}
+
+/// Whether `p` lies below a water table of the scene.
+pub fn is_phreatic(scene: &Scene, p: Point) -> bool {
+    scene.geology().water_tables.iter().any(|w| w.height_above(p) < 0.0)
 }

@@ -161,6 +161,46 @@ impl EdgeCosts for Cohesive<'_> {
     }
 }
 
+/// Cohesion by zone (gamma mode): used edges out of a phreatic node cost `factors[1]` times
+/// their cost, used edges out of a vadose node `factors[0]` times.
+pub struct ZonedCohesive<'a> {
+    pub base: &'a dyn EdgeCosts,
+    pub used: &'a [bool],
+    pub phreatic: &'a [bool],
+    pub factors: [f64; 2],
+}
+
+impl EdgeCosts for ZonedCohesive<'_> {
+    fn node_count(&self) -> usize {
+        self.base.node_count()
+    }
+
+    fn for_each_out(&self, node: usize, f: &mut dyn FnMut(usize, usize, f64)) {
+        let factor = self.factors[usize::from(self.phreatic[node])];
+        self.base.for_each_out(node, &mut |e, t, c| f(e, t, if self.used[e] { c * factor } else { c }));
+    }
+}
+
+/// A cost set in which the edges into `blocked` nodes do not exist: searches go around them.
+pub struct Blocked<'a> {
+    pub base: &'a dyn EdgeCosts,
+    pub blocked: &'a [bool],
+}
+
+impl EdgeCosts for Blocked<'_> {
+    fn node_count(&self) -> usize {
+        self.base.node_count()
+    }
+
+    fn for_each_out(&self, node: usize, f: &mut dyn FnMut(usize, usize, f64)) {
+        self.base.for_each_out(node, &mut |e, t, c| {
+            if !self.blocked[t] {
+                f(e, t, c)
+            }
+        });
+    }
+}
+
 /// The smallest cost per metre of any edge between distinct positions: the factor of the A*
 /// heuristic. Zero when the graph has no such edge (the heuristic then vanishes).
 /// The cost graph's record when it has one, else every edge is measured, the nodes in

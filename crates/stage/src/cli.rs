@@ -47,6 +47,9 @@ pub fn run<S: Stage>(args: &RunArgs) -> Result<(), StageError> {
     karst_artifact::atomic::remove_stale_temporaries(&args.out);
     let ran = runner::run::<S>(&Job { scene_path: &args.scene, scene: &scene, out: &args.out })?;
     println!("{} in {:.2} s", ran.headline, ran.seconds);
+    for note in &ran.notes {
+        eprintln!("note: {note}");
+    }
     Ok(())
 }
 

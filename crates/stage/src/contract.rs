@@ -26,6 +26,12 @@ pub trait Stage: 'static {
     /// The figures printed after a run, one line ("33 nodes, 3 conduits, 376 m").
     fn headline(scene: &Scene, output: &Self::Output) -> String;
 
+    /// What the stage corrected or could not do in this run (a lowered control point, a lake),
+    /// printed under the headline: the user's input was usable, but not as given.
+    fn notes(_output: &Self::Output) -> Vec<String> {
+        Vec::new()
+    }
+
     /// The lines `inspect` prints under the artifact's first line.
     fn summary(header: &Header, output: &Self::Output) -> Vec<String>;
 

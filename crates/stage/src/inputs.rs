@@ -2,20 +2,27 @@
 
 use std::path::Path;
 
-use karst_artifact::{Header, Payload, StageId, read_artifact};
+use karst_artifact::{Frame, Header, Payload, StageId, check_frame, read_artifact};
 
 /// A tuple of upstream payloads, read from an output folder.
 pub trait Inputs: Sized {
     /// The stages that write them, in order.
     fn stages() -> Vec<StageId>;
 
-    /// Reads each one from `dir`, checking it, and keeps its header (its payload hash goes
-    /// into the key; its inputs are checked against the other inputs').
-    fn read(dir: &Path, headers: &mut Vec<Header>) -> Result<Self, karst_artifact::Error>;
+    /// Reads each one from `dir`, checking it and that it is in the run's `frame`, and keeps
+    /// its header (its payload hash goes into the key; its inputs are checked against the
+    /// other inputs').
+    fn read(dir: &Path, frame: &Frame, headers: &mut Vec<Header>) -> Result<Self, karst_artifact::Error>;
 }
 
-fn read_one<P: Payload>(dir: &Path, headers: &mut Vec<Header>) -> Result<P, karst_artifact::Error> {
-    let (header, payload) = read_artifact::<P>(&dir.join(P::STAGE.file_name()))?;
+fn read_one<P: Payload>(
+    dir: &Path,
+    frame: &Frame,
+    headers: &mut Vec<Header>,
+) -> Result<P, karst_artifact::Error> {
+    let path = dir.join(P::STAGE.file_name());
+    let (header, payload) = read_artifact::<P>(&path)?;
+    check_frame(&path, &header, frame)?;
     headers.push(header);
     Ok(payload)
 }
@@ -25,7 +32,7 @@ impl Inputs for () {
         Vec::new()
     }
 
-    fn read(_: &Path, _: &mut Vec<Header>) -> Result<Self, karst_artifact::Error> {
+    fn read(_: &Path, _: &Frame, _: &mut Vec<Header>) -> Result<Self, karst_artifact::Error> {
         Ok(())
     }
 }
@@ -38,8 +45,8 @@ macro_rules! tuple_inputs {
                 vec![$($p::STAGE),+]
             }
 
-            fn read(dir: &Path, headers: &mut Vec<Header>) -> Result<Self, karst_artifact::Error> {
-                Ok(($(read_one::<$p>(dir, headers)?,)+))
+            fn read(dir: &Path, frame: &Frame, headers: &mut Vec<Header>) -> Result<Self, karst_artifact::Error> {
+                Ok(($(read_one::<$p>(dir, frame, headers)?,)+))
             }
         }
     };
@@ -50,3 +57,4 @@ tuple_inputs!(A, B);
 tuple_inputs!(A, B, C);
 tuple_inputs!(A, B, C, D);
 tuple_inputs!(A, B, C, D, E);
+tuple_inputs!(A, B, C, D, E, F);

@@ -34,6 +34,8 @@ pub struct Ran {
     pub headline: String,
     /// Seconds spent in `build`.
     pub seconds: f64,
+    /// What the stage corrected or could not do ([`Stage::notes`]).
+    pub notes: Vec<String>,
 }
 
 /// Runs stage `S`: reads and checks its inputs, builds, writes the side files (after removing
@@ -42,7 +44,8 @@ pub struct Ran {
 pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     debug_assert_eq!(S::Inputs::stages(), S::ID.inputs(), "{}: inputs differ from its row", S::ID.name());
     let mut headers = Vec::new();
-    let inputs = S::Inputs::read(job.out, &mut headers)?;
+    let frame = job.scene.frame();
+    let inputs = S::Inputs::read(job.out, &frame, &mut headers)?;
     consistent(job, &headers)?;
     let refs = headers
         .iter()
@@ -52,6 +55,7 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
         producer: producer(S::ID),
         inputs: refs,
         params: job.scene.sections_hash(S::ID.row().sections),
+        frame,
     };
     let path = job.artifact(S::ID);
     let start = Instant::now();
@@ -79,7 +83,7 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     })?;
     write_artifact(&path, &provenance, &output)?;
     let _ = std::fs::remove_file(previous_artifact(&path));
-    Ok(Ran { headline: S::headline(job.scene, &output), seconds })
+    Ok(Ran { headline: S::headline(job.scene, &output), seconds, notes: S::notes(&output) })
 }
 
 /// Checks that the inputs were made from one another: a costgraph.bin made from another
@@ -152,6 +156,14 @@ pub fn inspect<S: Stage>(path: &Path) -> Result<Vec<String>, StageError> {
         header.schema,
         header.producer
     )];
+    // The frame, when the coordinates are not world coordinates already.
+    if header.origin != [0.0; 3] || header.crs.is_some() {
+        lines.push(format!(
+            "  local frame: world = local + {:?} ({})",
+            header.origin,
+            header.crs.as_deref().unwrap_or("no CRS")
+        ));
+    }
     lines.extend(S::summary(&header, &output).into_iter().map(|l| format!("  {l}")));
     Ok(lines)
 }

@@ -7,14 +7,17 @@ use std::path::{Path, PathBuf};
 use karst_artifact::StageId;
 use karst_stage::StageError;
 
+mod calibrate;
 mod costgraph;
 mod export;
+mod geotiff;
 mod mesher;
 mod metrics;
 mod pipeline;
 mod probes;
 mod sdf;
 mod skeleton;
+mod streams;
 
 /// Scenes timed stage by stage.
 const BENCH_SCENES: &[&str] = &["fixtures/scenes/tiny.toml", "fixtures/scenes/default.toml"];
@@ -31,26 +34,57 @@ const COSTGRAPH_CASES: &[costgraph::CostgraphCase] = &[
 /// Conduits of the synthetic sdf benchmark network (about 30k primitives).
 const SDF_BENCH_CONDUITS: usize = 100;
 
+/// Scenes whose surface network is timed: the budget's and the waterfall preset.
+const STREAMS_SCENES: &[&str] = &["fixtures/scenes/default.toml", "fixtures/scenes/waterfall.toml"];
+/// The scene whose pipeline the streams must not slow by more than 10 %.
+const STREAMS_PIPELINE_SCENE: &str = "fixtures/scenes/default.toml";
+/// The preset whose carved terrain is meshed with and without its streams, and the cell.
+const CARVING_SCENE: &str = "fixtures/scenes/waterfall.toml";
+const CARVING_CELL: f64 = 1.0;
+
 /// Which benchmarks to run.
 #[derive(Debug, Clone, Default)]
 pub struct Only {
     pub costgraph: bool,
     pub sdf: bool,
     pub mesher: bool,
+    pub streams: bool,
+    pub geotiff: bool,
     /// The export formats on the finished run in this folder.
     pub export: Option<PathBuf>,
     pub mazes: bool,
+    /// The calibration budget (default scene to the Sakany cave).
+    pub calibrate: bool,
 }
 
 /// `cargo xtask bench`: runs the benchmarks and prints their tables.
 pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
-    let Only { costgraph: costgraph_only, sdf: sdf_only, mesher: mesher_only, export, mazes } = only;
+    let Only {
+        costgraph: costgraph_only,
+        sdf: sdf_only,
+        mesher: mesher_only,
+        streams: streams_only,
+        geotiff: geotiff_only,
+        export,
+        calibrate,
+        mazes,
+    } = only;
+    if calibrate {
+        println!("one run, in process, release build, {} threads", rayon_threads());
+        return calibrate::calibrate_bench();
+    }
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
     if mazes {
         return maze_bench(runs);
     }
     if let Some(dir) = export {
         return export_bench(&dir, runs);
+    }
+    if streams_only {
+        return streams_bench(runs);
+    }
+    if geotiff_only {
+        return geotiff_bench(runs);
     }
     if mesher_only {
         mesher_bench(runs);
@@ -97,7 +131,62 @@ pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
     }
 
     sdf_bench(runs)?;
-    mesher_and_network_bench(runs)
+    streams_bench(runs)?;
+    mesher_and_network_bench(runs)?;
+    geotiff_bench(runs)
+}
+
+/// The GeoTIFF terrain budget: loading a scene over a large raster.
+fn geotiff_bench(runs: usize) -> Result<(), StageError> {
+    let t = geotiff::time_geotiff_terrain(runs)?;
+    let mb = |b: u64| format!("{:.0}", b as f64 / 1e6);
+    let side = geotiff::SIDE;
+    println!("\nGeoTIFF terrain: {side} × {side} float32 LZW ({} MB file), Scene::load", mb(t.file_bytes));
+    println!(
+        "{:.3} s, CPU {} s, peak memory {} MB above the process's (the raster's own float32 size: {} MB)",
+        t.seconds,
+        t.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}")),
+        t.peak_above.map_or("-".into(), mb),
+        mb(side as u64 * side as u64 * 4)
+    );
+    Ok(())
+}
+
+/// The streams budgets: the surface network per scene, the default pipeline's overhead, the
+/// carved terrain's evaluations per vertex.
+fn streams_bench(runs: usize) -> Result<(), StageError> {
+    println!("\nsurface network and classification (streams stage build; budget 50 ms on default)");
+    for scene in STREAMS_SCENES {
+        let t = streams::time_network(Path::new(scene), runs)?;
+        let cpu = t.cpu_seconds.map_or("-".into(), |c| format!("{:.1}", c * 1e3));
+        println!("{scene:<32} {:>8.1} ms  (CPU {cpu} ms per build)  {}", t.seconds * 1e3, t.headline);
+    }
+    let o = streams::overhead(Path::new(STREAMS_PIPELINE_SCENE), runs)?;
+    let extra = o.streams_seconds + o.sdf_extra + o.mesher_extra;
+    println!(
+        "\n{STREAMS_PIPELINE_SCENE}: pipeline {:.3} s, of which the streams add {:.4} s ({:+.1} % on the {:.3} s without them; budget +10 %): \
+         streams {:.4} s, sdf {:+.4} s, mesher {:+.4} s (paired, mesher alone {:.3} s)",
+        o.pipeline_seconds,
+        extra,
+        100.0 * extra / (o.pipeline_seconds - extra),
+        o.pipeline_seconds - extra,
+        o.streams_seconds,
+        o.sdf_extra,
+        o.mesher_extra,
+        o.mesher_without
+    );
+    if let (Some(extra), Some(without)) = (o.cpu_extra, o.cpu_without) {
+        println!(
+            "  sdf + mesher in CPU time, paired: {without:.2} s without the streams, {extra:+.3} s with them ({:+.1} %)",
+            100.0 * extra / without
+        );
+    }
+    let c = streams::carving(Path::new(CARVING_SCENE), CARVING_CELL)?;
+    println!(
+        "{CARVING_SCENE} terrain at {CARVING_CELL} m: {:.2} field evaluations per vertex carved, {:.2} uncarved ({} and {} triangles)",
+        c.evaluations_per_vertex[0], c.evaluations_per_vertex[1], c.triangles[0], c.triangles[1]
+    );
+    Ok(())
 }
 
 /// The mesher's budget cases  on a synthetic model of 30k capsules.

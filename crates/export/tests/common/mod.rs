@@ -17,10 +17,11 @@ use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::SceneFile;
 use karst_sampling::Samples;
 use karst_skeleton::Skeleton;
+use karst_streams::Streams;
 pub use karst_testkit::{root, scratch};
 
-/// The run of `fixtures/scenes/NAME.toml` up to hydro and metrics (no sdf, no mesh: the network
-/// formats need neither), made once per test binary.
+/// The run of `fixtures/scenes/NAME.toml` up to streams and metrics (no sdf, no mesh: the
+/// network formats need neither), made once per test binary.
 pub fn network_run(name: &str) -> PathBuf {
     static RUNS: OnceLock<Mutex<HashMap<String, PathBuf>>> = OnceLock::new();
     let runs = RUNS.get_or_init(Default::default);
@@ -29,9 +30,14 @@ pub fn network_run(name: &str) -> PathBuf {
         .or_insert_with(|| {
             let scene = SceneFile::load(&root().join(format!("fixtures/scenes/{name}.toml"))).unwrap();
             let out = scratch(&format!("run-{name}"));
-            for stage in
-                [StageId::Sampling, StageId::Costgraph, StageId::Skeleton, StageId::Hydro, StageId::Metrics]
-            {
+            for stage in [
+                StageId::Sampling,
+                StageId::Costgraph,
+                StageId::Skeleton,
+                StageId::Hydro,
+                StageId::Streams,
+                StageId::Metrics,
+            ] {
                 let only = Selection { only: Some(stage), ..Selection::default() };
                 make::run(&scene, &out, &only, &mut |_| {})
                     .unwrap_or_else(|e| panic!("{name}: {}: {e}", stage.name()));
@@ -54,9 +60,12 @@ pub fn read<P: Payload>(dir: &Path, file: &str) -> P {
 pub struct Run {
     pub skeleton: Skeleton,
     pub hydro: Hydro,
+    pub streams: Streams,
     pub metrics: MetricsReport,
     pub samples: Samples,
     pub mesh: Option<Mesh>,
+    /// The frame the artifacts record.
+    pub frame: karst_artifact::Frame,
 }
 
 impl Run {
@@ -65,9 +74,11 @@ impl Run {
         Run {
             skeleton: read(dir, "skeleton.json"),
             hydro: read(dir, "hydro.json"),
+            streams: read(dir, "streams.json"),
             metrics: read(dir, "metrics.json"),
             samples: read(dir, "samples.bin"),
             mesh: mesh_path.exists().then(|| read(dir, "mesh.bin")),
+            frame: karst_artifact::read_header(&dir.join("samples.bin")).unwrap().frame(),
         }
     }
 
@@ -75,10 +86,12 @@ impl Run {
         Inputs {
             skeleton: Some(&self.skeleton),
             hydro: Some(&self.hydro),
+            streams: Some(&self.streams),
             mesh: self.mesh.as_ref(),
             metrics: Some(&self.metrics),
             samples: Some(&self.samples),
             scene: None,
+            frame: &self.frame,
         }
     }
 }

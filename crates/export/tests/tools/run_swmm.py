@@ -1,7 +1,8 @@
 """Runs an EPA SWMM 5 model with the real engine (PyPI `swmm-toolkit`) to its end and prints,
-as JSON: the flow-routing continuity error (%), the steady inflow of every outfall (m³/s: its
-time-weighted mean over the last quarter of the run, which smooths the solver's oscillations),
-and the warning and error lines of the report.
+as JSON: the flow-routing continuity error (%), the steady inflow of every outfall over the
+last tenth of the run (m³/s, time-weighted mean), the same over the tenth before it and the
+range over the last tenth (both show whether the run reached its steady state), and the
+warning and error lines of the report.
 
 Usage: run_swmm.py MODEL.inp OUTFALL [OUTFALL ...]
 """
@@ -25,15 +26,33 @@ while True:
     now = solver.swmm_step()
     if now <= 0:
         break
-    history.append((now - elapsed, now, {n: solver.node_get_result(i, NodeResult.TOTAL_INFLOW) for n, i in indices.items()}))
+    flows = {n: solver.node_get_result(i, NodeResult.TOTAL_INFLOW) for n, i in indices.items()}
+    history.append((now - elapsed, now, flows))
     elapsed = now
-tail = [h for h in history if h[1] >= 0.75 * elapsed]
-weight = sum(h[0] for h in tail)
-flows = {n: sum(h[0] * h[2][n] for h in tail) / weight for n in outfalls}
+
+
+def window(start, end):
+    return [h for h in history if start * elapsed < h[1] <= end * elapsed]
+
+
+def mean(steps, name):
+    return sum(h[0] * h[2][name] for h in steps) / sum(h[0] for h in steps)
+
+
+last, before = window(0.9, 1.0), window(0.8, 0.9)
 solver.swmm_end()
 continuity = solver.swmm_get_mass_balance()[1]
 solver.swmm_report()
 solver.swmm_close()
 with open(report) as f:
     notes = [line.strip() for line in f if "WARNING" in line or "ERROR" in line]
-print(json.dumps({"continuity_error": continuity, "outfalls": flows, "notes": notes}))
+for name in os.listdir(folder):
+    os.remove(os.path.join(folder, name))
+os.rmdir(folder)
+print(json.dumps({
+    "continuity_error": continuity,
+    "outfalls": {n: mean(last, n) for n in outfalls},
+    "outfalls_before": {n: mean(before, n) for n in outfalls},
+    "outfalls_range": {n: [min(h[2][n] for h in last), max(h[2][n] for h in last)] for n in outfalls},
+    "notes": notes,
+}))

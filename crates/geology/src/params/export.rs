@@ -100,6 +100,11 @@ pub struct ExportParams {
     /// keep this slope and drop the rest at their lower junction, as drop structures are
     /// modelled in SWMM: its dynamic-wave solver is not made for near-vertical conduits.
     pub swmm_max_slope: f64,
+    /// Shortest conduit of the SWMM model, metres: chains of segments between the nodes where
+    /// conduits meet, water enters or leaves, or waters divide are merged into conduits at
+    /// least this long (a whole chain when it is shorter), as modellers skeletonize a network
+    /// for the dynamic-wave solver's time step.
+    pub swmm_conduit_length: f64,
 }
 
 impl Default for ExportParams {
@@ -117,6 +122,7 @@ impl Default for ExportParams {
             manning: 0.03,
             swmm_hours: 6.0,
             swmm_max_slope: 0.1,
+            swmm_conduit_length: 20.0,
         }
     }
 }
@@ -126,6 +132,7 @@ impl ExportParams {
         c.positive("export.manning", self.manning);
         c.positive("export.swmm_hours", self.swmm_hours);
         c.positive("export.swmm_max_slope", self.swmm_max_slope);
+        c.positive("export.swmm_conduit_length", self.swmm_conduit_length);
         if self.swmm_hours.is_finite() && self.swmm_hours > 24.0 * 365.0 {
             c.report("export.swmm_hours", format!("{} hours is more than a year", self.swmm_hours));
         }

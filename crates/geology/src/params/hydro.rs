@@ -122,21 +122,10 @@ impl HydroParams {
 
 #[cfg(test)]
 mod tests {
-    use std::path::Path;
-
-    use crate::{Scene, SceneError};
-
-    const SCENE: &str = "name = \"t\"\nseed = 1\n[domain]\nmin = [0, 0, 0]\nmax = [100, 100, 50]\n\
-        [terrain]\nkind = \"plane\"\nelevation = 40\n[[geology.water_tables]]\nname = \"wt\"\nelevation = 10\n\
-        [[keypoints]]\nname = \"a\"\nkind = \"sink\"\nposition = [10, 10, 40]\n\
-        [[keypoints]]\nname = \"s\"\nkind = \"spring\"\nposition = [90, 90, 10]\nwater_table = \"wt\"\n";
+    use crate::params::test_scene;
 
     fn problems(hydro: &str) -> Vec<String> {
-        match Scene::parse(&format!("{SCENE}[hydro]\n{hydro}\n"), Path::new("s.toml")) {
-            Ok(_) => vec![],
-            Err(SceneError::Invalid { problems, .. }) => problems.iter().map(|p| p.to_string()).collect(),
-            Err(e) => vec![e.to_string()],
-        }
+        test_scene::problems(&format!("[hydro]\n{hydro}"))
     }
 
     #[test]

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::validate::Checks;
+use crate::validate::{Checks, MAX_LENGTH, MIN_LENGTH};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -27,10 +27,29 @@ pub struct SkeletonParams {
     /// Fraction of the new key points that are dead ends (joined once); the others are interior
     /// points (joined at two places, closing loops).
     pub dead_end_fraction: f64,
+    /// Range `[min, max]` of the length of the first step's amplification branches, metres:
+    /// each new key point is drawn at a distance from an anchor on the network that follows a
+    /// power law over this range (each later step divides max by `amplification_ratio`).
+    /// Absent: uniform in the network's bounding box (Paris et al. 2021).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub amplification_length: Option<[f64; 2]>,
+    /// Exponent α of that power law, P(length > ℓ) ∝ ℓ^−α: small α, heavier tail.
+    pub amplification_exponent: f64,
+    /// Horton ratio R of the amplification: step s draws `amplification_points` × R^s points,
+    /// and with R > 1 they branch off the previous step's branches. 1: every step alike.
+    pub amplification_ratio: f64,
+    /// Probability that a new branch starts at a confluence of the previous step (mixing
+    /// corrosion) rather than anywhere along the branches it grows from.
+    pub confluence_attraction: f64,
     /// θ in [0, 1]: amplitude of the tortuosity added by midpoint displacement, from a few
     /// centimetres (0) to 4 m (1). Absent: conduits keep the straight links of the graph.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tortuosity: Option<f64>,
+    /// Sinuosity of the meanders conduits make in their bedding plane (arc length over chord of
+    /// each meander, ≥ 1); 1: no meanders.
+    pub sinuosity: f64,
+    /// Range `[min, max]` of the meander wavelength, metres, drawn per conduit.
+    pub meander_wavelength: [f64; 2],
     /// Midpoint-displacement levels (each doubles the segments of a conduit).
     pub tortuosity_levels: u32,
     /// Range `[min, max]` of conduit radii, metres, outside the epikarst: a Gaussian process
@@ -64,8 +83,14 @@ impl Default for SkeletonParams {
             amplification_steps: 0,
             amplification_points: 5,
             dead_end_fraction: 0.5,
+            amplification_length: None,
+            amplification_exponent: 1.5,
+            amplification_ratio: 1.0,
+            confluence_attraction: 0.0,
             tortuosity: None,
             tortuosity_levels: 2,
+            sinuosity: 1.0,
+            meander_wavelength: [40.0, 100.0],
             radius: [0.5, 4.0],
             radius_correlation: [50.0, 200.0],
             epikarst_radius: 0.5,
@@ -134,14 +159,15 @@ impl SkeletonParams {
                 c.report(field, format!("P_red must be in (0, 1], got {p}"));
             }
         }
-        if c.finite("skeleton.dead_end_fraction", &[self.dead_end_fraction])
-            && !(0.0..=1.0).contains(&self.dead_end_fraction)
-        {
-            c.report(
-                "skeleton.dead_end_fraction",
-                format!("must be in [0, 1], got {}", self.dead_end_fraction),
-            );
+        c.within("skeleton.dead_end_fraction", self.dead_end_fraction, 0.0, 1.0);
+        if let Some(range) = self.amplification_length {
+            c.range("skeleton.amplification_length", range, MIN_LENGTH, MAX_LENGTH);
         }
+        c.positive("skeleton.amplification_exponent", self.amplification_exponent);
+        c.within("skeleton.amplification_ratio", self.amplification_ratio, 1.0, 10.0);
+        c.within("skeleton.confluence_attraction", self.confluence_attraction, 0.0, 1.0);
+        c.within("skeleton.sinuosity", self.sinuosity, 1.0, 3.0);
+        c.range("skeleton.meander_wavelength", self.meander_wavelength, MIN_LENGTH, MAX_LENGTH);
         if let Some(theta) = self.tortuosity
             && c.finite("skeleton.tortuosity", &[theta])
             && !(0.0..=1.0).contains(&theta)
@@ -164,7 +190,7 @@ impl SkeletonParams {
             );
         }
         let [c0, _] = self.radius_correlation;
-        c.range("skeleton.radius_correlation", self.radius_correlation, 0.0, crate::validate::MAX_LENGTH);
+        c.range("skeleton.radius_correlation", self.radius_correlation, 0.0, MAX_LENGTH);
         if c0 == 0.0 {
             c.report("skeleton.radius_correlation", "must be > 0, got 0".into());
         }

@@ -99,7 +99,10 @@ pub fn network_figures(
         return Ok((report, Vec::new(), skeleton));
     }
     let (_, water) = read_artifact::<Hydro>(&dir.join(StageId::Hydro.file_name()))?;
-    let report = karst_metrics::build(&skeleton, &water).map_err(|e| unusable(&e))?;
+    // The ensemble's figures are the underground network's: `surface` stays empty (an
+    // ensemble may stop before the streams stage).
+    let mut report = karst_metrics::report(&skeleton).map_err(|e| unusable(&e))?;
+    report.water_types = karst_metrics::water_type_lengths(&skeleton, &water).map_err(|e| unusable(&e))?;
     Ok((report, springs(&water), skeleton))
 }
 
