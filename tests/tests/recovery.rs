@@ -122,7 +122,9 @@ fn inputs_made_from_another_upstream_artifact_are_refused() {
 /// written with a right checksum.
 fn forger<P: Payload + Clone>(path: &Path) -> impl Fn(&dyn Fn(&mut P)) {
     let (header, good) = read_artifact::<P>(path).unwrap();
-    let provenance = Provenance { producer: header.producer, inputs: header.inputs, params: header.params };
+    let frame = header.frame();
+    let provenance =
+        Provenance { producer: header.producer, inputs: header.inputs, params: header.params, frame };
     let path = path.to_path_buf();
     move |edit| {
         let mut payload = good.clone();

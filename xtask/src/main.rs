@@ -137,7 +137,10 @@ fn main() -> ExitCode {
         Task::Bless => bless(),
         Task::Bench { runs, peer: true, .. } => peer_bench(runs),
         Task::Bench { runs, costgraph, sdf, mesher, streams, geotiff, export, calibrate, mazes, .. } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher, streams, geotiff, export, calibrate, mazes })
+            bench::run(
+                runs,
+                bench::Only { costgraph, sdf, mesher, streams, geotiff, export, calibrate, mazes },
+            )
         }
         Task::Test { python, args } => return test(python, &args),
         Task::Fuzz { minutes, seed } => fuzz(minutes, seed),

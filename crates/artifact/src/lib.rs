@@ -25,8 +25,8 @@ pub mod lock;
 pub mod stages;
 
 pub use envelope::{
-    Header, InputRef, Invalid, Payload, Provenance, check_frame, decode_payload, read_artifact,
-    read_header, write_artifact,
+    Header, InputRef, Invalid, Payload, Provenance, check_frame, decode_payload, read_artifact, read_header,
+    write_artifact,
 };
 pub use error::Error;
 pub use frame::Frame;

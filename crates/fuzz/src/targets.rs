@@ -158,6 +158,8 @@ fn header(stage: StageId, len: usize) -> Header {
         key: String::new(),
         inputs: Vec::new(),
         params: String::new(),
+        origin: [0.0; 3],
+        crs: None,
         payload_len: len as u64,
         payload_blake3: String::new(),
     }
@@ -198,7 +200,9 @@ struct Others {
     samples: karst_sampling::Samples,
     mesh: karst_mesher::Mesh,
     metrics: karst_metrics::MetricsReport,
+    streams: karst_streams::Streams,
     scene: Scene,
+    frame: karst_artifact::Frame,
 }
 
 fn others() -> &'static Others {
@@ -211,6 +215,8 @@ fn others() -> &'static Others {
             samples: read_artifact(&golden(StageId::Sampling)).expect("the goldens read").1,
             mesh,
             metrics: read_artifact(&golden(StageId::Metrics)).expect("the goldens read").1,
+            streams: read_artifact(&golden(StageId::Streams)).expect("the goldens read").1,
+            frame: karst_artifact::Frame::default(),
             scene: Scene::load(&root().join("fixtures/scenes/tiny.toml")).expect("the tiny scene loads"),
         }
     })
@@ -230,10 +236,12 @@ fn check_network_out(input: &[u8]) {
     let inputs = karst_export::Inputs {
         skeleton: Some(&skeleton),
         hydro: Some(&hydro),
+        streams: Some(&o.streams),
         mesh: Some(&o.mesh),
         metrics: Some(&o.metrics),
         samples: Some(&o.samples),
         scene: Some(&o.scene),
+        frame: &o.frame,
     };
     let params = karst_export::ExportParams {
         formats: karst_export::ExportFormat::ALL.to_vec(),

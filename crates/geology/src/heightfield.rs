@@ -170,7 +170,7 @@ impl HeightGrid {
     pub fn translate(&mut self, by: [f64; 3]) {
         self.origin = [self.origin[0] + by[0], self.origin[1] + by[1]];
         self.heights.iter_mut().for_each(|h| *h += by[2]);
-        self.lipschitz = self.bilinear_lipschitz();
+        self.lipschitz = self.slope_bound();
     }
 
     fn at(&self, i: usize, j: usize) -> f64 {

@@ -296,7 +296,7 @@ impl Checks<'_> {
                 }
                 ok && cell_size.is_none_or(|c| c > 0.0) && grid.nx > 0 && self.heightfield_covers(scene, grid)
             }
-            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient } => {
+            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient, .. } => {
                 let ok = self.coordinates("terrain.elevation", &[*elevation])
                     & self.within("terrain.amplitude", *amplitude, -MAX_LENGTH, MAX_LENGTH)
                     & self.within("terrain.gradient", gradient[0].hypot(gradient[1]), 0.0, MAX_TERRAIN_SLOPE)

@@ -132,7 +132,12 @@ impl SurfacePieces {
         }
         for (i, pool) in self.pools.iter().enumerate() {
             pool.outline.validate(&format!("surface.pools[{i}].outline"))?;
-            check::within(|| format!("surface.pools[{i}].level"), pool.level, -MAX_COORDINATE, MAX_COORDINATE)?;
+            check::within(
+                || format!("surface.pools[{i}].level"),
+                pool.level,
+                -MAX_COORDINATE,
+                MAX_COORDINATE,
+            )?;
         }
         Ok(())
     }

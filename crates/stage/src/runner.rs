@@ -62,7 +62,14 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     let mut output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
     invalidate_other(
         &path,
-        &stage_key(S::ID, &provenance.producer, S::Output::SCHEMA, &provenance.params, &provenance.inputs),
+        &stage_key(
+            S::ID,
+            &provenance.producer,
+            S::Output::SCHEMA,
+            &provenance.params,
+            &provenance.frame,
+            &provenance.inputs,
+        ),
     )?;
     S::side_files(job.out, job.scene, &inputs, &mut output).map_err(|e| {
         StageError::failure(format!(
