@@ -277,15 +277,7 @@ fn swmm_run(scene: &str) -> (f64, Vec<Outfall>, Vec<String>) {
 
 #[test]
 fn swmm_runs_steadily_to_what_hydro_says_with_a_continuity_error_under_one_percent() {
-    swmm_is_steady(&["default", "branchwork"]);
-}
-
-/// The karstnsim preset retuned by the realism work (issue 20) oscillates in the engine: spring
-/// S1 swings between 0.73 and 0.89 m³/s at the end of the run (docs/exports.md).
-#[test]
-#[ignore = "karstnsim's retuned network oscillates in SWMM (docs/exports.md)"]
-fn swmm_karstnsim_is_steady() {
-    swmm_is_steady(&["karstnsim"]);
+    swmm_is_steady(&["default", "karstnsim", "branchwork"]);
 }
 
 fn swmm_is_steady(scenes: &[&str]) {
