@@ -54,6 +54,9 @@ enum Task {
         /// Only the streams budgets (surface network, pipeline overhead, carved terrain).
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
         streams: bool,
+        /// Only the GeoTIFF terrain budget (a 4000 × 4000 float32 LZW raster).
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "streams"])]
+        geotiff: bool,
         /// Only the export formats, on the finished run in this folder (e.g. out/looping).
         #[arg(long, value_name = "DIR", conflicts_with_all = ["costgraph", "sdf", "mesher", "streams"])]
         export: Option<PathBuf>,
@@ -120,8 +123,8 @@ fn main() -> ExitCode {
         }
         Task::Bless => bless(),
         Task::Bench { runs, peer: true, .. } => peer_bench(runs),
-        Task::Bench { runs, costgraph, sdf, mesher, streams, export, calibrate, .. } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher, streams, export, calibrate })
+        Task::Bench { runs, costgraph, sdf, mesher, streams, geotiff, export, calibrate, .. } => {
+            bench::run(runs, bench::Only { costgraph, sdf, mesher, streams, geotiff, export, calibrate })
         }
         Task::Test { python, args } => return test(python, &args),
         Task::MetricsTable { write } => metrics_table_command(write),

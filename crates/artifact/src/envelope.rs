@@ -25,6 +25,7 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
+use crate::frame::Frame;
 use crate::stages::{Encoding, StageId, stage_key};
 use crate::{atomic, hash};
 
@@ -51,7 +52,7 @@ pub struct InputRef {
 }
 
 /// The first line of every artifact file.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Header {
     pub format: String,
@@ -62,17 +63,32 @@ pub struct Header {
     pub key: String,
     pub inputs: Vec<InputRef>,
     pub params: String,
+    /// World coordinates of the local frame's origin (absent in files written before it was
+    /// recorded: [0, 0, 0], which is what they used).
+    #[serde(default)]
+    pub origin: [f64; 3],
+    /// The scene's coordinate reference system, if it names one.
+    #[serde(default)]
+    pub crs: Option<String>,
     pub payload_len: u64,
     pub payload_blake3: String,
 }
 
-/// Where an artifact comes from: who made it, from which inputs and scene sections. The key
-/// is derived from it and the payload's schema when the artifact is written.
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// Where an artifact comes from: who made it, from which inputs and scene sections, in which
+/// frame. The key is derived from it and the payload's schema when the artifact is written.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Provenance {
     pub producer: String,
     pub inputs: Vec<InputRef>,
     pub params: String,
+    pub frame: Frame,
+}
+
+impl Header {
+    /// The local frame the payload's coordinates are in.
+    pub fn frame(&self) -> Frame {
+        Frame { origin: self.origin, crs: self.crs.clone() }
+    }
 }
 
 /// A type that is the payload of one stage's artifact.
@@ -137,9 +153,18 @@ pub fn write_artifact<P: Payload>(
         schema: P::SCHEMA,
         producer: provenance.producer.clone(),
         encoding,
-        key: stage_key(P::STAGE, &provenance.producer, P::SCHEMA, &provenance.params, &provenance.inputs),
+        key: stage_key(
+            P::STAGE,
+            &provenance.producer,
+            P::SCHEMA,
+            &provenance.params,
+            &provenance.frame,
+            &provenance.inputs,
+        ),
         inputs: provenance.inputs.clone(),
         params: provenance.params.clone(),
+        origin: provenance.frame.origin,
+        crs: provenance.frame.crs.clone(),
         payload_len,
         payload_blake3,
     };
@@ -292,6 +317,23 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
     Ok((header, value))
 }
 
+/// Checks that an artifact's header is in `frame` (the scene's): an artifact made from the
+/// same scene moved elsewhere, or in another CRS, is not an input of this run.
+pub fn check_frame(path: &Path, header: &Header, expected: &Frame) -> Result<(), Error> {
+    if header.origin == expected.origin && header.crs == expected.crs {
+        return Ok(());
+    }
+    let frame = |origin: [f64; 3], crs: &Option<String>| {
+        format!("origin {origin:?} ({})", crs.as_deref().unwrap_or("no CRS"))
+    };
+    Err(Error::Frame {
+        path: path.into(),
+        found: frame(header.origin, &header.crs),
+        expected: frame(expected.origin, &expected.crs),
+        stage: header.kind.name().into(),
+    })
+}
+
 /// The payload's bytes in what follows a JSON artifact's first line: `"payload":` on a line of
 /// its own, the payload, then `}` on the last line.
 fn json_payload(mut rest: Vec<u8>) -> Option<Vec<u8>> {
@@ -373,7 +415,7 @@ mod tests {
     }
 
     fn provenance() -> Provenance {
-        Provenance { producer: "test 0".into(), inputs: vec![], params: "p".into() }
+        Provenance { producer: "test 0".into(), inputs: vec![], params: "p".into(), frame: Frame::default() }
     }
 
     fn scratch(name: &str) -> std::path::PathBuf {
@@ -485,6 +527,21 @@ mod tests {
         let err = read_artifact::<Positive>(&path).unwrap_err();
         assert!(matches!(err, Error::Invalid { .. }), "{err}");
         assert!(err.to_string().contains("value: -1 is not positive"), "{err}");
+    }
+
+    #[test]
+    fn the_header_records_the_frame_and_another_frame_is_refused() {
+        let path = scratch("frame.bin");
+        let lambert = Frame { origin: [651000.0, 6862000.0, 250.0], crs: Some("EPSG:2154".into()) };
+        let header =
+            write_artifact(&path, &Provenance { frame: lambert.clone(), ..provenance() }, &Points(vec![]))
+                .unwrap();
+        assert_eq!(read_header(&path).unwrap().frame(), lambert);
+        assert_ne!(header.key, write_artifact(&path, &provenance(), &Points(vec![])).unwrap().key);
+        assert!(check_frame(&path, &header, &lambert).is_ok());
+        let err = check_frame(&path, &header, &Frame::default()).unwrap_err().to_string();
+        assert!(err.contains("origin [651000.0, 6862000.0, 250.0] (EPSG:2154)"), "{err}");
+        assert!(err.contains("origin [0.0, 0.0, 0.0] (no CRS)") && err.contains("--from sampling"), "{err}");
     }
 
     #[test]

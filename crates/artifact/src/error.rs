@@ -38,6 +38,11 @@ pub enum Error {
         "{path}: {field}: {problem}: rerun the pipeline from {stage} (`karstgen run SCENE --from {stage}`)"
     )]
     Invalid { path: PathBuf, field: String, problem: String, stage: String },
+    #[error(
+        "{path}: its coordinates are relative to {found}, the scene's to {expected}: \
+         rerun the pipeline from {stage} (`karstgen run SCENE --from {stage}`)"
+    )]
+    Frame { path: PathBuf, found: String, expected: String, stage: String },
     #[error("cannot encode the {kind} payload: {detail}")]
     Encode { kind: String, detail: String },
 }

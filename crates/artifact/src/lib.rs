@@ -4,7 +4,8 @@
 //! followed by the postcard payload, JSON artifacts as one JSON document
 //! `{"header": …, "payload": …}` ([`envelope`]). The header
 //! says what the file is (`kind`, `schema`, `encoding`), who wrote it (`producer`), what it was
-//! made from (`inputs`, `params`) and how to check it (`payload_len`, `payload_blake3`). The
+//! made from (`inputs`, `params`), where its coordinates lie in the world (`origin`, `crs`:
+//! [`frame`]) and how to check it (`payload_len`, `payload_blake3`). The
 //! `key` decides staleness: `cargo xtask run` skips a stage whose artifact's key equals the key
 //! it would write now (see [`stages::stage_key`]).
 //!
@@ -16,11 +17,13 @@ pub mod atomic;
 pub mod bulk;
 pub mod envelope;
 pub mod error;
+pub mod frame;
 pub mod hash;
 pub mod stages;
 
 pub use envelope::{
-    Header, InputRef, Invalid, Payload, Provenance, read_artifact, read_header, write_artifact,
+    Header, InputRef, Invalid, Payload, Provenance, check_frame, read_artifact, read_header, write_artifact,
 };
 pub use error::Error;
+pub use frame::Frame;
 pub use stages::{Encoding, StageId, StageRow};

@@ -203,11 +203,19 @@ pub fn stage_key(
     producer: &str,
     schema: u32,
     params: &str,
+    frame: &crate::Frame,
     inputs: &[crate::InputRef],
 ) -> String {
     let schema = schema.to_le_bytes();
-    let mut parts: Vec<&[u8]> =
-        vec![b"karstgen-key-1", stage.name().as_bytes(), producer.as_bytes(), &schema, params.as_bytes()];
+    let frame = frame.key_text();
+    let mut parts: Vec<&[u8]> = vec![
+        b"karstgen-key-1",
+        stage.name().as_bytes(),
+        producer.as_bytes(),
+        &schema,
+        params.as_bytes(),
+        frame.as_bytes(),
+    ];
     for input in inputs {
         parts.push(input.name.as_bytes());
         parts.push(input.payload_blake3.as_bytes());
@@ -246,12 +254,15 @@ mod tests {
     #[test]
     fn key_depends_on_everything() {
         let input = |h: &str| InputRef { name: "samples".into(), payload_blake3: h.into() };
-        let base = stage_key(Costgraph, "p 1", 1, "params", &[input("a")]);
-        assert_ne!(base, stage_key(Costgraph, "p 2", 1, "params", &[input("a")]));
-        assert_ne!(base, stage_key(Costgraph, "p 1", 2, "params", &[input("a")]));
-        assert_ne!(base, stage_key(Costgraph, "p 1", 1, "other", &[input("a")]));
-        assert_ne!(base, stage_key(Costgraph, "p 1", 1, "params", &[input("b")]));
-        assert_ne!(base, stage_key(Skeleton, "p 1", 1, "params", &[input("a")]));
-        assert_eq!(base, stage_key(Costgraph, "p 1", 1, "params", &[input("a")]));
+        let local = crate::Frame::default();
+        let moved = crate::Frame { origin: [650000.0, 5100000.0, 0.0], crs: None };
+        let base = stage_key(Costgraph, "p 1", 1, "params", &local, &[input("a")]);
+        assert_ne!(base, stage_key(Costgraph, "p 2", 1, "params", &local, &[input("a")]));
+        assert_ne!(base, stage_key(Costgraph, "p 1", 2, "params", &local, &[input("a")]));
+        assert_ne!(base, stage_key(Costgraph, "p 1", 1, "other", &local, &[input("a")]));
+        assert_ne!(base, stage_key(Costgraph, "p 1", 1, "params", &moved, &[input("a")]));
+        assert_ne!(base, stage_key(Costgraph, "p 1", 1, "params", &local, &[input("b")]));
+        assert_ne!(base, stage_key(Skeleton, "p 1", 1, "params", &local, &[input("a")]));
+        assert_eq!(base, stage_key(Costgraph, "p 1", 1, "params", &local, &[input("a")]));
     }
 }

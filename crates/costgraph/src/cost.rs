@@ -138,9 +138,7 @@ impl CostModel {
                 CostModelKind::Paris2021 => forced_corridors(scene),
                 CostModelKind::Karstnsim2024 => Vec::new(),
             },
-            uniform_potential: scene.geology().layers.is_empty()
-                && scene.geology().grid.is_none()
-                && scene.geology().potential.is_empty(),
+            uniform_potential: scene.geology().uniform_potential(),
         }
     }
 

@@ -23,7 +23,7 @@ use crate::{csv, gltf, gocad, obj, ply, survex, swmm, vtk};
 pub const FOLDER: &str = "export";
 
 /// The upstream payloads an export may read; each format says which it needs.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 pub struct Inputs<'a> {
     pub skeleton: Option<&'a Skeleton>,
     pub hydro: Option<&'a Hydro>,
@@ -33,6 +33,8 @@ pub struct Inputs<'a> {
     pub samples: Option<&'a Samples>,
     /// The scene, for what the artifacts do not carry (the rock layer of each sample).
     pub scene: Option<&'a Scene>,
+    /// The local frame the artifacts are in (the origin exports add back, the CRS).
+    pub frame: &'a karst_artifact::Frame,
 }
 
 /// An upstream artifact a format reads.

@@ -1,8 +1,9 @@
 //! The coordinate frame of the exports. The artifacts hold local coordinates (metres, z up);
 //! world coordinates are local + origin. Every writer takes its coordinates from
 //! [`Frame::world`] (text formats, VTK) or writes local ones and records [`Frame::origin`]
-//! (binary single-precision formats: glTF, PLY), so that a georeferenced origin, when the
-//! artifacts carry one, is added here and nowhere else. Today the origin is (0, 0, 0).
+//! (glTF's single-precision buffers, under a root node translated by the origin), so that the
+//! origin the artifacts record (the domain's `min` corner of a georeferenced scene) is added
+//! here and nowhere else.
 
 use crate::Inputs;
 
@@ -13,9 +14,9 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// The frame of a run: the artifacts carry no origin yet, so local is world.
-    pub fn of(_inputs: &Inputs) -> Frame {
-        Frame { origin: [0.0; 3] }
+    /// The frame of a run: the origin its artifacts record.
+    pub fn of(inputs: &Inputs) -> Frame {
+        Frame { origin: inputs.frame.origin }
     }
 
     /// The world position of a local point.

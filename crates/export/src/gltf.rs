@@ -5,8 +5,11 @@
 //!
 //! glTF is Y-up, the scene Z-up: positions and normals are turned by −90° about x,
 //! (x, y, z) → (x, z, −y), a rotation, so winding and orientation are kept. Positions are
-//! single-precision local coordinates; the scene's `extras.origin` holds the world position of
-//! the local origin (z up), so that a georeferenced scene can be placed back. The file is
+//! single-precision local coordinates (sub-millimetre within a few kilometres of the origin);
+//! the four nodes are the children of a root node `karst` translated by the world position of
+//! the local origin (turned Y-up, written as JSON numbers, i.e. in f64), so that a viewer
+//! places the model at its world coordinates; the scene's `extras.origin` holds the same origin
+//! z up. The file is
 //! streamed: the JSON chunk is built from the counts, then every buffer goes straight from the
 //! artifacts to the file.
 
@@ -162,7 +165,11 @@ pub fn write(
         b.nodes.push(node);
     }
     network(&mut b, net);
-    let scene_nodes: Vec<usize> = (0..b.nodes.len()).collect();
+    let children: Vec<usize> = (0..b.nodes.len()).collect();
+    // + 0.0 turns the −0.0 of a zero origin's −y into 0.
+    let translation = [0, 2, 1].map(|a| if a == 1 { -frame.origin()[a] + 0.0 } else { frame.origin()[a] });
+    b.nodes.push(json!({ "name": "karst", "children": children, "translation": translation }));
+    let scene_nodes = [b.nodes.len() - 1];
     let mut document = json!({
         "asset": { "version": "2.0", "generator": concat!("karstgen ", env!("CARGO_PKG_VERSION")) },
         "scene": 0,

@@ -1,5 +1,6 @@
 //! Binary little-endian PLY (`terrain.ply`, `cave.ply`, `water.ply`; MeshLab, CloudCompare,
-//! Blender): float vertices with unit normals in local coordinates, the world origin in a
+//! Blender): double-precision world coordinates (local f32 vertex + f64 origin, exact to the
+//! micrometre at any projected coordinate) with float unit normals, the origin also in a
 //! `comment origin X Y Z` header line, faces as uchar-counted uint lists; streamed.
 
 use karst_geology::params::ExportFormat;
@@ -16,7 +17,7 @@ pub fn write(folder: &mut Folder, frame: &Frame, surfaces: &Surfaces) -> Result<
             write!(
                 w,
                 "ply\nformat binary_little_endian 1.0\ncomment karstgen {}, metres, z up\ncomment origin {x:?} {y:?} {z:?}\n\
-                 element vertex {}\nproperty float x\nproperty float y\nproperty float z\n\
+                 element vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
                  property float nx\nproperty float ny\nproperty float nz\n\
                  element face {}\nproperty list uchar uint vertex_indices\nend_header\n",
                 s.name,
@@ -24,7 +25,10 @@ pub fn write(folder: &mut Folder, frame: &Frame, surfaces: &Surfaces) -> Result<
                 s.surface.triangles.len()
             )?;
             for (p, n) in s.surface.vertices.iter().zip(&s.normals) {
-                for c in p.iter().chain(n) {
+                for c in frame.world_f32(*p) {
+                    w.write_all(&c.to_le_bytes())?;
+                }
+                for c in n {
                     w.write_all(&c.to_le_bytes())?;
                 }
             }

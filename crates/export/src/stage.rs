@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use karst_artifact::{Header, Payload, StageId, read_artifact};
+use karst_artifact::{Header, Payload, StageId, check_frame, read_artifact};
 use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_mesher::Mesh;
@@ -56,6 +56,7 @@ impl Stage for ExportStage {
         manifest: &mut Manifest,
     ) -> std::io::Result<()> {
         let (samples, skeleton, hydro, streams, mesh, metrics) = upstream;
+        let frame = scene.frame();
         let inputs = Inputs {
             skeleton: Some(skeleton),
             hydro: Some(hydro),
@@ -64,6 +65,7 @@ impl Stage for ExportStage {
             metrics: Some(metrics),
             samples: Some(samples),
             scene: Some(scene),
+            frame: &frame,
         };
         let previous = read_artifact::<Manifest>(&out.join(StageId::Export.file_name())).ok().map(|(_, m)| m);
         *manifest = export(&inputs, scene.export(), out).map_err(std::io::Error::other)?;
@@ -106,6 +108,8 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
         params.formats = args.format.iter().map(|f| parse_format(f)).collect::<Result<_, _>>()?;
     }
     let wanted = |input: Input| params.formats.iter().find(|f| needs(**f).contains(&input)).copied();
+    // Every artifact read must be in one frame: the scene's when one is known, else the first's.
+    let frame = std::cell::RefCell::new(scene.as_ref().map(Scene::frame));
     let read = |input: Input| -> Result<Option<Box<dyn std::any::Any>>, StageError> {
         let Some(format) = wanted(input) else { return Ok(None) };
         let path = args.dir.join(input.file_name());
@@ -117,18 +121,25 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
                 args.dir.display()
             )));
         }
-        Ok(Some(match input {
+        let (header, payload) = match input {
             Input::Skeleton => load::<Skeleton>(&path)?,
             Input::Hydro => load::<Hydro>(&path)?,
             Input::Streams => load::<Streams>(&path)?,
             Input::Mesh => load::<Mesh>(&path)?,
             Input::Metrics => load::<MetricsReport>(&path)?,
             Input::Samples => load::<Samples>(&path)?,
-        }))
+        };
+        let mut frame = frame.borrow_mut();
+        match frame.as_ref() {
+            Some(expected) => check_frame(&path, &header, expected)?,
+            None => *frame = Some(header.frame()),
+        }
+        Ok(Some(payload))
     };
     let (skeleton, hydro, streams) = (read(Input::Skeleton)?, read(Input::Hydro)?, read(Input::Streams)?);
     let mesh = read(Input::Mesh)?;
     let (metrics, samples) = (read(Input::Metrics)?, read(Input::Samples)?);
+    let frame = frame.into_inner().unwrap_or_default();
     let inputs = Inputs {
         skeleton: skeleton.as_deref().and_then(|a| a.downcast_ref()),
         hydro: hydro.as_deref().and_then(|a| a.downcast_ref()),
@@ -137,6 +148,7 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
         metrics: metrics.as_deref().and_then(|a| a.downcast_ref()),
         samples: samples.as_deref().and_then(|a| a.downcast_ref()),
         scene: scene.as_ref(),
+        frame: &frame,
     };
     // Every failure here is about the user's folder or files, an unwritable path included.
     let manifest = export(&inputs, &params, &args.dir).map_err(StageError::input)?;
@@ -163,6 +175,9 @@ fn parse_format(name: &str) -> Result<ExportFormat, StageError> {
     })
 }
 
-fn load<P: Payload + 'static>(path: &Path) -> Result<Box<dyn std::any::Any>, StageError> {
-    Ok(Box::new(read_artifact::<P>(path)?.1))
+type Loaded = (Header, Box<dyn std::any::Any>);
+
+fn load<P: Payload + 'static>(path: &Path) -> Result<Loaded, StageError> {
+    let (header, payload) = read_artifact::<P>(path)?;
+    Ok((header, Box::new(payload)))
 }

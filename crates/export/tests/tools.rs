@@ -325,7 +325,10 @@ fn gltf_validator_accepts_the_scene_with_named_nodes_and_typed_lines() {
     let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
     let names: Vec<&str> =
         doc["nodes"].as_array().unwrap().iter().map(|n| n["name"].as_str().unwrap()).collect();
-    assert_eq!(names, ["terrain", "cave", "water", "network"]);
+    assert_eq!(names, ["terrain", "cave", "water", "network", "karst"]);
+    assert_eq!(doc["scenes"][0]["nodes"], serde_json::json!([4]));
+    assert_eq!(doc["nodes"][4]["children"], serde_json::json!([0, 1, 2, 3]));
+    assert_eq!(doc["nodes"][4]["translation"], serde_json::json!([0.0, 0.0, 0.0]));
     assert_eq!(doc["scenes"][0]["extras"]["origin"], serde_json::json!([0.0, 0.0, 0.0]));
     let network = &doc["meshes"][doc["nodes"][3]["mesh"].as_u64().unwrap() as usize];
     let used: std::collections::BTreeSet<&str> =

@@ -145,6 +145,14 @@ impl HeightGrid {
         grid
     }
 
+    /// Moves the grid by `by` (x, y of its samples, their elevations by z), in place: a DEM is
+    /// never held twice.
+    pub fn translate(&mut self, by: [f64; 3]) {
+        self.origin = [self.origin[0] + by[0], self.origin[1] + by[1]];
+        self.heights.iter_mut().for_each(|h| *h += by[2]);
+        self.lipschitz = self.bilinear_lipschitz();
+    }
+
     fn at(&self, i: usize, j: usize) -> f64 {
         self.heights[j * self.nx as usize + i]
     }

@@ -9,14 +9,27 @@
 //! sections a stage reads ([`Scene::sections_hash`]) is part of its artifact's key.
 //!
 //! Conventions: metres, z up, right-handed; azimuths in degrees clockwise from north (+y).
+//! Once loaded, every coordinate is local: relative to the domain's `min` corner
+//! ([`Scene::origin`], see `localize.rs`), so that f32 geometry keeps its precision whatever the
+//! magnitude of the file's coordinates.
 
+pub mod crs;
+mod csv;
 pub mod domain;
 pub mod field;
 pub mod fracture;
+pub mod geokeys;
+pub mod geotiff;
+pub mod grids;
 pub mod heightfield;
 pub mod keypoint;
+mod links;
+pub mod lithology;
 mod load;
+mod localize;
+mod npy;
 pub mod params;
+pub mod point_table;
 pub mod rng;
 pub mod scene;
 pub mod sections;
@@ -25,6 +38,7 @@ pub mod surface;
 pub mod terrain;
 pub mod tin;
 mod validate;
+mod vti;
 
 pub use domain::Domain;
 pub use fracture::FractureFamily;

@@ -1,78 +1,206 @@
-//! Reading the data files a scene names (heightfield image, TIN surfaces, potential grid),
-//! relative to the scene file's folder. Each file's BLAKE3 goes into the scene's serialized
-//! form, so that editing a data file changes the hash of the sections that use it.
+//! Reading the data files a scene names (heightfield image or GeoTIFF, TIN or raster surfaces,
+//! potential grid), relative to the scene file's folder. Each file's BLAKE3 goes into the
+//! scene's serialized form, so that editing a data file changes the hash of the sections that
+//! use it. GeoTIFFs are cropped to the domain's footprint, and the CRS of every file that
+//! carries one is checked against the scene's `crs` ([`crate::crs`]).
 
 use std::path::Path;
 use std::sync::Arc;
 
+use crate::crs::{self, Epsg, FileCrs};
 use crate::field::ValueGrid;
+use crate::geotiff::{Footprint, GeoRaster};
+use crate::grids;
 use crate::heightfield::{Georeference, HeightGrid};
 use crate::spans::line_of_path;
 use crate::surface::Geometry;
 use crate::tin::Tin;
 use crate::validate::Problem;
-use crate::{Scene, Terrain};
+use crate::{Domain, Scene, Terrain};
 
 /// Reads every data file of `scene`; returns the problems (unreadable or invalid files).
 pub(crate) fn attach_files(scene: &mut Scene, folder: &Path, text: &str) -> Vec<Problem> {
-    let mut problems = Vec::new();
-    let mut report = |field: &str, message: String| {
-        problems.push(Problem { line: line_of_path(text, field), field: field.into(), message })
-    };
-    if let Terrain::Heightfield { file, origin, cell_size, vertical_scale, offset, nodata, content, grid } =
-        &mut scene.terrain
-    {
+    let mut loader =
+        Loader { folder, text, footprint: footprint(&scene.domain), problems: Vec::new(), crs: Vec::new() };
+    if let Terrain::Noise { anchor, .. } = &mut scene.terrain {
+        *anchor = [scene.domain.min[0], scene.domain.min[1]];
+    }
+    loader.terrain(&mut scene.terrain);
+    loader.surfaces(scene);
+    loader.potential_grid(scene);
+    loader.lithology(scene);
+    crate::point_table::attach(scene, &mut loader);
+    crate::links::resolve(scene, &mut |field, message| loader.report(field, message));
+    loader.check_crs(scene.crs.as_deref());
+    loader.problems
+}
+
+/// What has been read so far, and what went wrong.
+pub(crate) struct Loader<'a> {
+    pub(crate) folder: &'a Path,
+    text: &'a str,
+    /// The domain's xy rectangle, None when the domain itself is invalid (reported elsewhere).
+    pub(crate) footprint: Option<Footprint>,
+    problems: Vec<Problem>,
+    /// The CRS of each file that declares one.
+    crs: Vec<FileCrs>,
+}
+
+/// The domain's xy rectangle, when it is a usable box.
+fn footprint(domain: &Domain) -> Option<Footprint> {
+    let ok = (0..2)
+        .all(|a| domain.min[a].is_finite() && domain.max[a].is_finite() && domain.min[a] < domain.max[a]);
+    ok.then_some([[domain.min[0], domain.max[0]], [domain.min[1], domain.max[1]]])
+}
+
+impl Loader<'_> {
+    pub(crate) fn report(&mut self, field: &str, message: String) {
+        self.problems.push(Problem { line: line_of_path(self.text, field), field: field.into(), message });
+    }
+
+    /// Notes the CRS `file` (named by `field`) declares.
+    pub(crate) fn file_crs(&mut self, field: &str, file: &Path, crs: Option<Epsg>) {
+        if let Some(crs) = crs {
+            self.crs.push(FileCrs { field: field.into(), file: file.display().to_string(), crs });
+        }
+    }
+
+    /// A GeoTIFF cropped to the domain's footprint, its CRS noted; None (reported) when it
+    /// cannot be read or the domain is unusable.
+    pub(crate) fn geotiff(&mut self, field: &str, path: &Path, nodata: Option<f64>) -> Option<GeoRaster> {
+        let footprint = self.footprint?;
+        match GeoRaster::read(path, Some(footprint), nodata) {
+            Ok(raster) => {
+                self.file_crs(field, path, raster.crs);
+                Some(raster)
+            }
+            Err(e) => {
+                self.report(field, e.to_string());
+                None
+            }
+        }
+    }
+
+    fn terrain(&mut self, terrain: &mut Terrain) {
+        let Terrain::Heightfield { file, origin, cell_size, vertical_scale, offset, nodata, content, grid } =
+            terrain
+        else {
+            return;
+        };
+        let path = self.folder.join(&*file);
+        if grids::is_geotiff(file) {
+            for (field, given) in
+                [("terrain.origin", origin.is_some()), ("terrain.cell_size", cell_size.is_some())]
+            {
+                if given {
+                    self.report(field, format!("{file} is a GeoTIFF: it carries its own georeferencing"));
+                }
+            }
+            if let Some(raster) = self.geotiff("terrain.file", &path, *nodata) {
+                *content = hash_file(&path);
+                *grid = Arc::new(grids::height_grid(raster, *vertical_scale, *offset));
+            }
+            return;
+        }
+        let (Some(origin), Some(cell_size)) = (*origin, *cell_size) else {
+            self.report(
+                "terrain",
+                format!("{file} needs `origin` and `cell_size` (only GeoTIFFs carry them)"),
+            );
+            return;
+        };
         let geo = Georeference {
-            origin: *origin,
-            cell_size: *cell_size,
+            origin,
+            cell_size,
             vertical_scale: *vertical_scale,
             offset: *offset,
             nodata: *nodata,
         };
-        let usable = *cell_size > 0.0 && origin.iter().all(|v| v.is_finite()) && vertical_scale.is_finite();
-        let path = folder.join(&*file);
+        let usable = cell_size > 0.0 && origin.iter().all(|v| v.is_finite()) && vertical_scale.is_finite();
         if usable {
             match HeightGrid::read(&path, &geo) {
                 Ok(g) => {
                     *content = hash_file(&path);
                     *grid = Arc::new(g);
                 }
-                Err(e) => report("terrain.file", e.to_string()),
+                Err(e) => self.report("terrain.file", e.to_string()),
             }
         }
     }
-    let geology = &mut scene.geology;
-    for (list, surfaces) in [
-        ("water_tables", &mut geology.water_tables),
-        ("horizons", &mut geology.horizons),
-        ("faults", &mut geology.faults),
-    ] {
-        for (i, s) in surfaces.iter_mut().enumerate() {
-            if let Geometry::Tin { file, content, mesh } = &mut s.geometry {
-                let path = folder.join(&*file);
-                match Tin::read(&path) {
+
+    fn surfaces(&mut self, scene: &mut Scene) {
+        let geology = &mut scene.geology;
+        for (list, surfaces) in [
+            ("water_tables", &mut geology.water_tables),
+            ("horizons", &mut geology.horizons),
+            ("faults", &mut geology.faults),
+        ] {
+            for (i, s) in surfaces.iter_mut().enumerate() {
+                let Geometry::Tin { file, content, mesh } = &mut s.geometry else { continue };
+                let field = format!("geology.{list}[{i}].file");
+                let path = self.folder.join(&*file);
+                let tin = if grids::is_geotiff(file) {
+                    let Some(raster) = self.geotiff(&field, &path, None) else { continue };
+                    grids::tin(&raster, &path.display().to_string())
+                } else {
+                    Tin::read(&path)
+                };
+                match tin {
                     Ok(tin) => {
                         *content = hash_file(&path);
                         *mesh = Arc::new(tin);
                     }
-                    Err(e) => report(&format!("geology.{list}[{i}].file"), e.to_string()),
+                    Err(e) => self.report(&field, e.to_string()),
                 }
             }
         }
     }
-    if let Some(grid) = &mut geology.grid {
-        let path = folder.join(&grid.file);
+
+    fn potential_grid(&mut self, scene: &mut Scene) {
+        let Some(grid) = &mut scene.geology.grid else { return };
+        let path = self.folder.join(&grid.file);
         match ValueGrid::read(&path) {
             Ok(values) => {
                 grid.content = hash_file(&path);
                 grid.values = Arc::new(values);
             }
-            Err(e) => report("geology.grid.file", e),
+            Err(e) => self.report("geology.grid.file", e),
         }
     }
-    problems
+
+    fn lithology(&mut self, scene: &mut Scene) {
+        let Some(lithology) = &mut scene.geology.lithology else { return };
+        if self.footprint.is_none() {
+            return;
+        }
+        match lithology.load(self.folder, &scene.domain) {
+            Ok(grid) => {
+                lithology.content = hash_file(&self.folder.join(&lithology.file));
+                lithology.grid = Arc::new(grid);
+            }
+            Err(e) => self.report("geology.lithology.file", e),
+        }
+    }
+
+    /// The scene's `crs` against every file's.
+    fn check_crs(&mut self, declared: Option<&str>) {
+        let declared = match declared.map(Epsg::parse) {
+            Some(Ok(code)) => Some(code),
+            Some(Err(message)) => return self.report("crs", message),
+            None => None,
+        };
+        let files = std::mem::take(&mut self.crs);
+        for (field, message) in crs::disagreements(declared, &files) {
+            self.report(&field, message);
+        }
+    }
 }
 
-fn hash_file(path: &Path) -> String {
-    std::fs::read(path).map(|bytes| blake3::hash(&bytes).to_hex().to_string()).unwrap_or_default()
+/// BLAKE3 of a file's bytes, streamed (a DEM need not be held in memory twice).
+pub(crate) fn hash_file(path: &Path) -> String {
+    let mut hasher = blake3::Hasher::new();
+    match std::fs::File::open(path).and_then(|mut f| std::io::copy(&mut f, &mut hasher)) {
+        Ok(_) => hasher.finalize().to_hex().to_string(),
+        Err(_) => String::new(),
+    }
 }

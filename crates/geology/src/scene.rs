@@ -22,12 +22,19 @@ pub struct Scene {
     /// Seed of every random choice; same scene and seed give byte-identical artifacts.
     #[serde(default)]
     pub(crate) seed: u64,
+    /// The coordinate reference system, `"EPSG:NNNN"` (a projected CRS in metres); every data
+    /// file that carries a CRS must be in it. Absent: local coordinates.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) crs: Option<String>,
     pub(crate) domain: Domain,
     pub(crate) terrain: Terrain,
     #[serde(default)]
     pub(crate) geology: Geology,
     #[serde(default)]
     pub(crate) keypoints: Vec<KeyPoint>,
+    /// Tables of key points (CSV, GeoJSON), appended to `keypoints` when the scene is loaded.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub(crate) keypoints_from: Vec<crate::point_table::PointTable>,
     #[serde(default)]
     pub(crate) connectivity: Connectivity,
     /// Speleogenetic phases, oldest first (`[[phases]]`); none: one phase with every spring.
@@ -53,6 +60,10 @@ pub struct Scene {
     /// `[calibrate]`: the box `karstgen calibrate` searches; read by no stage.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub(crate) calibrate: Option<CalibrateParams>,
+    /// The world position of the local frame's origin (the domain's `min` as written in the
+    /// file); every coordinate above is relative to it once loaded ([`crate::localize`]).
+    #[serde(skip)]
+    pub(crate) origin: [f64; 3],
     /// Which sections were read, when auditing (see [`Scene::audited`]).
     #[serde(skip)]
     pub(crate) reads: Reads,
@@ -79,6 +90,9 @@ pub struct Geology {
     /// Background grid of potentials read from a file.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid: Option<GridSpec>,
+    /// A voxel model of lithology codes mapped to layers of rock.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lithology: Option<crate::lithology::Lithology>,
 }
 
 impl Geology {
@@ -91,15 +105,28 @@ impl Geology {
         (layer * field::tree_value(&self.potential, p, self) * grid).clamp(0.0, 1.0)
     }
 
-    /// The first layer (scene order) containing `p`.
+    /// The layer containing `p`: the lithology grid's unit there, else the first layer (scene
+    /// order) containing `p`.
     pub fn layer_at(&self, p: crate::Point) -> Option<&Layer> {
-        self.layers.iter().find(|l| l.contains(p, self))
+        let unit = self.lithology.as_ref().and_then(|l| l.grid.layer_at(p));
+        unit.or_else(|| self.layers.iter().find(|l| l.contains(p, self)))
     }
 
-    /// True when `p` lies in a no-karst volume.
+    /// True when `p` lies in a no-karst volume or a no-karst lithology unit.
     #[inline]
     pub fn in_no_karst(&self, p: crate::Point) -> bool {
         self.no_karst.iter().any(|v| v.shape().is_some_and(|s| s.signed_distance(p, self) <= 0.0))
+            || self.lithology.as_ref().is_some_and(|l| l.grid.no_karst_at(p).is_some())
+    }
+
+    /// The sampling radii the layers and lithology units set.
+    pub fn layer_radii(&self) -> impl Iterator<Item = f64> + '_ {
+        self.layers.iter().filter_map(|l| l.radius).chain(self.lithology.iter().flat_map(|l| l.radii()))
+    }
+
+    /// True when the potential is 1 everywhere (no layer, tree, grid or lithology).
+    pub fn uniform_potential(&self) -> bool {
+        self.layers.is_empty() && self.grid.is_none() && self.potential.is_empty() && self.lithology.is_none()
     }
 
     /// Inception surfaces: horizons and faults.
@@ -123,6 +150,10 @@ pub struct Connectivity {
     /// Absent: every entry is 2.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub matrix: Option<Vec<Vec<u8>>>,
+    /// The same by name: sink → spring → 0/1/2, unlisted pairs 2; turned into `matrix` when
+    /// the scene is loaded ([`crate::links`]).
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub named: std::collections::BTreeMap<String, std::collections::BTreeMap<String, u8>>,
 }
 
 /// One speleogenetic phase (`[[phases]]`, KarstNSim §2.6): the springs active during it (each
@@ -132,7 +163,9 @@ pub struct Connectivity {
 #[serde(deny_unknown_fields)]
 pub struct Phase {
     pub name: String,
-    /// Names of the springs that drain the network during the phase.
+    /// Names of the springs that drain the network during the phase (springs read from tables
+    /// join the phases their `phase` column names).
+    #[serde(default)]
     pub springs: Vec<String>,
     /// Factor in (0, 1] on the cost of the edges the earlier phases' conduits use (default 1).
     #[serde(default = "one")]
@@ -191,7 +224,11 @@ impl Scene {
         let folder = path.parent().unwrap_or(Path::new(""));
         let mut problems = crate::load::attach_files(&mut scene, folder, text);
         problems.extend(validate::check(&scene, text));
-        if problems.is_empty() { Ok(scene) } else { Err(invalid(problems)) }
+        if !problems.is_empty() {
+            return Err(invalid(problems));
+        }
+        crate::localize::localize(&mut scene);
+        Ok(scene)
     }
 
     /// The scene's name; `karstgen run` writes into `out/<name>` by default.
@@ -208,6 +245,32 @@ impl Scene {
     /// Sets the seed (an ensemble's realizations differ only by it).
     pub fn set_seed(&mut self, seed: u64) {
         self.seed = seed;
+    }
+
+    /// The coordinate reference system (`crs = "EPSG:2154"`), when the scene names one. Like
+    /// the name, it is the scene's identity, not an input of any stage's computation.
+    pub fn crs(&self) -> Option<&str> {
+        self.crs.as_deref()
+    }
+
+    /// The world coordinates of the local frame's origin: the domain's `min` as the scene file
+    /// gives it. Every coordinate the scene hands out is local (world − origin); artifacts
+    /// record the origin and exports add it back. Like the CRS, it is not an input of any
+    /// stage's computation: a scene moved by any offset gives the same payloads.
+    pub fn origin(&self) -> [f64; 3] {
+        self.origin
+    }
+
+    /// The local frame (origin and CRS) every artifact of this scene records.
+    pub fn frame(&self) -> karst_artifact::Frame {
+        karst_artifact::Frame { origin: self.origin, crs: self.crs.clone() }
+    }
+
+    /// `[[keypoints_from]]`: the tables key points were read from; their points are already
+    /// in [`Scene::keypoints`], so reading them is reading the key points.
+    pub fn keypoints_from(&self) -> &[crate::point_table::PointTable] {
+        self.reads.note(Section::Keypoints);
+        &self.keypoints_from
     }
 
     /// `skeleton.forced_links`, read on its own by the cost graph.

@@ -160,9 +160,10 @@ impl Surface {
         }
     }
 
-    /// Signed distance from the surface, positive on the side of the upward normal.
+    /// Signed distance from the surface, positive on the side of the upward normal; 0 within
+    /// [`ON_SURFACE`] of it.
     pub fn signed_distance(&self, p: Point) -> f64 {
-        match &self.geometry {
+        on_surface(match &self.geometry {
             Geometry::Plane { elevation, origin, .. } => {
                 self.normal().dot(p - Point::new(origin[0], origin[1], *elevation))
             }
@@ -171,7 +172,7 @@ impl Surface {
                 let d = q.distance(p);
                 if (p - q).dot(n) < 0.0 { -d } else { d }
             }
-        }
+        })
     }
 
     /// Euclidean distance from `p` to the surface.
@@ -210,11 +211,23 @@ impl Surface {
         }
     }
 
-    /// Signed vertical offset of `p` from the surface: positive above it (not for vertical
-    /// surfaces).
+    /// Signed vertical offset of `p` from the surface: positive above it, 0 within
+    /// [`ON_SURFACE`] of it (not for vertical surfaces).
     pub fn height_above(&self, p: Point) -> f64 {
-        p.z - self.elevation_at(p.x, p.y)
+        on_surface(p.z - self.elevation_at(p.x, p.y))
     }
+}
+
+/// Distance below which a point lies on a surface: a micrometre, far above the rounding of
+/// coordinates of any magnitude on Earth (about 1e-9 m at 1e7 m) and far below any geological
+/// distance. Samples placed on a water table carry rounding errors of either sign, larger where
+/// coordinates are large; without this tolerance that rounding, not the geometry, would put them
+/// in the vadose or the phreatic zone, and moving a scene to projected coordinates would change
+/// its network.
+pub const ON_SURFACE: f64 = 1e-6;
+
+fn on_surface(d: f64) -> f64 {
+    if d.abs() <= ON_SURFACE { 0.0 } else { d }
 }
 
 #[cfg(test)]

@@ -1,8 +1,8 @@
 //! The terrain: the ground surface z = h(x, y) that bounds the bedrock from above.
 //!
 //! Three kinds: a (tilted) plane, a heightfield read from a 16-bit grayscale PNG or an OpenEXR
-//! image with its
-//! georeferencing ([`crate::heightfield`]), and analytic value noise (rolling karst plateau).
+//! image with its georeferencing ([`crate::heightfield`]) or from a GeoTIFF ([`crate::grids`]),
+//! and analytic value noise (rolling karst plateau).
 //! The SDF stage needs h's Lipschitz bound λ (its steepest slope) to build the 1-Lipschitz
 //! terrain distance (z − h)/√(1 + λ²) of Paris et al. 2021, appendix A.
 
@@ -30,20 +30,23 @@ pub enum Terrain {
     },
     /// A heightfield image: elevation = offset + vertical_scale · pixel value.
     Heightfield {
-        /// 16-bit (or 8-bit) grayscale PNG, or OpenEXR (`.exr`), relative to the scene file's
-        /// folder.
+        /// 16-bit (or 8-bit) grayscale PNG, OpenEXR (`.exr`) or GeoTIFF (`.tif`, `.tiff`),
+        /// relative to the scene file's folder.
         file: String,
-        /// `[x, y]` of the south-west pixel (bottom-left of the image).
-        origin: [f64; 2],
-        /// Ground distance between pixels, metres.
-        cell_size: f64,
+        /// `[x, y]` of the south-west pixel (bottom-left of the image); PNG and EXR only (a
+        /// GeoTIFF carries its georeferencing).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        origin: Option<[f64; 2]>,
+        /// Ground distance between pixels, metres; PNG and EXR only.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        cell_size: Option<f64>,
         /// Metres per pixel unit; default 1.
         #[serde(default = "one")]
         vertical_scale: f64,
         /// Elevation of pixel value 0; default 0.
         #[serde(default)]
         offset: f64,
-        /// Pixel value meaning "no data"; default none.
+        /// Pixel value meaning "no data"; default none (a GeoTIFF's GDAL_NODATA).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         nodata: Option<f64>,
         /// BLAKE3 of the file's bytes, filled when the scene is loaded (so that editing the
@@ -55,7 +58,9 @@ pub enum Terrain {
         grid: Arc<HeightGrid>,
     },
     /// Value noise: elevation + Σ_o amplitude·2^−o · n(2^o·(x, y)/wavelength), n a smooth
-    /// (cubic Hermite) interpolation of pseudo-random lattice values in [−1, 1].
+    /// (cubic Hermite) interpolation of pseudo-random lattice values in [−1, 1], x and y
+    /// measured from the domain's south-west corner (so that a moved scene carries its terrain
+    /// with it).
     Noise {
         /// Mean elevation, metres.
         elevation: f64,
@@ -69,6 +74,10 @@ pub enum Terrain {
         /// Slope added to the noise, as for a plane; default flat.
         #[serde(default)]
         gradient: [f64; 2],
+        /// Where x and y are measured from: the domain's `[min x, min y]`, set when the scene
+        /// is loaded ([0, 0] once it is localized).
+        #[serde(skip)]
+        anchor: [f64; 2],
     },
 }
 
@@ -89,7 +98,8 @@ impl Terrain {
                 elevation + gradient[0] * (x - origin[0]) + gradient[1] * (y - origin[1])
             }
             Terrain::Heightfield { grid, .. } => grid.height(x, y),
-            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient } => {
+            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient, anchor } => {
+                let (x, y) = (x - anchor[0], y - anchor[1]);
                 elevation
                     + gradient[0] * x
                     + gradient[1] * y
@@ -167,6 +177,7 @@ mod tests {
             wavelength: 100.0,
             octaves: 3,
             gradient: [0.01, 0.0],
+            anchor: [0.0; 2],
         };
         let lambda = t.lipschitz();
         let mut steepest = 0.0f64;

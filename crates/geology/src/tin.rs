@@ -93,6 +93,16 @@ impl Tin {
         Ok(tin)
     }
 
+    /// Moves the triangles by `by` (their search structure rebuilt where they now are).
+    pub fn translate(&mut self, by: [f64; 3]) {
+        for v in &mut self.vertices {
+            for (c, d) in v.iter_mut().zip(by) {
+                *c += d;
+            }
+        }
+        self.buckets = self.bucket_grid();
+    }
+
     fn corners(&self, t: usize) -> [DVec3; 3] {
         self.triangles[t].map(|v| DVec3::from_array(self.vertices[v as usize]))
     }

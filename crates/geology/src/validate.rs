@@ -34,6 +34,16 @@ impl fmt::Display for Problem {
     }
 }
 
+/// "NaN is not a finite number" for the first value that is not finite.
+fn not_finite(values: &[f64]) -> Option<String> {
+    values.iter().find(|v| !v.is_finite()).map(|v| format!("{v} is not a finite number"))
+}
+
+/// Why `value` is not a finite number ≥ 0, if it is not.
+fn negative(value: f64) -> Option<String> {
+    not_finite(&[value]).or_else(|| (value < 0.0).then(|| format!("must be ≥ 0, got {value}")))
+}
+
 /// Turns a TOML parse or type error into a problem with its line and field.
 pub(crate) fn from_toml(text: &str, error: &toml::de::Error) -> Problem {
     let span = error.span();
@@ -54,6 +64,9 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     found.layers(scene);
     found.field_nodes(scene, "geology.potential", &scene.geology.potential, false);
     found.field_nodes(scene, "geology.no_karst", &scene.geology.no_karst, true);
+    if let Some(lithology) = &scene.geology.lithology {
+        lithology.check(&mut found);
+    }
     found.keypoints(scene);
     found.connectivity(scene);
     found.forced_links(scene);
@@ -85,11 +98,13 @@ impl Checks<'_> {
     }
 
     pub(crate) fn finite(&mut self, field: &str, values: &[f64]) -> bool {
-        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-            self.report(field, format!("{v} is not a finite number"));
-            return false;
+        match not_finite(values) {
+            Some(message) => {
+                self.report(field, message);
+                false
+            }
+            None => true,
         }
-        true
     }
 
     pub(crate) fn positive(&mut self, field: &str, value: f64) {
@@ -99,8 +114,8 @@ impl Checks<'_> {
     }
 
     pub(crate) fn non_negative(&mut self, field: &str, value: f64) {
-        if self.finite(field, &[value]) && value < 0.0 {
-            self.report(field, format!("must be ≥ 0, got {value}"));
+        if let Some(message) = negative(value) {
+            self.report(field, message);
         }
     }
 
@@ -158,11 +173,13 @@ impl Checks<'_> {
                     & self.finite("terrain.gradient", gradient)
             }
             Terrain::Heightfield { origin, cell_size, vertical_scale, offset, grid, .. } => {
-                let ok = self.finite("terrain.origin", origin)
+                let ok = origin.is_none_or(|o| self.finite("terrain.origin", &o))
                     & self.finite("terrain.vertical_scale", &[*vertical_scale])
                     & self.finite("terrain.offset", &[*offset]);
-                self.positive("terrain.cell_size", *cell_size);
-                ok && *cell_size > 0.0 && grid.nx > 0 && self.heightfield_covers(scene, grid)
+                if let Some(c) = cell_size {
+                    self.positive("terrain.cell_size", *c);
+                }
+                ok && cell_size.is_none_or(|c| c > 0.0) && grid.nx > 0 && self.heightfield_covers(scene, grid)
             }
             Terrain::Noise { elevation, amplitude, wavelength, gradient, .. } => {
                 let ok = self.finite("terrain.elevation", &[*elevation])
@@ -339,26 +356,42 @@ impl Checks<'_> {
         }
     }
 
+    /// Reports `message` about field `f` of key point `i`: at `keypoints[i].f`, or, for a point
+    /// read from a table, at the table's `keypoints_from[t].file` with the file's row and column.
+    fn keypoint(&mut self, scene: &Scene, i: usize, f: &str, message: String) {
+        match crate::point_table::source_of(scene, i) {
+            None => self.report(&format!("keypoints[{i}].{f}"), message),
+            Some((t, row)) => {
+                let column = if f == "position" { "x, y, z" } else { f };
+                self.report(&format!("keypoints_from[{t}].file"), format!("{row}: {column}: {message}"))
+            }
+        }
+    }
+
     fn keypoints(&mut self, scene: &Scene) {
         for (i, k) in scene.keypoints.iter().enumerate() {
-            let at = |f: &str| format!("keypoints[{i}].{f}");
             if scene.keypoints[..i].iter().any(|o| o.name == k.name) {
-                self.report(&at("name"), format!("\"{}\" is used twice", k.name));
+                self.keypoint(scene, i, "name", format!("\"{}\" is used twice", k.name));
             }
-            self.non_negative(&at("weight"), k.weight);
-            if self.finite(&at("position"), &k.position) {
-                self.keypoint_position(scene, i);
+            if let Some(message) = negative(k.weight) {
+                self.keypoint(scene, i, "weight", message);
+            }
+            match not_finite(&k.position) {
+                Some(message) => self.keypoint(scene, i, "position", message),
+                None => self.keypoint_position(scene, i),
             }
             match (&k.kind, &k.water_table) {
                 (KeyPointKind::Spring, None) => {
-                    self.report(&at("water_table"), format!("spring \"{}\" names no water table", k.name))
+                    self.keypoint(scene, i, "water_table", format!("spring \"{}\" names no water table", k.name))
                 }
-                (KeyPointKind::Spring, Some(w)) if scene.water_table(w).is_none() => self.report(
-                    &at("water_table"),
+                (KeyPointKind::Spring, Some(w)) if scene.water_table(w).is_none() => self.keypoint(
+                    scene,
+                    i,
+                    "water_table",
                     format!("spring \"{}\" names water table \"{w}\", which [geology.water_tables] does not define", k.name),
                 ),
                 (KeyPointKind::Sink | KeyPointKind::Waypoint | KeyPointKind::DeadEnd, Some(_)) => {
-                    self.report(&at("water_table"), "only springs have a water table".into())
+                    self.keypoint(scene, i, "water_table", "only springs have a water table".into())
                 }
                 _ => {}
             }
@@ -372,10 +405,14 @@ impl Checks<'_> {
 
     fn keypoint_position(&mut self, scene: &Scene, i: usize) {
         let k = &scene.keypoints[i];
-        let field = format!("keypoints[{i}].position");
         let [x, y, z] = k.position;
         if !scene.domain.contains(k.point()) {
-            self.report(&field, format!("\"{}\" at [{x}, {y}, {z}] is outside the domain", k.name));
+            self.keypoint(
+                scene,
+                i,
+                "position",
+                format!("\"{}\" at [{x}, {y}, {z}] is outside the domain", k.name),
+            );
             return;
         }
         if let Some(v) = scene
@@ -384,17 +421,19 @@ impl Checks<'_> {
             .iter()
             .find(|v| v.shape().is_some_and(|s| s.signed_distance(k.point(), &scene.geology) <= 0.0))
         {
-            self.report(
-                &field,
-                format!("\"{}\" at [{x}, {y}, {z}] is inside no-karst volume \"{}\"", k.name, v.name),
-            );
+            let message =
+                format!("\"{}\" at [{x}, {y}, {z}] is inside no-karst volume \"{}\"", k.name, v.name);
+            self.keypoint(scene, i, "position", message);
+        }
+        if let Some(unit) = scene.geology.lithology.as_ref().and_then(|l| l.grid.no_karst_at(k.point())) {
+            let message =
+                format!("\"{}\" at [{x}, {y}, {z}] is in no-karst lithology unit \"{unit}\"", k.name);
+            self.keypoint(scene, i, "position", message);
         }
         let ground = scene.terrain.height(x, y);
         if z > ground {
-            self.report(
-                &field,
-                format!("\"{}\" at z = {z} is above the terrain (ground at {ground:.3})", k.name),
-            );
+            let message = format!("\"{}\" at z = {z} is above the terrain (ground at {ground:.3})", k.name);
+            self.keypoint(scene, i, "position", message);
         }
     }
 

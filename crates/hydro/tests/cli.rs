@@ -41,7 +41,12 @@ fn bad_skeletons_exit_2_naming_the_file_and_the_sink() {
     let scene = tiny_skeleton(&out);
     let path = out.join("skeleton.json");
     let (_, good) = read_artifact::<Skeleton>(&path).unwrap();
-    let provenance = Provenance { producer: "test".into(), inputs: vec![], params: "test".into() };
+    let provenance = Provenance {
+        producer: "test".into(),
+        inputs: vec![],
+        params: "test".into(),
+        frame: Default::default(),
+    };
     let run = |skeleton: &Skeleton| {
         write_artifact(&path, &provenance, skeleton).unwrap();
         let result = hydro(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);

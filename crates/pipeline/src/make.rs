@@ -115,7 +115,8 @@ pub fn expected_key(job: &Job, stage: StageId) -> Option<String> {
         })
         .collect::<Option<Vec<_>>>()?;
     let params = job.scene.sections_hash(stage.row().sections);
-    Some(stage_key(stage, &producer(stage), registry::stage(stage).schema(), &params, &inputs))
+    let frame = job.scene.frame();
+    Some(stage_key(stage, &producer(stage), registry::stage(stage).schema(), &params, &frame, &inputs))
 }
 
 /// True when `stage`'s artifact exists and its key is the one it would write now.

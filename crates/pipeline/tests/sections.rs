@@ -15,12 +15,14 @@ use karst_testkit::{fixture, scratch};
 
 /// The scenes audited (a scene file, TOML appended to it) and the stages run on each: together
 /// they take every branch that reads a section (KarstNSim and Paris costs, phases, horizons, a
-/// heightfield terrain, catchment recharge).
+/// heightfield terrain, catchment recharge, GeoTIFF rasters, a lithology grid and a key-point
+/// table).
 const CASES: &[(&str, &str, &[StageId])] = &[
     ("fixtures/scenes/tiny.toml", "", &StageId::ALL),
     ("fixtures/scenes/default.toml", "", &StageId::ALL),
     ("fixtures/scenes/looping.toml", "", &[StageId::Sampling, StageId::Costgraph]),
     ("fixtures/scenes/karstnsim-2phase.toml", "", UP_TO_HYDRO),
+    ("fixtures/scenes/geotiff.toml", "", UP_TO_HYDRO),
     ("fixtures/scenes/tiny.toml", "[hydro]\nrecharge = \"catchment\"\n", UP_TO_HYDRO),
 ];
 

@@ -52,8 +52,7 @@ impl SpacingField {
         let radius = s.radius * scale;
         let surface_radius = s.surface_radius.map_or(radius, |r| r * scale);
         let surface_distance = s.surface_distance.map_or(2.0 * radius, |d| d * scale);
-        let layer_min =
-            scene.geology().layers.iter().filter_map(|l| l.radius).fold(f64::INFINITY, f64::min) * scale;
+        let layer_min = scene.geology().layer_radii().fold(f64::INFINITY, f64::min) * scale;
         let smallest = radius.min(surface_radius).min(layer_min).min(radius * s.potential_factor);
         let size = scene.domain().size();
         let volume = size.element_product();

@@ -49,6 +49,8 @@ impl Stage for SamplingStage {
             ),
         ];
         if let Some((lo, hi)) = bounds(&samples.positions) {
+            // World coordinates: the local bounds plus the frame's origin.
+            let (lo, hi) = (header.frame().world(lo), header.frame().world(hi));
             lines.push(format!(
                 "bounds      [{:.2}, {:.2}, {:.2}] – [{:.2}, {:.2}, {:.2}]",
                 lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]

@@ -30,13 +30,16 @@ impl TerrainField {
                 TerrainField::Plane { elevation: *elevation, origin: *origin, gradient: *gradient }
             }
             Terrain::Heightfield { grid, .. } => TerrainField::Grid(HeightGrid::clone(grid)),
-            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient } => TerrainField::Noise {
-                elevation: *elevation,
-                amplitude: *amplitude,
-                wavelength: *wavelength,
-                octaves: *octaves,
-                gradient: *gradient,
-            },
+            // A loaded scene is local: its noise is anchored at [0, 0].
+            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient, .. } => {
+                TerrainField::Noise {
+                    elevation: *elevation,
+                    amplitude: *amplitude,
+                    wavelength: *wavelength,
+                    octaves: *octaves,
+                    gradient: *gradient,
+                }
+            }
         }
     }
 
@@ -48,7 +51,7 @@ impl TerrainField {
                 Some(Terrain::Plane { elevation, origin, gradient })
             }
             TerrainField::Noise { elevation, amplitude, wavelength, octaves, gradient } => {
-                Some(Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient })
+                Some(Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient, anchor: [0.0; 2] })
             }
             TerrainField::Grid(_) => None,
         }
@@ -99,6 +102,7 @@ mod tests {
             wavelength: 30.0,
             octaves: 2,
             gradient: [0.1, 0.0],
+            anchor: [0.0; 2],
         };
         let field = TerrainField::of(&noise);
         assert_eq!(field.height(7.0, -3.0), noise.height(7.0, -3.0));

@@ -172,6 +172,7 @@ preset_tests! {
     karstnsim_tree_is_one_lipschitz: "karstnsim", 5000, 200;
     karstnsim_2phase_tree_is_one_lipschitz: "karstnsim-2phase", 5000, 200;
     layered_tree_is_one_lipschitz: "layered", 5000, 200;
+    geotiff_tree_is_one_lipschitz: "geotiff", 5000, 200;
 }
 
 /// The waterfall preset with its streams carved in: riverbeds, an alcove behind each fall and
@@ -251,6 +252,7 @@ fn every_preset_is_tested() {
         "karstnsim-2phase",
         "layered",
         "waterfall",
+        "geotiff",
     ];
     for entry in std::fs::read_dir(root().join("fixtures/scenes")).unwrap() {
         let path = entry.unwrap().path();

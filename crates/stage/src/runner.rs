@@ -44,7 +44,8 @@ pub struct Ran {
 pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     debug_assert_eq!(S::Inputs::stages(), S::ID.inputs(), "{}: inputs differ from its row", S::ID.name());
     let mut refs = Vec::new();
-    let inputs = S::Inputs::read(job.out, &mut refs)?;
+    let frame = job.scene.frame();
+    let inputs = S::Inputs::read(job.out, &frame, &mut refs)?;
     let start = Instant::now();
     let mut output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
     S::side_files(job.out, job.scene, &inputs, &mut output).map_err(|e| {
@@ -68,6 +69,7 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
         producer: producer(S::ID),
         inputs: refs,
         params: job.scene.sections_hash(S::ID.row().sections),
+        frame,
     };
     write_artifact(&job.artifact(S::ID), &provenance, &output)?;
     Ok(Ran { headline: S::headline(job.scene, &output), seconds, notes: S::notes(&output) })
@@ -97,6 +99,14 @@ pub fn inspect<S: Stage>(path: &Path) -> Result<Vec<String>, StageError> {
         header.schema,
         header.producer
     )];
+    // The frame, when the coordinates are not world coordinates already.
+    if header.origin != [0.0; 3] || header.crs.is_some() {
+        lines.push(format!(
+            "  local frame: world = local + {:?} ({})",
+            header.origin,
+            header.crs.as_deref().unwrap_or("no CRS")
+        ));
+    }
     lines.extend(S::summary(&header, &output).into_iter().map(|l| format!("  {l}")));
     Ok(lines)
 }

@@ -22,7 +22,8 @@ pub fn time_exports(dir: &Path, runs: usize) -> Result<Vec<ExportTime>, StageErr
     let streams = read_artifact(&dir.join("streams.json"))?.1;
     let mesh = read_artifact(&dir.join("mesh.bin"))?.1;
     let metrics = read_artifact(&dir.join("metrics.json"))?.1;
-    let samples = read_artifact(&dir.join("samples.bin"))?.1;
+    let (header, samples) = read_artifact(&dir.join("samples.bin"))?;
+    let frame = header.frame();
     let inputs = Inputs {
         skeleton: Some(&skeleton),
         hydro: Some(&hydro),
@@ -31,6 +32,7 @@ pub fn time_exports(dir: &Path, runs: usize) -> Result<Vec<ExportTime>, StageErr
         metrics: Some(&metrics),
         samples: Some(&samples),
         scene: None,
+        frame: &frame,
     };
     let scratch = std::env::temp_dir().join(format!("karstgen-bench-export-{}", std::process::id()));
     let mut cases = vec![("default".to_string(), ExportParams::default().formats)];

@@ -10,6 +10,7 @@ use karst_stage::StageError;
 mod calibrate;
 mod costgraph;
 mod export;
+mod geotiff;
 mod mesher;
 mod metrics;
 mod pipeline;
@@ -48,6 +49,7 @@ pub struct Only {
     pub sdf: bool,
     pub mesher: bool,
     pub streams: bool,
+    pub geotiff: bool,
     /// The export formats on the finished run in this folder.
     pub export: Option<PathBuf>,
     /// The calibration budget (default scene to the Sakany cave).
@@ -61,6 +63,7 @@ pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
         sdf: sdf_only,
         mesher: mesher_only,
         streams: streams_only,
+        geotiff: geotiff_only,
         export,
         calibrate,
     } = only;
@@ -74,6 +77,9 @@ pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
     }
     if streams_only {
         return streams_bench(runs);
+    }
+    if geotiff_only {
+        return geotiff_bench(runs);
     }
     if mesher_only {
         mesher_bench(runs);
@@ -121,7 +127,24 @@ pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
 
     sdf_bench(runs)?;
     streams_bench(runs)?;
-    mesher_and_network_bench(runs)
+    mesher_and_network_bench(runs)?;
+    geotiff_bench(runs)
+}
+
+/// The GeoTIFF terrain budget: loading a scene over a large raster.
+fn geotiff_bench(runs: usize) -> Result<(), StageError> {
+    let t = geotiff::time_geotiff_terrain(runs)?;
+    let mb = |b: u64| format!("{:.0}", b as f64 / 1e6);
+    let side = geotiff::SIDE;
+    println!("\nGeoTIFF terrain: {side} × {side} float32 LZW ({} MB file), Scene::load", mb(t.file_bytes));
+    println!(
+        "{:.3} s, CPU {} s, peak memory {} MB above the process's (the raster's own float32 size: {} MB)",
+        t.seconds,
+        t.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}")),
+        t.peak_above.map_or("-".into(), mb),
+        mb(side as u64 * side as u64 * 4)
+    );
+    Ok(())
 }
 
 /// The streams budgets: the surface network per scene, the default pipeline's overhead, the

@@ -71,7 +71,12 @@ fn sdf_tree(
     let field = model.expect("at least one run");
     let dir = scratch_dir(Path::new(&format!("sdf-{}", scene.name())));
     std::fs::create_dir_all(&dir).map_err(|e| StageError::failure(format!("{}: {e}", dir.display())))?;
-    let provenance = Provenance { producer: "bench".into(), inputs: vec![], params: "bench".into() };
+    let provenance = Provenance {
+        producer: "bench".into(),
+        inputs: vec![],
+        params: "bench".into(),
+        frame: Default::default(),
+    };
     let header = karst_artifact::write_artifact(&dir.join("sdf.bin"), &provenance, field.model())?;
     let _ = std::fs::remove_dir_all(&dir);
 

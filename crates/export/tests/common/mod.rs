@@ -64,6 +64,8 @@ pub struct Run {
     pub metrics: MetricsReport,
     pub samples: Samples,
     pub mesh: Option<Mesh>,
+    /// The frame the artifacts record.
+    pub frame: karst_artifact::Frame,
 }
 
 impl Run {
@@ -76,6 +78,7 @@ impl Run {
             metrics: read(dir, "metrics.json"),
             samples: read(dir, "samples.bin"),
             mesh: mesh_path.exists().then(|| read(dir, "mesh.bin")),
+            frame: karst_artifact::read_header(&dir.join("samples.bin")).unwrap().frame(),
         }
     }
 
@@ -88,6 +91,7 @@ impl Run {
             metrics: Some(&self.metrics),
             samples: Some(&self.samples),
             scene: None,
+            frame: &self.frame,
         }
     }
 }

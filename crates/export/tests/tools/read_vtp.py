@@ -2,7 +2,7 @@
 points, lines and polygons, every point- and cell-data array (values, unless --counts), the
 field data, and everything VTK wrote to its output window (errors and warnings).
 
-Usage: read_vtp.py FILE.vtp [--counts]
+Usage: read_vtp.py FILE.vtp [--counts] [--points]  (--points: every point too, as points_all)
 """
 import json
 import sys
@@ -39,6 +39,7 @@ print(json.dumps({
     "polys": int(data.GetNumberOfPolys()),
     "point_type": data.GetPoints().GetData().GetDataTypeAsString() if data.GetPoints() else None,
     "first_points": points[:3].tolist() if points is not None else [],
+    "points_all": points.tolist() if points is not None and "--points" in sys.argv else [],
     "point_data": arrays(data.GetPointData()),
     "cell_data": arrays(data.GetCellData()),
     "field_data": arrays(data.GetFieldData()),
