@@ -5,7 +5,7 @@
 //!
 //! - `index.html`, the app's ES modules (`js/`) and stylesheet, and the vendored three.js
 //!   (`vendor/three/`, with its licence), all embedded in this crate ([`app`]);
-//! - `data/run.json`: the network, the water, the routes, the key points, the water tables and
+//! - `data/run.json`: the network, the water, the surface streams, the routes, the key points, the water tables and
 //!   horizons, the metrics, what is missing from the run, and the manifest of the meshes
 //!   ([`data`]);
 //! - `data/<surface>/cNNN-lK.glb`: the carved terrain, the cave and the water, split into
