@@ -3,6 +3,9 @@
 //! lower than the last (where the ground does not drop that much the stream cuts into it:
 //! the riverbed carving of §6 digs that channel).
 //!
+//! Each step is subdivided where its midpoint lies off the terrain (§5.1, Fig. 7): the midpoint
+//! moves onto the ground within the minimum slope to both ends, and the halves are refined again.
+//!
 //! Before each step the water's own parabola is compared with the ground: water moving at
 //! speed δ = k·s (§5.2.2) along the slope it has follows z(s) = z − tan θ·s − g s²/(2 v_h²)
 //! once it leaves the ground. Where the ground ahead lies below that parabola (a lip), the
@@ -15,6 +18,11 @@
 //! larger than `lake_area` (reported); a hollow too shallow to hold water is crossed along
 //! the flood's route. A trajectory ends at the footprint's edge (a well), or where it meets
 //! an older trajectory or pool lower than itself (a confluence).
+//!
+//! No step climbs (Fig. 5): water that meets a pool or a hollow whose surface lies above it
+//! has run under that surface, so the steps since it crossed the surface are dropped and it
+//! enters there; water turning back under the surface of the hollow it has just left follows
+//! the filled ground's way out instead ([`crate::flood`]).
 
 use glam::{DVec2, DVec3};
 
@@ -36,6 +44,11 @@ const MAX_CUT_STEPS: f64 = 1.0;
 
 /// Ground steeper than this (rise over run) holds no pool: falling water meeting it runs on.
 const STEEPEST_POOL: f64 = 1.0;
+
+/// A step is subdivided where its midpoint lies farther than this off the terrain, metres
+/// (§5.1), at most `REFINE_DEPTH` times (a step of 2 m into pieces of 25 cm).
+const REFINE_TOLERANCE: f64 = 0.1;
+const REFINE_DEPTH: u32 = 3;
 
 /// How water moves when it leaves a point: horizontal direction and speed, vertical speed.
 #[derive(Debug, Clone, Copy)]
@@ -168,14 +181,49 @@ impl<'a> Tracer<'a> {
             self.net.add_edge(from, joined, Motion::Contact, None, None);
             return Next::Stop;
         }
-        let next = self.net.add_node(point, if leaving { Role::Well } else { Role::Branch });
-        self.net.add_edge(at, next, Motion::Contact, None, None);
-        self.trail.push(next);
+        let next = self.contact_step(at, point, if leaving { Role::Well } else { Role::Branch });
         if leaving {
             return Next::Stop;
         }
         let slope = ((p.z - z) / run).atan();
         Next::Go(next, Some(self.running(slope, direction)))
+    }
+
+    /// The contact step from node `at` to a new node at `point` (role `role`), subdivided where
+    /// it leaves the terrain; returns the new node.
+    fn contact_step(&mut self, at: u32, point: DVec3, role: Role) -> u32 {
+        let mut inner = Vec::new();
+        self.refine(self.net.positions[at as usize], point, REFINE_DEPTH, &mut inner);
+        let roles = std::iter::repeat_n(Role::Branch, inner.len()).chain([role]);
+        let mut last = at;
+        for (p, role) in inner.into_iter().chain([point]).zip(roles) {
+            let node = self.net.add_node(p, role);
+            self.net.add_edge(last, node, Motion::Contact, None, None);
+            self.trail.push(node);
+            last = node;
+        }
+        last
+    }
+
+    /// The points between `a` and `b`, in order, that keep the water on the terrain (§5.1's
+    /// subdivision, Fig. 7, along the step): where the piece's midpoint lies more than
+    /// `REFINE_TOLERANCE` off the ground (over a convex lip it cuts the rock, over a notch it
+    /// bridges it), the midpoint moves onto the ground, as deep under it as the piece's ends
+    /// are on average, within the minimum slope to both ends; both halves are refined again.
+    fn refine(&self, a: DVec3, b: DVec3, depth: u32, out: &mut Vec<DVec3>) {
+        let m = 0.5 * (a.truncate() + b.truncate());
+        let half = a.truncate().distance(m);
+        let cut = |p: DVec3| self.ground.height(p.truncate()) - p.z;
+        let slope = self.params.min_slope;
+        let onto = self.ground.height(m) - 0.5 * (cut(a) + cut(b));
+        let z = onto.max(b.z + slope * half).min(a.z - slope * half);
+        if depth == 0 || (z - 0.5 * (a.z + b.z)).abs() <= REFINE_TOLERANCE {
+            return;
+        }
+        let mid = m.extend(z);
+        self.refine(a, mid, depth - 1, out);
+        out.push(mid);
+        self.refine(mid, b, depth - 1, out);
     }
 
     /// Water running down `slope` radians along `direction` at δ = k·s.

@@ -5,6 +5,8 @@
 //! every preset's terrain with extra springs spread over it, and on a hand-built terrain with a
 //! flat and a pit.
 
+use std::path::Path;
+
 use glam::DVec3;
 use karst_geology::heightfield::{HeightGrid, write_png};
 use karst_geology::{KeyPoint, KeyPointKind, Scene};
@@ -109,6 +111,39 @@ impl Lcg {
     }
 }
 
+/// A scene in `dir` over the heightfield `height` sampled every `cell` metres on [0, size],
+/// with the placeholder spring and `rest` appended.
+fn heightfield_scene(
+    dir: &Path,
+    cell: f64,
+    size: [f64; 2],
+    height: impl Fn(f64, f64) -> f64,
+    rest: &str,
+) -> Scene {
+    let [nx, ny] = size.map(|s| (s / cell).round() as usize + 1);
+    let heights = (0..ny)
+        .flat_map(|j| (0..nx).map(move |i| (i, j)))
+        .map(|(i, j)| height(cell * i as f64, cell * j as f64));
+    write_png(
+        &dir.join("terrain.png"),
+        &HeightGrid::new([0.0, 0.0], cell, nx as u32, ny as u32, heights.collect()),
+        0.0,
+        0.01,
+    )
+    .unwrap();
+    let text = format!(
+        "name = \"hand-built\"\nseed = 1\n[domain]\nmin = [0, 0, -200]\nmax = [{}, {}, 120]\n\
+         [terrain]\nkind = \"heightfield\"\nfile = \"terrain.png\"\ncell_size = {cell}\norigin = [0, 0]\n\
+         vertical_scale = 0.01\n\
+         [[geology.water_tables]]\nname = \"wt\"\nelevation = 10\n\
+         [[keypoints]]\nname = \"a\"\nkind = \"sink\"\nposition = [10, 10, 20]\n{}{rest}",
+        size[0],
+        size[1],
+        placeholder(20.0, 20.0)
+    );
+    Scene::parse(&text, &dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"))
+}
+
 #[test]
 fn every_step_goes_down_on_noise_terrains() {
     let dir = scratch("steps-noise");
@@ -177,33 +212,19 @@ fn every_step_goes_down_over_a_flat_and_a_pit() {
     // A valley falling east at 10 %, its floor flat across (12 m wide, sides rising at 20 %),
     // a flat terrace at 50 m from x = 60 to 100, a pit 4 m deep and 16 m across on the floor
     // below it, the valley on to the domain's edge.
-    let (nx, ny) = (101, 61);
-    let heights = (0..ny)
-        .flat_map(|j| {
-            (0..nx).map(move |i| {
-                let (x, y) = (2.0 * i as f64, 2.0 * j as f64);
-                let slope = if x < 60.0 {
-                    56.0 - 0.1 * x
-                } else if x < 100.0 {
-                    50.0
-                } else {
-                    50.0 - 0.1 * (x - 100.0)
-                };
-                let r = ((x - 130.0).powi(2) + (y - 60.0).powi(2)).sqrt();
-                let side = 0.2 * ((y - 60.0).abs() - 6.0).max(0.0);
-                slope + side - 4.0 * (1.0 - (r / 8.0).powi(2)).max(0.0)
-            })
-        })
-        .collect();
-    write_png(&dir.join("flat-pit.png"), &HeightGrid::new([0.0, 0.0], 2.0, nx, ny, heights), 0.0, 0.01)
-        .unwrap();
-    let text = "name = \"flat-pit\"\nseed = 1\n[domain]\nmin = [0, 0, -200]\nmax = [200, 120, 120]\n\
-                [terrain]\nkind = \"heightfield\"\nfile = \"flat-pit.png\"\ncell_size = 2.0\norigin = [0, 0]\n\
-                vertical_scale = 0.01\n\
-                [[geology.water_tables]]\nname = \"wt\"\nelevation = 10\n\
-                [[keypoints]]\nname = \"a\"\nkind = \"sink\"\nposition = [10, 10, 20]\n";
-    let text = format!("{text}{}[streams]\ncatchment_cell = 2\n", placeholder(20.0, 20.0));
-    let mut scene = Scene::parse(&text, &dir.join("flat-pit.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let height = |x: f64, y: f64| {
+        let slope = if x < 60.0 {
+            56.0 - 0.1 * x
+        } else if x < 100.0 {
+            50.0
+        } else {
+            50.0 - 0.1 * (x - 100.0)
+        };
+        let r = ((x - 130.0).powi(2) + (y - 60.0).powi(2)).sqrt();
+        let side = 0.2 * ((y - 60.0).abs() - 6.0).max(0.0);
+        slope + side - 4.0 * (1.0 - (r / 8.0).powi(2)).max(0.0)
+    };
+    let mut scene = heightfield_scene(&dir, 2.0, [200.0, 120.0], height, "[streams]\ncatchment_cell = 2\n");
     add_springs(&mut scene, (0..5).map(|k| [10.0, 50.0 + 5.0 * k as f64]), 0.5);
     let streams = build(&scene, &hydro_of(&scene)).unwrap();
     // The streams cross the flat and fill the pit to its lowest rim (46.2 m, downstream)
@@ -223,5 +244,40 @@ fn every_step_goes_down_over_a_flat_and_a_pit() {
         "a stream crosses the flat"
     );
     assert_downhill(&streams, &scene, "flat and pit");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_step_over_a_lip_is_refined_onto_the_terrain() {
+    let dir = scratch("steps-lip");
+    // A valley falling east at 10 %, a knick at x = 100 where the floor drops 1.5 m over half a
+    // metre: too short a drop for the slow water to fly a step, so it runs over the lip.
+    let height = |x: f64, y: f64| {
+        let knick = 3.0 * (x - 100.0).clamp(0.0, 0.5);
+        60.0 - 0.1 * x - knick + 0.2 * ((y - 30.0).abs() - 4.0).max(0.0)
+    };
+    let mut scene = heightfield_scene(&dir, 0.5, [200.0, 60.0], height, "");
+    add_springs(&mut scene, [[60.0, 30.0]], 0.5);
+    let streams = build(&scene, &hydro_of(&scene)).unwrap();
+    assert_downhill(&streams, &scene, "lip");
+    assert!(
+        streams.segments.iter().all(|g| g.motion == Motion::Contact),
+        "the water does not fly off the lip"
+    );
+    // Every step near the lip has its midpoint on the terrain (as deep under it as its ends),
+    // to within what three halvings of a 2 m step leave at a 75° knick.
+    let ground = |p: DVec3| scene.terrain().height(p.x, p.y);
+    let mut near = 0;
+    for g in &streams.segments {
+        let [a, b] = [g.from, g.to].map(|n| DVec3::from_array(streams.nodes[n as usize].position));
+        let m = 0.5 * (a + b);
+        if (m.x - 100.25).abs() > 3.0 {
+            continue;
+        }
+        near += 1;
+        let off = ground(m) - 0.5 * ((ground(a) - a.z) + (ground(b) - b.z)) - m.z;
+        assert!(off.abs() <= 0.25, "{a} → {b}: the midpoint lies {off:.2} m off the terrain");
+    }
+    assert!(near >= 3, "{near} steps near the lip");
     let _ = std::fs::remove_dir_all(&dir);
 }
