@@ -5,9 +5,9 @@
 //!
 //! - `index.html`, the app's ES modules (`js/`) and stylesheet, and the vendored three.js
 //!   (`vendor/three/`, with its licence), all embedded in this crate ([`app`]);
-//! - `data/run.json`: the network, the water, the routes, the key points, the water tables and
-//!   horizons, the metrics, what is missing from the run, and the manifest of the meshes
-//!   ([`data`]);
+//! - `data/run.json`: the network, the water, the surface streams, the routes, the key points,
+//!   the water tables and horizons, the metrics, what is missing from the run, and the
+//!   manifest of the meshes ([`data`]);
 //! - `data/<surface>/cNNN-lK.glb`: the carved terrain, the cave and the water, split into
 //!   chunks ([`chunks`]), each at up to four levels of detail ([`lod`]), compressed with
 //!   EXT_meshopt_compression and KHR_mesh_quantization ([`glb`]), which three.js decodes
