@@ -66,6 +66,10 @@ pub struct RunArgs {
     /// Rerun every stage.
     #[arg(long)]
     pub force: bool,
+    /// Memory the stages may plan to use (e.g. 16G, 512M; default 16G); a stage whose work
+    /// estimate is above it refuses, naming the scene field to change (docs/limits.md).
+    #[arg(long, value_name = "SIZE")]
+    pub max_memory: Option<karst_geology::budget::Budget>,
 }
 
 /// `karstgen diff`.
@@ -235,6 +239,10 @@ pub fn run(args: &RunArgs) -> Result<PathBuf, StageError> {
             (SceneFile::default_in(&out)?, out)
         }
     };
+    let mut scene = scene;
+    if let Some(budget) = args.max_memory {
+        scene.scene.set_budget(budget);
+    }
     println!("scene {} → {}", scene.path.display(), out.display());
     let selection = Selection { from: args.from, only: args.only, to: args.to, force: args.force };
     make::run(&scene, &out, &selection, &mut |report| println!("{}", report.line()))?;

@@ -1,6 +1,7 @@
 //! `cargo xtask`: the developers' tasks. `run`, `diff` and `inspect` are `karstgen`'s own (the
 //! same code); `bless` regenerates the golden artifacts, `bench` times every stage, `test`
 //! installs the test tools and runs the suite, `metrics-table` tables every scene's metrics,
+//! `fuzz` runs the fuzz targets for a while.
 //! `ensemble` the presets' metrics over many seeds.
 
 use std::path::{Path, PathBuf};
@@ -63,8 +64,11 @@ enum Task {
         /// Only the network half beside KarstNSim (pykarstnsim in .venv-peer), alternating runs.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "streams", "export"])]
         peer: bool,
-        /// Only the calibration budget: the default scene's [calibrate] box to the Sakany cave.
+        /// Only the network statistics of mazes (grids of 40k and 250k nodes).
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "peer"])]
+        mazes: bool,
+        /// Only the calibration budget: the default scene's [calibrate] box to the Sakany cave.
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "peer", "mazes"])]
         calibrate: bool,
     },
     /// Table karstnet's metrics of every fixtures/scenes/*.toml against the real-cave ranges.
@@ -72,6 +76,15 @@ enum Task {
         /// Also copy each metrics.json to fixtures/metrics/ and update the README's table.
         #[arg(long)]
         write: bool,
+    },
+    /// Fuzz every reader (scene, artifacts, network and data files) for MINUTES with new
+    /// seeds; each failure is shrunk and saved in fixtures/bad/fuzz/ (exit 1 when any).
+    Fuzz {
+        #[arg(long, default_value_t = 10.0)]
+        minutes: f64,
+        /// First random seed (later rounds take the next ones).
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
     },
     /// Table the presets' metrics over N seeds each (`karstgen ensemble`) against the real-cave
     /// ranges: median, 10th–90th percentile, share inside.
@@ -123,14 +136,38 @@ fn main() -> ExitCode {
         }
         Task::Bless => bless(),
         Task::Bench { runs, peer: true, .. } => peer_bench(runs),
-        Task::Bench { runs, costgraph, sdf, mesher, streams, geotiff, export, calibrate, .. } => {
-            bench::run(runs, bench::Only { costgraph, sdf, mesher, streams, geotiff, export, calibrate })
+        Task::Bench { runs, costgraph, sdf, mesher, streams, geotiff, export, calibrate, mazes, .. } => {
+            bench::run(
+                runs,
+                bench::Only { costgraph, sdf, mesher, streams, geotiff, export, calibrate, mazes },
+            )
         }
         Task::Test { python, args } => return test(python, &args),
+        Task::Fuzz { minutes, seed } => fuzz(minutes, seed),
         Task::MetricsTable { write } => metrics_table_command(write),
         Task::Ensemble { n, write } => ensemble_table_command(n, write),
     };
     finish(result)
+}
+
+/// `cargo xtask fuzz`: every target in turn, 500 cases a round, until the time is up.
+fn fuzz(minutes: f64, seed: u64) -> Result<(), StageError> {
+    let root = workspace_root();
+    let failures = karst_fuzz::run_for(minutes * 60.0, 500, seed);
+    for failure in &failures {
+        let saved = karst_fuzz::save(&root, failure)
+            .map_err(|e| StageError::failure(format!("cannot save a regression case: {e}")))?;
+        eprintln!("{failure}\n  saved as {}", saved.display());
+    }
+    if failures.is_empty() {
+        println!("fuzz: {minutes} min, no failure");
+        Ok(())
+    } else {
+        Err(StageError::failure(format!(
+            "fuzz: {} failure(s), saved in fixtures/bad/fuzz/: fix the readers, keep the files",
+            failures.len()
+        )))
+    }
 }
 
 /// karstgen's network half beside KarstNSim on `peer::SCENE` (issue 21), every case.

@@ -109,7 +109,8 @@ impl<'de, T: Element> Visitor<'de> for LeVisitor<T> {
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<T>, A::Error> {
-        let mut bytes = Vec::with_capacity(seq.size_hint().unwrap_or(0));
+        // The hint comes from the input: trusted only up to a megabyte.
+        let mut bytes = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(1 << 20));
         while let Some(b) = seq.next_element::<u8>()? {
             bytes.push(b);
         }

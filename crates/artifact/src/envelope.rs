@@ -181,9 +181,11 @@ pub fn write_artifact<P: Payload>(
         None => {
             w.write_all(line.as_bytes())?;
             w.write_all(b"\n")?;
-            let mut chunked = Chunked::new(w);
-            postcard::to_io(payload, &mut chunked).map_err(std::io::Error::other)?;
-            chunked.finish().map(|_| ())
+            let mut kept = KeepError { inner: Chunked::new(w), error: None };
+            if let Err(e) = postcard::to_io(payload, &mut kept) {
+                return Err(kept.error.take().unwrap_or_else(|| std::io::Error::other(e)));
+            }
+            kept.inner.finish().map(|_| ())
         }
     })
     .map_err(|source| Error::Write { path: path.to_path_buf(), source })?;
@@ -240,6 +242,40 @@ impl<W: Write> Write for Chunked<W> {
     }
 }
 
+/// Keeps the first I/O error of the writer it wraps: postcard reports any failed write as
+/// "The serialize buffer is full", which would hide the real cause (a full disk).
+struct KeepError<W: Write> {
+    inner: W,
+    error: Option<std::io::Error>,
+}
+
+impl<W: Write> KeepError<W> {
+    fn keep(&mut self, result: std::io::Result<()>) -> std::io::Result<()> {
+        result.map_err(|e| {
+            let kind = e.kind();
+            self.error.get_or_insert(e);
+            std::io::Error::from(kind)
+        })
+    }
+}
+
+impl<W: Write> Write for KeepError<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let result = self.inner.write_all(buf);
+        self.keep(result).map(|_| buf.len())
+    }
+
+    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
+        let result = self.inner.write_all(buf);
+        self.keep(result)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        let result = self.inner.flush();
+        self.keep(result)
+    }
+}
+
 /// A writer that only hashes and counts what it is given.
 struct HashSink {
     hasher: blake3::Hasher,
@@ -260,7 +296,7 @@ impl Write for HashSink {
 
 /// Reads and checks only the header of an artifact of any kind.
 pub fn read_header(path: &Path) -> Result<Header, Error> {
-    let file = fs::File::open(path).map_err(|source| Error::Open { path: path.into(), source })?;
+    let (file, _) = open(path)?;
     let mut reader = BufReader::new(file);
     read_header_from(path, &mut reader)
 }
@@ -268,8 +304,7 @@ pub fn read_header(path: &Path) -> Result<Header, Error> {
 /// Reads an artifact of `P`'s stage, checking format, kind, schema, length and checksum, then
 /// the payload's own consistency ([`Payload::validate`]).
 pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
-    let file = fs::File::open(path).map_err(|source| Error::Open { path: path.into(), source })?;
-    let file_len = file.metadata().map_err(|source| Error::Open { path: path.into(), source })?.len();
+    let (file, file_len) = open(path)?;
     let mut reader = BufReader::new(file);
     let header = read_header_from(path, &mut reader)?;
     check_kind_and_schema::<P>(path, &header)?;
@@ -298,15 +333,24 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
     if hash::hex(&payload) != header.payload_blake3 {
         return Err(Error::Checksum { path: path.into(), stage });
     }
+    let value = decode_payload::<P>(path, header.encoding, &payload)?;
+    Ok((header, value))
+}
+
+/// Decodes the payload bytes of an artifact of `P`'s stage (`path` names it in messages), then
+/// checks it with [`Payload::validate`]: what [`read_artifact`] does once the envelope is
+/// checked, and what the fuzz targets feed with arbitrary bytes.
+pub fn decode_payload<P: Payload>(path: &Path, encoding: Encoding, bytes: &[u8]) -> Result<P, Error> {
+    let stage = P::STAGE.name().to_string();
     let decode_error = |detail: String| Error::Decode {
         path: path.into(),
         kind: P::STAGE.row().kind.into(),
         detail,
         stage: stage.clone(),
     };
-    let value: P = match header.encoding {
-        Encoding::Postcard => postcard::from_bytes(&payload).map_err(|e| decode_error(e.to_string()))?,
-        Encoding::Json => serde_json::from_slice(&payload).map_err(|e| decode_error(e.to_string()))?,
+    let value: P = match encoding {
+        Encoding::Postcard => postcard::from_bytes(bytes).map_err(|e| decode_error(e.to_string()))?,
+        Encoding::Json => serde_json::from_slice(bytes).map_err(|e| decode_error(e.to_string()))?,
     };
     value.validate().map_err(|invalid| Error::Invalid {
         path: path.into(),
@@ -314,7 +358,12 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
         problem: invalid.problem,
         stage: stage.clone(),
     })?;
-    Ok((header, value))
+    Ok(value)
+}
+
+/// Opens an artifact file: a regular file (a FIFO would block, a device never end).
+fn open(path: &Path) -> Result<(fs::File, u64), Error> {
+    crate::files::open_regular(path, u64::MAX).map_err(|source| Error::Open { path: path.into(), source })
 }
 
 /// Checks that an artifact's header is in `frame` (the scene's): an artifact made from the
@@ -527,6 +576,33 @@ mod tests {
         let err = read_artifact::<Positive>(&path).unwrap_err();
         assert!(matches!(err, Error::Invalid { .. }), "{err}");
         assert!(err.to_string().contains("value: -1 is not positive"), "{err}");
+    }
+
+    #[test]
+    fn a_full_disk_is_reported_as_such() {
+        // A writer that fails like a full disk after some bytes: the error postcard returns
+        // must not hide it.
+        struct Full(usize);
+        impl Write for Full {
+            fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+                if self.0 < buf.len() {
+                    return Err(std::io::Error::from(std::io::ErrorKind::StorageFull));
+                }
+                self.0 -= buf.len();
+                Ok(buf.len())
+            }
+            fn flush(&mut self) -> std::io::Result<()> {
+                Ok(())
+            }
+        }
+        let points = Points((0..100_000).map(|i| [i as f64; 3]).collect());
+        let mut kept = KeepError { inner: Chunked::new(Full(100_000)), error: None };
+        let Err(err) = postcard::to_io(&points, &mut kept) else { panic!("the writer is full") };
+        assert!(err.to_string().contains("buffer is full"), "postcard hides the cause: {err}");
+        let kept = kept.error.expect("the real error is kept");
+        assert_eq!(kept.kind(), std::io::ErrorKind::StorageFull);
+        let message = Error::Write { path: "out/samples.bin".into(), source: kept }.to_string();
+        assert_eq!(message, "out/samples.bin: cannot write: the disk is full");
     }
 
     #[test]

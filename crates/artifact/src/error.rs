@@ -9,7 +9,7 @@ use std::path::PathBuf;
 pub enum Error {
     #[error("{path}: cannot read")]
     Open { path: PathBuf, source: std::io::Error },
-    #[error("{path}: cannot write")]
+    #[error("{path}: cannot write{}", disk_full(source))]
     Write { path: PathBuf, source: std::io::Error },
     #[error("{path}: not a karstgen artifact ({detail})")]
     NotAnArtifact { path: PathBuf, detail: String },
@@ -45,12 +45,19 @@ pub enum Error {
     Frame { path: PathBuf, found: String, expected: String, stage: String },
     #[error("cannot encode the {kind} payload: {detail}")]
     Encode { kind: String, detail: String },
+    #[error("another run is writing to {dir}: wait for it to finish, or use another --out")]
+    Busy { dir: PathBuf },
+}
+
+/// Says so when a write failed because the disk is full (the OS error follows as the source).
+fn disk_full(source: &std::io::Error) -> &'static str {
+    if source.kind() == std::io::ErrorKind::StorageFull { ": the disk is full" } else { "" }
 }
 
 impl Error {
     /// True when the error comes from a file the user gave us (exit code 2), false when
     /// karstgen or the machine failed (exit code 1).
     pub fn is_bad_input(&self) -> bool {
-        !matches!(self, Error::Write { .. } | Error::Encode { .. })
+        !matches!(self, Error::Write { .. } | Error::Encode { .. } | Error::Busy { .. })
     }
 }

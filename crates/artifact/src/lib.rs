@@ -15,15 +15,20 @@
 
 pub mod atomic;
 pub mod bulk;
+pub mod check;
 pub mod envelope;
 pub mod error;
+pub mod files;
 pub mod frame;
 pub mod hash;
+pub mod lock;
 pub mod stages;
 
 pub use envelope::{
-    Header, InputRef, Invalid, Payload, Provenance, check_frame, read_artifact, read_header, write_artifact,
+    Header, InputRef, Invalid, Payload, Provenance, check_frame, decode_payload, read_artifact, read_header,
+    write_artifact,
 };
 pub use error::Error;
 pub use frame::Frame;
+pub use lock::{OutputLock, lock_output};
 pub use stages::{Encoding, StageId, StageRow};

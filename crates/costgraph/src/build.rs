@@ -21,6 +21,8 @@ pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, CostGraphErr
     if k >= samples.len() {
         return Err(CostGraphError::TooFewSamples { k, samples: samples.len() });
     }
+    let model = CostModel::from_scene(scene);
+    crate::estimate::check(scene, samples.len(), model.set_count())?;
     let chunks = samples.len().div_ceil(CHUNK) as u64;
     let bar = karst_stage::progress::bar(2 * chunks, "costgraph");
     let done = || bar.inc(1);
@@ -28,7 +30,7 @@ pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, CostGraphErr
     let rows = edges(scene, &samples.positions, &order, &done);
     checks::isolated_keypoints(scene, samples, &rows)?;
     checks::sinks_reach_their_springs(scene, samples, &rows)?;
-    let graph = costed(&CostModel::from_scene(scene), &samples.positions, (rows, &order), &done);
+    let graph = costed(&model, &samples.positions, (rows, &order), &done);
     bar.finish_and_clear();
     graph
 }
@@ -155,14 +157,13 @@ fn cost_chunk(
         let i = i as usize;
         let first = rows.offsets[i] as usize;
         for (edge, &j) in (first..).zip(rows.row(i)) {
-            let j = j as usize;
-            if fields.position(i) == fields.position(j) {
-                let position = fields.position(i).to_array();
-                return Err(CostGraphError::CoincidentSamples { a: i.min(j), b: i.max(j), position });
-            }
-            model.edge(fields, i, j, &mut terms);
+            model.edge(fields, i, j as usize, &mut terms);
             for (set, (least, &cost)) in out.least_per_metre.iter_mut().zip(&terms.cost).enumerate() {
+                // Caught where it happens: the artifact's costs are f32, finite and > 0.
                 let stored = cost as f32;
+                if !(stored.is_finite() && stored > 0.0) {
+                    return Err(CostGraphError::CostOutOfRange { cost, length: terms.length });
+                }
                 // SAFETY: `edge` is in row i, and node i is in this chunk only.
                 unsafe { in_place.write(set, edge, stored) };
                 // As the searches would measure it: the stored cost over the length.

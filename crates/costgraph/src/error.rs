@@ -17,12 +17,17 @@ pub enum CostGraphError {
         "sink \"{sink}\" cannot reach spring {springs} through the cost graph (costgraph.k = {k}, max_edge_length = {max_edge_length} m): raise k or max_edge_length, or set costgraph.symmetrise = true"
     )]
     Unreachable { sink: String, springs: String, k: usize, max_edge_length: f64 },
-    #[error("samples {a} and {b} coincide at {position:?}: an edge between them has no direction")]
-    CoincidentSamples { a: usize, b: usize, position: [f64; 3] },
+    #[error(
+        "costgraph.cost_floor and the term weights (alpha_* or w_*) give an edge of {length} m the cost \
+         {cost:e}, which a cost (32-bit float, finite and > 0) cannot hold: bring them within docs/limits.md's ranges"
+    )]
+    CostOutOfRange { cost: f64, length: f64 },
+    #[error(transparent)]
+    OverBudget(#[from] karst_geology::budget::OverBudget),
 }
 
 impl Failure for CostGraphError {
-    /// Every case comes from the scene: its parameters, or key points that coincide.
+    /// Every case comes from the scene's parameters.
     fn blame(&self) -> Blame {
         Blame::Scene
     }

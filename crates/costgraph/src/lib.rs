@@ -12,6 +12,7 @@ mod build;
 mod checks;
 mod cost;
 mod error;
+mod estimate;
 mod falloff;
 mod grid;
 mod knn;

@@ -8,7 +8,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Payload, StageId};
+use karst_artifact::check::{self, ensure};
+use karst_artifact::{Invalid, Payload, StageId};
 
 use crate::stats::Summary;
 
@@ -44,6 +45,47 @@ pub struct CostSet {
 impl Payload for CostGraph {
     const STAGE: StageId = StageId::Costgraph;
     const SCHEMA: u32 = 3;
+
+    /// Rows that start at 0, never go back and end at the last edge; targets that are nodes;
+    /// at least one cost set, each with one finite cost > 0 per edge and a least cost per metre,
+    /// when recorded, finite and ≥ 0 (the A* heuristic's factor: NaN or ∞ would misdirect the
+    /// searches).
+    fn validate(&self) -> Result<(), Invalid> {
+        ensure(self.offsets.first() == Some(&0), || "offsets".into(), || "must start with 0".into())?;
+        if let Some(i) = self.offsets.windows(2).position(|w| w[1] < w[0]) {
+            let (a, b) = (self.offsets[i], self.offsets[i + 1]);
+            return Err(Invalid::new(
+                format!("offsets[{}]", i + 1),
+                format!("{b} is below offsets[{i}] = {a}"),
+            ));
+        }
+        let last = self.offsets.last().copied().unwrap_or(0) as usize;
+        check::count(|| "targets".into(), self.targets.len(), last)?;
+        let nodes = self.node_count();
+        if let Some(e) = self.targets.iter().position(|&t| t as usize >= nodes) {
+            check::index(|| format!("targets[{e}]"), self.targets[e] as u64, nodes)?;
+        }
+        ensure(!self.cost_sets.is_empty(), || "cost_sets".into(), || "is empty: no cost to route on".into())?;
+        for (s, set) in self.cost_sets.iter().enumerate() {
+            check::count(|| format!("cost_sets[{s}].costs"), set.costs.len(), self.targets.len())?;
+            if let Some(e) = set.costs.iter().position(|c| !(*c > 0.0 && c.is_finite())) {
+                return Err(Invalid::new(
+                    format!("cost_sets[{s}].costs[{e}]"),
+                    format!("{} is not a finite cost > 0", set.costs[e]),
+                ));
+            }
+            if let Some(least) = set.min_cost_per_metre {
+                check::within(|| format!("cost_sets[{s}].min_cost_per_metre"), least, 0.0, f64::MAX)?;
+            }
+            if self.cost_sets[..s].iter().any(|o| o.water_table == set.water_table) {
+                return Err(Invalid::new(
+                    format!("cost_sets[{s}].water_table"),
+                    format!("{:?} has two cost sets", set.water_table),
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 impl CostGraph {

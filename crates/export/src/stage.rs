@@ -67,7 +67,12 @@ impl Stage for ExportStage {
             scene: Some(scene),
             frame: &frame,
         };
-        let previous = read_artifact::<Manifest>(&out.join(StageId::Export.file_name())).ok().map(|(_, m)| m);
+        // The last export's manifest: moved aside by the runner when this export differs.
+        let file = out.join(StageId::Export.file_name());
+        let previous = [karst_stage::runner::previous_artifact(&file), file]
+            .iter()
+            .find_map(|path| read_artifact::<Manifest>(path).ok())
+            .map(|(_, m)| m);
         *manifest = export(&inputs, scene.export(), out).map_err(std::io::Error::other)?;
         for stale in previous
             .iter()
@@ -101,6 +106,16 @@ pub struct ExportArgs {
 /// Writes the exports of the run in `args.dir` on demand, reading only the artifacts the
 /// chosen formats need; the run's artifacts are never touched.
 pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
+    if !args.dir.is_dir() {
+        return Err(StageError::input(format!(
+            "{}: no such folder: give the output folder of a run (`karstgen run SCENE --out DIR`)",
+            args.dir.display()
+        )));
+    }
+    // A run writing into the folder meanwhile would change what is exported; another export
+    // would write the same files.
+    let _lock = karst_artifact::lock_output(&args.dir)?;
+    karst_artifact::atomic::remove_stale_temporaries(&args.dir);
     let scene_path = args.scene.clone().or_else(|| karst_stage::run_dir::scene_of(&args.dir));
     let scene = scene_path.as_deref().map(Scene::load).transpose()?;
     let mut params = scene.as_ref().map_or_else(ExportParams::default, |s| s.export().clone());

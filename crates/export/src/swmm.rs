@@ -51,6 +51,17 @@ pub fn write(
     })
 }
 
+/// The `[OPTIONS]`. `NORMAL_FLOW_LIMITED FROUDE`: SWMM caps a conduit's flow at its normal
+/// flow only where the flow is supercritical at its upstream end, not also wherever the water
+/// surface is flatter than the floor (`SLOPE`, in SWMM's default `BOTH`). On a flat or nearly
+/// flat floor (horizontal passages in a bedding plane, which SWMM gives its minimum drop of
+/// 0.001 ft) the normal flow is a small fraction of the discharge, and the slope rule switches
+/// the conduit between its routed flow and that fraction each time a ripple makes the
+/// downstream depth exceed the upstream one: an oscillation that never settles.
+/// `INERTIAL_DAMPING FULL`: the momentum equation without its inertial terms (as SWMM already
+/// does in full conduits): they vanish in the steady state the model starts at, and in the
+/// nearly still water of a pond (wide conduits, little friction) they sustain a growing
+/// seiche that reaches the spring.
 fn options(w: &mut dyn Write, hours: f64) -> io::Result<()> {
     let seconds = (hours * 3600.0).round() as u64;
     let (days, rest) = (seconds / 86_400, seconds % 86_400);
@@ -74,7 +85,7 @@ fn options(w: &mut dyn Write, hours: f64) -> io::Result<()> {
     )?;
     writeln!(
         w,
-        "INERTIAL_DAMPING PARTIAL\nNORMAL_FLOW_LIMITED BOTH\nSURCHARGE_METHOD EXTRAN\nMIN_SURFAREA 1.167"
+        "INERTIAL_DAMPING FULL\nNORMAL_FLOW_LIMITED FROUDE\nSURCHARGE_METHOD EXTRAN\nMIN_SURFAREA 1.167"
     )?;
     writeln!(w, "HEAD_TOLERANCE 0.0015\nMAX_TRIALS 8\nTHREADS 1\nALLOW_PONDING NO\nSKIP_STEADY_STATE NO")
 }

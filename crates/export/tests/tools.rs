@@ -277,15 +277,7 @@ fn swmm_run(scene: &str) -> (f64, Vec<Outfall>, Vec<String>) {
 
 #[test]
 fn swmm_runs_steadily_to_what_hydro_says_with_a_continuity_error_under_one_percent() {
-    swmm_is_steady(&["default", "branchwork"]);
-}
-
-/// The karstnsim preset retuned by the realism work (issue 20) oscillates in the engine: spring
-/// S1 swings between 0.73 and 0.89 m³/s at the end of the run (docs/exports.md).
-#[test]
-#[ignore = "karstnsim's retuned network oscillates in SWMM (docs/exports.md)"]
-fn swmm_karstnsim_is_steady() {
-    swmm_is_steady(&["karstnsim"]);
+    swmm_is_steady(&["default", "karstnsim", "branchwork"]);
 }
 
 fn swmm_is_steady(scenes: &[&str]) {
@@ -297,15 +289,19 @@ fn swmm_is_steady(scenes: &[&str]) {
         let notes: Vec<&String> = notes.iter().filter(|n| !n.starts_with("WARNING 04:")).collect();
         assert!(notes.is_empty(), "{scene}: the engine warned: {notes:?}");
         assert!(continuity.abs() < 1.0, "{scene}: flow-routing continuity error {continuity} %");
+        // A spring hydro leaves dry may get what SWMM lets through a closed conduit: its
+        // MaxFlow, 0.000001 m³/s (SWMM reads 0 as no limit; docs/exports.md).
+        const CLOSED_FLOW: f64 = 1e-6;
         for s in springs {
             let (name, hydro) = (&s.name, s.hydro);
             assert!(
-                (s.last - hydro).abs() <= 0.02 * hydro,
+                (s.last - hydro).abs() <= 0.02 * hydro + CLOSED_FLOW,
                 "{scene}: spring {name}: SWMM {} m³/s at the end, hydro {hydro} m³/s",
                 s.last
             );
             assert!(
-                (s.last - s.before).abs() <= 0.002 * hydro && s.range[1] - s.range[0] <= 0.02 * hydro,
+                (s.last - s.before).abs() <= 0.002 * hydro + CLOSED_FLOW
+                    && s.range[1] - s.range[0] <= 0.02 * hydro + CLOSED_FLOW,
                 "{scene}: spring {name} not steady: {} then {} m³/s, range {:?} at the end",
                 s.before,
                 s.last,

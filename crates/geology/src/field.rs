@@ -244,8 +244,8 @@ impl ValueGrid {
     /// Reads the text format: `origin x y z`, `cell dx dy dz`, `size nx ny nz`, then
     /// nx·ny·nz values, x fastest, then y, then z; `#` starts a comment.
     pub fn read(path: &Path) -> Result<ValueGrid, String> {
-        let text =
-            std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let text = karst_artifact::files::read_regular_text(path, karst_artifact::files::MAX_DATA_BYTES)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
         let file = path.display();
         let mut words = text.lines().flat_map(|l| l.split('#').next().unwrap_or("").split_whitespace());
         let mut header = |key: &str| -> Result<[f64; 3], String> {
@@ -279,9 +279,9 @@ impl ValueGrid {
                 _ => Err(format!("{file}: value {i} = \"{w}\" is not a number in [0, 1]")),
             })
             .collect::<Result<_, _>>()?;
-        let expected = size[0] * size[1] * size[2];
-        if values.len() != expected {
-            return Err(format!("{file}: size {size:?} needs {expected} values, found {}", values.len()));
+        let expected = size.iter().try_fold(1usize, |n, &s| n.checked_mul(s));
+        if expected != Some(values.len()) {
+            return Err(format!("{file}: size {size:?} does not match the {} values found", values.len()));
         }
         Ok(ValueGrid { origin, cell, size, values })
     }

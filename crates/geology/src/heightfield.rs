@@ -15,6 +15,9 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+/// Most pixels of a heightfield image (16384 × 16384): its elevations take 8 bytes each.
+pub const MAX_PIXELS: u64 = 1 << 28;
+
 /// A regular grid of elevations, south row first.
 #[derive(Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct HeightGrid {
@@ -61,9 +64,24 @@ impl HeightGrid {
     pub fn read_png(path: &Path, geo: &Georeference) -> Result<HeightGrid, HeightfieldError> {
         let file = path.display().to_string();
         let read = |message: String| HeightfieldError::Read { file: file.clone(), message };
-        let bytes = std::fs::read(path).map_err(|e| read(e.to_string()))?;
+        let bytes = karst_artifact::files::read_regular(path, karst_artifact::files::MAX_DATA_BYTES)
+            .map_err(|e| read(e.to_string()))?;
+        HeightGrid::decode_png(&bytes, &file, geo)
+    }
+
+    /// Decodes the bytes of a 16-bit (or 8-bit) grayscale PNG named `file` in messages; images
+    /// of more than [`MAX_PIXELS`] are refused before their pixels are allocated.
+    pub fn decode_png(bytes: &[u8], file: &str, geo: &Georeference) -> Result<HeightGrid, HeightfieldError> {
+        let file = file.to_string();
+        let read = |message: String| HeightfieldError::Read { file: file.clone(), message };
         let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
         let mut reader = decoder.read_info().map_err(|e| read(e.to_string()))?;
+        let (width, height) = (reader.info().width as u64, reader.info().height as u64);
+        if width * height > MAX_PIXELS {
+            return Err(read(format!(
+                "{width} × {height} pixels, more than the {MAX_PIXELS} a heightfield may have"
+            )));
+        }
         let size = reader.output_buffer_size().ok_or_else(|| read("image too large".into()))?;
         let mut buffer = vec![0u8; size];
         let info = reader.next_frame(&mut buffer).map_err(|e| read(e.to_string()))?;
@@ -104,6 +122,8 @@ impl HeightGrid {
     /// first channel (values as f32, then elevation = offset + vertical_scale·value).
     pub fn read_exr(path: &Path, geo: &Georeference) -> Result<HeightGrid, HeightfieldError> {
         let file = path.display().to_string();
+        karst_artifact::files::open_regular(path, karst_artifact::files::MAX_DATA_BYTES)
+            .map_err(|e| HeightfieldError::Read { file: file.clone(), message: e.to_string() })?;
         let image = exr::prelude::read_first_flat_layer_from_file(path)
             .map_err(|e| HeightfieldError::Read { file: file.clone(), message: e.to_string() })?;
         let layer = &image.layer_data;
@@ -141,7 +161,7 @@ impl HeightGrid {
     /// A grid from its samples (x fastest, south row first); computes the Lipschitz bound.
     pub fn new(origin: [f64; 2], cell_size: f64, nx: u32, ny: u32, heights: Vec<f64>) -> HeightGrid {
         let mut grid = HeightGrid { origin, cell_size, nx, ny, heights, lipschitz: 0.0 };
-        grid.lipschitz = grid.bilinear_lipschitz();
+        grid.lipschitz = grid.slope_bound();
         grid
     }
 
@@ -150,14 +170,16 @@ impl HeightGrid {
     pub fn translate(&mut self, by: [f64; 3]) {
         self.origin = [self.origin[0] + by[0], self.origin[1] + by[1]];
         self.heights.iter_mut().for_each(|h| *h += by[2]);
-        self.lipschitz = self.bilinear_lipschitz();
+        self.lipschitz = self.slope_bound();
     }
 
     fn at(&self, i: usize, j: usize) -> f64 {
         self.heights[j * self.nx as usize + i]
     }
 
-    fn bilinear_lipschitz(&self) -> f64 {
+    /// The Lipschitz bound of the bilinear interpolant over its valid cells, computed from the
+    /// heights (what `lipschitz` holds for a grid made by [`HeightGrid::new`]).
+    pub fn slope_bound(&self) -> f64 {
         let (nx, ny) = (self.nx as usize, self.ny as usize);
         let mut bound = 0.0f64;
         for j in 0..ny.saturating_sub(1) {

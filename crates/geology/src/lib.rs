@@ -13,6 +13,7 @@
 //! ([`Scene::origin`], see `localize.rs`), so that f32 geometry keeps its precision whatever the
 //! magnitude of the file's coordinates.
 
+pub mod budget;
 pub mod crs;
 mod csv;
 pub mod domain;
@@ -48,6 +49,13 @@ pub use sections::Section;
 pub use surface::{Geometry, Surface};
 pub use terrain::Terrain;
 pub use validate::Problem;
+
+/// The ranges every scene is checked against (docs/limits.md).
+pub mod limits {
+    pub use crate::validate::{
+        MAX_COORDINATE, MAX_EXTENT, MAX_KEYPOINTS, MAX_LENGTH, MAX_TERRAIN_SLOPE, MAX_WEIGHT,
+    };
+}
 
 /// A point in space, metres, z up.
 pub type Point = glam::DVec3;

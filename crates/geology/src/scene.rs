@@ -67,6 +67,9 @@ pub struct Scene {
     /// Which sections were read, when auditing (see [`Scene::audited`]).
     #[serde(skip)]
     pub(crate) reads: Reads,
+    /// The memory the stages may plan to use: set by the command line, in no key.
+    #[serde(skip)]
+    pub(crate) budget: crate::budget::Budget,
 }
 
 /// `[geology]`: the surfaces that guide karstification.
@@ -210,7 +213,7 @@ fn format_problems(path: &Path, problems: &[Problem]) -> String {
 impl Scene {
     /// Reads, parses and validates a scene file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path)
+        let text = karst_artifact::files::read_regular_text(path, karst_artifact::files::MAX_SCENE_BYTES)
             .map_err(|source| SceneError::Read { path: path.to_path_buf(), source })?;
         Scene::parse(&text, path)
     }
@@ -221,6 +224,10 @@ impl Scene {
         let invalid = |problems| SceneError::Invalid { path: path.to_path_buf(), problems };
         let mut scene: Scene =
             toml::from_str(text).map_err(|e| invalid(vec![validate::from_toml(text, &e)]))?;
+        let extra = validate::extra_elements(text, &scene);
+        if !extra.is_empty() {
+            return Err(invalid(extra));
+        }
         let folder = path.parent().unwrap_or(Path::new(""));
         let mut problems = crate::load::attach_files(&mut scene, folder, text);
         problems.extend(validate::check(&scene, text));
@@ -245,6 +252,16 @@ impl Scene {
     /// Sets the seed (an ensemble's realizations differ only by it).
     pub fn set_seed(&mut self, seed: u64) {
         self.seed = seed;
+    }
+
+    /// The memory budget the stages check their work estimates against.
+    pub fn budget(&self) -> crate::budget::Budget {
+        self.budget
+    }
+
+    /// Sets the memory budget (`--max-memory`).
+    pub fn set_budget(&mut self, budget: crate::budget::Budget) {
+        self.budget = budget;
     }
 
     /// The coordinate reference system (`crs = "EPSG:2154"`), when the scene names one. Like

@@ -81,6 +81,10 @@ pub enum Terrain {
     },
 }
 
+/// Most octaves of a noise terrain: each halves the amplitude, so beyond a few dozen they add
+/// nothing but evaluation time.
+pub const MAX_OCTAVES: u32 = 24;
+
 fn one() -> f64 {
     1.0
 }

@@ -63,7 +63,7 @@ impl Tin {
     /// Reads a `.ts` TSurf or a plain vertices/triangles text, by extension.
     pub fn read(path: &Path) -> Result<Tin, TinError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path)
+        let text = karst_artifact::files::read_regular_text(path, karst_artifact::files::MAX_DATA_BYTES)
             .map_err(|e| TinError::Read { file: file.clone(), message: e.to_string() })?;
         let is_tsurf = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ts"));
         let (vertices, triangles) =
@@ -167,12 +167,23 @@ impl Tin {
             if (ring - 1).max(0) as f64 * b.size > reach {
                 return;
             }
-            for j in (cj - ring)..=(cj + ring) {
-                for i in (ci - ring)..=(ci + ring) {
-                    let on_ring = (i - ci).abs() == ring || (j - cj).abs() == ring;
-                    if !on_ring || i < 0 || j < 0 || i >= b.dims[0] as i64 || j >= b.dims[1] as i64 {
+            // Only the ring's cells inside the grid: a point far outside the surface's footprint
+            // costs the grid's size per ring, not the ring's area.
+            let (rows, cols) = (b.dims[1] as i64, b.dims[0] as i64);
+            for j in (cj - ring).max(0)..=(cj + ring).min(rows - 1) {
+                // The whole row on the ring's top and bottom, its two ends in between.
+                let (mut i, last, step) = if (j - cj).abs() == ring {
+                    ((ci - ring).max(0), (ci + ring).min(cols - 1), 1)
+                } else {
+                    (ci - ring, ci + ring, 2 * ring)
+                };
+                while i <= last {
+                    let column = i;
+                    i += step;
+                    if column < 0 || column >= cols {
                         continue;
                     }
+                    let i = column;
                     if let Some(z) = z {
                         let k = j as usize * b.dims[0] + i as usize;
                         let lo = b.lo + DVec2::new(i as f64, j as f64) * b.size;
@@ -347,8 +358,9 @@ fn numbers<T: std::str::FromStr>(
 }
 
 fn finite_vertex(xyz: Vec<f64>, file: &str, line: usize) -> Result<[f64; 3], TinError> {
-    if let Some(v) = xyz.iter().find(|v| !v.is_finite()) {
-        return Err(syntax(file, line, format!("coordinate {v} is not a finite number")));
+    let limit = crate::validate::MAX_COORDINATE;
+    if let Some(v) = xyz.iter().find(|v| v.is_nan() || v.abs() > limit) {
+        return Err(syntax(file, line, format!("coordinate {v} is not a finite number within ±{limit:e}")));
     }
     Ok([xyz[0], xyz[1], xyz[2]])
 }
@@ -490,6 +502,20 @@ mod tests {
         assert!((q.distance(p) - (70.0 - 54.0) * plane_n.z).abs() < 1e-9);
         assert!((n - plane_n).length() < 1e-12);
         assert!((tin.area() - 100.0 * 100.0 * 1.01f64.sqrt()).abs() < 1e-6);
+    }
+
+    /// A surface whose footprint is a micrometre wide, queried 100 km away: the search starts
+    /// 10¹¹ rings out and must visit the grid's cells only, not the ring's 10²² (this query
+    /// never returned before).
+    #[test]
+    fn a_query_far_outside_a_tiny_footprint_visits_only_the_grid() {
+        let tin =
+            Tin::new(vec![[0.0, 0.0, 7.0], [1e-6, 0.0, 7.0], [0.0, 1e-6, 7.0]], vec![[0, 1, 2]], "speck")
+                .unwrap();
+        assert_eq!(tin.elevation_at(1e5, -1e5), 7.0);
+        assert!(tin.closest_within(DVec3::new(-1e5, 1e5, 0.0), 1e3).is_none());
+        let (q, _) = tin.closest(DVec3::new(-1e5, 1e5, 5.0));
+        assert!(q.distance(DVec3::new(0.0, 1e-6, 7.0)) < 1e-9);
     }
 
     #[test]

@@ -39,9 +39,20 @@ fn not_finite(values: &[f64]) -> Option<String> {
     values.iter().find(|v| !v.is_finite()).map(|v| format!("{v} is not a finite number"))
 }
 
-/// Why `value` is not a finite number ≥ 0, if it is not.
-fn negative(value: f64) -> Option<String> {
-    not_finite(&[value]).or_else(|| (value < 0.0).then(|| format!("must be ≥ 0, got {value}")))
+/// Why `value` is not a finite number within `[lo, hi]`, if it is not.
+fn outside(value: f64, lo: f64, hi: f64) -> Option<String> {
+    not_finite(&[value]).or_else(|| {
+        (!(lo..=hi).contains(&value))
+            .then(|| format!("must be in [{}, {}], got {}", number(lo), number(hi), number(value)))
+    })
+}
+
+/// Why `values` are not coordinates (finite, within ±[`MAX_COORDINATE`]), if they are not.
+fn beyond_limits(values: &[f64]) -> Option<String> {
+    not_finite(values).or_else(|| {
+        let v = values.iter().find(|v| v.abs() > MAX_COORDINATE)?;
+        Some(format!("{v:e} is beyond ±{MAX_COORDINATE:e} m (docs/limits.md)"))
+    })
 }
 
 /// Turns a TOML parse or type error into a problem with its line and field.
@@ -52,11 +63,57 @@ pub(crate) fn from_toml(text: &str, error: &toml::de::Error) -> Problem {
     Problem { line, field, message: error.message().trim().to_string() }
 }
 
+/// Arrays written longer than the field holds: serde fills a fixed-size array (a position,
+/// a `[min, max]` range) from the first elements and drops the others without a word, so the
+/// scene as read is written back and every array compared with the text's.
+pub(crate) fn extra_elements(text: &str, scene: &Scene) -> Vec<Problem> {
+    let (Ok(given), Ok(read)) = (toml::from_str::<toml::Table>(text), toml::Table::try_from(scene)) else {
+        return Vec::new();
+    };
+    let mut found = Vec::new();
+    longer_arrays(&toml::Value::Table(given), &toml::Value::Table(read), String::new(), &mut found);
+    found
+        .into_iter()
+        .map(|(field, given, kept)| Problem {
+            line: line_of_path(text, &field),
+            message: format!("has {given} elements, but only {kept} are read: remove the others"),
+            field,
+        })
+        .collect()
+}
+
+fn longer_arrays(
+    given: &toml::Value,
+    read: &toml::Value,
+    path: String,
+    found: &mut Vec<(String, usize, usize)>,
+) {
+    match (given, read) {
+        (toml::Value::Table(g), toml::Value::Table(r)) => {
+            for (key, value) in g {
+                if let Some(kept) = r.get(key) {
+                    let path = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
+                    longer_arrays(value, kept, path, found);
+                }
+            }
+        }
+        (toml::Value::Array(g), toml::Value::Array(r)) if g.len() > r.len() => {
+            found.push((path, g.len(), r.len()));
+        }
+        (toml::Value::Array(g), toml::Value::Array(r)) => {
+            for (i, (value, kept)) in g.iter().zip(r).enumerate() {
+                longer_arrays(value, kept, format!("{path}[{i}]"), found);
+            }
+        }
+        _ => {}
+    }
+}
+
 /// Every semantic problem of a parsed scene.
 pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     let mut found = Checks { text, problems: Vec::new() };
     found.domain(scene);
-    found.terrain(scene);
+    let terrain = found.terrain(scene);
     found.surfaces("geology.water_tables", &scene.geology.water_tables, false);
     found.surfaces("geology.horizons", &scene.geology.horizons, false);
     found.surfaces("geology.faults", &scene.geology.faults, true);
@@ -67,7 +124,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     if let Some(lithology) = &scene.geology.lithology {
         lithology.check(&mut found);
     }
-    found.keypoints(scene);
+    found.keypoints(scene, terrain);
     found.connectivity(scene);
     found.forced_links(scene);
     found.phases(scene);
@@ -85,6 +142,28 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     }
     found.problems
 }
+
+/// A number as people write it: plain when moderate, in exponent notation when huge or tiny.
+fn number(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e6).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
+}
+
+/// Largest coordinate of a scene, metres (projected coordinates are a few million).
+pub const MAX_COORDINATE: f64 = 1e8;
+/// Largest extent of the domain along an axis, metres.
+pub const MAX_EXTENT: f64 = 1e6;
+/// Largest length, distance, weight or factor without a range of its own.
+pub const MAX_LENGTH: f64 = 1e8;
+/// Shortest length a `[min, max]` range of lengths (branch lengths, wavelengths) may start at,
+/// metres.
+pub const MIN_LENGTH: f64 = 1e-3;
+/// Most key points in a scene.
+pub const MAX_KEYPOINTS: usize = 10_000;
+/// Steepest terrain slope λ (|∇h|): the terrain's distance is (z − h)/√(1 + λ²), which
+/// vanishes when λ does not stay finite and reasonable.
+pub const MAX_TERRAIN_SLOPE: f64 = 1e4;
+/// Largest sink weight (relative recharge).
+pub const MAX_WEIGHT: f64 = 1e9;
 
 pub(crate) struct Checks<'a> {
     text: &'a str,
@@ -107,27 +186,22 @@ impl Checks<'_> {
         }
     }
 
+    /// Finite, > 0 and at most [`MAX_LENGTH`] (every length, weight and factor without a
+    /// tighter range of its own).
     pub(crate) fn positive(&mut self, field: &str, value: f64) {
         if self.finite(field, &[value]) && value <= 0.0 {
             self.report(field, format!("must be > 0, got {value}"));
+        } else {
+            self.at_most(field, value, MAX_LENGTH);
         }
     }
 
+    /// Finite, ≥ 0 and at most [`MAX_LENGTH`].
     pub(crate) fn non_negative(&mut self, field: &str, value: f64) {
-        if let Some(message) = negative(value) {
-            self.report(field, message);
-        }
-    }
-
-    /// A `[min, max]` range of positive numbers.
-    pub(crate) fn range(&mut self, field: &str, [lo, hi]: [f64; 2]) {
-        if !self.finite(field, &[lo, hi]) {
-            return;
-        }
-        if lo <= 0.0 {
-            self.report(field, format!("must be > 0, got {lo}"));
-        } else if hi < lo {
-            self.report(field, format!("[{lo}, {hi}] is not a range (max < min)"));
+        if self.finite(field, &[value]) && value < 0.0 {
+            self.report(field, format!("must be ≥ 0, got {value}"));
+        } else {
+            self.at_most(field, value, MAX_LENGTH);
         }
     }
 
@@ -147,9 +221,43 @@ impl Checks<'_> {
         }
     }
 
+    fn at_most(&mut self, field: &str, value: f64, most: f64) {
+        if value > most {
+            self.report(field, format!("must be at most {most:e}, got {value:e} (docs/limits.md)"));
+        }
+    }
+
+    /// Finite and within `[lo, hi]`; returns whether it is.
+    pub(crate) fn within(&mut self, field: &str, value: f64, lo: f64, hi: f64) -> bool {
+        self.holds(field, outside(value, lo, hi))
+    }
+
+    /// Reports `problem` at `field` if there is one; returns whether there was none.
+    fn holds(&mut self, field: &str, problem: Option<String>) -> bool {
+        match problem {
+            Some(message) => {
+                self.report(field, message);
+                false
+            }
+            None => true,
+        }
+    }
+
+    /// A `[min, max]` range whose ends are within `[lo, hi]`, min ≤ max.
+    pub(crate) fn range(&mut self, field: &str, [min, max]: [f64; 2], lo: f64, hi: f64) {
+        if self.within(field, min, lo, hi) & self.within(field, max, lo, hi) && max < min {
+            self.report(field, format!("[{min}, {max}] is not a range (max < min)"));
+        }
+    }
+
+    /// Coordinates: finite and within ±[`MAX_COORDINATE`].
+    pub(crate) fn coordinates(&mut self, field: &str, values: &[f64]) -> bool {
+        self.holds(field, beyond_limits(values))
+    }
+
     fn domain(&mut self, scene: &Scene) {
         let d = &scene.domain;
-        if !self.finite("domain.min", &d.min) || !self.finite("domain.max", &d.max) {
+        if !self.coordinates("domain.min", &d.min) | !self.coordinates("domain.max", &d.max) {
             return;
         }
         for (axis, name) in ["x", "y", "z"].iter().enumerate() {
@@ -161,34 +269,61 @@ impl Checks<'_> {
                         d.max[axis], d.min[axis]
                     ),
                 );
+            } else if d.max[axis] - d.min[axis] > MAX_EXTENT {
+                let extent = d.max[axis] - d.min[axis];
+                self.report(
+                    "domain.max",
+                    format!("the domain is {extent:e} m along {name}, more than {MAX_EXTENT:e} m"),
+                );
             }
         }
     }
 
-    fn terrain(&mut self, scene: &Scene) {
+    /// Checks the terrain; true when it can be evaluated.
+    fn terrain(&mut self, scene: &Scene) -> bool {
         let ok = match &scene.terrain {
             Terrain::Plane { elevation, origin, gradient } => {
-                self.finite("terrain.elevation", &[*elevation])
-                    & self.finite("terrain.origin", origin)
-                    & self.finite("terrain.gradient", gradient)
+                self.coordinates("terrain.elevation", &[*elevation])
+                    & self.coordinates("terrain.origin", origin)
+                    & self.within("terrain.gradient", gradient[0].hypot(gradient[1]), 0.0, MAX_TERRAIN_SLOPE)
             }
             Terrain::Heightfield { origin, cell_size, vertical_scale, offset, grid, .. } => {
-                let ok = origin.is_none_or(|o| self.finite("terrain.origin", &o))
-                    & self.finite("terrain.vertical_scale", &[*vertical_scale])
-                    & self.finite("terrain.offset", &[*offset]);
+                let ok = origin.is_none_or(|o| self.coordinates("terrain.origin", &o))
+                    & self.within("terrain.vertical_scale", *vertical_scale, -MAX_LENGTH, MAX_LENGTH)
+                    & self.coordinates("terrain.offset", &[*offset]);
                 if let Some(c) = cell_size {
                     self.positive("terrain.cell_size", *c);
                 }
                 ok && cell_size.is_none_or(|c| c > 0.0) && grid.nx > 0 && self.heightfield_covers(scene, grid)
             }
-            Terrain::Noise { elevation, amplitude, wavelength, gradient, .. } => {
-                let ok = self.finite("terrain.elevation", &[*elevation])
-                    & self.finite("terrain.amplitude", &[*amplitude])
-                    & self.finite("terrain.gradient", gradient);
+            Terrain::Noise { elevation, amplitude, wavelength, octaves, gradient, .. } => {
+                let ok = self.coordinates("terrain.elevation", &[*elevation])
+                    & self.within("terrain.amplitude", *amplitude, -MAX_LENGTH, MAX_LENGTH)
+                    & self.within("terrain.gradient", gradient[0].hypot(gradient[1]), 0.0, MAX_TERRAIN_SLOPE)
+                    & self.within(
+                        "terrain.octaves",
+                        *octaves as f64,
+                        0.0,
+                        crate::terrain::MAX_OCTAVES as f64,
+                    );
                 self.positive("terrain.wavelength", *wavelength);
                 ok && *wavelength > 0.0
             }
         };
+        // A derived quantity, checked where it is made: the steepest slope of the ground.
+        let lambda = scene.terrain.lipschitz();
+        if ok && (lambda.is_nan() || lambda > MAX_TERRAIN_SLOPE) {
+            let driver = match scene.terrain {
+                Terrain::Noise { .. } => "terrain.wavelength",
+                Terrain::Heightfield { .. } => "terrain.cell_size",
+                Terrain::Plane { .. } => "terrain.gradient",
+            };
+            self.report(
+                driver,
+                format!("gives the terrain a steepest slope of {lambda:e} (at most {MAX_TERRAIN_SLOPE:e}): the terrain would be a wall"),
+            );
+            return false;
+        }
         if ok && self.problems.is_empty() {
             let d = &scene.domain;
             let highest = [d.min[0], d.max[0]]
@@ -203,6 +338,7 @@ impl Checks<'_> {
                 );
             }
         }
+        ok
     }
 
     fn heightfield_covers(&mut self, scene: &Scene, grid: &crate::heightfield::HeightGrid) -> bool {
@@ -232,9 +368,9 @@ impl Checks<'_> {
         for (i, s) in surfaces.iter().enumerate() {
             let at = |f: &str| format!("{list}[{i}].{f}");
             if let Geometry::Plane { elevation, origin, dip, dip_direction } = &s.geometry {
-                self.finite(&at("elevation"), &[*elevation]);
-                self.finite(&at("origin"), origin);
-                self.finite(&at("dip_direction"), &[*dip_direction]);
+                self.coordinates(&at("elevation"), &[*elevation]);
+                self.coordinates(&at("origin"), origin);
+                self.within(&at("dip_direction"), *dip_direction, -360.0, 360.0);
                 let max = if vertical_allowed { "90]" } else { "90)" };
                 let ok =
                     if vertical_allowed { (0.0..=90.0).contains(dip) } else { (0.0..90.0).contains(dip) };
@@ -251,7 +387,7 @@ impl Checks<'_> {
     fn bound(&mut self, scene: &Scene, field: &str, bound: &Bound) {
         match bound {
             Bound::Elevation(z) => {
-                self.finite(field, &[*z]);
+                self.coordinates(field, &[*z]);
             }
             Bound::Surface(name) => {
                 if scene.geology.surface(name).is_none() {
@@ -303,7 +439,7 @@ impl Checks<'_> {
             }
             for (f, v) in [("centre", n.centre), ("min", n.min), ("max", n.max)] {
                 if let Some(v) = v {
-                    self.finite(&at(f), &v);
+                    self.coordinates(&at(f), &v);
                 }
             }
             if let Some(r) = n.radius {
@@ -331,7 +467,8 @@ impl Checks<'_> {
                         format!("has {} weights for {} children", n.weights.len(), n.of.len()),
                     );
                 } else if self.finite(&at("weights"), &n.weights)
-                    && (n.weights.iter().any(|w| *w < 0.0) || n.weights.iter().sum::<f64>() <= 0.0)
+                    && (n.weights.iter().any(|w| !(0.0..=MAX_WEIGHT).contains(w))
+                        || n.weights.iter().sum::<f64>() <= 0.0)
                 {
                     self.report(&at("weights"), format!("{:?} must be ≥ 0 and not all 0", n.weights));
                 }
@@ -342,7 +479,7 @@ impl Checks<'_> {
     fn fractures(&mut self, scene: &Scene) {
         for (i, f) in scene.geology.fractures.iter().enumerate() {
             let at = |field: &str| format!("geology.fractures[{i}].{field}");
-            self.finite(&at("azimuth"), &[f.azimuth]);
+            self.within(&at("azimuth"), f.azimuth, -360.0, 360.0);
             self.non_negative(&at("weight"), f.weight);
             if self.finite(&at("dip"), &[f.dip]) && !(0.0..=90.0).contains(&f.dip) {
                 self.report(&at("dip"), format!("must be in [0, 90] degrees, got {}", f.dip));
@@ -368,17 +505,26 @@ impl Checks<'_> {
         }
     }
 
-    fn keypoints(&mut self, scene: &Scene) {
+    fn keypoints(&mut self, scene: &Scene, terrain: bool) {
         for (i, k) in scene.keypoints.iter().enumerate() {
             if scene.keypoints[..i].iter().any(|o| o.name == k.name) {
                 self.keypoint(scene, i, "name", format!("\"{}\" is used twice", k.name));
             }
-            if let Some(message) = negative(k.weight) {
+            if let Some(message) = outside(k.weight, 0.0, MAX_WEIGHT) {
                 self.keypoint(scene, i, "weight", message);
             }
-            match not_finite(&k.position) {
+            match beyond_limits(&k.position) {
                 Some(message) => self.keypoint(scene, i, "position", message),
-                None => self.keypoint_position(scene, i),
+                None => {
+                    self.keypoint_position(scene, i, terrain);
+                    if let Some(o) = scene.keypoints[..i].iter().find(|o| o.position == k.position) {
+                        let message = format!(
+                            "\"{}\" lies where \"{}\" does, {:?}: two key points need two places",
+                            k.name, o.name, k.position
+                        );
+                        self.keypoint(scene, i, "position", message);
+                    }
+                }
             }
             match (&k.kind, &k.water_table) {
                 (KeyPointKind::Spring, None) => {
@@ -396,6 +542,12 @@ impl Checks<'_> {
                 _ => {}
             }
         }
+        if scene.keypoints.len() > MAX_KEYPOINTS {
+            self.report(
+                "keypoints",
+                format!("has {} key points, at most {MAX_KEYPOINTS}", scene.keypoints.len()),
+            );
+        }
         for (kind, name) in [(KeyPointKind::Sink, "sink"), (KeyPointKind::Spring, "spring")] {
             if scene.keypoints_of(kind).next().is_none() {
                 self.report("keypoints", format!("the scene needs at least one {name}"));
@@ -403,7 +555,7 @@ impl Checks<'_> {
         }
     }
 
-    fn keypoint_position(&mut self, scene: &Scene, i: usize) {
+    fn keypoint_position(&mut self, scene: &Scene, i: usize, terrain: bool) {
         let k = &scene.keypoints[i];
         let [x, y, z] = k.position;
         if !scene.domain.contains(k.point()) {
@@ -430,7 +582,7 @@ impl Checks<'_> {
                 format!("\"{}\" at [{x}, {y}, {z}] is in no-karst lithology unit \"{unit}\"", k.name);
             self.keypoint(scene, i, "position", message);
         }
-        let ground = scene.terrain.height(x, y);
+        let ground = if terrain { scene.terrain.height(x, y) } else { f64::INFINITY };
         if z > ground {
             let message = format!("\"{}\" at z = {z} is above the terrain (ground at {ground:.3})", k.name);
             self.keypoint(scene, i, "position", message);
@@ -466,8 +618,11 @@ impl Checks<'_> {
                         &at("weights"),
                         format!("names sink \"{sink}\", which [[keypoints]] does not define"),
                     );
-                } else if !(w.is_finite() && *w >= 0.0) {
-                    self.report(&at("weights"), format!("weight of \"{sink}\" must be ≥ 0, got {w}"));
+                } else if !(0.0..=MAX_WEIGHT).contains(w) {
+                    self.report(
+                        &at("weights"),
+                        format!("weight of \"{sink}\" must be in [0, {MAX_WEIGHT:e}], got {w}"),
+                    );
                 }
             }
         }
@@ -588,6 +743,52 @@ water_table = "wt"
         assert!(p.iter().any(|m| m.contains(":7: domain.max: inverted box")), "{p:?}");
         assert!(p.iter().any(|m| m.contains(":20: keypoints[0].position: NaN")), "{p:?}");
         assert!(p.iter().any(|m| m.contains(":26: keypoints[1].water_table") && m.contains("nope")), "{p:?}");
+    }
+
+    #[test]
+    fn extra_array_elements_are_refused() {
+        let text = GOOD.replace("max = [100, 100, 50]", "max = [100, 100, 50, -999, 7]");
+        let p = problems(&text);
+        assert!(p.iter().any(|m| m.contains(":7: domain.max: has 5 elements, but only 3 are read")), "{p:?}");
+        let text = format!("{GOOD}\n[skeleton]\nradius = [2, 3, 4]\n");
+        let p = problems(&text);
+        assert!(p.iter().any(|m| m.contains("skeleton.radius: has 3 elements, but only 2")), "{p:?}");
+        let text = GOOD.replace("position = [90, 90, 10]", "position = [90, 90, 10, 4]");
+        assert!(problems(&text).iter().any(|m| m.contains("keypoints[1].position: has 4 elements")));
+    }
+
+    #[test]
+    fn upper_bounds_and_derived_quantities_are_checked() {
+        let p = problems(&format!("{GOOD}\n[skeleton]\nradius = [1, nan]\nradius_correlation = [1, inf]\n"));
+        assert!(p.iter().any(|m| m.contains("skeleton.radius: NaN is not a finite number")), "{p:?}");
+        assert!(
+            p.iter().any(|m| m.contains("skeleton.radius_correlation: inf is not a finite number")),
+            "{p:?}"
+        );
+        let p = problems(
+            &GOOD.replace("name = \"a\"\nkind = \"sink\"", "name = \"a\"\nkind = \"sink\"\nweight = 1e308"),
+        );
+        assert!(p.iter().any(|m| m.contains("keypoints[0].weight: must be in [0, 1e9], got 1e308")), "{p:?}");
+        let p = problems(&format!("{GOOD}\n[costgraph]\ncost_floor = 1e300\n"));
+        assert!(p.iter().any(|m| m.contains("costgraph.cost_floor: must be in")), "{p:?}");
+        let noise = "kind = \"noise\"\nelevation = 40\namplitude = 5\nwavelength = 1e-154";
+        let p = problems(&GOOD.replace("kind = \"plane\"\nelevation = 40", noise));
+        assert!(
+            p.iter().any(|m| m.contains("terrain.wavelength: gives the terrain a steepest slope")),
+            "{p:?}"
+        );
+        let p = problems(&GOOD.replace("max = [100, 100, 50]", "max = [1e308, 100, 50]"));
+        assert!(p.iter().any(|m| m.contains("domain.max: 1e308 is beyond")), "{p:?}");
+    }
+
+    #[test]
+    fn coincident_key_points_are_named() {
+        let text = GOOD.replace("position = [90, 90, 10]", "position = [10, 10, 40]").replace(
+            "[[keypoints]]\nname = \"s\"\nkind = \"spring\"",
+            "[[keypoints]]\nname = \"s\"\nkind = \"spring\"",
+        );
+        let p = problems(&text);
+        assert!(p.iter().any(|m| m.contains("keypoints[1].position: \"s\" lies where \"a\" does")), "{p:?}");
     }
 
     #[test]

@@ -12,6 +12,9 @@ use crate::recharge;
 
 /// The water of `skeleton` under the scene's springs, recharge and `[hydro]` parameters.
 pub fn build(scene: &Scene, skeleton: &Skeleton) -> Result<Hydro, HydroError> {
+    if scene.hydro().recharge == Recharge::Catchment {
+        recharge::check(scene)?;
+    }
     let inputs = Inputs {
         spring_names: scene.keypoints_of(KeyPointKind::Spring).map(|(_, k)| k.name.clone()).collect(),
         recharge: match scene.hydro().recharge {

@@ -10,14 +10,6 @@ pub enum HydroError {
     NoSpring,
     #[error("sink \"{sink}\" (node {node}) has no downstream path: no conduit leads from it to a spring")]
     NoDownstreamPath { sink: String, node: u32 },
-    #[error("sink \"{sink}\" has weight {weight}: recharge must be a finite number ≥ 0")]
-    BadWeight { sink: String, weight: f64 },
-    #[error("{what} names node {node}, but the network has {count} nodes")]
-    MissingNode { what: String, node: u32, count: usize },
-    #[error("conduit {conduit} has {nodes} nodes and {radii} radii")]
-    Radii { conduit: usize, nodes: usize, radii: usize },
-    #[error("node {node} has a non-finite position")]
-    Position { node: usize },
     #[error("hydro.pools[{index}]: no pool within {radius} m of {at:?} ({nearest})")]
     NoPoolNear { index: usize, at: [f64; 3], radius: f64, nearest: String },
     #[error("hydro.pools[{second}]: selects pool node {node}, which hydro.pools[{first}] already selects")]
@@ -26,6 +18,8 @@ pub enum HydroError {
         "hydro.pools[{index}]: every outgoing conduit of pool node {node} gets weight 0: water could not leave it"
     )]
     PoolClosed { index: usize, node: u32 },
+    #[error(transparent)]
+    OverBudget(#[from] karst_geology::budget::OverBudget),
 }
 
 impl Failure for HydroError {
@@ -33,15 +27,11 @@ impl Failure for HydroError {
     /// skeleton.json (whose routes carry the sinks' weights).
     fn blame(&self) -> Blame {
         match self {
-            HydroError::NoPoolNear { .. } | HydroError::SamePool { .. } | HydroError::PoolClosed { .. } => {
-                Blame::Scene
-            }
-            HydroError::BadWeight { .. }
-            | HydroError::NoSpring
-            | HydroError::NoDownstreamPath { .. }
-            | HydroError::MissingNode { .. }
-            | HydroError::Radii { .. }
-            | HydroError::Position { .. } => Blame::Artifact(StageId::Skeleton),
+            HydroError::NoPoolNear { .. }
+            | HydroError::SamePool { .. }
+            | HydroError::PoolClosed { .. }
+            | HydroError::OverBudget(_) => Blame::Scene,
+            HydroError::NoSpring | HydroError::NoDownstreamPath { .. } => Blame::Artifact(StageId::Skeleton),
         }
     }
 }

@@ -37,23 +37,13 @@ pub struct Graph {
 }
 
 impl Graph {
-    /// The graph of `skeleton`, after checking its node indices, radii and positions.
-    pub fn of(skeleton: &Skeleton) -> Result<Graph, HydroError> {
-        let count = skeleton.nodes.len();
+    /// The graph of `skeleton` (checked by `Skeleton::validate`: nodes exist, positions are
+    /// finite, one radius per node).
+    pub fn of(skeleton: &Skeleton) -> Graph {
         let positions: Vec<DVec3> = skeleton.nodes.iter().map(|n| DVec3::from_array(n.position)).collect();
-        if let Some(node) = positions.iter().position(|p| !p.is_finite()) {
-            return Err(HydroError::Position { node });
-        }
         let mut links = Vec::new();
-        let mut at_node = vec![Vec::new(); count];
+        let mut at_node = vec![Vec::new(); skeleton.nodes.len()];
         for (c, conduit) in skeleton.conduits.iter().enumerate() {
-            if conduit.radius.len() != conduit.nodes.len() {
-                let (nodes, radii) = (conduit.nodes.len(), conduit.radius.len());
-                return Err(HydroError::Radii { conduit: c, nodes, radii });
-            }
-            for &node in &conduit.nodes {
-                check_node(&format!("conduit {c}"), node, count)?;
-            }
             for (segment, w) in conduit.nodes.windows(2).enumerate() {
                 at_node[w[0] as usize].push(links.len());
                 if w[1] != w[0] {
@@ -62,7 +52,7 @@ impl Graph {
                 links.push(Link { a: w[0], b: w[1], conduit: c, segment });
             }
         }
-        Ok(Graph { positions, links, at_node })
+        Graph { positions, links, at_node }
     }
 
     /// The other end of link `l` seen from `node`.
@@ -78,33 +68,20 @@ impl Graph {
     }
 }
 
-fn check_node(what: &str, node: u32, count: usize) -> Result<(), HydroError> {
-    if (node as usize) < count {
-        Ok(())
-    } else {
-        Err(HydroError::MissingNode { what: what.to_string(), node, count })
-    }
-}
-
 /// The sinks of `skeleton`'s routes, once each in order of first route, with their weights
-/// (`weight` overrides a sink's route weight when it returns a value).
-pub fn sinks(skeleton: &Skeleton, weight: impl Fn(&str) -> Option<f64>) -> Result<Vec<Terminal>, HydroError> {
+/// (`weight` overrides a sink's route weight when it returns a value). Routes are not empty
+/// and their weights finite and ≥ 0 (`Skeleton::validate`); so are the scene's.
+pub fn sinks(skeleton: &Skeleton, weight: impl Fn(&str) -> Option<f64>) -> Vec<Terminal> {
     let mut out: Vec<Terminal> = Vec::new();
     for route in &skeleton.routes {
         if out.iter().any(|t| t.name == route.sink) {
             continue;
         }
-        let Some(&node) = route.nodes.first() else {
-            return Err(HydroError::NoDownstreamPath { sink: route.sink.clone(), node: 0 });
-        };
-        check_node(&format!("the route of sink \"{}\"", route.sink), node, skeleton.nodes.len())?;
+        let node = route.nodes[0];
         let w = weight(&route.sink).unwrap_or(route.weight);
-        if !(w.is_finite() && w >= 0.0) {
-            return Err(HydroError::BadWeight { sink: route.sink.clone(), weight: w });
-        }
         out.push(Terminal { name: route.sink.clone(), node, weight: w });
     }
-    Ok(out)
+    out
 }
 
 /// The springs: the ends of the routes, then the nodes whose key point is in `spring_names`,
@@ -118,7 +95,6 @@ pub fn springs(skeleton: &Skeleton, spring_names: &[String]) -> Result<Vec<Termi
     };
     for route in &skeleton.routes {
         if let Some(&node) = route.nodes.last() {
-            check_node(&format!("the route of sink \"{}\"", route.sink), node, skeleton.nodes.len())?;
             add(&route.spring, node);
         }
     }

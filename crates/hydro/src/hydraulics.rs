@@ -28,9 +28,9 @@ const LEVEL: f64 = 1e-9;
 
 /// The hydro artifact of `skeleton`.
 pub fn compute(skeleton: &Skeleton, params: &HydroParams, inputs: &Inputs) -> Result<Hydro, HydroError> {
-    let graph = Graph::of(skeleton)?;
+    let graph = Graph::of(skeleton);
     let sinks =
-        graph::sinks(skeleton, |name| inputs.recharge.iter().find(|(n, _)| n == name).map(|(_, w)| *w))?;
+        graph::sinks(skeleton, |name| inputs.recharge.iter().find(|(n, _)| n == name).map(|(_, w)| *w));
     let springs = graph::springs(skeleton, &inputs.spring_names)?;
     let orientation = orient(skeleton, &graph, &springs.iter().map(|t| t.node).collect::<Vec<_>>());
     if let Some(t) = sinks.iter().find(|t| orientation.rank[t.node as usize].is_none()) {

@@ -5,7 +5,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Payload, StageId};
+use karst_artifact::check::{self, MAX_COORDINATE};
+use karst_artifact::{Invalid, Payload, StageId};
 
 use crate::water::{Look, WaterType};
 
@@ -27,6 +28,92 @@ pub struct Hydro {
 impl Payload for Hydro {
     const STAGE: StageId = StageId::Hydro;
     const SCHEMA: u32 = 2;
+
+    /// Flows, discharges, speeds, depths and widths finite and ≥ 0, slopes within [0, π/2],
+    /// finite levels and falls, radii finite and > 0, sinks and springs at existing nodes.
+    /// (That `conduits` and `nodes` match skeleton.json is checked by the stages reading both.)
+    fn validate(&self) -> Result<(), Invalid> {
+        amount(|| "flow_units.min".into(), self.flow_units.min)?;
+        amount(|| "flow_units.max".into(), self.flow_units.max)?;
+        for (c, conduit) in self.conduits.iter().enumerate() {
+            amount(|| format!("conduits[{c}].flow"), conduit.flow)?;
+            for (i, r) in conduit.radius.iter().flatten().enumerate() {
+                check::positive(|| format!("conduits[{c}].radius[{i}]"), *r, MAX_COORDINATE)?;
+            }
+            for (i, segment) in conduit.segments.iter().enumerate() {
+                segment.validate(&|| format!("conduits[{c}].segments[{i}]"))?;
+            }
+        }
+        for (n, node) in self.nodes.iter().enumerate() {
+            amount(|| format!("nodes[{n}].inflow"), node.inflow)?;
+        }
+        for (i, sink) in self.sinks.iter().enumerate() {
+            check::index(|| format!("sinks[{i}].node"), sink.node as u64, self.nodes.len())?;
+            amount(|| format!("sinks[{i}].recharge"), sink.recharge)?;
+            for (j, share) in sink.springs.iter().enumerate() {
+                amount(|| format!("sinks[{i}].springs[{j}].flow"), share.flow)?;
+            }
+        }
+        for (i, spring) in self.springs.iter().enumerate() {
+            check::index(|| format!("springs[{i}].node"), spring.node as u64, self.nodes.len())?;
+            amount(|| format!("springs[{i}].flow"), spring.flow)?;
+            for (j, share) in spring.sinks.iter().enumerate() {
+                amount(|| format!("springs[{i}].sinks[{j}].flow"), share.flow)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A flow, length or speed: finite and ≥ 0.
+fn amount(field: impl FnOnce() -> String, value: f64) -> Result<(), Invalid> {
+    check::within(field, value, 0.0, f64::MAX)
+}
+
+impl SegmentWater {
+    fn validate(&self, at: &dyn Fn() -> String) -> Result<(), Invalid> {
+        let field = |name: &str| format!("{}.{name}", at());
+        for (name, value) in [
+            ("flow", self.flow),
+            ("discharge", self.discharge),
+            ("flow_units", self.flow_units),
+            ("speed", self.speed),
+            ("depth", self.depth),
+            ("width", self.width),
+        ] {
+            amount(|| field(name), value)?;
+        }
+        check::within(|| field("slope"), self.slope, 0.0, std::f64::consts::FRAC_PI_2)?;
+        if let Some(level) = &self.level {
+            check::position(|| field("level"), level)?;
+        }
+        if let Some(fall) = &self.fall {
+            check::position(|| field("fall.lip"), &fall.lip)?;
+            check::position(|| field("fall.impact"), &fall.impact)?;
+            check::within(
+                || field("fall.direction"),
+                fall.direction[0].hypot(fall.direction[1]),
+                0.999,
+                1.001,
+            )?;
+            for (name, value) in
+                [("fall.speed", fall.speed), ("fall.drop", fall.drop), ("fall.throw", fall.throw)]
+            {
+                amount(|| field(name), value)?;
+            }
+        }
+        if let Some(look) = &self.look {
+            for (name, value) in [
+                ("look.foam", look.foam),
+                ("look.rocks", look.rocks),
+                ("look.disturbance", look.disturbance),
+                ("look.particles", look.particles),
+            ] {
+                check::within(|| field(name), value, 0.0, 1.0)?;
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Flow `q` (network units) maps to `1 + 7 · ln(q / min) / ln(max / min)` flow units; when

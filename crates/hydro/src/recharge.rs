@@ -9,7 +9,25 @@
 //! terrain drains its own cell only.
 
 use karst_geology::Scene;
+use karst_geology::budget::{Cheaper, Estimate, OverBudget};
 use karst_geology::keypoint::KeyPointKind;
+
+/// Bytes per cell of the D8 grid: its height, its area and its place in the order of heights.
+const BYTES_PER_CELL: f64 = 32.0;
+
+/// Refuses a catchment grid that would not fit in the memory budget.
+pub fn check(scene: &Scene) -> Result<(), OverBudget> {
+    let size = scene.domain().size();
+    let cells = |cell: f64| (size.x / cell).ceil().max(1.0) * (size.y / cell).ceil().max(1.0);
+    let cell = scene.hydro().catchment_cell;
+    let estimate = Estimate {
+        what: format!("{:.2e} catchment cells", cells(cell)),
+        bytes: cells(cell) * BYTES_PER_CELL,
+        field: "hydro.catchment_cell".into(),
+        value: cell,
+    };
+    scene.budget().check(estimate, Cheaper::Larger, false, |c| cells(c) * BYTES_PER_CELL)
+}
 
 /// Catchment area of each sink of `scene`, m², by name, in key point order.
 pub fn catchments(scene: &Scene) -> Vec<(String, f64)> {

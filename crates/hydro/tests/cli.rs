@@ -57,7 +57,8 @@ fn bad_skeletons_exit_2_naming_the_file_and_the_sink() {
     negative.routes[1].weight = -3.0;
     let sink = negative.routes[1].sink.clone();
     let e = run(&negative);
-    assert!(e.contains("skeleton.json") && e.contains(&format!("sink \"{sink}\" has weight -3")), "{e}");
+    assert!(e.contains("skeleton.json: routes[1].weight: -3 is not a finite number in [0, "), "{e}");
+    assert!(e.contains("rerun the pipeline from skeleton"), "{sink}: {e}");
 
     let mut no_spring = good.clone();
     no_spring.routes.clear();
@@ -102,4 +103,28 @@ fn pool_weights_naming_no_pool_exit_2_naming_the_scene_and_the_entry() {
         stderr.contains("tiny-pools.toml: hydro.pools[0]: no pool within 10 m of [5000.0, 5000.0, 0.0] ("),
         "{stderr}"
     );
+}
+
+#[test]
+fn a_catchment_grid_beyond_the_memory_budget_is_refused_before_allocating() {
+    let out = scratch("catchment");
+    let tiny = tiny_skeleton(&out);
+    let scene = out.join("tiny-catchment.toml");
+    let text = std::fs::read_to_string(&tiny).unwrap()
+        + "\n[hydro]\nrecharge = \"catchment\"\ncatchment_cell = 1e-4\n";
+    std::fs::write(&scene, text).unwrap();
+    let result = hydro(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(
+            "tiny-catchment.toml: hydro.catchment_cell = 1.00e-4 means about 3.00e12 catchment cells"
+        ),
+        "{stderr}"
+    );
+    assert!(stderr.contains("hydro.catchment_cell = 0.0075 would fit"), "{stderr}");
+    // A smaller budget refuses a cell the default one takes.
+    let small =
+        hydro(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--max-memory", "1M"]);
+    assert_eq!(small.status.code(), Some(2));
 }

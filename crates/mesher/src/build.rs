@@ -20,8 +20,21 @@ pub fn build(scene: &Scene, model: &SdfModel) -> Result<Mesh, MesherError> {
     check_lattice(model, "mesher.cell_size", params.cell_size)?;
     let cave_cell = cave_cell(model, params.cell_size, params.cave_cell_size);
     check_lattice(model, "mesher.cave_cell_size", cave_cell)?;
+    crate::estimate::check(scene, model, params.cell_size, |c| {
+        crate::build::cave_cell(model, c, params.cave_cell_size)
+    })?;
     let field = CarvedTerrain::new(model.clone());
-    Ok(mesh_simplified(&field, params.cell_size, cave_cell, &anchors(scene), params.target_triangles))
+    let mesh = mesh_simplified(&field, params.cell_size, cave_cell, &anchors(scene), params.target_triangles);
+    // Degenerate results are errors: the water may be absent, the rock and the cave may not.
+    for (surface, field, cell_size, triangles) in [
+        ("terrain", "mesher.cell_size", mesh.cell_size, &mesh.terrain.triangles),
+        ("cave", "mesher.cave_cell_size", mesh.cave_cell_size, &mesh.cave.triangles),
+    ] {
+        if triangles.is_empty() {
+            return Err(MesherError::Empty { surface, field, cell_size });
+        }
+    }
+    Ok(mesh)
 }
 
 /// The sinks and springs of `scene`: the cleanup keeps the air around them even when it is

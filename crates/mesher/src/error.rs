@@ -9,12 +9,21 @@ pub enum MesherError {
         "{field} = {cell_size} gives {cells:.0} cells along the domain's longest axis; at most {max} are possible"
     )]
     LatticeTooFine { field: &'static str, cell_size: f64, cells: f64, max: f64 },
+    #[error(
+        "the {surface} mesh is empty: no surface of the model crosses the lattice of {field} = {cell_size} m \
+         (a terrain steeper than the domain is tall, or conduits thinner than the cell?)"
+    )]
+    Empty { surface: &'static str, field: &'static str, cell_size: f64 },
+    #[error(transparent)]
+    OverBudget(#[from] karst_geology::budget::OverBudget),
 }
 
 impl Failure for MesherError {
     fn blame(&self) -> Blame {
         match self {
-            MesherError::LatticeTooFine { .. } => Blame::Scene,
+            MesherError::LatticeTooFine { .. } | MesherError::Empty { .. } | MesherError::OverBudget(_) => {
+                Blame::Scene
+            }
         }
     }
 }

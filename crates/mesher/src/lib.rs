@@ -18,6 +18,7 @@ mod cleanup;
 pub mod components;
 mod cubes;
 mod error;
+mod estimate;
 mod lattice;
 mod normals;
 mod octree;

@@ -3,7 +3,8 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Payload, StageId};
+use karst_artifact::check::{self, MAX_COORDINATE, ensure};
+use karst_artifact::{Invalid, Payload, StageId};
 
 /// The artifact `mesh.bin`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -30,6 +31,20 @@ impl Mesh {
 impl Payload for Mesh {
     const STAGE: StageId = StageId::Mesher;
     const SCHEMA: u32 = 3;
+
+    /// Cell sizes finite and > 0; finite vertices; triangles of three distinct existing
+    /// vertices; a terrain and a cave that are not empty (the water may be).
+    fn validate(&self) -> Result<(), Invalid> {
+        check::positive(|| "cell_size".into(), self.cell_size, MAX_COORDINATE)?;
+        check::positive(|| "cave_cell_size".into(), self.cave_cell_size, MAX_COORDINATE)?;
+        for (name, surface) in self.surfaces() {
+            if name != "water" {
+                ensure(!surface.triangles.is_empty(), || format!("{name}.triangles"), || "is empty".into())?;
+            }
+            surface.validate(name)?;
+        }
+        Ok(())
+    }
 }
 
 /// An indexed triangle mesh; triangles are counter-clockwise seen from outside the solid.
@@ -44,6 +59,26 @@ pub struct TriMesh {
 }
 
 impl TriMesh {
+    fn validate(&self, name: &str) -> Result<(), Invalid> {
+        for (i, v) in self.vertices.iter().enumerate() {
+            check::position_f32(|| format!("{name}.vertices[{i}]"), v)?;
+        }
+        let n = self.vertices.len() as u64;
+        for (t, tri) in self.triangles.iter().enumerate() {
+            if let Some(&v) = tri.iter().find(|&&v| v as u64 >= n) {
+                check::index(|| format!("{name}.triangles[{t}]"), v as u64, self.vertices.len())?;
+            }
+            ensure(
+                tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2],
+                || format!("{name}.triangles[{t}]"),
+                || format!("{tri:?} repeats a vertex"),
+            )?;
+        }
+        let r = &self.removed;
+        check::within(|| format!("{name}.removed.island_volume"), r.island_volume, 0.0, f64::MAX)?;
+        check::within(|| format!("{name}.removed.pocket_volume"), r.pocket_volume, 0.0, f64::MAX)
+    }
+
     /// Total area, m².
     pub fn area(&self) -> f64 {
         self.triangles.iter().map(|t| self.normal(t).length() * 0.5).sum()

@@ -115,6 +115,13 @@ pub fn render(args: &RenderArgs) -> Result<(), StageError> {
     }
     let surface = pick(names[0])?;
     let over = names.get(1).map(|n| pick(n)).transpose()?;
+    if surface.triangles.is_empty() {
+        return Err(StageError::input(format!(
+            "{}: the {} surface is empty: nothing to draw",
+            args.file.display(),
+            names[0]
+        )));
+    }
     if !(16..=8192).contains(&args.width) || !(16..=8192).contains(&args.height) {
         return Err(StageError::input(format!(
             "--width {} --height {}: each must be within 16..=8192 pixels",

@@ -6,7 +6,8 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Payload, StageId};
+use karst_artifact::check;
+use karst_artifact::{Invalid, Payload, StageId};
 
 use crate::Metrics;
 use crate::ranges::Compared;
@@ -51,4 +52,21 @@ pub struct ZoneLengths {
 impl Payload for MetricsReport {
     const STAGE: StageId = StageId::Metrics;
     const SCHEMA: u32 = 4;
+
+    /// Lengths finite and ≥ 0 (the statistics themselves may be undefined, written `null`).
+    fn validate(&self) -> Result<(), Invalid> {
+        let length = |field: String, value: f64| check::within(|| field, value, 0.0, f64::MAX);
+        length("zones.vadose".into(), self.zones.vadose)?;
+        length("zones.phreatic".into(), self.zones.phreatic)?;
+        for (kind, value) in &self.conduit_types {
+            length(format!("conduit_types.{kind}"), *value)?;
+        }
+        for (kind, value) in &self.water_types {
+            length(format!("water_types.{kind}"), *value)?;
+        }
+        for (kind, value) in &self.surface.water_types {
+            length(format!("surface.water_types.{kind}"), *value)?;
+        }
+        Ok(())
+    }
 }

@@ -277,7 +277,7 @@ struct TextFile {
 
 impl TextFile {
     fn open(path: &Path) -> Result<Self, ReadError> {
-        let text = std::fs::read_to_string(path)
+        let text = karst_artifact::files::read_regular_text(path, karst_artifact::files::MAX_DATA_BYTES)
             .map_err(|source| ReadError::Io { path: path.to_path_buf(), source })?;
         Ok(Self { path: path.to_path_buf(), text })
     }

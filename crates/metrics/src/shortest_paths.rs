@@ -108,22 +108,87 @@ impl<'a> Trees<'a> {
     }
 }
 
+/// The kept nodes as a compact graph: ids `0..k` in the original order (so that ties between
+/// equal distances break as before), each adjacency list in the original order restricted to
+/// kept neighbours, 32-bit ids and the length of every arc beside it: the traversals' inner
+/// loops read contiguous memory and test no peeled flag.
+struct Kept {
+    /// Original id of each kept node.
+    nodes: Vec<usize>,
+    offsets: Vec<u32>,
+    targets: Vec<u32>,
+    lengths: Vec<f64>,
+    size: Vec<u64>,
+    hop_tail: Vec<u64>,
+    length_tail: Vec<f64>,
+}
+
+impl Kept {
+    fn new(trees: &Trees) -> Self {
+        let n = trees.adj.n_nodes();
+        let nodes: Vec<usize> = (0..n).filter(|&v| !trees.is_peeled(v)).collect();
+        let mut index = vec![u32::MAX; n];
+        for (k, &v) in nodes.iter().enumerate() {
+            index[v] = k as u32;
+        }
+        let (mut offsets, mut targets, mut lengths) = (vec![0u32], Vec::new(), Vec::new());
+        for &v in &nodes {
+            for (w, e) in trees.kept(v) {
+                targets.push(index[w]);
+                lengths.push(trees.lengths[e]);
+            }
+            offsets.push(targets.len() as u32);
+        }
+        Self {
+            size: nodes.iter().map(|&v| trees.size[v] as u64).collect(),
+            hop_tail: nodes.iter().map(|&v| trees.hop_tail[v]).collect(),
+            length_tail: nodes.iter().map(|&v| trees.length_tail[v]).collect(),
+            nodes,
+            offsets,
+            targets,
+            lengths,
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    fn arcs(&self, v: u32) -> std::ops::Range<usize> {
+        self.offsets[v as usize] as usize..self.offsets[v as usize + 1] as usize
+    }
+
+    /// The bucket width of Dial's algorithm when the arc lengths allow it: all positive and
+    /// within a factor [`DIAL_RATIO`] of each other (grids, regular mazes); else None.
+    fn dial_width(&self) -> Option<f64> {
+        let (lo, hi) =
+            self.lengths.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &l| (lo.min(l), hi.max(l)));
+        (lo > 0.0 && hi <= lo * DIAL_RATIO).then_some(lo * (1.0 - 1e-6))
+    }
+}
+
+/// Largest ratio of the longest to the shortest arc for Dial's buckets: beyond it the empty
+/// buckets between far-apart distances cost more than a heap.
+const DIAL_RATIO: f64 = 64.0;
+
 /// Runs a BFS (with Brandes' accumulation) and a Dijkstra from every kept node and derives the
 /// peeled nodes' results from their parents'.
 pub(crate) fn all_pairs(adj: &Csr, lengths: &[f64]) -> AllPairs {
     let n = adj.n_nodes();
     let trees = Trees::new(adj, lengths);
-    let sources: Vec<usize> = (0..n).filter(|&v| !trees.is_peeled(v)).collect();
+    let kept = Kept::new(&trees);
+    let sources: Vec<u32> = (0..kept.len() as u32).collect();
     let chunk = sources.len().div_ceil(CHUNKS).max(1);
-    let parts: Vec<AllPairs> = sources.par_chunks(chunk).map(|chunk| from_sources(&trees, chunk)).collect();
+    let parts: Vec<AllPairs> = sources.par_chunks(chunk).map(|chunk| from_sources(&kept, chunk)).collect();
     let mut total = AllPairs { hop_sums: vec![0; n], length_sums: vec![0.0; n], betweenness: vec![0.0; n] };
     for (part, chunk) in parts.into_iter().zip(sources.chunks(chunk)) {
         for (i, &s) in chunk.iter().enumerate() {
-            total.hop_sums[s] = part.hop_sums[i];
-            total.length_sums[s] = part.length_sums[i];
+            let v = kept.nodes[s as usize];
+            total.hop_sums[v] = part.hop_sums[i];
+            total.length_sums[v] = part.length_sums[i];
         }
-        for (b, p) in total.betweenness.iter_mut().zip(part.betweenness) {
-            *b += p;
+        for (k, p) in part.betweenness.into_iter().enumerate() {
+            total.betweenness[kept.nodes[k]] += p;
         }
     }
     add_tree_sources(&trees, &mut total);
@@ -149,28 +214,36 @@ fn add_tree_sources(trees: &Trees, total: &mut AllPairs) {
     }
 }
 
-fn from_sources(trees: &Trees, sources: &[usize]) -> AllPairs {
-    let n = trees.adj.n_nodes();
-    let mut bfs = Brandes::new(n);
-    let mut dijkstra = Dijkstra::new(n);
-    let mut betweenness = vec![0.0; n];
-    let hop_sums = sources.iter().map(|&s| bfs.run(trees, s, &mut betweenness)).collect();
-    let length_sums = sources.iter().map(|&s| dijkstra.run(trees, s)).collect();
+/// The sums and betweenness of one range of sources (kept ids; betweenness per kept id).
+fn from_sources(kept: &Kept, sources: &[u32]) -> AllPairs {
+    let mut bfs = Brandes::new(kept.len());
+    let mut betweenness = vec![0.0; kept.len()];
+    let hop_sums = sources.iter().map(|&s| bfs.run(kept, s, &mut betweenness)).collect();
+    let length_sums = match kept.dial_width() {
+        Some(width) => {
+            let mut dial = Dial::new(kept.len(), kept, width);
+            sources.iter().map(|&s| dial.run(kept, s)).collect()
+        }
+        None => {
+            let mut dijkstra = Dijkstra::new(kept.len());
+            sources.iter().map(|&s| dijkstra.run(kept, s)).collect()
+        }
+    };
     AllPairs { hop_sums, length_sums, betweenness }
 }
 
 /// Reusable buffers of Brandes' algorithm for unweighted graphs.
 struct Brandes {
-    dist: Vec<usize>,
+    dist: Vec<u32>,
     sigma: Vec<f64>,
     delta: Vec<f64>,
-    order: Vec<usize>,
+    order: Vec<u32>,
 }
 
 impl Brandes {
     fn new(n: usize) -> Self {
         Self {
-            dist: vec![usize::MAX; n],
+            dist: vec![u32::MAX; n],
             sigma: vec![0.0; n],
             delta: vec![0.0; n],
             order: Vec::with_capacity(n),
@@ -179,24 +252,30 @@ impl Brandes {
 
     /// Adds the dependencies of kept source `s` on kept nodes, times the size(s) sources it
     /// stands for, to `betweenness`; returns `Σ_t d(s, t)` over all targets (module docs).
-    fn run(&mut self, trees: &Trees, s: usize, betweenness: &mut [f64]) -> u64 {
-        self.count_shortest_paths(trees, s);
-        let weight = trees.size[s] as f64;
+    fn run(&mut self, kept: &Kept, s: u32, betweenness: &mut [f64]) -> u64 {
+        self.count_shortest_paths(kept, s);
+        let weight = kept.size[s as usize] as f64;
         for &w in self.order.iter().rev() {
-            let coeff = (trees.size[w] as f64 + self.delta[w]) / self.sigma[w];
-            for (v, _) in trees.kept(w) {
-                if self.dist[v] + 1 == self.dist[w] {
+            let w = w as usize;
+            let coeff = (kept.size[w] as f64 + self.delta[w]) / self.sigma[w];
+            for arc in kept.arcs(w as u32) {
+                let v = kept.targets[arc] as usize;
+                if self.dist[v].wrapping_add(1) == self.dist[w] {
                     self.delta[v] += self.sigma[v] * coeff;
                 }
             }
-            if w != s {
-                betweenness[w] += weight * (self.delta[w] + (trees.size[w] - 1) as f64);
+            if w != s as usize {
+                betweenness[w] += weight * (self.delta[w] + (kept.size[w] - 1) as f64);
             }
         }
-        let hop_sum =
-            self.order.iter().map(|&v| trees.size[v] as u64 * self.dist[v] as u64 + trees.hop_tail[v]).sum();
+        let hop_sum = self
+            .order
+            .iter()
+            .map(|&v| kept.size[v as usize] * self.dist[v as usize] as u64 + kept.hop_tail[v as usize])
+            .sum();
         for &v in &self.order {
-            self.dist[v] = usize::MAX;
+            let v = v as usize;
+            self.dist[v] = u32::MAX;
             self.sigma[v] = 0.0;
             self.delta[v] = 0.0;
         }
@@ -204,20 +283,22 @@ impl Brandes {
     }
 
     /// BFS from `s` over the kept nodes: hop distances, shortest-path counts, visiting order.
-    fn count_shortest_paths(&mut self, trees: &Trees, s: usize) {
+    fn count_shortest_paths(&mut self, kept: &Kept, s: u32) {
         self.order.clear();
         self.order.push(s);
-        self.dist[s] = 0;
-        self.sigma[s] = 1.0;
+        self.dist[s as usize] = 0;
+        self.sigma[s as usize] = 1.0;
         let mut head = 0;
         while let Some(&v) = self.order.get(head) {
             head += 1;
-            for (w, _) in trees.kept(v) {
-                if self.dist[w] == usize::MAX {
-                    self.dist[w] = self.dist[v] + 1;
-                    self.order.push(w);
+            let (v, next) = (v as usize, self.dist[v as usize] + 1);
+            for arc in kept.arcs(v as u32) {
+                let w = kept.targets[arc] as usize;
+                if self.dist[w] == u32::MAX {
+                    self.dist[w] = next;
+                    self.order.push(w as u32);
                 }
-                if self.dist[w] == self.dist[v] + 1 {
+                if self.dist[w] == next {
                     self.sigma[w] += self.sigma[v];
                 }
             }
@@ -228,10 +309,10 @@ impl Brandes {
 /// Reusable buffers of Dijkstra's algorithm.
 struct Dijkstra {
     dist: Vec<f64>,
-    settled: Vec<usize>,
+    settled: Vec<u32>,
     done: Vec<bool>,
     /// `(distance bits, node)`: non-negative floats order like their bit patterns.
-    heap: BinaryHeap<Reverse<(u64, usize)>>,
+    heap: BinaryHeap<Reverse<(u64, u32)>>,
 }
 
 impl Dijkstra {
@@ -245,35 +326,116 @@ impl Dijkstra {
     }
 
     /// `Σ_t d(s, t)` along edge lengths, over the kept nodes and the trees hanging from them.
-    fn run(&mut self, trees: &Trees, s: usize) -> f64 {
-        self.dist[s] = 0.0;
+    fn run(&mut self, kept: &Kept, s: u32) -> f64 {
+        self.dist[s as usize] = 0.0;
         self.heap.push(Reverse((0f64.to_bits(), s)));
         while let Some(Reverse((_, node))) = self.heap.pop() {
-            if self.done[node] {
+            let v = node as usize;
+            if self.done[v] {
                 continue;
             }
-            self.done[node] = true;
+            self.done[v] = true;
             self.settled.push(node);
-            let d = self.dist[node];
-            for (w, e) in trees.kept(node) {
-                let through = d + trees.lengths[e];
+            let d = self.dist[v];
+            for arc in kept.arcs(node) {
+                let w = kept.targets[arc] as usize;
+                let through = d + kept.lengths[arc];
                 if !self.done[w] && through < self.dist[w] {
                     self.dist[w] = through;
-                    self.heap.push(Reverse((through.to_bits(), w)));
+                    self.heap.push(Reverse((through.to_bits(), w as u32)));
                 }
             }
         }
-        let sum = self
-            .settled
-            .iter()
-            .map(|&v| trees.size[v] as f64 * self.dist[v] + trees.length_tail[v])
-            .sum::<f64>();
-        for &v in &self.settled {
-            self.dist[v] = f64::INFINITY;
-            self.done[v] = false;
+        settled_sum(kept, &mut self.settled, &mut self.dist, &mut self.done)
+    }
+}
+
+/// `Σ size(v) d(v) + tail(v)` over the settled nodes in settling order (the order of the sum
+/// fixes its last bits), then the buffers reset.
+fn settled_sum(kept: &Kept, settled: &mut Vec<u32>, dist: &mut [f64], done: &mut [bool]) -> f64 {
+    let sum = settled
+        .iter()
+        .map(|&v| kept.size[v as usize] as f64 * dist[v as usize] + kept.length_tail[v as usize])
+        .sum::<f64>();
+    for &v in settled.iter() {
+        dist[v as usize] = f64::INFINITY;
+        done[v as usize] = false;
+    }
+    settled.clear();
+    sum
+}
+
+/// Dial's algorithm, for arc lengths within [`DIAL_RATIO`] of each other: distances are
+/// bucketed by `width`, a little below the shortest arc, so no arc relaxes a node into its own
+/// bucket and every node of a bucket is final when the bucket is reached. A bucket's nodes are
+/// settled in (distance, node) order, the order in which the binary heap pops them: the
+/// distances, the settling order and hence every bit of the sums are those of [`Dijkstra`],
+/// without a heap.
+struct Dial {
+    dist: Vec<f64>,
+    settled: Vec<u32>,
+    done: Vec<bool>,
+    /// A ring of buckets, enough to span the longest arc.
+    buckets: Vec<Vec<u32>>,
+    width: f64,
+}
+
+impl Dial {
+    fn new(n: usize, kept: &Kept, width: f64) -> Self {
+        let longest = kept.lengths.iter().copied().fold(0.0, f64::max);
+        let ring = (longest / width).ceil() as usize + 2;
+        Self {
+            dist: vec![f64::INFINITY; n],
+            settled: Vec::with_capacity(n),
+            done: vec![false; n],
+            buckets: vec![Vec::new(); ring],
+            width,
         }
-        self.settled.clear();
-        sum
+    }
+
+    fn bucket(&self, d: f64) -> u64 {
+        (d / self.width) as u64
+    }
+
+    fn run(&mut self, kept: &Kept, s: u32) -> f64 {
+        let ring = self.buckets.len() as u64;
+        self.dist[s as usize] = 0.0;
+        self.buckets[0].push(s);
+        let mut pending = 1usize;
+        let mut current = 0u64;
+        let mut live = Vec::new();
+        while pending > 0 {
+            let slot = (current % ring) as usize;
+            pending -= self.buckets[slot].len();
+            live.clear();
+            for &v in &self.buckets[slot] {
+                if !self.done[v as usize] && self.bucket(self.dist[v as usize]) == current {
+                    live.push(v);
+                }
+            }
+            self.buckets[slot].clear();
+            live.sort_unstable_by_key(|&v| (self.dist[v as usize].to_bits(), v));
+            live.dedup();
+            for &v in &live {
+                self.done[v as usize] = true;
+                self.settled.push(v);
+            }
+            for &v in &live {
+                let d = self.dist[v as usize];
+                for arc in kept.arcs(v) {
+                    let w = kept.targets[arc] as usize;
+                    let through = d + kept.lengths[arc];
+                    if !self.done[w] && through < self.dist[w] {
+                        self.dist[w] = through;
+                        let slot = (self.bucket(through) % ring) as usize;
+                        self.buckets[slot].push(w as u32);
+                        pending += 1;
+                    }
+                }
+            }
+            current += 1;
+        }
+        settled_sum(kept, &mut self.settled, &mut self.dist, &mut self.done)
     }
 }
 
@@ -324,6 +486,37 @@ mod tests {
         // Path: nodes 1 and 2 each lie inside 2 unordered pairs; the tree: 6 inside (4|5)×(7,8,9)
         // = 6 pairs, 7 inside (4,5,6)×(8,9) + (8,9) = 7 pairs. Ordered: twice as many.
         assert_eq!(r.betweenness, vec![0.0, 4.0, 4.0, 0.0, 0.0, 0.0, 12.0, 14.0, 0.0, 0.0]);
+    }
+
+    /// A side × side grid whose edge `i` has length `length(i)`.
+    fn grid(side: usize, length: impl Fn(usize) -> f64) -> (Csr, Vec<f64>) {
+        let mut edges = Vec::new();
+        for y in 0..side {
+            for x in 0..side {
+                let v = y * side + x;
+                if x + 1 < side {
+                    edges.push([v, v + 1]);
+                }
+                if y + 1 < side {
+                    edges.push([v, v + side]);
+                }
+            }
+        }
+        let lengths = (0..edges.len()).map(length).collect();
+        (Csr::from_edges(side * side, &edges), lengths)
+    }
+
+    #[test]
+    fn dial_and_the_heap_agree_to_the_last_bit() {
+        for (adj, lengths) in [grid(12, |i| 1.0 + (i * 7 % 11) as f64 / 5.5), grid(9, |_| 0.1)] {
+            let trees = Trees::new(&adj, &lengths);
+            let kept = Kept::new(&trees);
+            let width = kept.dial_width().expect("lengths within the ratio");
+            let (mut dial, mut heap) = (Dial::new(kept.len(), &kept, width), Dijkstra::new(kept.len()));
+            for s in 0..kept.len() as u32 {
+                assert_eq!(dial.run(&kept, s).to_bits(), heap.run(&kept, s).to_bits(), "source {s}");
+            }
+        }
     }
 
     #[test]

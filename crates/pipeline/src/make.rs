@@ -74,6 +74,9 @@ pub fn run(
     std::fs::create_dir_all(out).map_err(|e| {
         StageError::failure(format!("{}: cannot create the output folder: {e}", out.display()))
     })?;
+    // One run writes into a folder at a time; what a killed run left half-written goes.
+    let _lock = karst_artifact::lock_output(out)?;
+    karst_artifact::atomic::remove_stale_temporaries(out);
     karst_stage::run_dir::record_scene(out, &scene.path).map_err(|e| {
         StageError::failure(format!("{}: cannot record the scene's path: {e}", out.display()))
     })?;

@@ -18,6 +18,7 @@ type SurfaceList<'a> = (&'a [Surface], fn(u32) -> Tag, &'static str);
 /// Samples the bedrock of `scene`: key points first, then samples on the water tables,
 /// horizons and faults, then the volume, all outside no-karst volumes and below the terrain.
 pub fn build(scene: &Scene) -> Result<Samples, SamplingError> {
+    crate::estimate::check(scene)?;
     let field = SpacingField::of_scene(scene);
     let d = scene.domain();
     // Background cells of the volume's base radius (a few samples each, linked lists).

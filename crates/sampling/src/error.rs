@@ -12,12 +12,15 @@ pub enum SamplingError {
          sampling.radius = {radius})"
     )]
     NothingToSample { smallest: f64, radius: f64 },
+    /// The samples would not fit in the memory budget.
+    #[error(transparent)]
+    OverBudget(#[from] karst_geology::budget::OverBudget),
 }
 
 impl Failure for SamplingError {
     fn blame(&self) -> Blame {
         match self {
-            SamplingError::NothingToSample { .. } => Blame::Scene,
+            SamplingError::NothingToSample { .. } | SamplingError::OverBudget(_) => Blame::Scene,
         }
     }
 }

@@ -10,6 +10,7 @@
 
 mod build;
 mod error;
+mod estimate;
 mod payload;
 mod poisson;
 mod spacing;

@@ -2,7 +2,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Payload, StageId};
+use karst_artifact::check::{self, MAX_COORDINATE, ensure};
+use karst_artifact::{Invalid, Payload, StageId};
+use rayon::prelude::*;
 
 use crate::spacing::SpacingField;
 
@@ -49,6 +51,41 @@ pub struct Samples {
 impl Payload for Samples {
     const STAGE: StageId = StageId::Sampling;
     const SCHEMA: u32 = 3;
+
+    /// One tag per position, finite positions, no two alike (an edge between them would have no
+    /// direction), key point `i` at index `i`, a usable radius field.
+    fn validate(&self) -> Result<(), Invalid> {
+        ensure(!self.positions.is_empty(), || "positions".into(), || "holds no sample".into())?;
+        check::count(|| "tags".into(), self.tags.len(), self.positions.len())?;
+        for (i, p) in self.positions.iter().enumerate() {
+            check::position(|| format!("positions[{i}]"), p)?;
+        }
+        for (i, tag) in self.tags.iter().enumerate() {
+            if let Tag::KeyPoint(k) = tag {
+                ensure(
+                    *k as usize == i,
+                    || format!("tags[{i}]"),
+                    || format!("key point {k} is not sample {k}"),
+                )?;
+            }
+        }
+        if let Some((a, b)) = coincident(&self.positions) {
+            return Err(Invalid::new(
+                format!("positions[{b}]"),
+                format!("{:?} is also the position of sample {a}", self.positions[b]),
+            ));
+        }
+        check::positive(|| "radius".into(), self.radius, MAX_COORDINATE)?;
+        self.radius_field.validate()
+    }
+}
+
+/// Two samples at the same position, (smaller index, larger index), if any.
+fn coincident(positions: &[[f64; 3]]) -> Option<(usize, usize)> {
+    let key = |i: u32| positions[i as usize].map(|c| (c + 0.0).to_bits());
+    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
+    order.par_sort_unstable_by_key(|&i| (key(i), i));
+    order.windows(2).find(|w| key(w[0]) == key(w[1])).map(|w| (w[0] as usize, w[1] as usize))
 }
 
 impl Samples {

@@ -18,6 +18,11 @@ use karst_geology::{Geometry, Scene, Surface};
 /// The field uses at most this many nodes per expected sample at the base radius (and at
 /// least 32³ nodes): it is smooth, so a coarser table loses nothing the sampler needs.
 const NODES_PER_SAMPLE: f64 = 2.0;
+/// The fewest nodes of a field.
+const MIN_NODES: f64 = 32768.0;
+/// Samples per cubic radius of a maximal Poisson-disk set (random close packing of spheres of
+/// diameter r).
+pub const PACKING: f64 = 0.725;
 
 /// A surface as the radius field measures distances to it.
 enum Near<'a> {
@@ -47,6 +52,20 @@ pub fn unit_scale(scene: &Scene) -> f64 {
 impl SpacingField {
     /// Tabulates the scene's radius field.
     pub fn of_scene(scene: &Scene) -> SpacingField {
+        SpacingField::tabulate(scene, SpacingField::nodes_for(scene))
+    }
+
+    /// Nodes of the scene's field: [`NODES_PER_SAMPLE`] per expected sample at the base radius,
+    /// at least 32³.
+    pub fn nodes_for(scene: &Scene) -> f64 {
+        let radius = scene.sampling().radius * unit_scale(scene);
+        let volume = scene.domain().size().element_product();
+        (NODES_PER_SAMPLE * PACKING * volume / radius.powi(3)).max(MIN_NODES)
+    }
+
+    /// The scene's radius field on about `nodes` nodes (cells no smaller than the smallest
+    /// radius); the work estimate tabulates a coarse one.
+    pub fn tabulate(scene: &Scene, nodes: f64) -> SpacingField {
         let s = scene.sampling();
         let scale = unit_scale(scene);
         let radius = s.radius * scale;
@@ -56,7 +75,6 @@ impl SpacingField {
         let smallest = radius.min(surface_radius).min(layer_min).min(radius * s.potential_factor);
         let size = scene.domain().size();
         let volume = size.element_product();
-        let nodes = (NODES_PER_SAMPLE * 0.725 * volume / radius.powi(3)).max(32f64.powi(3));
         let cell = smallest.max((volume / nodes).cbrt());
         let n = (size / cell).ceil().as_uvec3() + 1;
         let origin = scene.domain().min();
@@ -161,9 +179,40 @@ impl SpacingField {
         self.values.iter().copied().fold(f32::INFINITY, f32::min) as f64
     }
 
-    /// Expected number of samples of a maximal Poisson-disk set filling the grid's box
-    /// (random close packing of spheres of diameter r: about 0.725 / r³ per m³).
-    pub fn expected_samples(&self) -> f64 {
-        self.values.iter().map(|r| 0.725 * self.cell.powi(3) / (*r as f64).powi(3)).sum()
+    /// Checks a decoded field: a grid of at least one node per axis holding one finite,
+    /// positive radius per node.
+    pub fn validate(&self) -> Result<(), karst_artifact::Invalid> {
+        use karst_artifact::check::{self, MAX_COORDINATE, ensure};
+        check::position(|| "radius_field.origin".into(), &self.origin)?;
+        check::positive(|| "radius_field.cell".into(), self.cell, MAX_COORDINATE)?;
+        let nodes = self.size.iter().try_fold(1usize, |n, &s| n.checked_mul(s as usize).filter(|_| s > 0));
+        ensure(
+            nodes == Some(self.values.len()),
+            || "radius_field.values".into(),
+            || format!("holds {} radii for a grid of {:?} nodes", self.values.len(), self.size),
+        )?;
+        match self.values.iter().position(|r| !(*r > 0.0 && r.is_finite())) {
+            Some(i) => Err(karst_artifact::Invalid::new(
+                format!("radius_field.values[{i}]"),
+                format!("{} is not a finite radius > 0", self.values[i]),
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// Expected number of samples of a maximal Poisson-disk set filling the nodes' cells that
+    /// `region` keeps (random close packing of spheres of diameter r: about 0.725 / r³ per m³).
+    pub fn expected_samples(&self, region: impl Fn(DVec3) -> bool) -> f64 {
+        let [nx, ny, _] = self.size.map(|n| n as usize);
+        let origin = DVec3::from_array(self.origin);
+        self.values
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| {
+                let at = DVec3::new((i % nx) as f64, (i / nx % ny) as f64, (i / (nx * ny)) as f64);
+                region(origin + at * self.cell)
+            })
+            .map(|(_, r)| PACKING * self.cell.powi(3) / (*r as f64).powi(3))
+            .sum()
     }
 }

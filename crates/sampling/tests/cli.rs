@@ -34,6 +34,21 @@ fn bad_scenes_exit_2_naming_file_line_and_field() {
         ("nothing_to_sample.toml", "sampling.radius: no sample fits in the bedrock"),
         ("radius_negative.toml", ":41: sampling.radius: must be > 0, got -4"),
         ("tsurf_nan.toml", "nan.ts:7: coordinate NaN is not a finite number"),
+        // Issue 15: work estimates, ranges and the validation gaps.
+        ("radius_tiny.toml", "sampling.radius = 0.01 means about"),
+        ("radius_tiny.toml", "sampling.radius = 0.21 would fit"),
+        ("surface_radius_tiny.toml", "sampling.surface_radius = 1.00e-4 means about"),
+        ("radius_denormal.toml", "sampling.radius = 4.94e-324 means about inf samples"),
+        ("radius_denormal.toml", "sampling.radius = 0.21 would fit"),
+        ("extent_huge.toml", "domain.max: 1e308 is beyond ±1e8 m"),
+        ("extra_elements.toml", ":7: domain.max: has 5 elements, but only 3 are read"),
+        ("keypoints_coincide.toml", "keypoints[1].position: \"sink-b\" lies where \"sink-a\" does"),
+        ("keypoint_weight_huge.toml", "keypoints[1].weight: must be in [0, 1e9], got 1e308"),
+        ("cost_floor_huge.toml", "costgraph.cost_floor: must be in [1e-6, 1e6], got 1e300"),
+        ("noise_wavelength_tiny.toml", "terrain.wavelength: gives the terrain a steepest slope of"),
+        ("radius_upper_nan.toml", "skeleton.radius: NaN is not a finite number"),
+        ("octaves_huge.toml", "terrain.octaves: must be in [0, 24], got 4e9"),
+        ("amplification_huge.toml", "skeleton.amplification_steps: must be at most 100, got 1000000"),
     ];
     let out = scratch("bad");
     for (file, expected) in cases {

@@ -32,6 +32,7 @@ use crate::water::{self, Water};
 
 /// The model of `scene` carved by the conduits of `skeleton`, with the water of `hydro`.
 pub fn build(scene: &Scene, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfModel, SdfError> {
+    crate::estimate::check(scene, skeleton)?;
     if hydro.conduits.len() != skeleton.conduits.len() {
         return Err(SdfError::ConduitCounts {
             hydro: hydro.conduits.len(),
@@ -57,7 +58,7 @@ pub fn build(scene: &Scene, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMod
     let mut jitter = Random::stream(scene.seed(), "sdf", "spheres");
     let progress = karst_stage::progress::bar(skeleton.conduits.len() as u64, "sdf");
     for (c, conduit) in skeleton.conduits.iter().enumerate() {
-        let points = conduit_points(skeleton, conduit, c)?;
+        let points = conduit_points(skeleton, conduit);
         let asymmetry = if lean.uniform() < 0.5 { -p.asymmetry } else { p.asymmetry };
         let sections = node_sections(scene, conduit, c, asymmetry)?;
         let tortuous = tortuosity(&points) > p.tortuosity && points.len() > 2;
@@ -104,31 +105,10 @@ fn mean_radius(skeleton: &Skeleton) -> f64 {
     if radii.is_empty() { 1.0 } else { radii.iter().sum::<f64>() / radii.len() as f64 }
 }
 
-/// The conduit's node positions, checked: existing nodes, finite, distinct consecutive nodes.
-fn conduit_points(skeleton: &Skeleton, conduit: &Conduit, c: usize) -> Result<Vec<DVec3>, SdfError> {
-    if conduit.radius.len() != conduit.nodes.len() || conduit.types.len() + 1 != conduit.nodes.len() {
-        return Err(SdfError::ConduitShape {
-            conduit: c,
-            nodes: conduit.nodes.len(),
-            radii: conduit.radius.len(),
-            types: conduit.types.len(),
-        });
-    }
-    let mut points = Vec::with_capacity(conduit.nodes.len());
-    for &n in &conduit.nodes {
-        let Some(node) = skeleton.nodes.get(n as usize) else {
-            return Err(SdfError::MissingNode { conduit: c, node: n });
-        };
-        let p = DVec3::from_array(node.position);
-        if !p.is_finite() {
-            return Err(SdfError::NodeNotFinite { node: n, position: node.position });
-        }
-        if points.last().is_some_and(|q: &DVec3| q.distance(p) == 0.0) {
-            return Err(SdfError::RepeatedNode { conduit: c, node: n });
-        }
-        points.push(p);
-    }
-    Ok(points)
+/// The conduit's node positions (checked by `Skeleton::validate`: existing, finite, distinct
+/// consecutive nodes).
+fn conduit_points(skeleton: &Skeleton, conduit: &Conduit) -> Vec<DVec3> {
+    conduit.nodes.iter().map(|&n| DVec3::from_array(skeleton.nodes[n as usize].position)).collect()
 }
 
 /// The section of each node of the conduit, checked (radius > 0, no self-intersection).
@@ -141,10 +121,8 @@ fn node_sections(
     let last = conduit.types.len().saturating_sub(1);
     (0..conduit.nodes.len())
         .map(|i| {
+            // Radii within [1e-6, 1e9] (Skeleton::validate) times a scale within [1e-3, 1e3].
             let radius = conduit.radius[i] * scene.sdf().radius_scale;
-            if !(radius > 0.0 && radius.is_finite()) {
-                return Err(SdfError::BadRadius { conduit: c, node: i, radius: conduit.radius[i] });
-            }
             let kinds = [conduit.types[i.saturating_sub(1).min(last)], conduit.types[i.min(last)]];
             let shape =
                 Shape { radius: radius as f32, ratio: scene.sdf().ratio as f32, asymmetry: asymmetry as f32 };
@@ -339,7 +317,6 @@ fn to_f32(p: DVec3) -> [f32; 3] {
 mod tests {
     use super::*;
     use crate::synthetic;
-    use karst_artifact::StageId;
     use karst_stage::{Blame, Failure};
 
     fn build_with(edit: impl FnOnce(&mut Scene, &mut Skeleton)) -> Result<SdfModel, SdfError> {
@@ -350,18 +327,23 @@ mod tests {
     }
 
     #[test]
-    fn bad_radii_nodes_and_terrains_are_input_errors() {
+    fn bad_radii_and_nodes_are_refused_when_the_skeleton_is_read() {
+        use karst_artifact::Payload;
+        let field = |edit: &dyn Fn(&mut Skeleton)| {
+            let (mut skeleton, _) = synthetic::network(2, 6, 5);
+            edit(&mut skeleton);
+            skeleton.validate().expect_err("invalid").field
+        };
         for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-            let e = build_with(|_, s| s.conduits[2].radius[1] = bad).unwrap_err();
-            assert!(matches!(e, SdfError::BadRadius { conduit: 2, node: 1, .. }), "{e}");
-            assert_eq!(e.blame(), Blame::Artifact(StageId::Skeleton));
+            assert_eq!(field(&|s| s.conduits[2].radius[1] = bad), "conduits[2].radius[1]");
         }
-        let e = build_with(|_, s| s.nodes[3].position[1] = f64::NAN).unwrap_err();
-        assert!(matches!(e, SdfError::NodeNotFinite { node: 3, .. }), "{e}");
-        let e = build_with(|_, s| s.conduits[0].nodes[1] = 9999).unwrap_err();
-        assert!(matches!(e, SdfError::MissingNode { conduit: 0, node: 9999 }), "{e}");
-        let e = build_with(|_, s| s.conduits[1].types.pop().map(|_| ()).unwrap_or(())).unwrap_err();
-        assert!(matches!(e, SdfError::ConduitShape { conduit: 1, .. }), "{e}");
+        assert_eq!(field(&|s| s.nodes[3].position[1] = f64::NAN), "nodes[3].position");
+        assert_eq!(field(&|s| s.conduits[0].nodes[1] = 9999), "conduits[0].nodes[1]");
+        assert_eq!(field(&|s| s.conduits[1].types.clear()), "conduits[1].types");
+    }
+
+    #[test]
+    fn a_terrain_without_a_lipschitz_bound_is_the_scene_s_fault() {
         let e = build_with(|scene, _| {
             *scene.terrain_mut() = karst_geology::Terrain::Plane {
                 elevation: 190.0,

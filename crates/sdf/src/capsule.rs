@@ -4,6 +4,9 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+use karst_artifact::Invalid;
+use karst_artifact::check::{self, MAX_COORDINATE};
+
 /// A capsule around the segment a–b.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Capsule {
@@ -13,6 +16,13 @@ pub struct Capsule {
 }
 
 impl Capsule {
+    /// Finite ends and a finite positive radius; `at` names the capsule in errors.
+    pub(crate) fn validate(&self, at: &dyn Fn() -> String) -> Result<(), Invalid> {
+        check::position(|| format!("{}.a", at()), &self.a)?;
+        check::position(|| format!("{}.b", at()), &self.b)?;
+        check::positive(|| format!("{}.radius", at()), self.radius, MAX_COORDINATE)
+    }
+
     /// Exact signed distance: negative inside.
     pub fn distance(&self, p: DVec3) -> f64 {
         let a = DVec3::from_array(self.a);

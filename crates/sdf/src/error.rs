@@ -6,24 +6,14 @@ use karst_stage::{Blame, Failure};
 /// An sdf model that cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SdfError {
+    #[error(transparent)]
+    OverBudget(#[from] karst_geology::budget::OverBudget),
     #[error("describes {hydro} conduits, skeleton.json has {skeleton}")]
     ConduitCounts { hydro: usize, skeleton: usize },
     #[error("conduit {conduit} has fewer water segments than skeleton.json has segments")]
     WaterSegments { conduit: usize },
     #[error("terrain: no finite Lipschitz bound (λ = {lambda})")]
     TerrainNotLipschitz { lambda: f64 },
-    #[error(
-        "conduits[{conduit}] has {nodes} nodes, {radii} radii and {types} types (expected n, n and n − 1)"
-    )]
-    ConduitShape { conduit: usize, nodes: usize, radii: usize, types: usize },
-    #[error("conduits[{conduit}].nodes names node {node}, which does not exist")]
-    MissingNode { conduit: usize, node: u32 },
-    #[error("nodes[{node}].position = {position:?} is not finite")]
-    NodeNotFinite { node: u32, position: [f64; 3] },
-    #[error("conduits[{conduit}] repeats node {node} (a segment of length 0)")]
-    RepeatedNode { conduit: usize, node: u32 },
-    #[error("conduits[{conduit}].radius[{node}] = {radius} (radii must be finite and > 0)")]
-    BadRadius { conduit: usize, node: usize, radius: f64 },
     #[error(
         "[sdf] ratio = {ratio} and asymmetry = {asymmetry} give conduits[{conduit}] node {node} \
          ({} / {}) a bad section: {problem}", types[0], types[1]
@@ -44,12 +34,9 @@ impl Failure for SdfError {
             SdfError::ConduitCounts { .. } | SdfError::WaterSegments { .. } => {
                 Blame::Artifact(StageId::Hydro)
             }
-            SdfError::TerrainNotLipschitz { .. } | SdfError::BadSection { .. } => Blame::Scene,
-            SdfError::ConduitShape { .. }
-            | SdfError::MissingNode { .. }
-            | SdfError::NodeNotFinite { .. }
-            | SdfError::RepeatedNode { .. }
-            | SdfError::BadRadius { .. } => Blame::Artifact(StageId::Skeleton),
+            SdfError::TerrainNotLipschitz { .. } | SdfError::BadSection { .. } | SdfError::OverBudget(_) => {
+                Blame::Scene
+            }
         }
     }
 }

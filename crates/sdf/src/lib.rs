@@ -17,6 +17,7 @@ mod bvh;
 mod capsule;
 mod chamber;
 mod error;
+mod estimate;
 mod field;
 mod noise;
 mod ops;

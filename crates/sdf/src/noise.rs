@@ -85,6 +85,20 @@ impl WaveNoise {
         )
     }
 
+    /// Checks a decoded noise: a finite base wavelength > 0 and the `OCTAVES × WAVES` waves
+    /// of unit direction its gradient bound (hence the field's 1-Lipschitz bound) assumes.
+    pub fn validate(&self, field: &str) -> Result<(), karst_artifact::Invalid> {
+        use karst_artifact::check::{self, MAX_COORDINATE};
+        check::positive(|| format!("{field}.wavelength"), self.wavelength, MAX_COORDINATE)?;
+        check::count(|| format!("{field}.waves"), self.waves.len(), OCTAVES * WAVES)?;
+        for (i, w) in self.waves.iter().enumerate() {
+            let norm = w.direction.iter().map(|c| (*c as f64).powi(2)).sum::<f64>().sqrt();
+            check::within(|| format!("{field}.waves[{i}].direction"), norm, 1.0 - 1e-6, 1.0 + 1e-6)?;
+            check::within(|| format!("{field}.waves[{i}].phase"), w.phase as f64, -1e3, 1e3)?;
+        }
+        Ok(())
+    }
+
     /// Upper bound of |∇n| (direction norms are rounded to f32, hence the small margin).
     pub fn gradient_bound(&self) -> f64 {
         let sum: f64 = (0..OCTAVES).map(|o| (GAIN * 2.0).powi(o as i32)).sum();

@@ -5,7 +5,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Payload, StageId};
+use karst_artifact::check::{self, MAX_COORDINATE, ensure};
+use karst_artifact::{Invalid, Payload, StageId};
 use karst_geology::Domain;
 use karst_skeleton::ConduitType;
 
@@ -68,6 +69,65 @@ pub struct SdfModel {
 impl Payload for SdfModel {
     const STAGE: StageId = StageId::Sdf;
     const SCHEMA: u32 = 3;
+
+    /// A finite domain of positive extent, a terrain with a finite Lipschitz bound, finite
+    /// leaves and surface-water pieces of positive size with sections that do not intersect
+    /// themselves, and the noises the 1-Lipschitz bound assumes: what the mesher and the slices evaluate without checking.
+    fn validate(&self) -> Result<(), Invalid> {
+        check::position(|| "domain.min".into(), &self.domain.min)?;
+        check::position(|| "domain.max".into(), &self.domain.max)?;
+        ensure(
+            (0..3).all(|a| self.domain.min[a] < self.domain.max[a]),
+            || "domain".into(),
+            || format!("{:?} – {:?} is not a box of positive extent", self.domain.min, self.domain.max),
+        )?;
+        self.terrain.validate()?;
+        for (i, c) in self.capsules.iter().enumerate() {
+            c.validate(&|| format!("capsules[{i}]"))?;
+        }
+        for (i, s) in self.sweeps.iter().enumerate() {
+            validate_sweep(&|| format!("sweeps[{i}].sweep"), &s.sweep)?;
+        }
+        for (g, group) in self.spheres.iter().enumerate() {
+            for (i, s) in group.spheres.iter().enumerate() {
+                check::position_f32(|| format!("spheres[{g}].spheres[{i}]"), &s[..3])?;
+                check::positive(|| format!("spheres[{g}].spheres[{i}].radius"), s[3] as f64, MAX_COORDINATE)?;
+            }
+        }
+        for (i, c) in self.chambers.iter().enumerate() {
+            check::position_f32(|| format!("chambers[{i}].a"), &c.a)?;
+            check::position_f32(|| format!("chambers[{i}].b"), &c.b)?;
+            check::positive(|| format!("chambers[{i}].radius"), c.radius as f64, MAX_COORDINATE)?;
+        }
+        for (i, w) in self.water.iter().enumerate() {
+            validate_sweep(&|| format!("water[{i}].sweep"), &w.sweep)?;
+            if let Some(level) = w.level {
+                check::within(|| format!("water[{i}].level"), level as f64, -MAX_COORDINATE, MAX_COORDINATE)?;
+            }
+        }
+        check::within(|| "blend".into(), self.blend, 0.0, MAX_COORDINATE)?;
+        check::within(|| "detail".into(), self.detail, 0.0, MAX_COORDINATE)?;
+        self.detail_noise.validate("detail_noise")?;
+        self.chamber_noise.validate("chamber_noise")?;
+        check::within(|| "chamber_bias".into(), self.chamber_bias, f64::MIN_POSITIVE, 0.5)?;
+        self.surface.validate()
+    }
+}
+
+/// A sweep between two distinct finite points, with sections of finite positive size that do
+/// not intersect themselves.
+fn validate_sweep(at: &dyn Fn() -> String, sweep: &SweepSpec) -> Result<(), Invalid> {
+    check::position_f32(|| format!("{}.a", at()), &sweep.a)?;
+    check::position_f32(|| format!("{}.b", at()), &sweep.b)?;
+    ensure(sweep.a != sweep.b, at, || "starts where it ends: a sweep of length 0".into())?;
+    for (end, spec) in [("start", &sweep.start), ("end", &sweep.end)] {
+        let shape = &spec.shape;
+        check::positive(|| format!("{}.{end}.shape.radius", at()), shape.radius as f64, MAX_COORDINATE)?;
+        check::within(|| format!("{}.{end}.shape.ratio", at()), shape.ratio as f64, 1e-3, 1e3)?;
+        check::within(|| format!("{}.{end}.shape.asymmetry", at()), shape.asymmetry as f64, -1.0, 1.0)?;
+        spec.section().check().map_err(|e| Invalid::new(format!("{}.{end}", at()), e.to_string()))?;
+    }
+    Ok(())
 }
 
 impl SdfModel {

@@ -35,6 +35,9 @@ use serde::{Deserialize, Serialize};
 use karst_geology::params::StreamsParams;
 use karst_streams::{Motion, Outline, PoolKind, Streams};
 
+use karst_artifact::Invalid;
+use karst_artifact::check::{self, MAX_COORDINATE};
+
 use crate::Capsule;
 use crate::field::REACH;
 
@@ -94,6 +97,50 @@ pub struct SurfacePieces {
     pub alcoves: Vec<Capsule>,
     pub sheets: Vec<Sheet>,
     pub pools: Vec<PoolWater>,
+}
+
+impl SurfacePieces {
+    /// Finite pieces of positive size: what the carved terrain's 1-Lipschitz bound and the
+    /// mesher's evaluations rely on.
+    pub(crate) fn validate(&self) -> Result<(), Invalid> {
+        for (i, bed) in self.beds.iter().enumerate() {
+            let at = |f: &str| format!("surface.beds[{i}].{f}");
+            check::position(|| at("a"), &bed.a)?;
+            check::position(|| at("b"), &bed.b)?;
+            check::positive(|| at("half_width"), bed.half_width, MAX_COORDINATE)?;
+            check::within(|| at("depth"), bed.depth, 0.0, MAX_COORDINATE)?;
+            check::positive(|| at("bank_slope"), bed.bank_slope, MAX_COORDINATE)?;
+            check::positive(|| at("reach"), bed.reach, MAX_COORDINATE)?;
+        }
+        for (i, basin) in self.basins.iter().enumerate() {
+            let at = |f: &str| format!("surface.basins[{i}].{f}");
+            basin.outline.validate(&at("outline"))?;
+            check::within(|| at("level"), basin.level, -MAX_COORDINATE, MAX_COORDINATE)?;
+            check::within(|| at("depth"), basin.depth, 0.0, MAX_COORDINATE)?;
+            check::positive(|| at("bank_slope"), basin.bank_slope, MAX_COORDINATE)?;
+            check::positive(|| at("reach"), basin.reach, MAX_COORDINATE)?;
+        }
+        for (i, alcove) in self.alcoves.iter().enumerate() {
+            alcove.validate(&|| format!("surface.alcoves[{i}]"))?;
+        }
+        for (i, sheet) in self.sheets.iter().enumerate() {
+            let at = |f: &str| format!("surface.sheets[{i}].{f}");
+            check::position(|| at("a"), &sheet.a)?;
+            check::position(|| at("b"), &sheet.b)?;
+            check::positive(|| at("width"), sheet.width, MAX_COORDINATE)?;
+            check::positive(|| at("thickness"), sheet.thickness, MAX_COORDINATE)?;
+        }
+        for (i, pool) in self.pools.iter().enumerate() {
+            pool.outline.validate(&format!("surface.pools[{i}].outline"))?;
+            check::within(
+                || format!("surface.pools[{i}].level"),
+                pool.level,
+                -MAX_COORDINATE,
+                MAX_COORDINATE,
+            )?;
+        }
+        Ok(())
+    }
 }
 
 /// Pieces of the falling sheet along each parabola.

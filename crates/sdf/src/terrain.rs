@@ -43,6 +43,67 @@ impl TerrainField {
         }
     }
 
+    /// Checks a decoded terrain: finite parameters, a grid of one height per node, a finite
+    /// Lipschitz bound (the field divides by it).
+    pub fn validate(&self) -> Result<(), karst_artifact::Invalid> {
+        use karst_artifact::check::{self, MAX_COORDINATE, ensure};
+        let finite = |name: &str, values: &[f64]| {
+            ensure(
+                values.iter().all(|v| v.is_finite()),
+                || format!("terrain.{name}"),
+                || format!("{values:?} is not finite"),
+            )
+        };
+        match self {
+            TerrainField::Plane { elevation, origin, gradient } => {
+                finite("elevation", &[*elevation])?;
+                finite("origin", origin)?;
+                finite("gradient", gradient)?;
+            }
+            TerrainField::Noise { elevation, amplitude, wavelength, octaves, gradient } => {
+                finite("elevation", &[*elevation, *amplitude])?;
+                finite("gradient", gradient)?;
+                check::positive(|| "terrain.wavelength".into(), *wavelength, MAX_COORDINATE)?;
+                check::within(
+                    || "terrain.octaves".into(),
+                    *octaves as f64,
+                    1.0,
+                    karst_geology::terrain::MAX_OCTAVES as f64,
+                )?;
+            }
+            TerrainField::Grid(grid) => {
+                finite("origin", &grid.origin)?;
+                check::positive(|| "terrain.cell_size".into(), grid.cell_size, MAX_COORDINATE)?;
+                let nodes = (grid.nx as usize).checked_mul(grid.ny as usize).filter(|n| *n > 0);
+                ensure(
+                    nodes == Some(grid.heights.len()),
+                    || "terrain.heights".into(),
+                    || {
+                        format!(
+                            "holds {} heights for a grid of {} × {}",
+                            grid.heights.len(),
+                            grid.nx,
+                            grid.ny
+                        )
+                    },
+                )?;
+                // The stored bound must hold: the field divides distances by it.
+                let bound = grid.slope_bound();
+                ensure(
+                    grid.lipschitz >= bound,
+                    || "terrain.lipschitz".into(),
+                    || format!("{} is below the heights' steepest slope {bound}", grid.lipschitz),
+                )?;
+            }
+        }
+        check::within(|| "terrain".into(), self.lipschitz(), 0.0, f64::MAX).map_err(|e| {
+            karst_artifact::Invalid::new(
+                e.field,
+                format!("its steepest slope {} is not finite", self.lipschitz()),
+            )
+        })
+    }
+
     /// The analytic scene terrain this field stands for: the geology crate evaluates planes and
     /// noise, so their formulas live in one place. None for a grid.
     fn analytic(&self) -> Option<Terrain> {

@@ -2,7 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_artifact::{Payload, StageId};
+use karst_artifact::check::{self, MAX_COORDINATE, ensure};
+use karst_artifact::{Invalid, Payload, StageId};
 
 /// The type of a conduit segment.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -103,12 +104,66 @@ pub struct Skeleton {
     pub routes: Vec<Route>,
 }
 
+/// Smallest conduit radius a skeleton may hold, metres (the scene's radii are at least 1 mm).
+pub const MIN_RADIUS: f64 = 1e-6;
+/// Largest route weight (a sink's recharge), far above the scene's limit (docs/limits.md), so
+/// that sums of them stay finite.
+pub const MAX_WEIGHT: f64 = 1e15;
+
 impl Payload for Skeleton {
     const STAGE: StageId = StageId::Skeleton;
     const SCHEMA: u32 = 3;
+
+    /// At least one conduit; finite node positions; conduits of at least two existing nodes
+    /// with one radius (finite, > 0) per node and one type per segment, no segment of length 0;
+    /// routes through existing nodes with finite weights and costs ≥ 0.
+    fn validate(&self) -> Result<(), Invalid> {
+        ensure(
+            !self.conduits.is_empty(),
+            || "conduits".into(),
+            || "is empty: the network has no conduit".into(),
+        )?;
+        for (i, node) in self.nodes.iter().enumerate() {
+            check::position(|| format!("nodes[{i}].position"), &node.position)?;
+        }
+        for (c, conduit) in self.conduits.iter().enumerate() {
+            self.validate_conduit(c, conduit)?;
+        }
+        for (r, route) in self.routes.iter().enumerate() {
+            ensure(!route.nodes.is_empty(), || format!("routes[{r}].nodes"), || "is empty".into())?;
+            for (i, &n) in route.nodes.iter().enumerate() {
+                check::index(|| format!("routes[{r}].nodes[{i}]"), n as u64, self.nodes.len())?;
+            }
+            check::within(|| format!("routes[{r}].weight"), route.weight, 0.0, MAX_WEIGHT)?;
+            check::within(|| format!("routes[{r}].cost"), route.cost, 0.0, f64::MAX)?;
+        }
+        Ok(())
+    }
 }
 
 impl Skeleton {
+    fn validate_conduit(&self, c: usize, conduit: &Conduit) -> Result<(), Invalid> {
+        let n = conduit.nodes.len();
+        ensure(n >= 2, || format!("conduits[{c}].nodes"), || format!("has {n} nodes, a conduit needs 2"))?;
+        check::count(|| format!("conduits[{c}].radius"), conduit.radius.len(), n)?;
+        check::count(|| format!("conduits[{c}].types"), conduit.types.len(), n - 1)?;
+        for (i, &node) in conduit.nodes.iter().enumerate() {
+            check::index(|| format!("conduits[{c}].nodes[{i}]"), node as u64, self.nodes.len())?;
+        }
+        for (i, &r) in conduit.radius.iter().enumerate() {
+            check::within(|| format!("conduits[{c}].radius[{i}]"), r, MIN_RADIUS, MAX_COORDINATE)?;
+        }
+        for (i, w) in conduit.nodes.windows(2).enumerate() {
+            let [a, b] = [w[0], w[1]].map(|n| self.nodes[n as usize].position);
+            ensure(
+                a != b,
+                || format!("conduits[{c}].nodes[{}]", i + 1),
+                || format!("node {} lies where node {} does: a segment of length 0", w[1], w[0]),
+            )?;
+        }
+        Ok(())
+    }
+
     /// Every link between two nodes, once, as (a, b) with a < b, in conduit order.
     pub fn links(&self) -> Vec<[u32; 2]> {
         self.conduits

@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use karst_artifact::{Header, Payload, read_artifact};
 use karst_geology::Scene;
+use karst_geology::budget::Budget;
 
 use crate::contract::Stage;
 use crate::error::StageError;
@@ -21,6 +22,9 @@ pub struct RunArgs {
     /// Folder holding the upstream artifacts; this stage's artifact is written there too.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
+    /// Memory the stage may plan to use (e.g. 16G, 512M); above it, it refuses (docs/limits.md).
+    #[arg(long, value_name = "SIZE")]
+    pub max_memory: Option<Budget>,
 }
 
 /// `karst-<stage> inspect FILE [--json]`.
@@ -35,7 +39,12 @@ pub struct InspectArgs {
 
 /// `karst-<stage> run`: runs stage `S` on the scene and prints its headline.
 pub fn run<S: Stage>(args: &RunArgs) -> Result<(), StageError> {
-    let scene = Scene::load(&args.scene)?;
+    let mut scene = Scene::load(&args.scene)?;
+    if let Some(budget) = args.max_memory {
+        scene.set_budget(budget);
+    }
+    let _lock = karst_artifact::lock_output(&args.out)?;
+    karst_artifact::atomic::remove_stale_temporaries(&args.out);
     let ran = runner::run::<S>(&Job { scene_path: &args.scene, scene: &scene, out: &args.out })?;
     println!("{} in {:.2} s", ran.headline, ran.seconds);
     for note in &ran.notes {

@@ -2,27 +2,28 @@
 
 use std::path::Path;
 
-use karst_artifact::{Frame, InputRef, Payload, StageId, check_frame, read_artifact};
+use karst_artifact::{Frame, Header, Payload, StageId, check_frame, read_artifact};
 
 /// A tuple of upstream payloads, read from an output folder.
 pub trait Inputs: Sized {
     /// The stages that write them, in order.
     fn stages() -> Vec<StageId>;
 
-    /// Reads each one from `dir`, checking it and that it is in the run's `frame`, and records
-    /// its payload hash for the key.
-    fn read(dir: &Path, frame: &Frame, refs: &mut Vec<InputRef>) -> Result<Self, karst_artifact::Error>;
+    /// Reads each one from `dir`, checking it and that it is in the run's `frame`, and keeps
+    /// its header (its payload hash goes into the key; its inputs are checked against the
+    /// other inputs').
+    fn read(dir: &Path, frame: &Frame, headers: &mut Vec<Header>) -> Result<Self, karst_artifact::Error>;
 }
 
 fn read_one<P: Payload>(
     dir: &Path,
     frame: &Frame,
-    refs: &mut Vec<InputRef>,
+    headers: &mut Vec<Header>,
 ) -> Result<P, karst_artifact::Error> {
     let path = dir.join(P::STAGE.file_name());
     let (header, payload) = read_artifact::<P>(&path)?;
     check_frame(&path, &header, frame)?;
-    refs.push(InputRef { name: P::STAGE.row().kind.into(), payload_blake3: header.payload_blake3 });
+    headers.push(header);
     Ok(payload)
 }
 
@@ -31,7 +32,7 @@ impl Inputs for () {
         Vec::new()
     }
 
-    fn read(_: &Path, _: &Frame, _: &mut Vec<InputRef>) -> Result<Self, karst_artifact::Error> {
+    fn read(_: &Path, _: &Frame, _: &mut Vec<Header>) -> Result<Self, karst_artifact::Error> {
         Ok(())
     }
 }
@@ -44,8 +45,8 @@ macro_rules! tuple_inputs {
                 vec![$($p::STAGE),+]
             }
 
-            fn read(dir: &Path, frame: &Frame, refs: &mut Vec<InputRef>) -> Result<Self, karst_artifact::Error> {
-                Ok(($(read_one::<$p>(dir, frame, refs)?,)+))
+            fn read(dir: &Path, frame: &Frame, headers: &mut Vec<Header>) -> Result<Self, karst_artifact::Error> {
+                Ok(($(read_one::<$p>(dir, frame, headers)?,)+))
             }
         }
     };

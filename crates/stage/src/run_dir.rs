@@ -26,6 +26,7 @@ pub fn scene_of(dir: &Path) -> Option<PathBuf> {
     if own.is_file() {
         return Some(own);
     }
-    let named = std::fs::read_to_string(dir.join(SCENE_PATH_FILE)).ok()?;
+    // A path, not a FIFO to block on or a file to read for ever.
+    let named = karst_artifact::files::read_regular_text(&dir.join(SCENE_PATH_FILE), 64 << 10).ok()?;
     Some(PathBuf::from(named.trim())).filter(|p| p.is_file())
 }

@@ -3,8 +3,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use karst_artifact::stages::producer;
-use karst_artifact::{Payload, Provenance, read_artifact, write_artifact};
+use karst_artifact::stages::{producer, stage_key};
+use karst_artifact::{Header, InputRef, Payload, Provenance, read_artifact, read_header, write_artifact};
 use karst_geology::Scene;
 
 use crate::contract::{Blame, Failure, Stage};
@@ -38,16 +38,39 @@ pub struct Ran {
     pub notes: Vec<String>,
 }
 
-/// Runs stage `S`: reads and checks its inputs, builds, writes the side files, checks the
-/// payload, then writes the artifact (atomically, keyed by the scene sections it reads and its
-/// inputs' hashes).
+/// Runs stage `S`: reads and checks its inputs, builds, writes the side files (after removing
+/// an artifact of other parameters that would claim them), checks the payload, then writes the
+/// artifact (atomically, keyed by the scene sections it reads and its inputs' hashes).
 pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     debug_assert_eq!(S::Inputs::stages(), S::ID.inputs(), "{}: inputs differ from its row", S::ID.name());
-    let mut refs = Vec::new();
+    let mut headers = Vec::new();
     let frame = job.scene.frame();
-    let inputs = S::Inputs::read(job.out, &frame, &mut refs)?;
+    let inputs = S::Inputs::read(job.out, &frame, &mut headers)?;
+    consistent(job, &headers)?;
+    let refs = headers
+        .iter()
+        .map(|h| InputRef { name: h.kind.row().kind.into(), payload_blake3: h.payload_blake3.clone() })
+        .collect();
+    let provenance = Provenance {
+        producer: producer(S::ID),
+        inputs: refs,
+        params: job.scene.sections_hash(S::ID.row().sections),
+        frame,
+    };
+    let path = job.artifact(S::ID);
     let start = Instant::now();
     let mut output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
+    invalidate_other(
+        &path,
+        &stage_key(
+            S::ID,
+            &provenance.producer,
+            S::Output::SCHEMA,
+            &provenance.params,
+            &provenance.frame,
+            &provenance.inputs,
+        ),
+    )?;
     S::side_files(job.out, job.scene, &inputs, &mut output).map_err(|e| {
         StageError::failure(format!(
             "{}: cannot write the {} stage's files: {e}",
@@ -65,14 +88,55 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
             invalid.problem
         ))
     })?;
-    let provenance = Provenance {
-        producer: producer(S::ID),
-        inputs: refs,
-        params: job.scene.sections_hash(S::ID.row().sections),
-        frame,
-    };
-    write_artifact(&job.artifact(S::ID), &provenance, &output)?;
+    write_artifact(&path, &provenance, &output)?;
+    let _ = std::fs::remove_file(previous_artifact(&path));
     Ok(Ran { headline: S::headline(job.scene, &output), seconds, notes: S::notes(&output) })
+}
+
+/// Checks that the inputs were made from one another: a costgraph.bin made from another
+/// samples.bin than the one beside it (a stage rerun alone with `--only`) is refused, naming
+/// the stage to rerun.
+fn consistent(job: &Job, headers: &[Header]) -> Result<(), StageError> {
+    for header in headers {
+        for input in &header.inputs {
+            let Some(used) = headers.iter().find(|h| h.kind.row().kind == input.name) else { continue };
+            if used.payload_blake3 != input.payload_blake3 {
+                let stage = header.kind.name();
+                return Err(StageError::input(format!(
+                    "{}: was made from another {} than {}: rerun the pipeline from {stage} (`karstgen run SCENE --from {stage}`)",
+                    job.artifact(header.kind).display(),
+                    used.kind.file_name(),
+                    job.artifact(used.kind).display(),
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Moves the artifact at `path` aside (to [`previous_artifact`]) when its key is not `key`,
+/// before the side files are rewritten: an interrupted run then leaves no artifact that claims
+/// side files it did not write, and the stage runs again next time. The stage may still read
+/// what the previous artifact recorded (the export stage removes the files it no longer
+/// writes); the runner deletes it once the new artifact is written. (With the same key, the
+/// side files written are the same bytes: nothing to invalidate.)
+fn invalidate_other(path: &Path, key: &str) -> Result<(), StageError> {
+    match read_header(path) {
+        Ok(header) if header.key == key => Ok(()),
+        Err(karst_artifact::Error::Open { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
+            Ok(())
+        }
+        _ => std::fs::rename(path, previous_artifact(path)).map_err(|e| {
+            StageError::failure(format!("{}: cannot move the stale artifact aside: {e}", path.display()))
+        }),
+    }
+}
+
+/// Where the runner keeps the artifact at `path` of a previous run while the stage rewrites its
+/// side files: `.NAME.previous` beside it.
+pub fn previous_artifact(path: &Path) -> PathBuf {
+    let name = path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    path.with_file_name(format!(".{name}.previous"))
 }
 
 /// The error a user sees for a stage's typed error: the file at fault named first.

@@ -54,7 +54,7 @@ pub fn build(scene: &Scene, hydro: &Hydro) -> Result<Streams, StreamsError> {
         });
     }
     let laid = curves::lay(scene, &ground, &mut net, &starts);
-    let mut tracer = Tracer { ground: &ground, grid: &grid, params, net: &mut net };
+    let mut tracer = Tracer::new(&ground, &grid, params, &mut net);
     for (node, direction, name) in &starts {
         if laid.captured.contains(node) {
             continue;

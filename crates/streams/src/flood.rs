@@ -1,34 +1,45 @@
-//! Where water cannot leave a hollow: it fills it up to its spill point (a priority flood,
-//! Barnes et al. 2014, from the hollow's lowest cell).
+//! Where water cannot leave a hollow: it fills it up to its spill point. The whole footprint
+//! is filled once by a priority flood from its edge (Barnes et al. 2014): cells are taken
+//! lowest first, each raised to at least the level of the cell the flood reached it from, and
+//! each remembers that cell, the way its water leaves the domain. Along that way the filled
+//! level never rises, so water following it never climbs and never comes back.
 //!
-//! Cells are taken lowest first from the hollow's rim; the level rises to each taken cell's
-//! height. The first taken cell lower than the level is the outlet: water spills into it and
-//! runs on downhill from there. A cell on the footprint's edge is an outlet too (the water
-//! leaves the domain there). The cells below the final level are the pool; the chain of cells
-//! the flood took from the hollow to the outlet is the route across it, used where the pool is
-//! too shallow to count (a flat).
+//! A hollow is the connected set of cells at one filled level that the filling raised: its
+//! pool. Its outlet is the first cell lower than its level on the way out (or a cell on the
+//! footprint's edge: the water leaves the domain there); the cells from a start to the
+//! outlet are the route across it, used where the pool is too shallow to count (a flat) or
+//! where the water must cross it without filling it.
 
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, VecDeque};
 
 use crate::ground::Grid;
 
-/// A filled hollow.
+/// The footprint filled to its spill points.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Filled {
+    /// Filled level of each cell: its height, or the surface of the hollow it lies in.
+    pub level: Vec<f64>,
+    /// The neighbour the flood reached each cell from (towards the edge); none on the edge.
+    toward: Vec<Option<usize>>,
+}
+
+/// The hollow holding a cell.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hollow {
     /// Water surface elevation, metres.
     pub level: f64,
-    /// Cells below the level, in the order the flood took them.
+    /// Cells below the level, breadth first from the start.
     pub flooded: Vec<usize>,
     /// Where the water leaves: lower than the level, or on the footprint's edge.
     pub outlet: usize,
-    /// Cells from the start to the outlet (both included), as the flood reached them.
+    /// Cells from the start to the outlet (both included).
     pub route: Vec<usize>,
 }
 
 #[derive(PartialEq)]
 struct Entry {
-    height: f64,
+    level: f64,
     seq: u64,
     cell: usize,
 }
@@ -37,7 +48,7 @@ impl Eq for Entry {}
 
 impl Ord for Entry {
     fn cmp(&self, other: &Self) -> Ordering {
-        other.height.total_cmp(&self.height).then(other.seq.cmp(&self.seq))
+        other.level.total_cmp(&self.level).then(other.seq.cmp(&self.seq))
     }
 }
 
@@ -47,52 +58,71 @@ impl PartialOrd for Entry {
     }
 }
 
-/// Fills the hollow containing `start`; the flood stops at `max_cells` taken cells (the
-/// outlet is then the last cell taken: a lake that large is reported by the caller).
-pub fn fill(grid: &Grid, start: usize, max_cells: usize) -> Filled {
+/// Fills every hollow of `grid` to its spill point.
+pub fn fill(grid: &Grid) -> Filled {
     let n = grid.heights.len();
-    let mut from = vec![usize::MAX; n];
-    let mut taken = vec![false; n];
+    let mut level = grid.heights.clone();
+    let mut toward = vec![None; n];
+    let mut queued = vec![false; n];
     let mut heap = BinaryHeap::new();
     let mut seq = 0;
-    heap.push(Entry { height: grid.heights[start], seq, cell: start });
-    from[start] = start;
-    let mut level = grid.heights[start];
-    let mut order = Vec::new();
-    let outlet = loop {
-        let Some(Entry { cell, .. }) = heap.pop() else { break order.last().copied().unwrap_or(start) };
-        if taken[cell] {
-            continue;
-        }
-        taken[cell] = true;
-        let h = grid.heights[cell];
-        if h < level || (grid.on_edge(cell) && cell != start) || order.len() >= max_cells {
-            break cell;
-        }
-        level = level.max(h);
-        order.push(cell);
-        if grid.on_edge(cell) {
-            break cell;
-        }
+    for cell in (0..n).filter(|&c| grid.on_edge(c)) {
+        queued[cell] = true;
+        seq += 1;
+        heap.push(Entry { level: level[cell], seq, cell });
+    }
+    while let Some(Entry { cell, .. }) = heap.pop() {
         for (next, _) in grid.neighbours(cell) {
-            if !taken[next] && from[next] == usize::MAX {
-                from[next] = cell;
+            if !queued[next] {
+                queued[next] = true;
+                level[next] = level[next].max(level[cell]);
+                toward[next] = Some(cell);
                 seq += 1;
-                heap.push(Entry { height: grid.heights[next], seq, cell: next });
+                heap.push(Entry { level: level[next], seq, cell: next });
             }
         }
-    };
-    let mut route = vec![outlet];
-    while let Some(&last) = route.last() {
-        let previous = from[last];
-        if previous == last || previous == usize::MAX {
-            break;
-        }
-        route.push(previous);
     }
-    route.reverse();
-    let flooded = order.into_iter().filter(|&c| grid.heights[c] < level).collect();
-    Filled { level, flooded, outlet, route }
+    Filled { level, toward }
+}
+
+impl Filled {
+    /// The way out from `start`: the cells to the first one lower than `start`'s level, or to
+    /// the footprint's edge.
+    pub fn route(&self, start: usize) -> Vec<usize> {
+        let mut route = vec![start];
+        let mut cell = start;
+        while let Some(next) = self.toward[cell] {
+            route.push(next);
+            cell = next;
+            if self.level[next] < self.level[start] {
+                break;
+            }
+        }
+        route
+    }
+
+    /// The hollow holding `start` (nothing flooded on a slope or a flat).
+    pub fn hollow(&self, grid: &Grid, start: usize) -> Hollow {
+        let level = self.level[start];
+        let route = self.route(start);
+        let mut seen = vec![false; grid.heights.len()];
+        let mut queue = VecDeque::from([start]);
+        seen[start] = true;
+        let mut flooded = Vec::new();
+        while let Some(cell) = queue.pop_front() {
+            if grid.heights[cell] < level {
+                flooded.push(cell);
+            }
+            for (next, _) in grid.neighbours(cell) {
+                if !seen[next] && self.level[next] == level {
+                    seen[next] = true;
+                    queue.push_back(next);
+                }
+            }
+        }
+        let outlet = route.last().copied().unwrap_or(start);
+        Hollow { level, flooded, outlet, route }
+    }
 }
 
 #[cfg(test)]
@@ -115,9 +145,9 @@ mod tests {
             9.0, 9.0, 8.0, 9.0, 9.0,
             9.0, 9.0, 2.0, 9.0, 9.0,
         ], 5);
-        let f = fill(&g, 12, 100);
-        // The flood takes 3, 4, 5, 5, 6, 7, then the 8 south of the hollow, whose neighbour 2
-        // is lower: the level is 8 and the water spills south.
+        let f = fill(&g).hollow(&g, 12);
+        // The flood comes from the 2 on the south edge over the 8 south of the hollow, the
+        // hollow's lowest rim: the level is 8 and the water spills south.
         assert_eq!(f.level, 8.0);
         assert_eq!(f.outlet, 22);
         assert_eq!(f.route.first(), Some(&12));
@@ -125,12 +155,14 @@ mod tests {
         let mut flooded = f.flooded.clone();
         flooded.sort();
         assert_eq!(flooded, vec![6, 7, 8, 11, 12, 13]);
+        // From the rim the way out leaves the hollow at once.
+        assert_eq!(fill(&g).route(17), vec![17, 22]);
     }
 
     #[test]
     fn a_flat_drains_to_the_edge_with_nothing_flooded() {
         let g = grid(&[1.0; 25], 5);
-        let f = fill(&g, 12, 100);
+        let f = fill(&g).hollow(&g, 12);
         assert!(f.flooded.is_empty());
         assert!(g.on_edge(f.outlet));
         assert!(f.route.len() >= 2 && f.route[0] == 12);

@@ -106,19 +106,22 @@ impl Network {
         false
     }
 
-    /// The node nearest to `p` horizontally within `radius`, lower than `below`, that water
-    /// from `from` may flow into without making a loop (smallest index on a tie).
-    pub fn joinable(&self, p: DVec3, radius: f64, below: f64, from: u32) -> Option<u32> {
+    /// The node nearest to `p` horizontally within `radius` that water from `from` may flow
+    /// into: at least `min_slope` per metre below it (Fig. 5), without making a loop (smallest
+    /// index on a tie).
+    pub fn joinable(&self, p: DVec3, radius: f64, from: u32, min_slope: f64) -> Option<u32> {
         let (i, j) = self.key(p);
         let reach = (radius / self.bucket).ceil() as i64;
+        let source = self.positions[from as usize];
         let mut best: Option<(f64, u32)> = None;
         for di in -reach..=reach {
             for dj in -reach..=reach {
                 for &n in self.hash.get(&(i + di, j + dj)).into_iter().flatten() {
                     let q = self.positions[n as usize];
                     let d = p.truncate().distance(q.truncate());
+                    let lower = source.z - q.z >= min_slope * source.truncate().distance(q.truncate());
                     let better = best.is_none_or(|(bd, bn)| d < bd || (d == bd && n < bn));
-                    if n != from && d <= radius && q.z < below && better {
+                    if n != from && d <= radius && lower && better {
                         best = Some((d, n));
                     }
                 }
@@ -131,5 +134,31 @@ impl Network {
     pub fn pool_at(&self, cell: usize, from: u32) -> Option<u32> {
         let pool = &self.pools[*self.pool_cells.get(&cell)?];
         (pool.node != from && !self.reaches(pool.node, from)).then_some(pool.node)
+    }
+
+    /// Forgets the nodes from index `nodes` on and the edges from index `edges` on: the tail
+    /// of the trajectory being traced, which nothing older refers to.
+    pub fn truncate(&mut self, nodes: usize, edges: usize) {
+        for e in &self.edges[edges..] {
+            let (from, to) = (e.from as usize, e.to as usize);
+            if from < nodes {
+                self.out[from].retain(|&k| (k as usize) < edges);
+            }
+            if to < nodes {
+                self.into[to].retain(|&k| (k as usize) < edges);
+            }
+        }
+        for n in nodes..self.positions.len() {
+            let key = self.key(self.positions[n]);
+            if let Some(bucket) = self.hash.get_mut(&key) {
+                bucket.retain(|&k| (k as usize) < nodes);
+            }
+        }
+        self.edges.truncate(edges);
+        self.positions.truncate(nodes);
+        self.roles.truncate(nodes);
+        self.source.truncate(nodes);
+        self.out.truncate(nodes);
+        self.into.truncate(nodes);
     }
 }

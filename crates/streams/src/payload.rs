@@ -291,7 +291,8 @@ pub enum Outline {
 }
 
 impl Outline {
-    fn validate(&self, field: &str) -> Result<(), Invalid> {
+    /// Finite, of positive size: what the carving and the meshes rely on.
+    pub fn validate(&self, field: &str) -> Result<(), Invalid> {
         match self {
             Outline::Disc { centre, radius } => {
                 finite(field, &[centre[0], centre[1], *radius])?;

@@ -3,6 +3,9 @@
 //! lower than the last (where the ground does not drop that much the stream cuts into it:
 //! the riverbed carving of §6 digs that channel).
 //!
+//! Each step is subdivided where its midpoint lies off the terrain (§5.1, Fig. 7): the midpoint
+//! moves onto the ground within the minimum slope to both ends, and the halves are refined again.
+//!
 //! Before each step the water's own parabola is compared with the ground: water moving at
 //! speed δ = k·s (§5.2.2) along the slope it has follows z(s) = z − tan θ·s − g s²/(2 v_h²)
 //! once it leaves the ground. Where the ground ahead lies below that parabola (a lip), the
@@ -15,13 +18,18 @@
 //! larger than `lake_area` (reported); a hollow too shallow to hold water is crossed along
 //! the flood's route. A trajectory ends at the footprint's edge (a well), or where it meets
 //! an older trajectory or pool lower than itself (a confluence).
+//!
+//! No step climbs (Fig. 5): water that meets a pool or a hollow whose surface lies above it
+//! has run under that surface, so the steps since it crossed the surface are dropped and it
+//! enters there; water turning back under the surface of the hollow it has just left follows
+//! the filled ground's way out instead ([`crate::flood`]).
 
 use glam::{DVec2, DVec3};
 
 use karst_geology::params::StreamsParams;
 use karst_hydro::G;
 
-use crate::flood;
+use crate::flood::{self, Filled};
 use crate::ground::{Grid, Ground};
 use crate::network::{Network, PoolDraft};
 use crate::payload::{Fall, Motion, Outline, PoolKind, Role};
@@ -37,6 +45,11 @@ const MAX_CUT_STEPS: f64 = 1.0;
 /// Ground steeper than this (rise over run) holds no pool: falling water meeting it runs on.
 const STEEPEST_POOL: f64 = 1.0;
 
+/// A step is subdivided where its midpoint lies farther than this off the terrain, metres
+/// (§5.1), at most `REFINE_DEPTH` times (a step of 2 m into pieces of 25 cm).
+const REFINE_TOLERANCE: f64 = 0.1;
+const REFINE_DEPTH: u32 = 3;
+
 /// How water moves when it leaves a point: horizontal direction and speed, vertical speed.
 #[derive(Debug, Clone, Copy)]
 pub struct Velocity {
@@ -46,10 +59,15 @@ pub struct Velocity {
 }
 
 pub struct Tracer<'a> {
-    pub ground: &'a Ground<'a>,
-    pub grid: &'a Grid,
-    pub params: &'a StreamsParams,
-    pub net: &'a mut Network,
+    ground: &'a Ground<'a>,
+    grid: &'a Grid,
+    params: &'a StreamsParams,
+    net: &'a mut Network,
+    /// The footprint filled to its spill points.
+    filled: Filled,
+    /// The nodes of the contact steps traced since the water last left a source, a pool or a
+    /// fall, in order: where a trajectory that meets water above itself is corrected.
+    trail: Vec<u32>,
 }
 
 /// What ended one step.
@@ -58,7 +76,16 @@ enum Next {
     Stop,
 }
 
-impl Tracer<'_> {
+impl<'a> Tracer<'a> {
+    pub fn new(
+        ground: &'a Ground<'a>,
+        grid: &'a Grid,
+        params: &'a StreamsParams,
+        net: &'a mut Network,
+    ) -> Self {
+        Tracer { ground, grid, params, net, filled: flood::fill(grid), trail: Vec::new() }
+    }
+
     /// Traces the water leaving node `start` (named `source` in reports) to a well or a
     /// confluence.
     pub fn trace(&mut self, start: u32, velocity: Option<Velocity>, source: &str) {
@@ -83,6 +110,7 @@ impl Tracer<'_> {
 
     fn run(&mut self, first: Next, source: &str) {
         let Next::Go(mut at, mut velocity) = first else { return };
+        self.trail = vec![at];
         let mut travelled = 0.0;
         loop {
             if travelled > self.params.max_length {
@@ -143,17 +171,59 @@ impl Tracer<'_> {
             return self.hollow(at, source);
         }
         let point = q.extend(z);
-        if let Some(joined) = self.join(at, point) {
-            self.net.add_edge(at, joined, Motion::Contact, None, None);
+        if self.turns_back(point) {
+            // The water would run back under the surface of the hollow it left: it follows
+            // the filled ground's way out instead.
+            let route = self.filled.route(self.grid.cell_of(p2));
+            return self.cross(at, &route);
+        }
+        if let Some((from, joined)) = self.join(at, point) {
+            self.net.add_edge(from, joined, Motion::Contact, None, None);
             return Next::Stop;
         }
-        let next = self.net.add_node(point, if leaving { Role::Well } else { Role::Branch });
-        self.net.add_edge(at, next, Motion::Contact, None, None);
+        let next = self.contact_step(at, point, if leaving { Role::Well } else { Role::Branch });
         if leaving {
             return Next::Stop;
         }
         let slope = ((p.z - z) / run).atan();
         Next::Go(next, Some(self.running(slope, direction)))
+    }
+
+    /// The contact step from node `at` to a new node at `point` (role `role`), subdivided where
+    /// it leaves the terrain; returns the new node.
+    fn contact_step(&mut self, at: u32, point: DVec3, role: Role) -> u32 {
+        let mut inner = Vec::new();
+        self.refine(self.net.positions[at as usize], point, REFINE_DEPTH, &mut inner);
+        let roles = std::iter::repeat_n(Role::Branch, inner.len()).chain([role]);
+        let mut last = at;
+        for (p, role) in inner.into_iter().chain([point]).zip(roles) {
+            let node = self.net.add_node(p, role);
+            self.net.add_edge(last, node, Motion::Contact, None, None);
+            self.trail.push(node);
+            last = node;
+        }
+        last
+    }
+
+    /// The points between `a` and `b`, in order, that keep the water on the terrain (§5.1's
+    /// subdivision, Fig. 7, along the step): where the piece's midpoint lies more than
+    /// `REFINE_TOLERANCE` off the ground (over a convex lip it cuts the rock, over a notch it
+    /// bridges it), the midpoint moves onto the ground, as deep under it as the piece's ends
+    /// are on average, within the minimum slope to both ends; both halves are refined again.
+    fn refine(&self, a: DVec3, b: DVec3, depth: u32, out: &mut Vec<DVec3>) {
+        let m = 0.5 * (a.truncate() + b.truncate());
+        let half = a.truncate().distance(m);
+        let cut = |p: DVec3| self.ground.height(p.truncate()) - p.z;
+        let slope = self.params.min_slope;
+        let onto = self.ground.height(m) - 0.5 * (cut(a) + cut(b));
+        let z = onto.max(b.z + slope * half).min(a.z - slope * half);
+        if depth == 0 || (z - 0.5 * (a.z + b.z)).abs() <= REFINE_TOLERANCE {
+            return;
+        }
+        let mid = m.extend(z);
+        self.refine(a, mid, depth - 1, out);
+        out.push(mid);
+        self.refine(mid, b, depth - 1, out);
     }
 
     /// Water running down `slope` radians along `direction` at δ = k·s.
@@ -162,11 +232,83 @@ impl Tracer<'_> {
         Velocity { direction, horizontal: speed * slope.cos(), vertical: -speed * slope.sin() }
     }
 
-    /// An older node or pool that a stream at `point` coming from `at` flows into.
-    fn join(&self, at: u32, point: DVec3) -> Option<u32> {
-        let from = self.net.positions[at as usize];
+    /// An older pool or node that a stream at `point` coming from `at` flows into, and the node
+    /// the step into it starts from (`at`, or an earlier node of the trail when the pool's
+    /// surface lies above `at`).
+    fn join(&mut self, at: u32, point: DVec3) -> Option<(u32, u32)> {
+        self.pool_entry(self.grid.cell_of(point.truncate()), at).or_else(|| {
+            self.net.joinable(point, 0.6 * self.params.step, at, self.params.min_slope).map(|n| (at, n))
+        })
+    }
+
+    /// The older pool covering `cell` that the water at `at` flows into, and the node of the
+    /// trail the step into it starts from.
+    fn pool_entry(&mut self, cell: usize, at: u32) -> Option<(u32, u32)> {
+        let pool = self.net.pool_at(cell, at)?;
+        self.entry(self.net.positions[pool as usize]).map(|from| (from, pool))
+    }
+
+    /// Where the water of the trail meets water lying at `surface`: the latest node of the
+    /// trail at least `min_slope` per metre above it (Fig. 5: a step never climbs). The trail
+    /// after that node ran under that water's surface: it is forgotten, the water enters there.
+    fn entry(&mut self, surface: DVec3) -> Option<u32> {
+        let k = self.trail.iter().rposition(|&n| self.drops(n, surface))?;
+        self.forget_after(k);
+        Some(self.trail[k])
+    }
+
+    /// Forgets the trail after its `k`-th node, with the steps that led there.
+    fn forget_after(&mut self, k: usize) {
+        if let Some(&first) = self.trail.get(k + 1) {
+            // The trail's nodes and their edges are the newest of the network.
+            let edge = self.net.into[first as usize][0];
+            debug_assert!(self.trail[k + 1..].iter().zip(first..).all(|(&n, m)| n == m));
+            self.net.truncate(first as usize, edge as usize);
+            self.trail.truncate(k + 1);
+        }
+    }
+
+    /// True when `point` lies under the filled level of a hollow that the trail's water cannot
+    /// fill: no node of the trail lies above that level, and the trail does not start at a
+    /// spring (the water is turning back into the hollow it has just left).
+    fn turns_back(&self, point: DVec3) -> bool {
         let cell = self.grid.cell_of(point.truncate());
-        self.net.pool_at(cell, at).or_else(|| self.net.joinable(point, 0.6 * self.params.step, from.z, at))
+        let level = self.filled.level[cell];
+        let surface = point.truncate().extend(level);
+        level > self.grid.heights[cell]
+            && point.z < level
+            && !self.trail.iter().any(|&n| self.drops(n, surface))
+            && !self.is_spring(self.trail[0])
+    }
+
+    /// True when a contact step from node `n` to `target` drops `min_slope` per metre.
+    fn drops(&self, n: u32, target: DVec3) -> bool {
+        let p = self.net.positions[n as usize];
+        p.z - target.z >= self.params.min_slope * p.truncate().distance(target.truncate())
+    }
+
+    /// True for a spring's node that no water has reached yet.
+    fn is_spring(&self, n: u32) -> bool {
+        self.net.roles[n as usize] == Role::Source && self.net.into[n as usize].is_empty()
+    }
+
+    /// The node where the water of the trail enters a new pool whose surface is `surface`: a
+    /// node on that surface reached from the trail, or the trail's source itself when even the
+    /// spring's mouth lies under that surface (the spring feeds the pool from below).
+    fn pool_node(&mut self, surface: DVec3) -> Option<u32> {
+        if let Some(from) = self.entry(surface) {
+            let node = self.net.add_node(surface, Role::Pool);
+            self.net.add_edge(from, node, Motion::Contact, None, None);
+            return Some(node);
+        }
+        let spring = self.trail[0];
+        if !self.is_spring(spring) {
+            return None;
+        }
+        self.forget_after(0);
+        self.net.positions[spring as usize].z = surface.z;
+        self.net.roles[spring as usize] = Role::Pool;
+        Some(spring)
     }
 
     /// How far the water leaving `lip` with velocity `v` flies horizontally before it meets
@@ -196,7 +338,8 @@ impl Tracer<'_> {
         let (mut s, edge) = self.flight(lip, v, ds);
         let touch = lip.truncate() + v.direction * s;
         if !edge {
-            if let Some(pool) = self.net.pool_at(self.grid.cell_of(touch), at) {
+            let below_lip = |pool: &u32| self.net.positions[*pool as usize].z < lip.z;
+            if let Some(pool) = self.net.pool_at(self.grid.cell_of(touch), at).filter(below_lip) {
                 // It falls into a pool already there.
                 let level = self.net.positions[pool as usize].z;
                 while height(s) > level && s < 1e6 {
@@ -210,6 +353,7 @@ impl Tracer<'_> {
                 // It meets a wall too steep to hold a pool: it runs on down the wall.
                 let foot = self.net.add_node(touch.extend(height(s)), Role::Branch);
                 self.net.add_edge(at, foot, Motion::FreeFall, None, Some(parabola(lip, v, s, height(s))));
+                self.trail = vec![foot];
                 return Next::Go(foot, None);
             }
         }
@@ -279,6 +423,7 @@ impl Tracer<'_> {
         let point = outlet.extend(z);
         let next = self.net.add_node(point, Role::Branch);
         self.net.add_edge(pool, next, Motion::Pool, None, None);
+        self.trail = vec![next];
         Next::Go(next, None)
     }
 
@@ -294,42 +439,45 @@ impl Tracer<'_> {
     fn hollow(&mut self, at: u32, source: &str) -> Next {
         let p = self.net.positions[at as usize];
         let cell = self.grid.cell_of(p.truncate());
-        if let Some(pool) = self.net.pool_at(cell, at) {
-            self.net.add_edge(at, pool, Motion::Contact, None, None);
+        if let Some((from, pool)) = self.pool_entry(cell, at) {
+            self.net.add_edge(from, pool, Motion::Contact, None, None);
             return Next::Stop;
         }
-        let filled = flood::fill(self.grid, cell, self.grid.heights.len());
-        let depth = filled.flooded.iter().map(|&c| filled.level - self.grid.heights[c]).fold(0.0, f64::max);
-        if depth < MIN_POOL_DEPTH {
-            return self.cross(at, &filled.route);
-        }
-        let area = filled.flooded.len() as f64 * self.grid.area();
+        let hollow = self.filled.hollow(self.grid, cell);
+        let depth = hollow.flooded.iter().map(|&c| hollow.level - self.grid.heights[c]).fold(0.0, f64::max);
+        let surface = p.truncate().extend(hollow.level);
+        let node = if depth < MIN_POOL_DEPTH { None } else { self.pool_node(surface) };
+        let Some(node) = node else {
+            // Too shallow to hold water, or the trail started under the pool's surface (the
+            // water of an upstream pool or fall running back into its own hollow): the stream
+            // crosses the hollow along the flood's route, cutting its bed.
+            return self.cross(at, &hollow.route);
+        };
+        let area = hollow.flooded.len() as f64 * self.grid.area();
         let lake = area > self.params.lake_area;
-        let node = self.net.add_node(p.truncate().extend(filled.level), Role::Pool);
-        self.net.add_edge(at, node, Motion::Contact, None, None);
         let index = self.net.pools.len();
         if lake {
             self.net.reports.push(format!(
                 "{source}: the water cannot leave the hollow at {} without filling a lake of {area:.0} m² \
                  at z = {:.2} m (pools[{index}])",
                 show(p),
-                filled.level
+                hollow.level
             ));
         }
         self.net.pools.push(PoolDraft {
             node,
             kind: if lake { PoolKind::Lake } else { PoolKind::Basin },
-            level: filled.level,
+            level: hollow.level,
             area,
             depth,
-            outline: Outline::Cells { rectangles: rectangles(self.grid, &filled.flooded) },
-            outlet: Some(self.grid.centre(filled.outlet).extend(filled.level)),
+            outline: Outline::Cells { rectangles: rectangles(self.grid, &hollow.flooded) },
+            outlet: Some(self.grid.centre(hollow.outlet).extend(hollow.level)),
             fall: None,
         });
-        for &c in &filled.flooded {
+        for &c in &hollow.flooded {
             self.net.pool_cells.entry(c).or_insert(index);
         }
-        self.leave_pool(node, self.grid.centre(filled.outlet), filled.level)
+        self.leave_pool(node, self.grid.centre(hollow.outlet), hollow.level)
     }
 
     /// Crosses a flat or shallow hollow along the flood's `route`, keeping the minimum slope.
@@ -340,12 +488,13 @@ impl Tracer<'_> {
             let q = self.grid.centre(c);
             let run = from.truncate().distance(q);
             let point = q.extend(self.ground.height(q).min(from.z - self.params.min_slope * run));
-            if let Some(joined) = self.join(last, point) {
-                self.net.add_edge(last, joined, Motion::Contact, None, None);
+            if let Some((from, joined)) = self.join(last, point) {
+                self.net.add_edge(from, joined, Motion::Contact, None, None);
                 return Next::Stop;
             }
             let next = self.net.add_node(point, Role::Branch);
             self.net.add_edge(last, next, Motion::Contact, None, None);
+            self.trail.push(next);
             last = next;
         }
         if last == at {

@@ -28,7 +28,12 @@ fn setup(dir: &Path, extra: &str, springs: &[&str]) -> PathBuf {
             .map(|name| Spring { name: name.to_string(), node: 0, flow: 1.0, sinks: Vec::new() })
             .collect(),
     };
-    let provenance = Provenance { producer: "test".into(), inputs: vec![], params: "test".into(), frame: Default::default() };
+    let provenance = Provenance {
+        producer: "test".into(),
+        inputs: vec![],
+        params: "test".into(),
+        frame: Default::default(),
+    };
     write_artifact(&dir.join("hydro.json"), &provenance, &hydro).unwrap();
     scene
 }

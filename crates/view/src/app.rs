@@ -20,6 +20,7 @@ pub const FILES: &[(&str, &[u8])] = embed![
     "js/viewer.js",
     "js/meshes.js",
     "js/network.js",
+    "js/streams.js",
     "js/colours.js",
     "js/surfaces.js",
     "js/keypoints.js",

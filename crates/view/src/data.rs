@@ -1,6 +1,7 @@
 //! `view/data/run.json`: everything the page shows that is not a mesh, gathered from the run's
 //! artifacts and its scene — the network (skeleton nodes and conduits), the water on every
-//! segment (hydro), the routes from sink to spring, the key points, the water tables and
+//! segment (hydro), the surface streams as polylines with their Table 1 types, the routes
+//! from sink to spring, the key points, the water tables and
 //! horizons sampled on a grid, karstnet's metrics, the ensemble probability of every segment, the mesh chunks to load, and the
 //! [`Problem`]s that leave a layer empty.
 //!
@@ -14,6 +15,7 @@ use karst_geology::{KeyPointKind, Scene, Surface};
 use karst_hydro::{Hydro, Role, WaterType};
 use karst_metrics::MetricsReport;
 use karst_skeleton::Skeleton;
+use karst_streams::{Motion, Streams};
 
 use crate::ensemble::EnsembleView;
 use crate::meshes::MeshView;
@@ -22,9 +24,11 @@ use crate::run::{Problem, Run};
 /// The value of `format` in run.json.
 pub const FORMAT: &str = "karstgen-view";
 /// Bumped on every change of run.json's layout (the app checks it).
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 /// Grid points per side of a sampled water table or horizon.
 const SURFACE_GRID: usize = 48;
+/// Points along each free fall's parabola in a streams polyline.
+const FALL_POINTS: usize = 12;
 
 /// The document.
 #[derive(Serialize)]
@@ -38,6 +42,7 @@ pub struct ViewData<'a> {
     pub domain: Option<Bounds>,
     pub skeleton: Option<&'a Skeleton>,
     pub hydro: Option<HydroView>,
+    pub streams: Option<StreamsView>,
     pub keypoints: Vec<KeyPointView>,
     pub surfaces: Vec<SurfaceView>,
     pub meshes: &'a [MeshView],
@@ -92,6 +97,24 @@ pub struct ConduitWaterView {
     pub depth: Vec<f64>,
 }
 
+/// The surface streams (streams.json), one entry per segment.
+#[derive(Serialize)]
+pub struct StreamsView {
+    pub segments: Vec<StreamSegmentView>,
+}
+
+/// A surface segment as the page draws it.
+#[derive(Serialize)]
+pub struct StreamSegmentView {
+    /// Table 1 type (pool: across a pool).
+    pub water: WaterType,
+    pub motion: Motion,
+    /// m³/s.
+    pub flow: f64,
+    /// Its course: the two ends, or points along a fall's parabola from the lip to the impact.
+    pub points: Vec<[f64; 3]>,
+}
+
 /// The role of a node in the hydraulic graph and the water arriving there.
 #[derive(Serialize)]
 pub struct NodeWaterView {
@@ -143,6 +166,7 @@ pub fn view_data<'a>(run: &'a Run, meshes: &'a [MeshView]) -> ViewData<'a> {
         domain: domain(run, meshes),
         skeleton: run.skeleton.as_ref(),
         hydro: run.hydro.as_ref().map(hydro_view),
+        streams: run.streams.as_ref().map(streams_view),
         keypoints: keypoints(run),
         surfaces: run.scene.as_ref().map(surfaces).unwrap_or_default(),
         meshes,
@@ -182,6 +206,23 @@ fn hydro_view(hydro: &Hydro) -> HydroView {
         springs: hydro.springs.iter().map(|s| at(&s.name, s.node, s.flow)).collect(),
         sinks: hydro.sinks.iter().map(|s| at(&s.name, s.node, s.recharge)).collect(),
     }
+}
+
+fn streams_view(streams: &Streams) -> StreamsView {
+    let segments = streams
+        .segments
+        .iter()
+        .map(|g| {
+            let points = match &g.fall {
+                Some(fall) => {
+                    (0..=FALL_POINTS).map(|k| fall.at(fall.throw * k as f64 / FALL_POINTS as f64)).collect()
+                }
+                None => vec![streams.nodes[g.from as usize].position, streams.nodes[g.to as usize].position],
+            };
+            StreamSegmentView { water: g.water, motion: g.motion, flow: g.flow, points }
+        })
+        .collect();
+    StreamsView { segments }
 }
 
 fn keypoints(run: &Run) -> Vec<KeyPointView> {

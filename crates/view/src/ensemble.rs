@@ -32,6 +32,12 @@ pub struct EnsembleView {
     pub segments: Vec<Vec<f32>>,
 }
 
+/// Most cells a probability grid may have (4 bytes each: 1 GiB).
+pub const MAX_CELLS: usize = 1 << 28;
+/// Most probes along the network (every quarter cell of every segment): the work of the
+/// colouring, bounded whatever `cell` says.
+pub const MAX_PROBES: f64 = 1e8;
+
 /// The ensemble colouring of `skeleton` from `run_dir/probability/`, None when the folder has no
 /// ensemble, an error message when it has a broken one.
 pub fn load(run_dir: &Path, skeleton: &Skeleton) -> Option<Result<EnsembleView, String>> {
@@ -40,7 +46,7 @@ pub fn load(run_dir: &Path, skeleton: &Skeleton) -> Option<Result<EnsembleView, 
     if !placement.is_file() {
         return None;
     }
-    Some(read_grid(&folder).map(|(p, values)| {
+    Some(read_grid(&folder, skeleton).map(|(p, values)| {
         EnsembleView {
             realizations: p.realizations,
             cell: p.cell,
@@ -58,18 +64,21 @@ pub fn load(run_dir: &Path, skeleton: &Skeleton) -> Option<Result<EnsembleView, 
     }))
 }
 
-/// The placement and every cell's probability (x fastest, then y, then z).
-fn read_grid(folder: &Path) -> Result<(Placement, Vec<f32>), String> {
+/// The placement and every cell's probability (x fastest, then y, then z), once the placement
+/// is checked: a finite corner, a cell > 0 fine enough for at most [`MAX_PROBES`] probes along
+/// `skeleton`, at most [`MAX_CELLS`] cells, at least one realization.
+fn read_grid(folder: &Path, skeleton: &Skeleton) -> Result<(Placement, Vec<f32>), String> {
     let path = folder.join("grid.json");
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = karst_artifact::files::read_regular_text(&path, karst_artifact::files::MAX_SCENE_BYTES)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     let p: Placement = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    check_placement(&p, skeleton).map_err(|problem| format!("{}: {problem}", path.display()))?;
     let [nx, ny, nz] = p.dims;
-    if !(p.cell.is_finite() && p.cell > 0.0) || nx * ny * nz == 0 {
-        return Err(format!("{}: cell {} and dims {:?} make no grid", path.display(), p.cell, p.dims));
-    }
     let mut values = Vec::with_capacity(nx * ny * nz);
     for z in 0..nz {
         let slice = folder.join(format!("z-{z:03}.exr"));
+        karst_artifact::files::open_regular(&slice, karst_artifact::files::MAX_DATA_BYTES)
+            .map_err(|e| format!("{}: {e}", slice.display()))?;
         let image = exr::prelude::read_first_flat_layer_from_file(&slice)
             .map_err(|e| format!("{}: {e}", slice.display()))?;
         let layer = &image.layer_data;
@@ -89,13 +98,55 @@ fn read_grid(folder: &Path) -> Result<(Placement, Vec<f32>), String> {
         }
         values.extend(channel.sample_data.values_as_f32());
     }
+    if values.len() != nx * ny * nz {
+        return Err(format!("{}: {} values for {nx}×{ny}×{nz} cells", folder.display(), values.len()));
+    }
     Ok((p, values))
+}
+
+/// What grid.json's fields must be, naming the field and its value when they are not.
+fn check_placement(p: &Placement, skeleton: &Skeleton) -> Result<(), String> {
+    if let Some(a) =
+        (0..3).find(|&a| p.min[a].is_nan() || p.min[a].abs() > karst_artifact::check::MAX_COORDINATE)
+    {
+        return Err(format!("min[{a}] = {} is not a finite coordinate", p.min[a]));
+    }
+    if !(p.cell.is_finite() && p.cell > 0.0) {
+        return Err(format!("cell = {} is not a finite length > 0", p.cell));
+    }
+    if p.realizations == 0 {
+        return Err("realizations = 0: an ensemble has at least one".into());
+    }
+    let cells = p.dims.iter().try_fold(1usize, |n, &d| n.checked_mul(d)).filter(|&n| n <= MAX_CELLS);
+    if p.dims.contains(&0) || cells.is_none() {
+        return Err(format!("dims = {:?} is not a grid of 1 to {MAX_CELLS} cells", p.dims));
+    }
+    let length: f64 = skeleton
+        .conduits
+        .iter()
+        .flat_map(|c| c.nodes.windows(2))
+        .map(|w| distance(skeleton.nodes[w[0] as usize].position, skeleton.nodes[w[1] as usize].position))
+        .sum();
+    let probes = length / (p.cell / 4.0);
+    if probes > MAX_PROBES {
+        let cell = if (1e-3..1e6).contains(&p.cell) { p.cell.to_string() } else { format!("{:e}", p.cell) };
+        return Err(format!(
+            "cell = {cell} m takes {probes:.1e} probes along the network's {length:.0} m; at most {MAX_PROBES:e}: \
+             cell ≥ {:.3e} m would fit",
+            4.0 * length / MAX_PROBES
+        ));
+    }
+    Ok(())
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|i| (b[i] - a[i]).powi(2)).sum::<f64>().sqrt()
 }
 
 /// The largest probability over the cells the segment a→b passes through.
 fn segment_probability(p: &Placement, values: &[f32], skeleton: &Skeleton, a: u32, b: u32) -> f32 {
     let (pa, pb) = (skeleton.nodes[a as usize].position, skeleton.nodes[b as usize].position);
-    let length = (0..3).map(|i| (pb[i] - pa[i]).powi(2)).sum::<f64>().sqrt();
+    let length = distance(pa, pb);
     let steps = (length / (p.cell / 4.0)).ceil().max(1.0) as usize;
     (0..=steps)
         .filter_map(|s| {
@@ -116,4 +167,44 @@ fn cell_index(p: &Placement, point: [f64; 3]) -> Option<usize> {
         ijk[a] = t as usize;
     }
     Some((ijk[2] * p.dims[1] + ijk[1]) * p.dims[0] + ijk[0])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use karst_testkit::{root, scratch};
+
+    /// The error for a grid.json of `text` beside the tiny golden skeleton.
+    fn problem(text: &str) -> String {
+        let (_, skeleton) =
+            karst_artifact::read_artifact::<Skeleton>(&root().join("fixtures/golden/tiny/skeleton.json"))
+                .unwrap();
+        let run = scratch("view-ensemble-grid");
+        std::fs::create_dir_all(run.join("probability")).unwrap();
+        std::fs::write(run.join("probability/grid.json"), text).unwrap();
+        let message = load(&run, &skeleton).expect("a grid is there").expect_err("a bad grid");
+        std::fs::remove_dir_all(&run).unwrap();
+        message
+    }
+
+    #[test]
+    fn bad_placements_name_the_field_and_value() {
+        let grid = |min: &str, cell: &str, dims: &str, n: &str| {
+            format!(r#"{{"min":{min},"cell":{cell},"dims":{dims},"realizations":{n}}}"#)
+        };
+        let ok = ("[0,0,0]", "10", "[4,4,4]");
+        let huge = problem(&grid(ok.0, ok.1, "[100000,100000,100000]", "3"));
+        assert!(huge.contains("dims = [100000, 100000, 100000]"), "{huge}");
+        let overflow = problem(&grid(ok.0, ok.1, "[18446744073709551615,2,1]", "3"));
+        assert!(overflow.contains("dims"), "{overflow}");
+        let fine = problem(&grid(ok.0, "1e-300", ok.2, "3"));
+        assert!(fine.contains("cell = 1e-300 m takes") && fine.contains("would fit"), "{fine}");
+        assert!(problem(&grid(ok.0, "-1", ok.2, "3")).contains("cell = -1"));
+        assert!(problem(&grid("[0,1e300,0]", ok.1, ok.2, "3")).contains("min[1] = "));
+        assert!(problem(&grid(ok.0, ok.1, ok.2, "0")).contains("realizations = 0"));
+        assert!(
+            problem(&grid(ok.0, ok.1, ok.2, "3")).contains("z-000.exr"),
+            "slices are read once the grid is sane"
+        );
+    }
 }

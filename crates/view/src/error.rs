@@ -18,6 +18,9 @@ pub enum ViewError {
     NoView { dir: PathBuf, run: String },
     #[error(transparent)]
     Scene(#[from] karst_geology::SceneError),
+    /// The run folder cannot be locked: another process writes into it, or it is not writable.
+    #[error(transparent)]
+    Lock(#[from] karst_artifact::Error),
     #[error("{path}: cannot write: {source}")]
     Write { path: PathBuf, source: std::io::Error },
     #[error("{path}: cannot encode the {what}: {detail}")]
@@ -41,6 +44,13 @@ impl ViewError {
             | ViewError::Scene(_)
             | ViewError::PortInUse { .. } => 2,
             ViewError::Write { .. } | ViewError::Encode { .. } | ViewError::Listen { .. } => 1,
+            ViewError::Lock(e) => {
+                if e.is_bad_input() {
+                    2
+                } else {
+                    1
+                }
+            }
         }
     }
 }

@@ -5,9 +5,9 @@
 //!
 //! - `index.html`, the app's ES modules (`js/`) and stylesheet, and the vendored three.js
 //!   (`vendor/three/`, with its licence), all embedded in this crate ([`app`]);
-//! - `data/run.json`: the network, the water, the routes, the key points, the water tables and
-//!   horizons, the metrics, what is missing from the run, and the manifest of the meshes
-//!   ([`data`]);
+//! - `data/run.json`: the network, the water, the surface streams, the routes, the key points,
+//!   the water tables and horizons, the metrics, what is missing from the run, and the
+//!   manifest of the meshes ([`data`]);
 //! - `data/<surface>/cNNN-lK.glb`: the carved terrain, the cave and the water, split into
 //!   chunks ([`chunks`]), each at up to four levels of detail ([`lod`]), compressed with
 //!   EXT_meshopt_compression and KHR_mesh_quantization ([`glb`]), which three.js decodes
@@ -77,8 +77,14 @@ impl ViewReport {
 
 /// Writes `run_dir/view/` for the run in `run_dir`; `scene` is the scene file it was made
 /// from, when the run folder has no `scene.toml` of its own.
+///
+/// The run folder is locked while the view is written (a run writing into it meanwhile would
+/// change what the view shows; two views would replace each other's folder), and what a killed
+/// writer left there (a staging folder `.view.tmp-PID`) is removed first.
 pub fn write_view(run_dir: &Path, scene: Option<&Path>) -> Result<ViewReport, ViewError> {
     let run = Run::load(run_dir, scene)?;
+    let _lock = karst_artifact::lock_output(run_dir)?;
+    karst_artifact::atomic::remove_stale_temporaries(run_dir);
     let staging = run_dir.join(format!(".{VIEW_DIR}.tmp-{}", std::process::id()));
     let result = fill(&run, &staging);
     if result.is_err() {

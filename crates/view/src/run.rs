@@ -1,4 +1,4 @@
-//! Reading a run folder: the artifacts the viewer shows (skeleton, hydro, mesh, metrics) and the
+//! Reading a run folder: the artifacts the viewer shows (skeleton, hydro, streams, mesh, metrics) and the
 //! scene (key points, water tables, horizons).
 //!
 //! A folder with none of the pipeline's artifacts is not a run (an error). A run that lacks a
@@ -18,6 +18,7 @@ use karst_hydro::Hydro;
 use karst_mesher::Mesh;
 use karst_metrics::MetricsReport;
 use karst_skeleton::Skeleton;
+use karst_streams::Streams;
 
 use crate::ViewError;
 use crate::ensemble::{self, EnsembleView};
@@ -39,6 +40,8 @@ pub struct Run {
     pub scene: Option<Scene>,
     pub skeleton: Option<Skeleton>,
     pub hydro: Option<Hydro>,
+    /// The surface streams.
+    pub streams: Option<Streams>,
     pub mesh: Option<Mesh>,
     pub metrics: Option<MetricsReport>,
     /// The ensemble probability of every segment, when the folder holds an ensemble's grid.
@@ -47,9 +50,10 @@ pub struct Run {
 }
 
 /// The stages whose artifacts the view reads, and what each feeds.
-const SHOWN: [(StageId, &[&str]); 4] = [
+const SHOWN: [(StageId, &[&str]); 5] = [
     (StageId::Skeleton, &["network", "key points", "routes", "walk"]),
     (StageId::Hydro, &["water colouring", "flow", "spring discharges"]),
+    (StageId::Streams, &["surface streams"]),
     (StageId::Mesher, &["terrain", "cave", "water"]),
     (StageId::Metrics, &["metrics panel"]),
 ];
@@ -69,6 +73,7 @@ impl Run {
             scene: None,
             skeleton: None,
             hydro: None,
+            streams: None,
             mesh: None,
             metrics: None,
             ensemble: None,
@@ -77,11 +82,14 @@ impl Run {
         run.scene = run.load_scene(scene)?;
         let skeleton = run.artifact::<Skeleton>(StageId::Skeleton);
         let hydro = run.artifact::<Hydro>(StageId::Hydro);
+        let streams = run.artifact::<Streams>(StageId::Streams);
         let mesh = run.artifact::<Mesh>(StageId::Mesher);
         let metrics = run.artifact::<MetricsReport>(StageId::Metrics);
         run.check_inputs(header(&skeleton), header(&hydro), header(&metrics));
+        run.check_streams(header(&hydro), header(&streams));
         run.skeleton = skeleton.map(|(_, s)| s);
         run.hydro = hydro.map(|(_, h)| h).and_then(|h| run.matching_hydro(h));
+        run.streams = streams.map(|(_, s)| s);
         run.mesh = mesh.map(|(_, m)| m);
         run.metrics = metrics.map(|(_, m)| m);
         run.ensemble = run.load_ensemble();
@@ -170,6 +178,19 @@ impl Run {
                     ),
                 );
             }
+        }
+    }
+
+    /// Records a streams.json made from another hydro.json than the one in the folder: it is
+    /// still shown, with a warning.
+    fn check_streams(&mut self, hydro: Option<&Header>, streams: Option<&Header>) {
+        let (Some(hydro), Some(streams)) = (hydro, streams) else { return };
+        if streams.inputs.iter().any(|i| i.name == "hydro" && i.payload_blake3 != hydro.payload_blake3) {
+            self.problem(
+                StageId::Streams,
+                "streams.json was made from another hydro.json: rerun `karstgen run SCENE --from streams`"
+                    .into(),
+            );
         }
     }
 

@@ -8,7 +8,7 @@
 //! connection (`Connection: close`): the page's few hundred requests come from one browser on
 //! the same machine.
 
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{Ipv4Addr, SocketAddr, TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -112,7 +112,8 @@ fn answer(root: &Path, mut stream: TcpStream) -> std::io::Result<()> {
 }
 
 fn read_head(stream: &TcpStream) -> std::io::Result<String> {
-    let mut reader = BufReader::new(stream);
+    // At most MAX_HEAD bytes in all, however long a line the client sends.
+    let mut reader = BufReader::new(stream.take(MAX_HEAD as u64 + 1));
     let mut head = String::new();
     loop {
         let mut line = String::new();
@@ -132,7 +133,7 @@ fn respond(root: &Path, target: &str) -> Response {
     let Some(path) = resolve(root, target) else {
         return Response::text("403 Forbidden", "outside the view folder");
     };
-    match std::fs::read(&path) {
+    match karst_artifact::files::read_regular(&path, karst_artifact::files::MAX_DATA_BYTES) {
         Ok(body) => Response { status: "200 OK", content_type: content_type(&path), body },
         Err(_) => Response::text("404 Not Found", "no such file in the view"),
     }

@@ -58,6 +58,17 @@ fn a_complete_run_gives_every_layer() {
     assert_eq!(data["skeleton"]["conduits"].as_array().unwrap().len(), 3);
     assert_eq!(data["hydro"]["conduits"].as_array().unwrap().len(), 3);
     assert_eq!(data["domain"]["max"], serde_json::json!([200.0, 150.0, 60.0]));
+    // The surface streams: every segment of streams.json with its type and its two ends.
+    let streams: Value = serde_json::from_slice(&std::fs::read(dir.join("streams.json")).unwrap()).unwrap();
+    let (shown, written) =
+        (data["streams"]["segments"].as_array().unwrap(), streams["payload"]["segments"].as_array().unwrap());
+    assert_eq!(shown.len(), written.len());
+    for (v, g) in shown.iter().zip(written) {
+        assert_eq!(v["water"], g["water"]);
+        let ends = [&g["from"], &g["to"]]
+            .map(|n| &streams["payload"]["nodes"][n.as_u64().unwrap() as usize]["position"]);
+        assert_eq!(v["points"], serde_json::json!(ends));
+    }
     let kinds: Vec<(&str, &str)> = data["keypoints"]
         .as_array()
         .unwrap()
@@ -85,7 +96,7 @@ fn a_complete_run_gives_every_layer() {
         }
         assert_eq!(triangles, mesh["triangles"].as_u64().unwrap(), "the finest levels hold every triangle");
     }
-    assert_eq!(data["metrics"]["network"]["n_nodes_full"], 33);
+    assert_eq!(data["metrics"]["network"]["n_nodes_full"], 30);
     assert!(dir.join("view/index.html").is_file());
     assert!(dir.join("view/vendor/three/LICENSE").is_file());
 }
@@ -130,6 +141,20 @@ fn a_run_lacking_stages_is_shown_with_what_is_missing() {
     // Without the scene, the domain is the network's bounds and key points come from its nodes.
     assert!(data["domain"]["min"].is_array());
     assert_eq!(data["keypoints"].as_array().unwrap().len(), 3);
+}
+
+#[test]
+fn streams_of_another_hydro_json_are_a_problem_and_still_shown() {
+    let dir = tiny_run("stale-streams", &[]);
+    let path = dir.join("streams.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let artifact: Value = serde_json::from_str(&text).unwrap();
+    let hydro = artifact["header"]["inputs"][0]["payload_blake3"].as_str().unwrap();
+    std::fs::write(&path, text.replacen(hydro, &"0".repeat(64), 1)).unwrap();
+    let report = write_view(&dir, Some(&tiny_scene())).unwrap();
+    assert_eq!(report.problems.len(), 1, "{:?}", report.problems);
+    assert!(report.problems[0].message.contains("--from streams"), "{}", report.problems[0].message);
+    assert!(run_json(&dir)["streams"]["segments"].is_array());
 }
 
 #[test]

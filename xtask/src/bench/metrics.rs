@@ -67,6 +67,68 @@ pub fn time_networks(runs: usize) -> Result<Vec<NetworkTiming>, StageError> {
     Ok(timings)
 }
 
+/// Times `characterize` on mazes, where the simplified graph keeps most nodes and the
+/// all-pairs traversals dominate (issue 15): a 200 × 200 grid (40,000 junctions), a 100 × 100
+/// grid of junctions joined by corridors of 24 stations (250,000 nodes, 10,000 junctions) and
+/// a 500 × 500 grid (250,000 junctions).
+pub fn time_mazes(runs: usize) -> Result<Vec<NetworkTiming>, StageError> {
+    let cases = [
+        ("grid-40k", grid_maze(200, 0)),
+        ("corridors-250k", grid_maze(100, 24)),
+        ("grid-250k", grid_maze(500, 0)),
+    ];
+    let mut timings = Vec::new();
+    for (name, net) in cases {
+        let mut seconds = Vec::new();
+        let mut metrics = None;
+        for _ in 0..runs.max(1) {
+            let start = Instant::now();
+            metrics = Some(characterize(&net).map_err(|e| StageError::input(format!("{name}: {e}")))?);
+            seconds.push(start.elapsed().as_secs_f64());
+        }
+        let metrics = metrics.expect("at least one run");
+        timings.push(NetworkTiming {
+            name: name.into(),
+            nodes: metrics.n_nodes_full,
+            reduced_nodes: metrics.n_nodes_simpl,
+            ours: median(seconds),
+            karstnet: None,
+        });
+    }
+    Ok(timings)
+}
+
+/// A `side` × `side` grid of junctions 10 m apart, each grid edge a corridor with `stations`
+/// intermediate stations.
+pub fn grid_maze(side: usize, stations: usize) -> Network {
+    let mut nodes: Vec<[f64; 3]> =
+        (0..side * side).map(|v| [(v % side) as f64 * 10.0, (v / side) as f64 * 10.0, 0.0]).collect();
+    let mut links = Vec::new();
+    let mut corridor = |a: usize, b: usize, nodes: &mut Vec<[f64; 3]>| {
+        let mut previous = a;
+        for k in 1..=stations {
+            let t = k as f64 / (stations + 1) as f64;
+            let (pa, pb) = (nodes[a], nodes[b]);
+            nodes.push([0, 1, 2].map(|c| pa[c] + (pb[c] - pa[c]) * t));
+            links.push([previous, nodes.len() - 1]);
+            previous = nodes.len() - 1;
+        }
+        links.push([previous, b]);
+    };
+    for y in 0..side {
+        for x in 0..side {
+            let v = y * side + x;
+            if x + 1 < side {
+                corridor(v, v + 1, &mut nodes);
+            }
+            if y + 1 < side {
+                corridor(v, v + side, &mut nodes);
+            }
+        }
+    }
+    Network { nodes, links }
+}
+
 /// karstnet's own time on `file` (load and metrics), as `karstnet_oracle.py` reports it.
 fn karstnet_seconds(python: &str, file: &Path) -> Option<f64> {
     let script = Path::new("crates/metrics/tests/karstnet_oracle.py");

@@ -52,6 +52,7 @@ pub struct Only {
     pub geotiff: bool,
     /// The export formats on the finished run in this folder.
     pub export: Option<PathBuf>,
+    pub mazes: bool,
     /// The calibration budget (default scene to the Sakany cave).
     pub calibrate: bool,
 }
@@ -66,12 +67,16 @@ pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
         geotiff: geotiff_only,
         export,
         calibrate,
+        mazes,
     } = only;
     if calibrate {
         println!("one run, in process, release build, {} threads", rayon_threads());
         return calibrate::calibrate_bench();
     }
     println!("median of {runs} runs, in process, release build, {} threads", rayon_threads());
+    if mazes {
+        return maze_bench(runs);
+    }
     if let Some(dir) = export {
         return export_bench(&dir, runs);
     }
@@ -246,6 +251,16 @@ fn mesher_and_network_bench(runs: usize) -> Result<(), StageError> {
             "{:<14} {:>7} {:>8} {:>12.4} {theirs:>12} {ratio:>8}",
             t.name, t.nodes, t.reduced_nodes, t.ours
         );
+    }
+    Ok(())
+}
+
+/// The network statistics of mazes, where the all-pairs traversals dominate.
+fn maze_bench(runs: usize) -> Result<(), StageError> {
+    println!("\nnetwork statistics of mazes");
+    println!("{:<16} {:>8} {:>8} {:>12}", "network", "nodes", "reduced", "karstgen s");
+    for t in metrics::time_mazes(runs)? {
+        println!("{:<16} {:>8} {:>8} {:>12.3}", t.name, t.nodes, t.reduced_nodes, t.ours);
     }
     Ok(())
 }

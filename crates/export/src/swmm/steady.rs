@@ -18,10 +18,9 @@
 //!    head at its downstream node above its floor, or the smaller of its critical and normal
 //!    depths where it falls freely into that node (an offset above the water there); its
 //!    upstream head is the one at which SWMM's steady momentum balance carries its flow:
-//!    friction (Manning, on the upstream-weighted area and hydraulic radius) against the head
-//!    difference and the convective term, with SWMM's inertial damping by Froude number, the
-//!    flow capped at the normal flow where SWMM caps it (`NORMAL_FLOW_LIMITED BOTH`: water
-//!    surface flatter than the conduit, or supercritical upstream).
+//!    friction (Manning, on the area and hydraulic radius weighted upstream by Froude number)
+//!    against the head difference (`INERTIAL_DAMPING FULL`: no inertial terms), the flow capped at the normal flow where SWMM caps it (`NORMAL_FLOW_LIMITED FROUDE`:
+//!    supercritical at the upstream end).
 //! 3. Splits: a node with several outgoing conduits takes the highest head they need; each of
 //!    the others gets the Manning's n (raised, by bisection) at which it needs that head, so
 //!    that the engine carries hydro's share in it: the calibration a modeller does against
@@ -275,18 +274,16 @@ impl Pipe {
 
     /// Whether the conduit carries `q` steadily between heads `h` (upstream, downstream):
     /// SWMM's momentum balance leaves at least that flow, and the normal flow does too where
-    /// SWMM's `NORMAL_FLOW_LIMITED BOTH` caps the flow at it (`limited`: the conduit does not
+    /// SWMM's `NORMAL_FLOW_LIMITED FROUDE` caps the flow at it (`limited`: the conduit does not
     /// fall freely at its downstream end).
     fn carries(&self, q: f64, h: [f64; 2], limited: bool) -> bool {
         let s = self.section;
         let [y1, y2] = [0, 1].map(|e| (h[e] - self.floors[e]).clamp(FUDGE, s.height));
         let surface_slope = (h[0] - h[1]) / self.length;
-        if !driving_exceeds_friction(&s, [y1, y2], surface_slope, self.length, q, self.manning) {
+        if !driving_exceeds_friction(&s, [y1, y2], surface_slope, q, self.manning) {
             return false;
         }
-        let capped = y1 < s.height
-            && limited
-            && (y1 < y2 || (!self.into_outfall && s.froude(q / s.area(y1), y1) >= 1.0));
+        let capped = y1 < s.height && limited && s.froude(q / s.area(y1), y1) >= 1.0;
         !capped || s.normal_flow(y1, self.slope(), self.manning) >= q
     }
 
@@ -303,21 +300,19 @@ impl Pipe {
 }
 
 /// Whether, at flow `q` between end depths `y` on a water-surface slope `slope`, SWMM's
-/// momentum update would raise the flow: g·A·S + σ·V²·(A2 − A1)/L ≥ g·n²·Q·|V|/R^(4/3), with
-/// A and R weighted towards the upstream end by the inertial damping σ (1 below Froude 0.5, 0
-/// above 1, read at mid-depth) and no inertia in a full conduit. At the steady flow both sides
-/// are equal.
-fn driving_exceeds_friction(s: &Section, y: [f64; 2], slope: f64, length: f64, q: f64, manning: f64) -> bool {
-    let (a1, r1, a2) = (s.area(y[0]), s.hydraulic_radius(y[0]), s.area(y[1]));
+/// momentum update would raise the flow: g·A·S ≥ g·n²·Q·|V|/R^(4/3), with A and R weighted
+/// towards the upstream end by σ (1 below Froude 0.5, 0 above 1, read at mid-depth; not in a
+/// full conduit) and no inertial terms (`INERTIAL_DAMPING FULL`). At the steady flow both
+/// sides are equal.
+fn driving_exceeds_friction(s: &Section, y: [f64; 2], slope: f64, q: f64, manning: f64) -> bool {
+    let (a1, r1) = (s.area(y[0]), s.hydraulic_radius(y[0]));
     let mid = 0.5 * (y[0] + y[1]);
     let (am, rm) = (s.area(mid), s.hydraulic_radius(mid));
     let full = y[0] >= s.height && y[1] >= s.height;
     let v = q / am;
-    let sigma = if full { 0.0 } else { (2.0 * (1.0 - s.froude(v, mid))).clamp(0.0, 1.0) };
-    let rho = if full { 1.0 } else { sigma };
+    let rho = if full { 1.0 } else { (2.0 * (1.0 - s.froude(v, mid))).clamp(0.0, 1.0) };
     let (aw, rw) = (a1 + (am - a1) * rho, r1 + (rm - r1) * rho);
-    let driving = GRAVITY * aw * slope + sigma * v * v * (a2 - a1) / length;
-    driving >= GRAVITY * manning * manning * q * v.abs() / rw.powf(4.0 / 3.0)
+    GRAVITY * aw * slope >= GRAVITY * manning * manning * q * v.abs() / rw.powf(4.0 / 3.0)
 }
 
 /// Heads of the nodes no flow reaches: the level of the still water beside them when it is

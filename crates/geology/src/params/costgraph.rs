@@ -86,6 +86,9 @@ impl Default for CostgraphParams {
 
 /// The largest `k` accepted.
 pub const MAX_K: usize = 200;
+/// Largest cost per metre and term weight: with edges of at most 1e6 m, no cost reaches the
+/// 3.4e38 an f32 holds.
+pub const MAX_COST_WEIGHT: f64 = 1e6;
 
 impl CostgraphParams {
     pub(crate) fn check(&self, c: &mut Checks) {
@@ -95,7 +98,8 @@ impl CostgraphParams {
         if let Some(l) = self.max_edge_length {
             c.positive("costgraph.max_edge_length", l);
         }
-        c.positive("costgraph.cost_floor", self.cost_floor);
+        // Bounded so that no edge cost overflows the artifact's f32 costs (docs/limits.md).
+        c.within("costgraph.cost_floor", self.cost_floor, 1e-6, MAX_COST_WEIGHT);
         for (field, value) in [
             ("alpha_inception", self.alpha_inception),
             ("alpha_fracture", self.alpha_fracture),
@@ -106,16 +110,16 @@ impl CostgraphParams {
             ("w_fracture", self.w_fracture),
             ("w_permeability", self.w_permeability),
         ] {
-            c.non_negative(&format!("costgraph.{field}"), value);
+            c.within(&format!("costgraph.{field}"), value, 0.0, MAX_COST_WEIGHT);
         }
         for (field, value) in [
             ("inception_distance", self.inception_distance),
             ("water_table_distance", self.water_table_distance),
             ("horizon_distance", self.horizon_distance),
-            ("forced_link_cost", self.forced_link_cost),
             ("forced_link_radius", self.forced_link_radius),
         ] {
             c.positive(&format!("costgraph.{field}"), value);
         }
+        c.within("costgraph.forced_link_cost", self.forced_link_cost, 1e-6, MAX_COST_WEIGHT);
     }
 }

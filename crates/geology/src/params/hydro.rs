@@ -85,24 +85,27 @@ impl HydroParams {
         c.positive("hydro.catchment_cell", self.catchment_cell);
         c.positive("hydro.total_discharge", self.total_discharge);
         c.positive("hydro.speed_factor", self.speed_factor);
-        c.positive("hydro.min_slope", self.min_slope);
-        c.positive("hydro.radius_exponent", self.radius_exponent);
-        if let Some([lo, hi]) = self.flow_radius {
-            c.positive("hydro.flow_radius", lo);
-            if lo.is_finite() && hi.is_finite() && hi < lo {
-                c.report("hydro.flow_radius", format!("[{lo}, {hi}] is not a range (max < min)"));
-            }
+        if c.within("hydro.min_slope", self.min_slope, 0.0, std::f64::consts::FRAC_PI_2)
+            && self.min_slope == 0.0
+        {
+            c.report("hydro.min_slope", "must be > 0, got 0".into());
+        }
+        if c.within("hydro.radius_exponent", self.radius_exponent, 0.0, 10.0) && self.radius_exponent == 0.0 {
+            c.report("hydro.radius_exponent", "must be > 0, got 0".into());
+        }
+        if let Some(range) = self.flow_radius {
+            c.range("hydro.flow_radius", range, super::MIN_RADIUS, super::MAX_RADIUS);
         }
         for (i, pool) in self.pools.iter().enumerate() {
             let field = format!("hydro.pools[{i}]");
-            c.finite(&format!("{field}.at"), &pool.at);
+            c.coordinates(&format!("{field}.at"), &pool.at);
             c.positive(&format!("{field}.radius"), pool.radius);
             if pool.outlets.is_empty() {
                 c.report(&format!("{field}.outlets"), "is empty: give at least one outlet".into());
             }
             for (j, outlet) in pool.outlets.iter().enumerate() {
                 let field = format!("{field}.outlets[{j}]");
-                if c.finite(&format!("{field}.towards"), &outlet.towards) && outlet.towards == pool.at {
+                if c.coordinates(&format!("{field}.towards"), &outlet.towards) && outlet.towards == pool.at {
                     c.report(&format!("{field}.towards"), "is the pool's own point: no direction".into());
                 }
                 c.non_negative(&format!("{field}.weight"), outlet.weight);

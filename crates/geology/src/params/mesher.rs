@@ -23,9 +23,18 @@ impl Default for MesherParams {
     }
 }
 
+/// Largest `target_triangles` (a mesh is indexed by u32).
+pub const MAX_TRIANGLES: u64 = 1 << 31;
+
 impl MesherParams {
     pub(crate) fn check(&self, c: &mut Checks) {
         c.positive("mesher.cell_size", self.cell_size);
         c.non_negative("mesher.cave_cell_size", self.cave_cell_size);
+        if self.target_triangles > MAX_TRIANGLES {
+            c.report(
+                "mesher.target_triangles",
+                format!("must be at most {MAX_TRIANGLES}, got {}", self.target_triangles),
+            );
+        }
     }
 }

@@ -17,6 +17,7 @@ mod test_scene;
 pub use calibrate::{
     Bounds, CalibrateParams, DEFAULT_EVALUATIONS, MAX_SEEDS, PARAMETERS, Parameter, parameter,
 };
+
 pub use costgraph::{CostModelKind, CostgraphParams};
 pub use export::{ExportFormat, ExportParams, MeshSurface};
 pub use hydro::{HydroParams, PoolOutlet, PoolWeights, Recharge};
@@ -25,3 +26,8 @@ pub use sampling::{RadiusUnit, SamplingParams};
 pub use sdf::SdfParams;
 pub use skeleton::{Mode as SkeletonMode, SkeletonParams};
 pub use streams::{Curve, CurveKind, StreamsParams};
+
+/// Smallest conduit radius a scene may ask for, metres.
+pub const MIN_RADIUS: f64 = 1e-3;
+/// Largest conduit radius, metres.
+pub const MAX_RADIUS: f64 = 1e3;

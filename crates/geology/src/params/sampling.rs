@@ -52,6 +52,9 @@ impl Default for SamplingParams {
     }
 }
 
+/// Most consecutive failed darts per cell.
+pub const MAX_ATTEMPTS: u32 = 1000;
+
 impl SamplingParams {
     pub(crate) fn check(&self, c: &mut Checks) {
         c.positive("sampling.radius", self.radius);
@@ -65,8 +68,8 @@ impl SamplingParams {
         if c.finite("sampling.potential_factor", &[f]) && !(f > 0.0 && f <= 1.0) {
             c.report("sampling.potential_factor", format!("must be in (0, 1], got {f}"));
         }
-        if self.attempts == 0 {
-            c.report("sampling.attempts", "must be ≥ 1".into());
+        if !(1..=MAX_ATTEMPTS).contains(&self.attempts) {
+            c.report("sampling.attempts", format!("must be in [1, {MAX_ATTEMPTS}], got {}", self.attempts));
         }
     }
 }

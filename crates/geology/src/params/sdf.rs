@@ -49,12 +49,12 @@ impl Default for SdfParams {
 
 impl SdfParams {
     pub(crate) fn check(&self, c: &mut Checks) {
-        c.positive("sdf.radius_scale", self.radius_scale);
-        c.positive("sdf.ratio", self.ratio);
+        c.within("sdf.radius_scale", self.radius_scale, 1e-3, 1e3);
+        c.within("sdf.ratio", self.ratio, 1e-2, 1e2);
         if c.finite("sdf.asymmetry", &[self.asymmetry]) && self.asymmetry.abs() > 1.0 {
             c.report("sdf.asymmetry", format!("must be within [−1, 1], got {}", self.asymmetry));
         }
-        c.non_negative("sdf.tortuosity", self.tortuosity);
+        c.within("sdf.tortuosity", self.tortuosity, 0.0, 1.0);
         if c.finite("sdf.sphere_spacing", &[self.sphere_spacing])
             && !(self.sphere_spacing >= 0.1 && self.sphere_spacing <= 1.0)
         {
@@ -63,10 +63,10 @@ impl SdfParams {
                 format!("must be within [0.1, 1] radii, got {}", self.sphere_spacing),
             );
         }
-        c.non_negative("sdf.blend", self.blend);
-        c.non_negative("sdf.detail", self.detail);
-        c.positive("sdf.detail_wavelength", self.detail_wavelength);
-        c.positive("sdf.chamber_scale", self.chamber_scale);
+        c.within("sdf.blend", self.blend, 0.0, 1e3);
+        c.within("sdf.detail", self.detail, 0.0, 1e3);
+        c.within("sdf.detail_wavelength", self.detail_wavelength, 1e-3, 1e6);
+        c.within("sdf.chamber_scale", self.chamber_scale, 1e-2, 1e2);
         if c.finite("sdf.chamber_bias", &[self.chamber_bias])
             && !(self.chamber_bias > 0.0 && self.chamber_bias <= 0.5)
         {

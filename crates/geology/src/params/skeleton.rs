@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::validate::Checks;
+use crate::validate::{Checks, MAX_LENGTH, MIN_LENGTH};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -113,10 +113,43 @@ pub enum Mode {
     Karstnsim,
 }
 
+/// Largest γ (γ = 50 already keeps only the relative neighbourhood graph's pairs).
+pub const MAX_GAMMA: f64 = 100.0;
+/// Most amplification steps.
+pub const MAX_AMPLIFICATION_STEPS: usize = 100;
+/// Most new key points per amplification step.
+pub const MAX_AMPLIFICATION_POINTS: usize = 10_000;
+/// Most new key points over all amplification steps.
+pub const MAX_AMPLIFICATION_WORK: usize = 100_000;
+
 impl SkeletonParams {
     pub(crate) fn check(&self, c: &mut Checks) {
-        if c.finite("skeleton.gamma", &[self.gamma]) && self.gamma <= 0.0 {
+        if c.within("skeleton.gamma", self.gamma, 0.0, MAX_GAMMA) && self.gamma == 0.0 {
             c.report("skeleton.gamma", format!("must be > 0, got {}", self.gamma));
+        }
+        if self.amplification_steps > MAX_AMPLIFICATION_STEPS {
+            c.report(
+                "skeleton.amplification_steps",
+                format!("must be at most {MAX_AMPLIFICATION_STEPS}, got {}", self.amplification_steps),
+            );
+        }
+        if self.amplification_points > MAX_AMPLIFICATION_POINTS {
+            c.report(
+                "skeleton.amplification_points",
+                format!("must be at most {MAX_AMPLIFICATION_POINTS}, got {}", self.amplification_points),
+            );
+        }
+        let new_points = self.amplification_steps.saturating_mul(self.amplification_points);
+        if new_points > MAX_AMPLIFICATION_WORK {
+            // One or two least-cost searches per new point.
+            c.report(
+                "skeleton.amplification_points",
+                format!(
+                    "amplification_steps × amplification_points = {new_points} new key points, each one or two least-cost \
+                     searches: at most {MAX_AMPLIFICATION_WORK}; {} points per step would fit",
+                    MAX_AMPLIFICATION_WORK / self.amplification_steps.max(1)
+                ),
+            );
         }
         for (field, p) in [
             ("skeleton.cohesion_vadose", self.cohesion_vadose),
@@ -126,38 +159,15 @@ impl SkeletonParams {
                 c.report(field, format!("P_red must be in (0, 1], got {p}"));
             }
         }
-        if c.finite("skeleton.dead_end_fraction", &[self.dead_end_fraction])
-            && !(0.0..=1.0).contains(&self.dead_end_fraction)
-        {
-            c.report(
-                "skeleton.dead_end_fraction",
-                format!("must be in [0, 1], got {}", self.dead_end_fraction),
-            );
-        }
+        c.within("skeleton.dead_end_fraction", self.dead_end_fraction, 0.0, 1.0);
         if let Some(range) = self.amplification_length {
-            c.range("skeleton.amplification_length", range);
+            c.range("skeleton.amplification_length", range, MIN_LENGTH, MAX_LENGTH);
         }
         c.positive("skeleton.amplification_exponent", self.amplification_exponent);
-        if c.finite("skeleton.amplification_ratio", &[self.amplification_ratio])
-            && !(1.0..=10.0).contains(&self.amplification_ratio)
-        {
-            c.report(
-                "skeleton.amplification_ratio",
-                format!("must be in [1, 10], got {}", self.amplification_ratio),
-            );
-        }
-        if c.finite("skeleton.confluence_attraction", &[self.confluence_attraction])
-            && !(0.0..=1.0).contains(&self.confluence_attraction)
-        {
-            c.report(
-                "skeleton.confluence_attraction",
-                format!("must be in [0, 1], got {}", self.confluence_attraction),
-            );
-        }
-        if c.finite("skeleton.sinuosity", &[self.sinuosity]) && !(1.0..=3.0).contains(&self.sinuosity) {
-            c.report("skeleton.sinuosity", format!("must be in [1, 3], got {}", self.sinuosity));
-        }
-        c.range("skeleton.meander_wavelength", self.meander_wavelength);
+        c.within("skeleton.amplification_ratio", self.amplification_ratio, 1.0, 10.0);
+        c.within("skeleton.confluence_attraction", self.confluence_attraction, 0.0, 1.0);
+        c.within("skeleton.sinuosity", self.sinuosity, 1.0, 3.0);
+        c.range("skeleton.meander_wavelength", self.meander_wavelength, MIN_LENGTH, MAX_LENGTH);
         if let Some(theta) = self.tortuosity
             && c.finite("skeleton.tortuosity", &[theta])
             && !(0.0..=1.0).contains(&theta)
@@ -170,11 +180,7 @@ impl SkeletonParams {
                 format!("must be at most 6, got {}", self.tortuosity_levels),
             );
         }
-        let [lo, hi] = self.radius;
-        c.positive("skeleton.radius", lo);
-        if lo.is_finite() && hi.is_finite() && hi < lo {
-            c.report("skeleton.radius", format!("[{lo}, {hi}] is not a range (max < min)"));
-        }
+        c.range("skeleton.radius", self.radius, super::MIN_RADIUS, super::MAX_RADIUS);
         if c.finite("skeleton.vertical_angle", &[self.vertical_angle])
             && !(self.vertical_angle > 0.0 && self.vertical_angle <= 90.0)
         {
@@ -183,12 +189,12 @@ impl SkeletonParams {
                 format!("must be in (0, 90] degrees, got {}", self.vertical_angle),
             );
         }
-        let [c0, c1] = self.radius_correlation;
-        c.positive("skeleton.radius_correlation", c0);
-        if c0.is_finite() && c1.is_finite() && c1 < c0 {
-            c.report("skeleton.radius_correlation", format!("[{c0}, {c1}] is not a range (max < min)"));
+        let [c0, _] = self.radius_correlation;
+        c.range("skeleton.radius_correlation", self.radius_correlation, 0.0, MAX_LENGTH);
+        if c0 == 0.0 {
+            c.report("skeleton.radius_correlation", "must be > 0, got 0".into());
         }
-        c.positive("skeleton.epikarst_radius", self.epikarst_radius);
+        c.within("skeleton.epikarst_radius", self.epikarst_radius, super::MIN_RADIUS, super::MAX_RADIUS);
         if let Some(g) = self.ghost_rock_potential
             && c.finite("skeleton.ghost_rock_potential", &[g])
             && !(0.0..=1.0).contains(&g)

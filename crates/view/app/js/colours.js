@@ -8,7 +8,7 @@ const CONDUIT_TYPES = {
   passage: '#2ca02c', bed: '#ff7f0e', chamber: '#e377c2',
 };
 // Emilien et al. 2015's running-water classes, then still and no water.
-const WATER_TYPES = {
+export const WATER_TYPES = {
   stream: '#9ecae1', river: '#3182bd', rapid: '#08519c', cascade: '#74c476', horsetail: '#31a354',
   block: '#006d2c', ribbon: '#fdae6b', plunge: '#e6550d', ledge: '#a63603', cataract: '#7f2704',
   sump: '#6a51a3', pool: '#9e9ac8', dry: '#bdbdbd',

@@ -4,6 +4,8 @@
 import { Viewer } from './viewer.js';
 import { Surfaces } from './meshes.js';
 import { Network } from './network.js';
+import { SurfaceStreams } from './streams.js';
+import { drawLegend } from './colours.js';
 import { buildSurfaces } from './surfaces.js';
 import { KeyPoints } from './keypoints.js';
 import { overlays } from './overlay.js';
@@ -14,7 +16,7 @@ import {
 } from './panels.js';
 
 const FORMAT = 'karstgen-view';
-const VERSION = 1;
+const VERSION = 2;
 const status = document.getElementById('status');
 window.karstView = { ready: false, settled: () => false };
 
@@ -46,6 +48,10 @@ async function main() {
   const viewer = new Viewer(document.getElementById('canvas'), data.domain);
   const surfaces = new Surfaces(data.meshes, viewer);
   const network = data.skeleton ? new Network(data, viewer) : null;
+  const streams = data.streams?.segments.length ? new SurfaceStreams(data, viewer) : null;
+  const streamLegend = document.getElementById('stream-legend');
+  if (streams) drawLegend(streamLegend, streams.legend());
+  document.getElementById('network-on-top').addEventListener('change', (e) => streams?.setOnTop(e.target.checked));
   const keypoints = new KeyPoints(data, viewer, document.getElementById('labels'));
   const geology = buildSurfaces(data, viewer);
   overlays(viewer);
@@ -66,6 +72,8 @@ async function main() {
     meshLayer('water', 'water'),
     { id: 'network', label: 'network (lines)', visible: true, missing: !network,
       set: (v) => { if (network) network.lines.visible = v; legendVisible(v); } },
+    { id: 'streams', label: 'surface streams (lines, water type)', visible: true, missing: !streams,
+      set: (v) => { streams?.setVisible(v); streamLegend.style.display = v ? '' : 'none'; } },
     { id: 'keypoints', label: 'key points and labels', visible: true, missing: data.keypoints.length === 0,
       set: (v) => keypoints.setVisible(v) },
     geologyLayer('water-tables', 'water table', 'water tables'),
@@ -74,7 +82,7 @@ async function main() {
   layerToggles(layers, viewer);
   sectionControls(viewer);
   // The walk shows the cave, the water and the network alone; the layers come back after it.
-  const outside = layers.filter((l) => ['terrain', 'water-tables', 'horizons', 'keypoints'].includes(l.id));
+  const outside = layers.filter((l) => ['terrain', 'streams', 'water-tables', 'horizons', 'keypoints'].includes(l.id));
   const walk = new Walk(data, viewer, (walking) => {
     for (const l of outside) l.set(!walking && document.getElementById(`layer-${l.id}`).checked);
   });
@@ -89,6 +97,8 @@ async function main() {
     walking: () => walk.walking,
     cameraPosition: () => viewer.camera.position.toArray(),
     projectNodes: () => (data.skeleton?.nodes ?? []).map((n) => viewer.project(n.position)),
+    streams: () => streams?.probe() ?? [],
+    pixelsAt: (points) => pixelsAt(viewer, points),
     triangles: () => Object.fromEntries(surfaces.surfaces.map((s) => [s.name, s.triangles()])),
     sample: (columns = 160, rows = 100) => sample(viewer, columns, rows),
   });
@@ -121,6 +131,19 @@ function pickOnClick(data, viewer, network, surfaces) {
     network.show(pick?.segment ?? null, route);
     showSelection(data, network, pick, route);
     window.karstView.selection = pick;
+  });
+}
+
+/** The picture at canvas points (CSS pixels), RGB, drawn now. */
+function pixelsAt(viewer, points) {
+  viewer.draw();
+  const gl = viewer.renderer.getContext();
+  const [w, h] = [gl.drawingBufferWidth, gl.drawingBufferHeight];
+  const scale = w / viewer.canvas.clientWidth;
+  const pixel = new Uint8Array(4);
+  return points.map(({ x, y }) => {
+    gl.readPixels(Math.floor(x * scale), h - 1 - Math.floor(y * scale), 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+    return [pixel[0], pixel[1], pixel[2]];
   });
 }
 

@@ -41,11 +41,11 @@ export function layerToggles(layers, viewer) {
 export function colourControls(data, network, viewer) {
   const select = $('colour-mode');
   for (const [value, label] of modes(data)) select.add(new Option(label, value));
-  const apply = () => drawLegend($('legend'), network.colour(select.value));
+  const apply = () => drawLegend($('network-legend'), network.colour(select.value));
   select.addEventListener('change', apply);
   apply();
   $('network-on-top').addEventListener('change', (e) => network.setOnTop(e.target.checked));
-  const legend = $('legend');
+  const legend = $('network-legend');
   return (visible) => {
     legend.style.display = visible ? '' : 'none';
     viewer.changed();

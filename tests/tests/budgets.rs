@@ -1,0 +1,62 @@
+//! Work estimates (issue 15): each stage that allocates in proportion to a scene field refuses
+//! above the memory budget, before allocating, with exit code 2, the estimate, the field that
+//! drives it and a value that would fit; nothing is written.
+
+use std::fs;
+use std::path::Path;
+
+use karst_artifact::StageId;
+use karst_geology::Scene;
+use karst_geology::budget::Budget;
+use karst_pipeline::make::Selection;
+use karst_stage::runner::{self, Job};
+use karst_stage::{Stage, StageError};
+use karstgen_tests::{root, run, scratch};
+
+/// Runs stage `S` on `scene` (with `edit` applied to its text) under `budget`; returns the
+/// refusal's message.
+fn refusal<S: Stage>(out: &Path, edit: (&str, &str), budget: &str) -> String {
+    let scene_path = out.join("edited.toml");
+    let text = fs::read_to_string(out.join("scene.toml")).unwrap();
+    assert!(text.contains(edit.0), "{}", edit.0);
+    fs::write(&scene_path, text.replace(edit.0, edit.1)).unwrap();
+    let mut scene = Scene::load(&scene_path).unwrap();
+    scene.set_budget(budget.parse::<Budget>().unwrap());
+    match runner::run::<S>(&Job { scene_path: &scene_path, scene: &scene, out }) {
+        Err(e @ StageError::BadInput(_)) => {
+            assert_eq!(e.exit_code(), 2);
+            e.to_string()
+        }
+        other => panic!("{}: expected a refusal, got {other:?}", S::ID.name()),
+    }
+}
+
+#[test]
+fn every_estimating_stage_refuses_with_its_field_and_a_value_that_fits() {
+    let out = scratch("budgets");
+    let scene = out.join("scene.toml");
+    fs::copy(root().join("fixtures/scenes/tiny.toml"), &scene).unwrap();
+    run(&scene, &out, &Selection { to: Some(StageId::Sdf), ..Selection::default() }).unwrap();
+    let before: Vec<_> = fs::read_dir(&out).unwrap().flatten().map(|e| e.file_name()).collect();
+
+    let k = refusal::<karst_costgraph::CostgraphStage>(&out, ("seed = 7", "seed = 7"), "512K");
+    assert!(
+        k.contains("edited.toml: costgraph.k = ") && k.contains("more than the memory budget of 512 KiB"),
+        "{k}"
+    );
+    assert!(k.contains("costgraph.k = ") && k.contains("would fit"), "{k}");
+
+    let sdf = refusal::<karst_sdf::SdfStage>(&out, ("seed = 7", "seed = 7"), "64K");
+    assert!(sdf.contains("sdf.radius_scale = 1 means about") && sdf.contains("sphere candidates"), "{sdf}");
+
+    let mesher = refusal::<karst_mesher::MesherStage>(&out, ("cell_size = 3.0", "cell_size = 0.01"), "16G");
+    assert!(
+        mesher.contains("mesher.cell_size = 0.01 means about") && mesher.contains("triangles"),
+        "{mesher}"
+    );
+    assert!(mesher.contains("mesher.cell_size = ") && mesher.contains("would fit"), "{mesher}");
+
+    let after: Vec<_> = fs::read_dir(&out).unwrap().flatten().map(|e| e.file_name()).collect();
+    assert_eq!(after.len(), before.len() + 1, "only the edited scene is new: {after:?}");
+    fs::remove_dir_all(&out).unwrap();
+}
