@@ -253,6 +253,7 @@ fn check_network_out(input: &[u8]) {
         scene: Some(o.scene.clone()),
         skeleton: Some(skeleton),
         hydro: Some(hydro),
+        streams: Some(o.streams.clone()),
         mesh: None,
         metrics: Some(o.metrics.clone()),
         ensemble: None,
