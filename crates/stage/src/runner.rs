@@ -121,6 +121,13 @@ fn consistent(job: &Job, headers: &[Header]) -> Result<(), StageError> {
 /// writes); the runner deletes it once the new artifact is written. (With the same key, the
 /// side files written are the same bytes: nothing to invalidate.)
 fn invalidate_other(path: &Path, key: &str) -> Result<(), StageError> {
+    if path.exists() && !path.is_file() {
+        // Never move aside what is not an artifact (a user's folder of that name).
+        return Err(StageError::failure(format!(
+            "{}: is not a file: cannot write the stage's artifact there",
+            path.display()
+        )));
+    }
     match read_header(path) {
         Ok(header) if header.key == key => Ok(()),
         Err(karst_artifact::Error::Open { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use karst_artifact::{Provenance, write_artifact};
-use karst_hydro::{FlowUnits, Hydro, Spring};
+use karst_hydro::{FlowUnits, Hydro, NodeWater, Role, Spring};
 use karst_testkit::{SceneText, scratch};
 
 fn streams(args: &[&str]) -> Output {
@@ -14,14 +14,14 @@ fn streams(args: &[&str]) -> Output {
 }
 
 /// The tiny test scene with `extra` TOML, written into `dir` beside a hydro.json whose springs
-/// are `springs`.
+/// are `springs` (all at its one node, a valid payload).
 fn setup(dir: &Path, extra: &str, springs: &[&str]) -> PathBuf {
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, SceneText::new("cli").with(extra).text()).unwrap();
     let hydro = Hydro {
         flow_units: FlowUnits { min: 1.0, max: 1.0 },
         conduits: Vec::new(),
-        nodes: Vec::new(),
+        nodes: vec![NodeWater { role: Role::Well, inflow: 1.0 }],
         sinks: Vec::new(),
         springs: springs
             .iter()
