@@ -49,7 +49,8 @@ impl Histogram {
         self.sum / self.count().max(1) as f64
     }
 
-    /// The `q` quantile, interpolated inside its bin and kept within [min, max].
+    /// The `q` quantile, interpolated inside its bin and kept within [min, max] (a read
+    /// histogram may hold min > max: `clamp` would panic on it).
     pub fn quantile(&self, q: f64) -> f64 {
         let total = self.count();
         if total == 0 {
@@ -61,7 +62,7 @@ impl Histogram {
         for (i, &c) in self.counts.iter().enumerate() {
             if c > 0 && seen + c as f64 >= wanted {
                 let within = (wanted - seen) / c as f64;
-                return (self.lo + width * (i as f64 + within)).clamp(self.min, self.max);
+                return (self.lo + width * (i as f64 + within)).max(self.min).min(self.max);
             }
             seen += c as f64;
         }
