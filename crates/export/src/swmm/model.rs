@@ -166,8 +166,11 @@ pub fn build(net: &NetworkView, frame: &Frame, params: &ExportParams) -> Model {
             }
         })
         .collect();
+    // A sink or spring that no conduit reaches (possible only in a hand-made network) has no
+    // node in the model: no inflow, no outfall.
+    let modelled = |node: u32| Some(index[node as usize]).filter(|&i| i != usize::MAX);
     for spring in &net.springs {
-        let at = index[spring.node as usize];
+        let Some(at) = modelled(spring.node) else { continue };
         let (invert, height) = (nodes[at].invert, nodes[at].depth);
         let [x, y] = nodes[at].xy;
         let name = name(&spring.name);
@@ -189,7 +192,7 @@ pub fn build(net: &NetworkView, frame: &Frame, params: &ExportParams) -> Model {
             xy: [x + 1.0, y],
         });
     }
-    let inflows = net.sinks.iter().map(|s| (index[s.node as usize], s.discharge)).collect();
+    let inflows = net.sinks.iter().filter_map(|s| Some((modelled(s.node)?, s.discharge))).collect();
     Model { nodes, conduits, inflows }
 }
 
