@@ -12,17 +12,23 @@ use crate::volume::Volume;
 /// Cells along a brick's edge.
 pub const BRICK: u64 = 4;
 
-/// Lattice cell coordinates of the first cell of every brick the surface may cross, in
-/// (z, y, x) order, and the number of field evaluations spent finding them. Subtrees are
-/// visited in parallel; the sort makes the result independent of the thread count.
-pub fn active_bricks<V: Volume>(field: &V, lattice: &Lattice) -> (Vec<[u64; 3]>, u64) {
+/// The order of the bricks: by their first cell's coordinate along the `sweep` axis, then in
+/// (z, y, x) order. The polygonizer visits them slab by slab along that axis.
+pub fn order_key(at: [u64; 3], sweep: usize) -> [u64; 4] {
+    [at[sweep], at[2], at[1], at[0]]
+}
+
+/// Lattice cell coordinates of the first cell of every brick the surface may cross, in the
+/// order of [`order_key`], and the number of field evaluations spent finding them. Subtrees
+/// are visited in parallel; the sort makes the result independent of the thread count.
+pub fn active_bricks<V: Volume>(field: &V, lattice: &Lattice, sweep: usize) -> (Vec<[u64; 3]>, u64) {
     let cells = lattice.dims.map(|d| d - 1);
     let mut size = BRICK;
     while size < cells.into_iter().max().unwrap_or(0) {
         size *= 2;
     }
     let (mut bricks, evaluations) = visit(field, lattice, cells, [0; 3], size);
-    bricks.sort_unstable_by_key(|b| [b[2], b[1], b[0]]);
+    bricks.sort_unstable_by_key(|&b| order_key(b, sweep));
     (bricks, evaluations)
 }
 
