@@ -52,6 +52,9 @@ enum Task {
         /// Only the mesher's synthetic budget cases.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf"])]
         mesher: bool,
+        /// With --mesher: only the cases whose name contains this text (e.g. "streamed").
+        #[arg(long, value_name = "TEXT", requires = "mesher")]
+        case: Option<String>,
         /// Only the streams budgets (surface network, pipeline overhead, carved terrain).
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher"])]
         streams: bool,
@@ -136,12 +139,32 @@ fn main() -> ExitCode {
         }
         Task::Bless => bless(),
         Task::Bench { runs, peer: true, .. } => peer_bench(runs),
-        Task::Bench { runs, costgraph, sdf, mesher, streams, geotiff, export, calibrate, mazes, .. } => {
-            bench::run(
-                runs,
-                bench::Only { costgraph, sdf, mesher, streams, geotiff, export, calibrate, mazes },
-            )
-        }
+        Task::Bench {
+            runs,
+            costgraph,
+            sdf,
+            mesher,
+            case,
+            streams,
+            geotiff,
+            export,
+            calibrate,
+            mazes,
+            ..
+        } => bench::run(
+            runs,
+            bench::Only {
+                costgraph,
+                sdf,
+                mesher,
+                mesher_case: case,
+                streams,
+                geotiff,
+                export,
+                calibrate,
+                mazes,
+            },
+        ),
         Task::Test { python, args } => return test(python, &args),
         Task::Fuzz { minutes, seed } => fuzz(minutes, seed),
         Task::MetricsTable { write } => metrics_table_command(write),

@@ -78,9 +78,10 @@ pub fn clean(surface: &mut TriMesh, solid: Solid, model: &SdfModel, anchors: &[D
             Verdict::Keep => {}
         }
     }
-    let keep: Vec<bool> = labels.iter().map(|&c| verdicts[c as usize] == Verdict::Keep).collect();
-    retain(surface, &keep);
     surface.removed = removed;
+    if verdicts.iter().any(|&v| v != Verdict::Keep) {
+        retain(surface, |t| verdicts[labels[t] as usize] == Verdict::Keep);
+    }
 }
 
 /// Whether component `c` encloses `p`: parity of the crossings of a ray from p. The ray's
@@ -111,25 +112,29 @@ fn crosses([a, b, c]: [DVec3; 3], p: DVec3, d: DVec3) -> bool {
     u >= 0.0 && v >= 0.0 && u + v <= 1.0 && e2.dot(q) / det > 0.0
 }
 
-/// Keeps the triangles marked in `keep` and the vertices they use, in their order.
-fn retain(surface: &mut TriMesh, keep: &[bool]) {
-    let mut used = vec![false; surface.vertices.len()];
-    let mut triangles: Vec<[u32; 3]> =
-        surface.triangles.iter().zip(keep).filter(|&(_, &k)| k).map(|(t, _)| *t).collect();
-    for t in &triangles {
-        for &v in t {
-            used[v as usize] = true;
+/// Keeps the triangles `keep` accepts (by index) and the vertices they use, in their order,
+/// in place: no second copy of the surface.
+fn retain(surface: &mut TriMesh, keep: impl Fn(usize) -> bool) {
+    let mut t = 0;
+    surface.triangles.retain(|_| {
+        t += 1;
+        keep(t - 1)
+    });
+    const UNUSED: u32 = u32::MAX;
+    let mut renumber = vec![UNUSED; surface.vertices.len()];
+    for &v in surface.triangles.iter().flatten() {
+        renumber[v as usize] = 0;
+    }
+    let mut kept = 0;
+    for (i, number) in renumber.iter_mut().enumerate() {
+        if *number != UNUSED {
+            *number = kept;
+            surface.vertices[kept as usize] = surface.vertices[i];
+            kept += 1;
         }
     }
-    let mut renumber = vec![u32::MAX; used.len()];
-    let mut vertices = Vec::new();
-    for (i, _) in used.iter().enumerate().filter(|&(_, &u)| u) {
-        renumber[i] = vertices.len() as u32;
-        vertices.push(surface.vertices[i]);
-    }
-    for t in &mut triangles {
+    surface.vertices.truncate(kept as usize);
+    for t in &mut surface.triangles {
         *t = t.map(|v| renumber[v as usize]);
     }
-    surface.vertices = vertices;
-    surface.triangles = triangles;
 }

@@ -1,7 +1,9 @@
-//! Polygonizing the active bricks by marching cubes and welding their vertices into one mesh.
+//! Polygonizing the active bricks by marching cubes and welding their vertices into one mesh,
+//! handed over slab by slab as the slabs are finished.
 //!
-//! Parallel passes over the active bricks (in (z, y, x) order), none of which depends on the
-//! number of threads:
+//! The active bricks are ordered by slabs along the sweep axis ([`sweep_axis`]), then in
+//! (z, y, x) order inside a slab. Every step is a parallel pass over the bricks of one slab,
+//! none of which depends on the number of threads:
 //!
 //! 1. each brick evaluates its seeds and centres (its points of even and of odd coordinates);
 //! 2. each brick marks its live cells, those its seeds and centres do not prove uniform;
@@ -15,16 +17,25 @@
 //! 5. vertices are numbered brick by brick (a brick's own vertices in edge order), and every
 //!    triangle's edges are resolved to those numbers.
 //!
+//! A brick's neighbours are in its slab or the next one (upper) or the previous one (lower),
+//! so the passes run as a pipeline along the sweep: when slab s has its seeds, slab s − 1 gets
+//! its live cells and its own values, slab s − 2 its marching cubes (its vertices go to the
+//! [`MeshSink`] then), and slab s − 3 its triangles resolved and handed over. Only the
+//! slabs of that front are in memory, whatever the domain's extent along the sweep.
+//!
 //! No hash map, no seam: a vertex shared by up to four bricks exists once, computed by its
 //! owner from the same two field values every brick sees.
+
+use std::ops::{Index, Range};
 
 use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::cubes::{EDGES, table};
 use crate::lattice::Lattice;
-use crate::octree::{self, BRICK};
+use crate::octree::{self, BRICK, THICK, order_key};
 use crate::payload::TriMesh;
+use crate::sink::MeshSink;
 use crate::volume::Volume;
 
 /// Where on a rock–air edge the vertex goes is clamped away from the lattice points, so that
@@ -47,14 +58,16 @@ const SLOTS: usize = EDGE_SLOTS + 2 * B * B * B;
 type VertexRef = u16;
 const SLOT_BITS: u32 = 9;
 
-/// What pass 2 leaves of a brick.
+/// What the marching cubes leave of a brick until its triangles are resolved.
 struct BrickPart {
-    /// The brick's own vertices, by slot (increasing), with their positions.
+    /// The brick's own vertices, by slot (increasing); their positions, until handed over.
     slots: Vec<u16>,
     positions: Vec<[f32; 3]>,
     triangles: Vec<[VertexRef; 3]>,
     /// Indices (in the brick list) of the 7 upper neighbours, by offset bits − 1.
     neighbours: [u32; 7],
+    /// The number of the brick's first vertex in the mesh.
+    base: u32,
     evaluations: u64,
 }
 
@@ -80,36 +93,10 @@ struct Own {
     values: Vec<f64>,
 }
 
-/// The [`Own`] values of all bricks in one allocation (returned to the system when dropped,
-/// unlike millions of small ones).
-struct OwnValues {
-    masks: Vec<u64>,
-    starts: Vec<u64>,
-    values: Vec<f64>,
-}
-
-impl OwnValues {
-    fn new(own: Vec<Own>) -> Self {
-        let mut starts = Vec::with_capacity(own.len());
-        let mut total = 0u64;
-        for o in &own {
-            starts.push(total);
-            total += o.values.len() as u64;
-        }
-        let mut values = Vec::with_capacity(total as usize);
-        let mut masks = Vec::with_capacity(own.len());
-        for o in own {
-            masks.push(o.mask);
-            values.extend(o.values);
-        }
-        OwnValues { masks, starts, values }
-    }
-
-    /// Brick b's value at its local point l, if it evaluated it.
-    fn get(&self, b: usize, l: usize) -> Option<f64> {
-        let mask = self.masks[b];
-        (mask >> l & 1 == 1)
-            .then(|| self.values[self.starts[b] as usize + (mask & ((1u64 << l) - 1)).count_ones() as usize])
+impl Own {
+    /// The value at local point l, if the brick evaluated it.
+    fn get(&self, l: usize) -> Option<f64> {
+        (self.mask >> l & 1 == 1).then(|| self.values[(self.mask & ((1u64 << l) - 1)).count_ones() as usize])
     }
 }
 
@@ -117,96 +104,241 @@ impl OwnValues {
 /// bit a step of BRICK up or down); `u32::MAX` when that brick is inactive.
 type Neighbours = [u32; 7];
 
-/// Polygonizes the boundary f = 0 of `field` at `cell_size` over its extent.
-pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> TriMesh {
-    polygonize_with(field, cell_size, true)
+/// Per-brick data of the slabs of the front, indexed by the bricks' indices in the brick list:
+/// slabs are added at the back as the sweep reaches them and dropped from the front once no
+/// pass needs them. The slabs a window holds are consecutive, so it is one run of bricks.
+struct Window<T> {
+    /// The index of the first brick held.
+    first: usize,
+    items: std::collections::VecDeque<T>,
 }
 
-/// [`polygonize`]; with `lazy` false every corner of the active bricks is evaluated (tests
-/// compare both).
-fn polygonize_with<V: Volume>(field: &V, cell_size: f64, lazy: bool) -> TriMesh {
+impl<T> Window<T> {
+    fn new() -> Self {
+        Window { first: 0, items: Default::default() }
+    }
+
+    /// Adds the data of the slab whose first brick is `first`, the one after those held.
+    fn push(&mut self, first: usize, items: Vec<T>) {
+        if self.items.is_empty() {
+            self.first = first;
+        }
+        debug_assert_eq!(first, self.first + self.items.len(), "slabs are added in order");
+        self.items.extend(items);
+    }
+
+    /// Drops the bricks before brick `first`.
+    fn keep_from(&mut self, first: usize) {
+        let n = first.saturating_sub(self.first).min(self.items.len());
+        self.items.drain(..n);
+        self.first += n;
+    }
+}
+
+impl<T> Index<usize> for Window<T> {
+    type Output = T;
+
+    fn index(&self, b: usize) -> &T {
+        &self.items[b - self.first]
+    }
+}
+
+/// Polygonizes the boundary f = 0 of `field` at `cell_size` over its extent.
+pub fn polygonize<V: Volume>(field: &V, cell_size: f64) -> TriMesh {
+    let mut mesh = TriMesh::default();
+    let Ok(evaluations) = polygonize_into(field, cell_size, &mut mesh);
+    mesh.field_evaluations = evaluations;
+    mesh
+}
+
+/// [`polygonize`], handing the mesh to `sink` slab by slab (the whole mesh is never in memory
+/// unless the sink keeps it); returns the number of field evaluations.
+pub fn polygonize_into<V: Volume, S: MeshSink>(
+    field: &V,
+    cell_size: f64,
+    sink: &mut S,
+) -> Result<u64, S::Error> {
+    polygonize_with(field, cell_size, true, None, sink)
+}
+
+/// The axis along which the bricks are swept: the lattice's longest (the first of equals), so
+/// that a slab, the section of the domain across it, is the smallest. Along z, a gently
+/// sloping ground would lie whole in a few slabs: the front would grow with the domain's area.
+fn sweep_axis(lattice: &Lattice) -> usize {
+    let d = lattice.dims;
+    (0..3).fold(0, |best, a| if d[a] > d[best] { a } else { best })
+}
+
+/// [`polygonize_into`]; with `lazy` false every corner of the active bricks is evaluated, and
+/// `sweep` forces the sweep axis (tests compare both).
+fn polygonize_with<V: Volume, S: MeshSink>(
+    field: &V,
+    cell_size: f64,
+    lazy: bool,
+    sweep: Option<usize>,
+    sink: &mut S,
+) -> Result<u64, S::Error> {
     let (lo, hi) = field.extent();
     let lattice = Lattice::around(lo, hi, cell_size);
-    let (bricks, octree_evaluations) = octree::active_bricks(field, &lattice);
+    let sweep = sweep.unwrap_or_else(|| sweep_axis(&lattice));
     // A cell edge is one cell long, so both values of a rock–air edge lie within a cell of zero
     // (1-Lipschitz): beyond that only the sign matters, and vertices are those of exact values.
     let reach = lattice.cell * 1.5;
-    let bar = karst_stage::progress::bar(4 * bricks.len() as u64, "mesher");
-    let find = |q: [u64; 3]| bricks.binary_search_by_key(&[q[2], q[1], q[0]], |c| [c[2], c[1], c[0]]).ok();
-    let up: Vec<Neighbours> = bricks
-        .par_iter()
-        .map(|&at| {
-            std::array::from_fn(|o| {
-                let bits = o + 1;
-                find([0, 1, 2].map(|a| at[a] + BRICK * (bits >> a & 1) as u64)).map_or(u32::MAX, |n| n as u32)
-            })
-        })
-        .collect();
-    let mut down = vec![[u32::MAX; 7]; bricks.len()];
-    for (b, ups) in up.iter().enumerate() {
-        for (o, &n) in ups.iter().enumerate() {
-            if n != u32::MAX {
-                down[n as usize][o] = b as u32;
-            }
+    let length = lattice.dims[sweep] - 1;
+    let bar = karst_stage::progress::bar(length, "mesher");
+    let mut found = Found { sweep, bricks: Window::new(), slabs: Vec::new(), searched: 0, total: 0 };
+    let (mut seeds, mut centres, mut up, mut down) =
+        (Window::new(), Window::new(), Window::new(), Window::new());
+    let (mut live, mut own, mut parts) = (Window::new(), Window::new(), Window::new());
+    let mut evaluations = 0;
+    let mut vertices = 0u32;
+    let mut buffer = (Vec::new(), Vec::new());
+    for t in 0.. {
+        evaluations += found.reach(field, &lattice, t);
+        bar.set_position(found.searched.min(length));
+        if found.searched >= length && t >= found.slabs.len() + 3 {
+            break;
         }
+        let (bricks, slab) = (&found.bricks, |s: Option<usize>| s.and_then(|s| found.slabs.get(s)).cloned());
+        if let Some(r) = slab(Some(t)) {
+            let (s, c): (Vec<Seeds>, Vec<Seeds>) =
+                r.clone().into_par_iter().map(|b| seed_values(field, &lattice, bricks[b])).unzip();
+            seeds.push(r.start, s);
+            centres.push(r.start, c);
+            up.push(r.start, r.clone().into_par_iter().map(|b| neighbours(bricks, sweep, b, true)).collect());
+        }
+        let previous = slab(t.checked_sub(1));
+        if let Some(r) = &previous {
+            down.push(
+                r.start,
+                r.clone().into_par_iter().map(|b| neighbours(bricks, sweep, b, false)).collect(),
+            );
+        }
+        let ctx = Context {
+            field,
+            lattice: &lattice,
+            bricks,
+            up: &up,
+            down: &down,
+            seeds: &seeds,
+            centres: &centres,
+            reach,
+            lazy,
+        };
+        if let Some(r) = previous {
+            // The cells of each brick that the seeds and centres do not prove uniform, bit
+            // local(i, j, k); then the values each brick needs among its points.
+            live.push(r.start, r.clone().into_par_iter().map(|b| live_cells(&ctx, b)).collect());
+            let values: Vec<Own> = r.clone().into_par_iter().map(|b| own_values(&ctx, &live, b)).collect();
+            // Seeds and centres are in the own values too.
+            evaluations += values.iter().map(|o| o.values.len() as u64).sum::<u64>();
+            own.push(r.start, values);
+        }
+        if let Some(r) = slab(t.checked_sub(2)) {
+            let mut made: Vec<BrickPart> = r
+                .clone()
+                .into_par_iter()
+                .map_init(Scratch::default, |scratch, b| brick(&ctx, &own, live[b], b, scratch))
+                .collect();
+            buffer.0.clear();
+            for part in &mut made {
+                part.base = vertices;
+                vertices += part.slots.len() as u32;
+                evaluations += part.evaluations;
+                buffer.0.extend(std::mem::take(&mut part.positions));
+            }
+            sink.vertices(&buffer.0)?;
+            parts.push(r.start, made);
+        }
+        if let Some(r) = slab(t.checked_sub(3)) {
+            weld(&parts, r, &mut buffer.1);
+            sink.triangles(&buffer.1)?;
+        }
+        // What the next step reads: seeds and centres of this slab, upper neighbours, live
+        // cells and own values of the previous one, the parts of the one before.
+        let first = |s: usize| found.slabs.get(s).map_or(found.total, |r| r.start);
+        seeds.keep_from(first(t));
+        centres.keep_from(first(t));
+        down.keep_from(first(t));
+        up.keep_from(first(t.saturating_sub(1)));
+        live.keep_from(first(t.saturating_sub(1)));
+        own.keep_from(first(t.saturating_sub(1)));
+        parts.keep_from(first(t.saturating_sub(2)));
+        let keep = first(t.saturating_sub(1));
+        found.bricks.keep_from(keep);
     }
-    let (seeds, centres): (Vec<Seeds>, Vec<Seeds>) = bricks
-        .par_iter()
-        .map(|&at| {
-            let values = seed_values(field, &lattice, at);
-            bar.inc(2);
-            values
-        })
-        .unzip();
-    let ctx = Context {
-        field,
-        lattice: &lattice,
-        bricks: &bricks,
-        up: &up,
-        down: &down,
-        seeds: &seeds,
-        centres: &centres,
-        reach,
-        lazy,
-    };
-    // The cells of each brick that the seeds and centres do not prove uniform, bit local(i, j, k).
-    let live: Vec<u64> = (0..bricks.len()).into_par_iter().map(|b| live_cells(&ctx, b)).collect();
-    let own: Vec<Own> = (0..bricks.len())
-        .into_par_iter()
-        .map(|b| {
-            let values = own_values(&ctx, &live, b);
-            bar.inc(1);
-            values
-        })
-        .collect();
-    let own = OwnValues::new(own);
-    // Seeds and centres are in `own` too.
-    let own_evaluations = own.values.len() as u64;
-    let parts: Vec<BrickPart> = (0..bricks.len())
-        .into_par_iter()
-        .map_init(Scratch::default, |scratch, b| {
-            let part = brick(&ctx, &own, live[b], b, scratch);
-            bar.inc(1);
-            part
-        })
-        .collect();
     bar.finish_and_clear();
-    drop(own);
-    drop(centres);
-    drop(seeds);
-    drop(up);
-    weld(parts, octree_evaluations + own_evaluations)
+    Ok(evaluations)
+}
+
+/// The active bricks, found by the octree one thick slab at a time just ahead of the front.
+struct Found {
+    sweep: usize,
+    /// The bricks the passes may still read, by their index in the order of [`order_key`].
+    bricks: Window<[u64; 3]>,
+    /// Every slab found so far: its bricks' indices.
+    slabs: Vec<Range<usize>>,
+    /// Cells along the sweep searched so far.
+    searched: u64,
+    /// Bricks found so far.
+    total: usize,
+}
+
+impl Found {
+    /// Searches thick slabs until slab `t` and the next one are found (or the lattice ends):
+    /// the passes of step t read the neighbours above slab t. Returns the evaluations spent.
+    fn reach<V: Volume>(&mut self, field: &V, lattice: &Lattice, t: usize) -> u64 {
+        let (sweep, length) = (self.sweep, lattice.dims[self.sweep] - 1);
+        let mut evaluations = 0;
+        while self.searched < length
+            && self.slabs.get(t).is_none_or(|r| self.searched <= self.bricks[r.start][sweep] + BRICK)
+        {
+            let (bricks, spent) = octree::active_bricks(field, lattice, sweep, self.searched);
+            evaluations += spent;
+            let start = self.total;
+            for slab in bricks.chunk_by(|a, b| a[sweep] == b[sweep]) {
+                self.slabs.push(self.total..self.total + slab.len());
+                self.total += slab.len();
+            }
+            self.bricks.push(start, bricks);
+            self.searched += THICK;
+        }
+        evaluations
+    }
+}
+
+/// Indices of the active bricks next to brick `b`, above it (`upper`) or below it.
+fn neighbours(bricks: &Window<[u64; 3]>, sweep: usize, b: usize, upper: bool) -> Neighbours {
+    let at = bricks[b];
+    std::array::from_fn(|o| {
+        let bits = o + 1;
+        let mut q = at;
+        for (a, x) in q.iter_mut().enumerate() {
+            let step = BRICK * (bits >> a & 1) as u64;
+            *x = if upper {
+                *x + step
+            } else {
+                match x.checked_sub(step) {
+                    Some(v) => v,
+                    None => return u32::MAX,
+                }
+            };
+        }
+        let key = order_key(q, sweep);
+        let found = bricks.items.binary_search_by_key(&key, |&c| order_key(c, sweep));
+        found.map_or(u32::MAX, |n| (bricks.first + n) as u32)
+    })
 }
 
 /// What the passes over the bricks share.
 struct Context<'a, V> {
     field: &'a V,
     lattice: &'a Lattice,
-    bricks: &'a [[u64; 3]],
-    up: &'a [Neighbours],
-    down: &'a [Neighbours],
-    seeds: &'a [Seeds],
-    centres: &'a [Seeds],
+    bricks: &'a Window<[u64; 3]>,
+    up: &'a Window<Neighbours>,
+    down: &'a Window<Neighbours>,
+    seeds: &'a Window<Seeds>,
+    centres: &'a Window<Seeds>,
     reach: f64,
     /// False: no cell is proven uniform (every corner evaluated).
     lazy: bool,
@@ -315,7 +447,7 @@ fn live_cells<V>(ctx: &Context<'_, V>, b: usize) -> u64 {
 /// The values brick `b` needs among the points it owns, [at, at + 4)³: its seeds, and every
 /// corner of a cell that the octree keeps (its brick is active) and no seed proves uniform.
 /// Any brick polygonizing such a cell finds these values here.
-fn own_values<V: Volume>(ctx: &Context<'_, V>, live: &[u64], b: usize) -> Own {
+fn own_values<V: Volume>(ctx: &Context<'_, V>, live: &Window<u64>, b: usize) -> Own {
     let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
     let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - at[a]) as usize);
     let cells = lattice.dims.map(|d| d - 1);
@@ -399,7 +531,7 @@ struct Scratch {
 
 fn brick<V: Volume>(
     ctx: &Context<'_, V>,
-    own: &OwnValues,
+    own: &Window<Own>,
     live: u64,
     b: usize,
     scratch: &mut Scratch,
@@ -436,8 +568,8 @@ fn brick<V: Volume>(
                 let bits = (i / B) | (j / B) << 1 | (k / B) << 2;
                 match ctx.above(b, bits) {
                     Some(o) => {
-                        values[index(i, j, k)] = own
-                            .get(o, local(i % B, j % B, k % B))
+                        values[index(i, j, k)] = own[o]
+                            .get(local(i % B, j % B, k % B))
                             .expect("the owner evaluated a needed point")
                     }
                     None => missing.push((i, j, k)),
@@ -537,46 +669,38 @@ fn brick<V: Volume>(
     BrickPart {
         slots: positions_by_slot.iter().map(|&(s, _)| s).collect(),
         positions: positions_by_slot.iter().map(|&(_, p)| p).collect(),
-        // Exactly sized: the parts of all bricks are alive together.
+        // Exactly sized: the parts of two slabs are alive together.
         triangles: triangles.to_vec(),
         neighbours: ctx.up[b],
+        base: 0,
         evaluations,
     }
 }
 
-/// Numbers the vertices brick by brick and resolves every triangle's references.
-fn weld(parts: Vec<BrickPart>, evaluations: u64) -> TriMesh {
-    let mut base = Vec::with_capacity(parts.len() + 1);
-    base.push(0u32);
-    for part in &parts {
-        base.push(base.last().unwrap() + part.slots.len() as u32);
-    }
+/// Resolves the triangles of the bricks in `slab` to vertex numbers, into `out`: a vertex is
+/// its owner's base plus its rank among the owner's slots (the owner is the brick or an upper
+/// neighbour, in this slab or the next).
+fn weld(parts: &Window<BrickPart>, slab: Range<usize>, out: &mut Vec<[u32; 3]>) {
     let resolve = |b: usize, r: VertexRef| -> u32 {
         let (bits, slot) = ((r >> SLOT_BITS) as usize, r & ((1 << SLOT_BITS) - 1));
-        let owner = if bits == 0 { b } else { parts[b].neighbours[bits - 1] as usize };
-        let rank = parts[owner].slots.binary_search(&slot).expect("the owner made the vertex");
-        base[owner] + rank as u32
+        let owner = if bits == 0 { &parts[b] } else { &parts[parts[b].neighbours[bits - 1] as usize] };
+        owner.base + owner.slots.binary_search(&slot).expect("the owner made the vertex") as u32
     };
     // Each brick resolves its triangles into its own range of the output.
-    let mut triangles = vec![[0u32; 3]; parts.iter().map(|p| p.triangles.len()).sum()];
-    let mut ranges = Vec::with_capacity(parts.len());
-    let mut rest = triangles.as_mut_slice();
-    for part in &parts {
-        let (range, tail) = rest.split_at_mut(part.triangles.len());
-        ranges.push(range);
+    out.clear();
+    out.resize(slab.clone().map(|b| parts[b].triangles.len()).sum(), [0; 3]);
+    let mut ranges = Vec::with_capacity(slab.len());
+    let mut rest = out.as_mut_slice();
+    for b in slab {
+        let (range, tail) = rest.split_at_mut(parts[b].triangles.len());
+        ranges.push((b, range));
         rest = tail;
     }
-    ranges.into_par_iter().enumerate().for_each(|(b, range)| {
+    ranges.into_par_iter().for_each(|(b, range)| {
         for (out, t) in range.iter_mut().zip(&parts[b].triangles) {
             *out = t.map(|r| resolve(b, r));
         }
     });
-    let field_evaluations = evaluations + parts.iter().map(|p| p.evaluations).sum::<u64>();
-    let mut vertices = Vec::with_capacity(*base.last().unwrap() as usize);
-    for part in parts {
-        vertices.extend(part.positions);
-    }
-    TriMesh { vertices, triangles, field_evaluations, removed: Default::default() }
 }
 
 #[cfg(test)]
@@ -597,20 +721,33 @@ mod tests {
         }
     }
 
-    #[test]
-    fn lazy_corners_give_the_mesh_of_all_corners_with_fewer_evaluations() {
+    fn spheres() -> Spheres {
         let mut state = 7u64;
         let mut next = || {
             state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
-        let spheres: Vec<(DVec3, f64)> = (0..40)
-            .map(|_| (DVec3::new(next(), next(), next()) * 16.0 + DVec3::splat(2.0), 0.2 + 2.5 * next()))
-            .collect();
-        let field = Spheres(spheres);
+        Spheres(
+            (0..40)
+                .map(|_| (DVec3::new(next(), next(), next()) * 16.0 + DVec3::splat(2.0), 0.2 + 2.5 * next()))
+                .collect(),
+        )
+    }
+
+    /// The mesh of `field` at `cell`, lazy or not, along the given sweep axis.
+    fn mesh(field: &impl Volume, cell: f64, lazy: bool, sweep: Option<usize>) -> TriMesh {
+        let mut mesh = TriMesh::default();
+        let Ok(evaluations) = polygonize_with(field, cell, lazy, sweep, &mut mesh);
+        mesh.field_evaluations = evaluations;
+        mesh
+    }
+
+    #[test]
+    fn lazy_corners_give_the_mesh_of_all_corners_with_fewer_evaluations() {
+        let field = spheres();
         for cell in [0.5, 0.37] {
-            let lazy = polygonize_with(&field, cell, true);
-            let all = polygonize_with(&field, cell, false);
+            let lazy = mesh(&field, cell, true, None);
+            let all = mesh(&field, cell, false, None);
             assert!(lazy.triangles.len() > 1000);
             assert_eq!(lazy.vertices, all.vertices);
             assert_eq!(lazy.triangles, all.triangles);
@@ -622,5 +759,53 @@ mod tests {
             );
             assert!(lazy.evaluations_per_vertex() < 4.5, "{}", lazy.evaluations_per_vertex());
         }
+    }
+
+    /// A sink that refuses a triangle naming a vertex not given yet.
+    #[derive(Default)]
+    struct Checked {
+        vertices: usize,
+        pieces: usize,
+    }
+
+    impl MeshSink for Checked {
+        type Error = String;
+
+        fn vertices(&mut self, vertices: &[[f32; 3]]) -> Result<(), String> {
+            self.vertices += vertices.len();
+            Ok(())
+        }
+
+        fn triangles(&mut self, triangles: &[[u32; 3]]) -> Result<(), String> {
+            self.pieces += 1;
+            match triangles.iter().flatten().find(|&&v| v as usize >= self.vertices) {
+                Some(v) => Err(format!("vertex {v} named before it was given ({} given)", self.vertices)),
+                None => Ok(()),
+            }
+        }
+    }
+
+    #[test]
+    fn every_sweep_axis_gives_the_same_surface_handed_over_in_slabs() {
+        let field = spheres();
+        // The triangles by their corners' positions, whatever the numbering of the vertices.
+        let surface = |m: &TriMesh| {
+            let mut corners: Vec<[[u32; 3]; 3]> =
+                m.triangles.iter().map(|t| t.map(|v| m.vertices[v as usize].map(f32::to_bits))).collect();
+            corners.sort_unstable();
+            corners
+        };
+        let along_z = mesh(&field, 0.5, true, Some(2));
+        assert!(along_z.triangles.len() > 1000);
+        for sweep in [0, 1] {
+            let other = mesh(&field, 0.5, true, Some(sweep));
+            assert_ne!(other.triangles, along_z.triangles, "the numbering follows the sweep");
+            assert_eq!(surface(&other), surface(&along_z));
+        }
+        let mut checked = Checked::default();
+        polygonize_with(&field, 0.5, true, None, &mut checked).unwrap();
+        assert_eq!(checked.vertices, along_z.vertices.len());
+        // 20 m at 0.5 m: about 11 slabs of 4 cells.
+        assert!(checked.pieces > 5, "{} pieces", checked.pieces);
     }
 }

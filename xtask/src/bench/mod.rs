@@ -48,6 +48,8 @@ pub struct Only {
     pub costgraph: bool,
     pub sdf: bool,
     pub mesher: bool,
+    /// Only the mesher cases whose name contains this text.
+    pub mesher_case: Option<String>,
     pub streams: bool,
     pub geotiff: bool,
     /// The export formats on the finished run in this folder.
@@ -63,6 +65,7 @@ pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
         costgraph: costgraph_only,
         sdf: sdf_only,
         mesher: mesher_only,
+        mesher_case,
         streams: streams_only,
         geotiff: geotiff_only,
         export,
@@ -87,8 +90,7 @@ pub fn run(runs: usize, only: Only) -> Result<(), StageError> {
         return geotiff_bench(runs);
     }
     if mesher_only {
-        mesher_bench(runs);
-        return Ok(());
+        return mesher_bench(runs, mesher_case.as_deref());
     }
     if sdf_only {
         return sdf_bench(runs);
@@ -189,16 +191,18 @@ fn streams_bench(runs: usize) -> Result<(), StageError> {
     Ok(())
 }
 
-/// The mesher's budget cases  on a synthetic model of 30k capsules.
-fn mesher_bench(runs: usize) {
-    println!("\nmesher, synthetic 30k capsules ");
-    for case in mesher::run(runs) {
+/// The mesher's budget cases  on a synthetic model of 30k capsules per km², those whose name
+/// contains `only` (all when None).
+fn mesher_bench(runs: usize, only: Option<&str>) -> Result<(), StageError> {
+    println!("\nmesher, synthetic 30k capsules per km²");
+    for case in mesher::run(runs, only)? {
         let cpu = case.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}"));
         println!(
             "{:<45} {:>8.3} s  CPU {cpu:>6} s  {:>10} triangles  {:>5.2} evaluations/vertex  peak {:.0} MB  mesh {:016x}",
             case.name, case.seconds, case.triangles, case.evaluations_per_vertex, case.peak_mb, case.hash
         );
     }
+    Ok(())
 }
 
 /// The sdf budgets  on a synthetic network of about 30k primitives and on the
@@ -235,7 +239,7 @@ fn print_sdf_bench(name: &str, b: &sdf::SdfBench) {
 }
 
 fn mesher_and_network_bench(runs: usize) -> Result<(), StageError> {
-    mesher_bench(runs);
+    mesher_bench(runs, None)?;
 
     println!("\nnetwork statistics (karstnet: load and metrics, Python start-up excluded)");
     println!(
