@@ -3,12 +3,14 @@ graphs."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 
 from . import _native
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 
 class Network:
@@ -83,6 +85,8 @@ class Network:
 
 
 def _frame(columns: list[tuple[str, str, Any]]) -> pd.DataFrame:
+    import pandas as pd  # imported on use: Dask workers start faster without it
+
     data: dict[str, Any] = {}
     for name, dtype, values in columns:
         if dtype == "str":

@@ -3,7 +3,7 @@
 //! conduit and link counts, total length, length per conduit type and the routes. Rerun with
 //! `KARSTGEN_BLESS_PRESETS=1` to rewrite the summaries, and say why in the commit.
 //! Every preset's routes are also checked: each sink reaches a spring it may reach (connectivity
-//! matrix, last phase's springs) along the network's links.
+//! matrix, last phase's springs) along the network's links, through no node twice.
 
 use karst_artifact::{StageId, read_artifact};
 use karst_geology::{KeyPointKind, Link, Scene};
@@ -78,6 +78,11 @@ fn route_failures(scene: &Scene, skeleton: &Skeleton, preset: &str) -> Vec<Strin
         }
     }
     for r in &skeleton.routes {
+        let mut visited = r.nodes.clone();
+        visited.sort_unstable();
+        if let Some(w) = visited.windows(2).find(|w| w[0] == w[1]) {
+            failures.push(format!("{preset}: route {} → {} visits node {} twice", r.sink, r.spring, w[0]));
+        }
         let name = |i: Option<&u32>| i.and_then(|&i| skeleton.nodes[i as usize].keypoint.clone());
         let follows =
             r.nodes.windows(2).all(|w| links.binary_search(&[w[0].min(w[1]), w[0].max(w[1])]).is_ok());

@@ -49,6 +49,7 @@ fn build_wheel(root: &Path, python: &Path) -> Result<PathBuf, String> {
     let out = target_dir(root).join("wheels");
     let maturin = python.with_file_name("maturin");
     eprintln!("building the karstgen wheel (python/) with maturin...");
+    let start = std::time::Instant::now();
     let status = Command::new(&maturin)
         .args(["build", "--release", "-m", "python/Cargo.toml", "--out"])
         .arg(&out)
@@ -60,6 +61,7 @@ fn build_wheel(root: &Path, python: &Path) -> Result<PathBuf, String> {
     if !status.success() {
         return Err("maturin could not build the wheel".into());
     }
+    eprintln!("built the karstgen wheel in {:.0} s", start.elapsed().as_secs_f64());
     newest_wheel(&out)
 }
 

@@ -81,7 +81,7 @@ fn options(w: &mut dyn Write, hours: f64) -> io::Result<()> {
     writeln!(w, "END_DATE {end}\nEND_TIME {:02}:{:02}:{:02}", rest / 3600, rest % 3600 / 60, rest % 60)?;
     writeln!(
         w,
-        "REPORT_STEP 00:15:00\nWET_STEP 00:15:00\nDRY_STEP 01:00:00\nROUTING_STEP 1\nVARIABLE_STEP 0.75"
+        "REPORT_STEP 00:15:00\nWET_STEP 00:15:00\nDRY_STEP 01:00:00\nROUTING_STEP 0.5\nVARIABLE_STEP 0.75"
     )?;
     writeln!(
         w,

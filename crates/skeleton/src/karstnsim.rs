@@ -22,7 +22,7 @@
 //! routes of the last phase are the network's present drainage; conduits only earlier phases
 //! used are relict (dry).
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 use glam::DVec3;
 use karst_costgraph::CostGraph;
@@ -34,7 +34,7 @@ use crate::Route;
 use crate::cohesion_bound::{CohesionBound, NetworkDistance};
 use crate::ends::{End, candidate_springs, chosen_springs, ends, sample_of};
 use crate::error::SkeletonError;
-use crate::search::{Cohesive, EdgeCosts, astar_to_set, min_cost_per_metre};
+use crate::search::{Cohesive, EdgeCosts, Tree, astar_to_set, min_cost_per_metre};
 
 /// The cost set of a water table, by name.
 pub type CostSets<'g> = dyn Fn(&str) -> &'g (dyn EdgeCosts + 'g) + 'g;
@@ -178,11 +178,33 @@ fn leg(
         target,
     };
     let (phreatic, _) = astar_to_set(&phreatic_costs, entry, bound.heuristic(), |v| v == target);
-    let mut path = vadose.path(entry)?;
-    path.extend(phreatic.path(target)?.into_iter().skip(1));
-    let mut edges = vadose.edges(entry);
-    edges.extend(phreatic.edges(target));
-    Some(Leg { path, edges, cost: vadose.cost(entry) + phreatic.cost(target) })
+    joined((&vadose, entry), (&phreatic, target))
+}
+
+/// The vadose path to `entry` followed by the phreatic path from `entry` to `target`, without
+/// the loop the two make when the phreatic path climbs back through nodes the vadose path came
+/// down: it may, since a later phase's inherited conduits make the way back up the same shaft
+/// cheap, and a route through a node twice would carry its water down and up one conduit. The
+/// route leaves the vadose path at its first node the phreatic path also visits, there joining
+/// the phreatic path's conduit: a simple path, never dearer than the two legs (a cycle of edges
+/// of positive cost is dropped). Without a shared node it is the two legs end to end.
+fn joined((vadose, entry): (&Tree, usize), (phreatic, target): (&Tree, usize)) -> Option<Leg> {
+    let down = vadose.path(entry)?;
+    let on = phreatic.path(target)?;
+    let along: HashMap<usize, usize> = on.iter().enumerate().map(|(i, &v)| (v, i)).collect();
+    // `entry` is the last node of `down` and the first of `on`: a shared node always exists.
+    let (leave, join) = down
+        .iter()
+        .enumerate()
+        .find_map(|(i, v)| along.get(v).map(|&j| (i, j)))
+        .unwrap_or((down.len() - 1, 0));
+    let mut path = down[..leave].to_vec();
+    path.extend(&on[join..]);
+    // Edge i of a path goes from its node i to its node i + 1.
+    let mut edges = vadose.edges(entry)[..leave].to_vec();
+    edges.extend(&phreatic.edges(target)[join..]);
+    let cost = vadose.cost(down[leave]) + (phreatic.cost(target) - phreatic.cost(on[join]));
+    Some(Leg { path, edges, cost })
 }
 
 /// A lower bound of the distance from `p` to the water table's phreatic side that changes by at
@@ -203,5 +225,46 @@ pub fn mark_used(graph: &CostGraph, edges: &[usize], used: &mut [bool]) {
         if let Some(j) = graph.out_edges(v).position(|(t, _)| t == u) {
             used[first + j] = true;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::search::dijkstra;
+
+    /// 0 (a sink) → 1 → 2 (the water table) down a shaft; from 2 the spring 4 is reached back up
+    /// through 1 and along a cheap inherited conduit 1 → 3 → 4, or directly at a high price.
+    fn shaft() -> CostGraph {
+        CostGraph::from_lists(vec![
+            vec![(1, 1.0)],
+            vec![(2, 1.0), (3, 0.5)],
+            vec![(1, 1.0), (4, 10.0)],
+            vec![(4, 0.5)],
+            vec![],
+        ])
+    }
+
+    #[test]
+    fn a_route_leaves_the_shaft_where_the_phreatic_path_climbs_back() {
+        let graph = shaft();
+        let (vadose, phreatic) = (dijkstra(&graph, 0, &[2]), dijkstra(&graph, 2, &[4]));
+        assert_eq!(phreatic.path(4), Some(vec![2, 1, 3, 4]), "the case: up the shaft again");
+        let leg = joined((&vadose, 2), (&phreatic, 4)).unwrap();
+        assert_eq!(leg.path, vec![0, 1, 3, 4]);
+        // Edge ids: 0 → 1 is 0, 1 → 3 is 2, 3 → 4 is 5.
+        assert_eq!(leg.edges, vec![0, 2, 5]);
+        assert_eq!(leg.cost, 2.0);
+    }
+
+    #[test]
+    fn legs_without_a_shared_node_are_joined_end_to_end() {
+        let graph = shaft();
+        let (vadose, phreatic) = (dijkstra(&graph, 0, &[1]), dijkstra(&graph, 1, &[4]));
+        let leg = joined((&vadose, 1), (&phreatic, 4)).unwrap();
+        assert_eq!(leg.path, vec![0, 1, 3, 4]);
+        assert_eq!(leg.edges, vec![0, 2, 5]);
+        assert_eq!(leg.cost, vadose.cost(1) + phreatic.cost(4));
+        assert!(joined((&vadose, 1), (&dijkstra(&graph, 4, &[0]), 0)).is_none(), "unreachable");
     }
 }
