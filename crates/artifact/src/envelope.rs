@@ -27,6 +27,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::Error;
 use crate::frame::Frame;
 use crate::stages::{Encoding, StageId, stage_key};
+use crate::stream::PayloadReader;
 use crate::{atomic, hash};
 
 /// The value of the header's `format` field.
@@ -104,6 +105,14 @@ pub trait Payload: Serialize + DeserializeOwned {
     /// panic or a silent wrong result downstream.
     fn validate(&self) -> Result<(), Invalid> {
         Ok(())
+    }
+
+    /// Decodes a postcard payload from its bytes as they are read ([`PayloadReader`]: hashed,
+    /// counted, bounded by the header's length), for bulk payloads too large to hold twice in
+    /// memory ([`crate::stream`]). None, the default, without reading anything: the payload is
+    /// read whole, checked, then decoded.
+    fn read_streamed(_bytes: &mut PayloadReader) -> Option<Result<Self, String>> {
+        None
     }
 }
 
@@ -319,6 +328,22 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
     if header.payload_len > file_len {
         return Err(length_error(file_len));
     }
+    if header.encoding == Encoding::Postcard {
+        let mut bytes = PayloadReader::new(&mut reader, header.payload_len);
+        if let Some(decoded) = P::read_streamed(&mut bytes) {
+            // The envelope's checks come first, as for a payload read whole: a corrupted file is a
+            // length or checksum error whatever its decoding made of it.
+            let (read, digest) =
+                bytes.finish().map_err(|source| Error::Open { path: path.into(), source })?;
+            if read != header.payload_len {
+                return Err(length_error(read));
+            }
+            if digest != header.payload_blake3 {
+                return Err(Error::Checksum { path: path.into(), stage });
+            }
+            return Ok((header, validated(path, decoded.map_err(|e| decode_error::<P>(path, e))?)?));
+        }
+    }
     let mut payload = Vec::with_capacity(header.payload_len as usize);
     reader.read_to_end(&mut payload).map_err(|source| Error::Open { path: path.into(), source })?;
     if header.encoding == Encoding::Json {
@@ -341,22 +366,33 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
 /// checks it with [`Payload::validate`]: what [`read_artifact`] does once the envelope is
 /// checked, and what the fuzz targets feed with arbitrary bytes.
 pub fn decode_payload<P: Payload>(path: &Path, encoding: Encoding, bytes: &[u8]) -> Result<P, Error> {
-    let stage = P::STAGE.name().to_string();
-    let decode_error = |detail: String| Error::Decode {
+    let decoded = match encoding {
+        Encoding::Postcard => {
+            let mut source = bytes;
+            P::read_streamed(&mut PayloadReader::new(&mut source, bytes.len() as u64))
+                .unwrap_or_else(|| postcard::from_bytes(bytes).map_err(|e| e.to_string()))
+        }
+        Encoding::Json => serde_json::from_slice(bytes).map_err(|e| e.to_string()),
+    };
+    validated(path, decoded.map_err(|e| decode_error::<P>(path, e))?)
+}
+
+fn decode_error<P: Payload>(path: &Path, detail: String) -> Error {
+    Error::Decode {
         path: path.into(),
         kind: P::STAGE.row().kind.into(),
         detail,
-        stage: stage.clone(),
-    };
-    let value: P = match encoding {
-        Encoding::Postcard => postcard::from_bytes(bytes).map_err(|e| decode_error(e.to_string()))?,
-        Encoding::Json => serde_json::from_slice(bytes).map_err(|e| decode_error(e.to_string()))?,
-    };
+        stage: P::STAGE.name().into(),
+    }
+}
+
+/// `value` once [`Payload::validate`] passes.
+fn validated<P: Payload>(path: &Path, value: P) -> Result<P, Error> {
     value.validate().map_err(|invalid| Error::Invalid {
         path: path.into(),
         field: invalid.field,
         problem: invalid.problem,
-        stage: stage.clone(),
+        stage: P::STAGE.name().into(),
     })?;
     Ok(value)
 }

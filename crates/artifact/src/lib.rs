@@ -23,6 +23,7 @@ pub mod frame;
 pub mod hash;
 pub mod lock;
 pub mod stages;
+pub mod stream;
 
 pub use envelope::{
     Header, InputRef, Invalid, Payload, Provenance, check_frame, decode_payload, read_artifact, read_header,
@@ -32,3 +33,4 @@ pub use error::Error;
 pub use frame::Frame;
 pub use lock::{OutputLock, lock_output};
 pub use stages::{Encoding, StageId, StageRow};
+pub use stream::PayloadReader;

@@ -31,9 +31,10 @@ use karst_sampling::Samples;
 use rayon::prelude::*;
 
 use crate::Route;
+use crate::cohesion_bound::{CohesionBound, NetworkDistance};
 use crate::ends::{End, candidate_springs, chosen_springs, ends, sample_of};
 use crate::error::SkeletonError;
-use crate::search::{Cohesive, EdgeCosts, Tree, astar, astar_to_set, min_cost_per_metre};
+use crate::search::{Cohesive, EdgeCosts, Tree, astar_to_set, min_cost_per_metre};
 
 /// The cost set of a water table, by name.
 pub type CostSets<'g> = dyn Fn(&str) -> &'g (dyn EdgeCosts + 'g) + 'g;
@@ -89,6 +90,9 @@ pub fn route<'g>(
     let mut used = vec![false; graph.edge_count()];
     let mut per_metre: BTreeMap<String, f64> = BTreeMap::new();
     let mut routes = Vec::new();
+    // The network's samples so far, for the phreatic searches' bound (cohesion_bound.rs).
+    let mut network =
+        (scene.skeleton().cohesion_phreatic < 1.0).then(|| NetworkDistance::new(&samples.positions));
     for sink in sinks {
         let source = sample_of(samples, sink)?;
         // The legs towards every candidate spring depend only on the network before this sink:
@@ -106,7 +110,8 @@ pub fn route<'g>(
             .into_par_iter()
             .map(|(row, base, table, m, target)| {
                 let costs = &Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
-                (row, leg(scene, samples, costs, &used, m, table, source, target))
+                let network = network.as_ref();
+                (row, leg(scene, samples, costs, &used, network, m, table, source, target))
             })
             .collect();
         let costs: BTreeMap<usize, f64> =
@@ -116,6 +121,9 @@ pub fn route<'g>(
         for spring in chosen {
             let leg = &legs[&spring.row];
             mark_used(graph, &leg.edges, &mut used);
+            if let (Some(network), false) = (&mut network, leg.edges.is_empty()) {
+                network.add(&leg.path);
+            }
             let route = Route {
                 sink: sink.name.to_string(),
                 spring: spring.name.to_string(),
@@ -145,6 +153,7 @@ fn leg(
     samples: &Samples,
     costs: &dyn EdgeCosts,
     used: &[bool],
+    network: Option<&NetworkDistance>,
     per_metre: f64,
     table: &Surface,
     source: usize,
@@ -161,8 +170,14 @@ fn leg(
     let (vadose, reached) = astar_to_set(&vadose_costs, source, to_water_table, phreatic);
     let entry = reached?;
     let phreatic_costs = Cohesive { base: costs, used, factor: p.cohesion_phreatic };
-    let heuristic = per_metre * p.cohesion_phreatic.min(1.0);
-    let phreatic = astar(&phreatic_costs, &samples.positions, heuristic, entry, target);
+    let bound = CohesionBound {
+        positions: &samples.positions,
+        per_metre,
+        factor: p.cohesion_phreatic,
+        network,
+        target,
+    };
+    let (phreatic, _) = astar_to_set(&phreatic_costs, entry, bound.heuristic(), |v| v == target);
     joined((&vadose, entry), (&phreatic, target))
 }
 

@@ -13,6 +13,7 @@ mod amplify;
 mod assemble;
 mod build;
 mod classify;
+mod cohesion_bound;
 mod ends;
 mod error;
 mod gamma;

@@ -5,7 +5,8 @@
 //! straight-line distance to the target times the smallest cost per metre of any edge of the
 //! graph ([`min_cost_per_metre`]), which never overestimates the remaining cost (admissible)
 //! and satisfies the triangle inequality along every edge (consistent), so a node is final when
-//! it is settled. A path's cost is the cost accumulated at its target, not a sum over the
+//! it is settled. Searches on costs with cohesion take a heuristic of their own
+//! ([`astar_to_set`]; the KarstNSim phreatic leg's is in `cohesion_bound.rs`). A path's cost is the cost accumulated at its target, not a sum over the
 //! intermediate running costs.
 //!
 //! The graph is read through [`EdgeCosts`], so that a stage can route on another cost set over
@@ -18,6 +19,10 @@
 //! That is about twice as fast as a binary heap here. Keys a rounding error below the last one
 //! (A*'s heuristic) are raised to it. Equal keys pop in a fixed order: results are
 //! deterministic.
+//!
+//! The per-node arrays of a search (costs, predecessors, settled flags) are kept per thread
+//! when its tree is dropped, reset only where the search reached, for the next search: a
+//! search costs what it explores, not the graph's size.
 
 use glam::DVec3;
 use karst_costgraph::CostGraph;
@@ -237,6 +242,8 @@ pub struct Tree {
     /// Per node: the cost so far, the predecessor and the edge from it, side by side so that a
     /// relaxation touches one cache line.
     nodes: Vec<Reached>,
+    /// The nodes reached, so that dropping the tree resets only them.
+    reached: Vec<u32>,
 }
 
 #[derive(Clone, Copy)]
@@ -244,6 +251,54 @@ struct Reached {
     cost: f64,
     predecessor: u32,
     via: u32,
+}
+
+const UNREACHED: Reached = Reached { cost: f64::INFINITY, predecessor: NONE, via: NONE };
+
+/// Per-node arrays of finished searches, reset, kept for the next search on the same thread:
+/// allocating and filling them for every search (17 bytes per sample: 85 MB at 5 M samples,
+/// about 200 searches on the regional scene) was most of the skeleton's system time.
+struct Spare {
+    trees: Vec<Vec<Reached>>,
+    settled: Vec<Vec<bool>>,
+}
+
+/// Spares kept per thread (a leg's vadose tree is alive while its phreatic search runs).
+const SPARES: usize = 2;
+
+thread_local! {
+    static SPARE: std::cell::RefCell<Spare> =
+        const { std::cell::RefCell::new(Spare { trees: Vec::new(), settled: Vec::new() }) };
+}
+
+/// A spare array of `n` entries, all `fresh`, or a new one.
+fn spare<T: Clone>(pick: impl FnOnce(&mut Spare) -> &mut Vec<Vec<T>>, n: usize, fresh: T) -> Vec<T> {
+    SPARE
+        .with_borrow_mut(|spare| {
+            let kept = pick(spare);
+            kept.retain(|v| v.len() == n);
+            kept.pop()
+        })
+        .unwrap_or_else(|| vec![fresh; n])
+}
+
+/// Gives `array` back for another search (its entries already reset).
+fn keep<T>(pick: impl FnOnce(&mut Spare) -> &mut Vec<Vec<T>>, array: Vec<T>) {
+    SPARE.with_borrow_mut(|spare| {
+        let kept = pick(spare);
+        if kept.len() < SPARES {
+            kept.push(array);
+        }
+    });
+}
+
+impl Drop for Tree {
+    fn drop(&mut self) {
+        for &v in &self.reached {
+            self.nodes[v as usize] = UNREACHED;
+        }
+        keep(|s| &mut s.trees, std::mem::take(&mut self.nodes));
+    }
 }
 
 impl Tree {
@@ -352,8 +407,8 @@ fn grow(
     mut settle: impl FnMut(usize) -> bool,
 ) -> Tree {
     let n = graph.node_count();
-    let mut tree = Tree { nodes: vec![Reached { cost: f64::INFINITY, predecessor: NONE, via: NONE }; n] };
-    let mut settled = vec![false; n];
+    let mut tree = Tree { nodes: spare(|s| &mut s.trees, n, UNREACHED), reached: vec![source as u32] };
+    let mut settled = spare(|s| &mut s.settled, n, false);
     let mut heap = RadixHeap::new();
     let direct = graph.direct();
     tree.nodes[source].cost = 0.0;
@@ -372,6 +427,9 @@ fn grow(
             let through = here + c;
             let reached = &mut tree.nodes[v];
             if through < reached.cost {
+                if reached.cost == f64::INFINITY {
+                    tree.reached.push(v as u32);
+                }
                 *reached = Reached { cost: through, predecessor: node, via: edge as u32 };
                 heap.push((through + heuristic(v)).to_bits(), v as u32);
             }
@@ -381,6 +439,11 @@ fn grow(
             None => graph.for_each_out(u, &mut relax),
         }
     }
+    // Only reached nodes are ever settled.
+    for &v in &tree.reached {
+        settled[v as usize] = false;
+    }
+    keep(|s| &mut s.settled, settled);
     tree
 }
 
@@ -494,6 +557,33 @@ mod tests {
             let exact = dijkstra(&graph, s, &[t]);
             let guided = astar(&graph, &positions, m, s, t);
             assert!((exact.cost(t) - guided.cost(t)).abs() < 1e-9, "{s}→{t}");
+        }
+    }
+
+    #[test]
+    fn a_search_on_kept_arrays_is_a_search_on_fresh_ones() {
+        let mut rng = karst_geology::rng::Random::stream(3, "test", "spare");
+        let n = 300;
+        let lists = (0..n)
+            .map(|_| (0..6).map(|_| (rng.index(n) as u32, rng.range(0.5, 2.0) as f32)).collect())
+            .collect();
+        let graph = CostGraph::from_lists(lists);
+        let trees = |sources: &[usize]| -> Vec<Vec<(f64, Option<Vec<usize>>)>> {
+            sources
+                .iter()
+                .map(|&s| {
+                    let tree = dijkstra(&graph, s, &[n - 1 - s]);
+                    (0..n).map(|v| (tree.cost(v), tree.path(v))).collect()
+                })
+                .collect()
+        };
+        // On this thread the later searches reuse the arrays of the earlier ones; each search of
+        // its own thread starts from new arrays.
+        let sources = [0, 7, 150, 299, 7];
+        let kept = trees(&sources);
+        for (i, &s) in sources.iter().enumerate() {
+            let fresh = std::thread::scope(|scope| scope.spawn(|| trees(&[s])).join().unwrap());
+            assert_eq!(kept[i], fresh[0], "source {s}");
         }
     }
 
