@@ -3,8 +3,13 @@
 //! connect to.
 //!
 //! Reachability does not depend on the costs (all are finite and > 0), so it is checked on the
-//! bare graph: one breadth-first search per spring on the reversed graph finds every node that
-//! can reach it, which answers every sink at once; no path search per (sink, spring) pair.
+//! bare graph: one traversal per spring on the reversed graph finds the nodes that can reach it,
+//! which answers every sink at once; no path search per (sink, spring) pair. A traversal stops
+//! as soon as it has found every sink (in a connected graph, long before it has visited every
+//! sample), and the springs' traversals run in parallel: this check was a sequential 8 % of
+//! the cost graph's time at 1M samples.
+
+use rayon::prelude::*;
 
 use karst_geology::{KeyPointKind, Link, Scene};
 use karst_sampling::Samples;
@@ -42,8 +47,11 @@ pub fn sinks_reach_their_springs(
         .map(|(i, k)| (k.name.as_str(), samples.keypoint_sample(i)))
         .collect();
     let reverse = rows.transpose();
-    let reaching: Vec<Option<Vec<bool>>> =
-        springs.iter().map(|(_, sample)| sample.map(|s| reached_from(&reverse, s))).collect();
+    let sink_samples: Vec<usize> = sinks.iter().filter_map(|(_, sample)| *sample).collect();
+    let reaching: Vec<Option<Vec<bool>>> = springs
+        .par_iter()
+        .map(|(_, sample)| sample.map(|s| reached_from(&reverse, s, &sink_samples)))
+        .collect();
     for (row, (sink, sink_sample)) in sinks.iter().enumerate() {
         let Some(sink_sample) = *sink_sample else { continue };
         let reaches = |col: usize| reaching[col].as_ref().is_none_or(|r| r[sink_sample]);
@@ -73,18 +81,62 @@ fn unreachable(scene: &Scene, sink: &str, springs: &[&str]) -> CostGraphError {
     }
 }
 
-/// Nodes reached from `start` along the edges of `rows`.
-fn reached_from(rows: &Rows, start: usize) -> Vec<bool> {
+/// Nodes reached from `start` along the edges of `rows`, marked until every node of `wanted` is
+/// (then the traversal stops: other nodes may be left unmarked, the nodes of `wanted` are
+/// marked exactly when they are reached).
+fn reached_from(rows: &Rows, start: usize, wanted: &[usize]) -> Vec<bool> {
+    let mut is_wanted = vec![false; rows.node_count()];
+    for &w in wanted {
+        is_wanted[w] = true;
+    }
+    let mut missing = is_wanted.iter().filter(|&&w| w).count();
     let mut seen = vec![false; rows.node_count()];
     let mut queue = vec![start];
-    seen[start] = true;
+    let mut mark = |v: usize, seen: &mut [bool]| {
+        seen[v] = true;
+        if is_wanted[v] {
+            missing -= 1;
+        }
+        missing == 0
+    };
+    if mark(start, &mut seen) {
+        return seen;
+    }
     while let Some(u) = queue.pop() {
         for &v in rows.row(u) {
-            if !seen[v as usize] {
-                seen[v as usize] = true;
-                queue.push(v as usize);
+            let v = v as usize;
+            if !seen[v] {
+                if mark(v, &mut seen) {
+                    return seen;
+                }
+                queue.push(v);
             }
         }
     }
     seen
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 0 → 1 → 2 → 3, 4 → 0, and 5 alone.
+    fn chain() -> Rows {
+        Rows { offsets: vec![0, 1, 2, 3, 3, 4, 4], targets: vec![1, 2, 3, 0] }
+    }
+
+    #[test]
+    fn the_traversal_marks_the_wanted_nodes_it_reaches() {
+        let rows = chain();
+        let all: Vec<usize> = (0..6).collect();
+        assert_eq!(reached_from(&rows, 0, &all), vec![true, true, true, true, false, false]);
+        for wanted in [vec![1], vec![3, 5], vec![4, 2], vec![5], vec![0], vec![]] {
+            let seen = reached_from(&rows, 0, &wanted);
+            for w in wanted {
+                assert_eq!(seen[w], w <= 3, "node {w}");
+            }
+        }
+        // It stops once the wanted nodes are found: 3 is not visited when only 1 is wanted.
+        assert!(!reached_from(&rows, 0, &[1])[3]);
+    }
 }
