@@ -121,7 +121,9 @@ pub fn route<'g>(
         for spring in chosen {
             let leg = &legs[&spring.row];
             mark_used(graph, &leg.edges, &mut used);
-            if let (Some(network), false) = (&mut network, leg.edges.is_empty()) {
+            if !leg.edges.is_empty()
+                && let Some(network) = &mut network
+            {
                 network.add(&leg.path);
             }
             let route = Route {

@@ -6,8 +6,8 @@
 //! graph ([`min_cost_per_metre`]), which never overestimates the remaining cost (admissible)
 //! and satisfies the triangle inequality along every edge (consistent), so a node is final when
 //! it is settled. Searches on costs with cohesion take a heuristic of their own
-//! ([`astar_to_set`]; the KarstNSim phreatic leg's is in `cohesion_bound.rs`). A path's cost is the cost accumulated at its target, not a sum over the
-//! intermediate running costs.
+//! ([`astar_to_set`]; the KarstNSim phreatic leg's is in `cohesion_bound.rs`). A path's cost is
+//! the cost accumulated at its target, not a sum over the intermediate running costs.
 //!
 //! The graph is read through [`EdgeCosts`], so that a stage can route on another cost set over
 //! the same edges (KarstNSim's per-water-table costs C_WT) or scale the costs of the edges the
