@@ -180,13 +180,17 @@ pub fn write_artifact_with<P: Payload>(
 ) -> Result<Header, Error> {
     let kind = || P::STAGE.row().kind.to_string();
     if P::STAGE.row().encoding != Encoding::Postcard {
-        return Err(Error::Encode { kind: kind(), detail: "only postcard payloads are written streamed".into() });
+        return Err(Error::Encode {
+            kind: kind(),
+            detail: "only postcard payloads are written streamed".into(),
+        });
     }
     let write_error = |source| Error::Write { path: path.to_path_buf(), source };
     let mut first = HashSink { hasher: blake3::Hasher::new(), len: 0 };
     encode(&mut first).map_err(write_error)?;
     let header = header::<P>(provenance, first.len, first.hasher.finalize().to_hex().to_string());
-    let line = serde_json::to_string(&header).map_err(|e| Error::Encode { kind: kind(), detail: e.to_string() })?;
+    let line =
+        serde_json::to_string(&header).map_err(|e| Error::Encode { kind: kind(), detail: e.to_string() })?;
     atomic::write_with(path, |w| {
         w.write_all(line.as_bytes())?;
         w.write_all(b"\n")?;
