@@ -588,6 +588,33 @@ mod tests {
     }
 
     #[test]
+    fn a_payload_written_by_its_encoder_is_the_artifact_of_the_payload() {
+        let (streamed, whole) = (scratch("with.bin"), scratch("whole.bin"));
+        let pts = Points((0..3000).map(|i| [i as f64, -0.5, 1e3]).collect());
+        let bytes = postcard::to_stdvec(&pts).unwrap();
+        // Written in uneven pieces, as a stage copying from its spill files would.
+        let header = write_artifact_with::<Points>(&streamed, &provenance(), |w| {
+            bytes.chunks(777).try_for_each(|piece| w.write_all(piece))
+        })
+        .unwrap();
+        assert_eq!(header, write_artifact(&whole, &provenance(), &pts).unwrap());
+        assert_eq!(fs::read(&streamed).unwrap(), fs::read(&whole).unwrap());
+        assert_eq!(read_artifact::<Points>(&streamed).unwrap().1, pts);
+        // An encoder that writes other bytes the second time: refused, the old file kept.
+        let mut calls = 0;
+        let err = write_artifact_with::<Points>(&streamed, &provenance(), |w| {
+            calls += 1;
+            w.write_all(&bytes[..bytes.len() - calls])
+        })
+        .unwrap_err();
+        let cause = std::error::Error::source(&err).map(|e| e.to_string()).unwrap_or_default();
+        assert!(cause.contains("second encoding differs"), "{err}: {cause}");
+        assert_eq!(fs::read(&streamed).unwrap(), fs::read(&whole).unwrap());
+        // A JSON stage's payload is not written streamed.
+        assert!(write_artifact_with::<Other>(&scratch("other.json"), &provenance(), |_| Ok(())).is_err());
+    }
+
+    #[test]
     fn flipped_byte_is_a_checksum_error_naming_the_file() {
         let path = scratch("flip.bin");
         write_artifact(&path, &provenance(), &Points(vec![[1.0, 2.0, 3.0]; 10])).unwrap();

@@ -101,7 +101,10 @@ pub fn write_streamed(
             water.encode(&mut w, "water")?;
             w.flush()
         })
-        .map_err(|e| MesherError::Write(e.to_string()))?;
+        .map_err(|e| {
+            let cause = std::error::Error::source(&e).map(|c| format!(": {c}")).unwrap_or_default();
+            MesherError::Write(format!("{e}{cause}"))
+        })?;
     Ok([&terrain, &cave, &water].map(|s| SurfaceCounts {
         triangles: s.triangles(),
         vertices: s.vertices(),

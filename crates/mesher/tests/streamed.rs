@@ -64,7 +64,9 @@ fn a_failed_write_leaves_no_spill_file() {
     fs::copy(fixture("fixtures/golden/tiny/sdf.bin"), out.join("sdf.bin")).unwrap();
     fs::create_dir(out.join("mesh.bin")).unwrap();
     let scene = fixture("fixtures/scenes/tiny.toml");
-    assert!(karst_testkit::run::<MesherStage>(&scene, &out).is_err());
+    let err = karst_testkit::run::<MesherStage>(&scene, &out).unwrap_err();
+    assert!(format!("{err:#}").contains("mesh.bin: cannot write"), "{err:#}");
+    assert_eq!(err.exit_code(), 1, "the machine's fault, not the scene's");
     let left: Vec<_> = fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(left.len(), 2, "{left:?}");
     fs::remove_dir_all(&out).unwrap();
