@@ -205,14 +205,11 @@ fn polygonize_with<V: Volume, S: MeshSink>(
                 r.clone().into_par_iter().map(|b| seed_values(field, &lattice, bricks[b])).unzip();
             seeds.push(r.start, s);
             centres.push(r.start, c);
-            up.push(r.start, r.clone().into_par_iter().map(|b| neighbours(bricks, sweep, b, true)).collect());
+            up.push(r.start, slab_neighbours(bricks, sweep, r.clone(), true));
         }
         let previous = slab(t.checked_sub(1));
         if let Some(r) = &previous {
-            down.push(
-                r.start,
-                r.clone().into_par_iter().map(|b| neighbours(bricks, sweep, b, false)).collect(),
-            );
+            down.push(r.start, slab_neighbours(bricks, sweep, r.clone(), false));
         }
         let ctx = Context {
             field,
@@ -229,7 +226,11 @@ fn polygonize_with<V: Volume, S: MeshSink>(
             // The cells of each brick that the seeds and centres do not prove uniform, bit
             // local(i, j, k); then the values each brick needs among its points.
             live.push(r.start, r.clone().into_par_iter().map(|b| live_cells(&ctx, b)).collect());
-            let values: Vec<Own> = r.clone().into_par_iter().map(|b| own_values(&ctx, &live, b)).collect();
+            let values: Vec<Own> = r
+                .clone()
+                .into_par_iter()
+                .map_init(Scratch::default, |scratch, b| own_values(&ctx, &live, b, scratch))
+                .collect();
             // Seeds and centres are in the own values too.
             evaluations += values.iter().map(|o| o.values.len() as u64).sum::<u64>();
             own.push(r.start, values);
@@ -307,27 +308,42 @@ impl Found {
     }
 }
 
-/// Indices of the active bricks next to brick `b`, above it (`upper`) or below it.
-fn neighbours(bricks: &Window<[u64; 3]>, sweep: usize, b: usize, upper: bool) -> Neighbours {
-    let at = bricks[b];
-    std::array::from_fn(|o| {
-        let bits = o + 1;
-        let mut q = at;
-        for (a, x) in q.iter_mut().enumerate() {
-            let step = BRICK * (bits >> a & 1) as u64;
-            *x = if upper {
-                *x + step
-            } else {
-                match x.checked_sub(step) {
-                    Some(v) => v,
-                    None => return u32::MAX,
+/// Indices of the active bricks next to each brick of `slab`, above them (`upper`) or below.
+///
+/// Adding an offset to every brick keeps their order (the order key is lexicographic), so the
+/// neighbours at one offset are found by one walk along the bricks held, whose position only
+/// moves forward: linear in the bricks, where a search per brick and offset was logarithmic.
+fn slab_neighbours(
+    bricks: &Window<[u64; 3]>,
+    sweep: usize,
+    slab: Range<usize>,
+    upper: bool,
+) -> Vec<Neighbours> {
+    let end = bricks.first + bricks.items.len();
+    let columns: Vec<Vec<u32>> = (1..8usize)
+        .into_par_iter()
+        .map(|bits| {
+            let shift = |at: [u64; 3]| -> Option<[u64; 4]> {
+                let mut q = at;
+                for (a, x) in q.iter_mut().enumerate() {
+                    let step = BRICK * (bits >> a & 1) as u64;
+                    *x = if upper { *x + step } else { x.checked_sub(step)? };
                 }
+                Some(order_key(q, sweep))
             };
-        }
-        let key = order_key(q, sweep);
-        let found = bricks.items.binary_search_by_key(&key, |&c| order_key(c, sweep));
-        found.map_or(u32::MAX, |n| (bricks.first + n) as u32)
-    })
+            let mut j = if upper { slab.start } else { bricks.first };
+            slab.clone()
+                .map(|b| {
+                    let Some(key) = shift(bricks[b]) else { return u32::MAX };
+                    while j < end && order_key(bricks[j], sweep) < key {
+                        j += 1;
+                    }
+                    if j < end && order_key(bricks[j], sweep) == key { j as u32 } else { u32::MAX }
+                })
+                .collect()
+        })
+        .collect();
+    (0..slab.len()).map(|i| std::array::from_fn(|o| columns[o][i])).collect()
 }
 
 /// What the passes over the bricks share.
@@ -444,74 +460,109 @@ fn live_cells<V>(ctx: &Context<'_, V>, b: usize) -> u64 {
     live
 }
 
+/// Bits of the 4³ local points (or cells) whose coordinate along `axis` is 0.
+const fn plane_zero(axis: usize) -> u64 {
+    let mut mask = 0u64;
+    let mut l = 0;
+    while l < OWN {
+        let x = [l % B, l / B % B, l / (B * B)][axis];
+        if x == 0 {
+            mask |= 1 << l;
+        }
+        l += 1;
+    }
+    mask
+}
+
+const PLANE_ZERO: [u64; 3] = [plane_zero(0), plane_zero(1), plane_zero(2)];
+/// Local bit strides of the three axes.
+const STRIDE: [u32; 3] = [1, B as u32, (B * B) as u32];
+
+/// The points of even and of odd local coordinates: the seeds and the centres.
+const SEEDS_AND_CENTRES: u64 = {
+    let mut mask = 0u64;
+    let mut l = 0;
+    while l < OWN {
+        let (i, j, k) = (l % B, l / B % B, l / (B * B));
+        if (i % 2 == 0 && j % 2 == 0 && k % 2 == 0) || (i % 2 == 1 && j % 2 == 1 && k % 2 == 1) {
+            mask |= 1 << l;
+        }
+        l += 1;
+    }
+    mask
+};
+
+/// The points that are corners of the cells in `cells` (bits local(i, j, k) of one brick),
+/// among the points of that brick, moving only along the axes in `axes` (bits x + 2y + 4z).
+fn corners_within(cells: u64, axes: usize) -> u64 {
+    (0..3).filter(|a| axes >> a & 1 == 1).fold(cells, |m, a| m | ((m << STRIDE[a]) & !PLANE_ZERO[a]))
+}
+
+/// The points of brick `b` that are corners of live cells, its own or its lower neighbours'
+/// (a cell of the neighbour below along the axes `bits` touches b only through its last plane
+/// along them, which lands on b's first plane).
+fn corners_of_live_cells(ctx: &Context<'_, impl Sized>, live: &Window<u64>, b: usize) -> u64 {
+    let mut points = corners_within(live[b], 7);
+    for bits in 1..8usize {
+        let n = ctx.down[b][bits - 1];
+        if n == u32::MAX {
+            continue;
+        }
+        let moved = (0..3)
+            .filter(|a| bits >> a & 1 == 1)
+            .fold(live[n as usize], |m, a| (m >> (STRIDE[a] * (B as u32 - 1))) & PLANE_ZERO[a]);
+        points |= corners_within(moved, 7 & !bits);
+    }
+    points
+}
+
 /// The values brick `b` needs among the points it owns, [at, at + 4)³: its seeds, and every
 /// corner of a cell that the octree keeps (its brick is active) and no seed proves uniform.
 /// Any brick polygonizing such a cell finds these values here.
-fn own_values<V: Volume>(ctx: &Context<'_, V>, live: &Window<u64>, b: usize) -> Own {
+fn own_values<V: Volume>(ctx: &Context<'_, V>, live: &Window<u64>, b: usize, scratch: &mut Scratch) -> Own {
     let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
-    let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - at[a]) as usize);
-    let cells = lattice.dims.map(|d| d - 1);
-    let mut mask = 0u64;
-    let mut points = Vec::new();
-    for k in 0..size[2] {
-        for j in 0..size[1] {
-            for i in 0..size[0] {
-                let l = [i, j, k];
-                if l.iter().all(|x| x % 2 == 0) || l.iter().all(|x| x % 2 == 1) {
-                    continue;
-                }
-                let p = [0, 1, 2].map(|a| at[a] + l[a] as u64);
-                let needed = (0..8usize).any(|d| {
-                    let step = |a: usize| (d >> a & 1) as u64;
-                    if (0..3).any(|a| p[a] < step(a) || p[a] - step(a) >= cells[a]) {
-                        return false;
-                    }
-                    // The cell's brick: b, or one below it where the cell leaves b.
-                    let below = (0..3).fold(0, |m, a| m | ((l[a] < step(a) as usize) as usize) << a);
-                    let cell_brick = if below == 0 {
-                        b
-                    } else {
-                        match ctx.down[b][below - 1] {
-                            u32::MAX => return false,
-                            n => n as usize,
-                        }
-                    };
-                    let c = [0, 1, 2].map(|a| (l[a] + B - step(a) as usize) % B);
-                    live[cell_brick] >> local(c[0], c[1], c[2]) & 1 == 1
-                });
-                if needed {
-                    mask |= 1 << local(i, j, k);
-                    points.push(lattice.point(p));
-                }
-            }
-        }
-    }
-    let mut found = Vec::with_capacity(points.len());
-    if !points.is_empty() {
-        let end = [0, 1, 2].map(|a| at[a] + size[a] as u64 - 1);
-        ctx.field.eval_block(lattice.point(at), lattice.point(end), ctx.reach, &points, &mut found);
-    }
-    // Merge the seeds in, in bit order.
     let (seeds, centres) = (&ctx.seeds[b], &ctx.centres[b]);
-    let mut next = found.into_iter();
-    let mut values = Vec::new();
-    for l in 0..OWN {
+    // Live cells lie inside the lattice, and so do their corners.
+    let evaluated = corners_of_live_cells(ctx, live, b) & !SEEDS_AND_CENTRES;
+    let Scratch { points, found, .. } = scratch;
+    points.clear();
+    let mut bits = evaluated;
+    while bits != 0 {
+        let l = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
+        points.push(lattice.point([
+            at[0] + (l % B) as u64,
+            at[1] + (l / B % B) as u64,
+            at[2] + (l / (B * B)) as u64,
+        ]));
+    }
+    found.clear();
+    if !points.is_empty() {
+        let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - at[a]));
+        let end = [0, 1, 2].map(|a| at[a] + size[a] - 1);
+        ctx.field.eval_block(lattice.point(at), lattice.point(end), ctx.reach, points, found);
+    }
+    // Merge the seeds and centres in, in bit order.
+    let mut mask = evaluated;
+    for s in 0..8 {
+        let l = local(2 * (s & 1), (s >> 1 & 1) * 2, (s >> 2 & 1) * 2);
+        mask |= (!seeds[s].is_nan() as u64) << l | (!centres[s].is_nan() as u64) << (l + 1 + B + B * B);
+    }
+    let mut next = found.iter();
+    let mut values = Vec::with_capacity(mask.count_ones() as usize);
+    let mut bits = mask;
+    while bits != 0 {
+        let l = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
         let (i, j, k) = (l % B, l / B % B, l / (B * B));
-        if i % 2 == 0 && j % 2 == 0 && k % 2 == 0 {
-            let v = seeds[(i / 2) | ((j / 2) << 1) | ((k / 2) << 2)];
-            if !v.is_nan() {
-                mask |= 1 << l;
-                values.push(v);
-            }
-        } else if i % 2 == 1 && j % 2 == 1 && k % 2 == 1 {
-            let v = centres[(i / 2) | ((j / 2) << 1) | ((k / 2) << 2)];
-            if !v.is_nan() {
-                mask |= 1 << l;
-                values.push(v);
-            }
-        } else if mask >> l & 1 == 1 {
-            values.push(next.next().expect("one value per point"));
-        }
+        let s = (i / 2) | ((j / 2) << 1) | ((k / 2) << 2);
+        values.push(if evaluated >> l & 1 == 1 {
+            *next.next().expect("one value per point")
+        } else if i % 2 == 0 {
+            seeds[s]
+        } else {
+            centres[s]
+        });
     }
     Own { mask, values }
 }
