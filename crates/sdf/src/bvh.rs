@@ -352,8 +352,9 @@ impl Bvh {
     }
 
     /// Appends to `out` the leaf nodes whose boxes come closer than `margin` to the box
-    /// [lo, hi]: every leaf whose value can be below `margin` somewhere in that box (a value is
-    /// at least the distance to its leaf node's box, at least the distance between the boxes).
+    /// [lo, hi], and of the capsules' leaf nodes the single capsules whose own boxes do: every
+    /// leaf whose value can be below `margin` somewhere in that box (a value is at least the
+    /// distance to its box and to its leaf node's, at least the distance between the boxes).
     /// For p in the box and limit ≤ margin, [`Bvh::min_value_among`] over them equals
     /// [`Bvh::min_value`] bit for bit: both are min(limit, the exact values below it), whatever
     /// the order of the visits. The mesher gathers once per brick and evaluates its points
@@ -364,9 +365,11 @@ impl Bvh {
         }
         // The f32 boxes are rounded outwards, so the gap from them is never too large.
         let gap = |a: DVec3, b: DVec3| (a - hi).max(lo - b).max(DVec3::ZERO).length();
-        let mut stack = vec![0u32];
-        while let Some(n) = stack.pop() {
-            let node = &self.wide[n as usize];
+        let mut stack = [0u32; 128];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let node = &self.wide[stack[top] as usize];
             for slot in 0..4 {
                 let a = DVec3::new(node.lo[0][slot] as f64, node.lo[1][slot] as f64, node.lo[2][slot] as f64);
                 let b = DVec3::new(node.hi[0][slot] as f64, node.hi[1][slot] as f64, node.hi[2][slot] as f64);
@@ -375,7 +378,24 @@ impl Bvh {
                     continue;
                 }
                 match node.count[slot] {
-                    0 => stack.push(node.child[slot]),
+                    0 => {
+                        stack[top] = node.child[slot];
+                        top += 1;
+                    }
+                    count if (count >> 16) as u8 == CAPSULE => {
+                        // A leaf node's capsules follow a conduit for tens of metres: only the
+                        // few whose own boxes come close are kept, each as its own candidate.
+                        let first = node.child[slot] as usize;
+                        for (k, c) in
+                            self.capsules[first..first + (count & 0xffff) as usize].iter().enumerate()
+                        {
+                            let (lo, hi) = c.bounds();
+                            if gap(lo, hi) < margin {
+                                let one = 1 | (CAPSULE as u32) << 16;
+                                out.push(Candidate { first: (first + k) as u32, count: one, lo, hi });
+                            }
+                        }
+                    }
                     count => out.push(Candidate { first: node.child[slot], count, lo: a, hi: b }),
                 }
             }
