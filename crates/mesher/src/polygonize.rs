@@ -369,51 +369,6 @@ impl<V> Context<'_, V> {
             Some(self.up[b][bits - 1]).filter(|&n| n != u32::MAX).map(|n| n as usize)
         }
     }
-
-    /// The seed of the cell at `c` (lattice cell coordinates, a cell of brick `b` or of a brick
-    /// above it): its corner of even coordinates, owned by b or a brick above it (None when that
-    /// brick is inactive).
-    fn seed(&self, b: usize, c: [u64; 3]) -> Option<f64> {
-        let at = self.bricks[b];
-        let e = c.map(|x| x + (x & 1));
-        let bits = (0..3).fold(0, |m, a| m | (((e[a] - at[a]) / BRICK) as usize) << a);
-        let owner = self.above(b, bits)?;
-        Some(self.seeds[owner][(0..3).fold(0, |m, a| m | ((e[a] % BRICK / 2) as usize) << a)])
-    }
-
-    /// Whether the seed alone proves the cell at `c` uniform.
-    fn seed_proves(&self, b: usize, c: [u64; 3]) -> bool {
-        self.lazy && self.seed(b, c).is_some_and(|v| v.abs() > DIAGONAL * self.lattice.cell)
-    }
-
-    /// Whether the seed and the centre of the cell at `c` (a cell of brick `b`, which owns its
-    /// centre) prove it uniform: each of the six other corners gets its sign from the seed or
-    /// the centre, and those agree.
-    fn uniform(&self, b: usize, c: [u64; 3]) -> bool {
-        if !self.lazy {
-            return false;
-        }
-        if self.seed_proves(b, c) {
-            return true;
-        }
-        let at = self.bricks[b];
-        let o = c.map(|x| x + ((x & 1) ^ 1));
-        let centre = self.centres[b][(0..3).fold(0, |m, a| m | (((o[a] - at[a]) / 2) as usize) << a)];
-        let cell = self.lattice.cell;
-        if centre.is_nan() {
-            return false;
-        }
-        if centre.abs() > DIAGONAL * cell {
-            return true;
-        }
-        let Some(seed) = self.seed(b, c) else { return false };
-        if (seed < 0.0) != (centre < 0.0) {
-            return false;
-        }
-        // Corners one cell from the seed are √2 from the centre, and the other way round.
-        let (s, t) = (seed.abs() / cell, centre.abs() / cell);
-        s > FACE || t > FACE || (s > EDGE && t > EDGE)
-    }
 }
 
 fn local(i: usize, j: usize, k: usize) -> usize {
@@ -447,17 +402,49 @@ fn seed_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3]) -> (Seeds,
 fn live_cells<V>(ctx: &Context<'_, V>, b: usize) -> u64 {
     let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
     let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - 1 - at[a]) as usize);
+    // The seeds of the brick's cells, at local coordinates 0, 2 and 4 along each axis (4: the
+    // first seed of the brick above), None where that brick is inactive.
+    let seeds: [Option<f64>; 27] = std::array::from_fn(|s| {
+        let e = [s % 3, s / 3 % 3, s / 9];
+        let bits = (0..3).fold(0, |m, a| m | (e[a] / 2) << a);
+        let owner = ctx.above(b, bits)?;
+        Some(ctx.seeds[owner][(0..3).fold(0, |m, a| m | (e[a] % 2) << a)])
+    });
+    let centres = &ctx.centres[b];
     let mut live = 0u64;
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
-                if !ctx.uniform(b, [at[0] + i as u64, at[1] + j as u64, at[2] + k as u64]) {
+                let seed = seeds[(i + 1) / 2 + 3 * ((j + 1) / 2) + 9 * ((k + 1) / 2)];
+                let centre = centres[(i / 2) | (j / 2) << 1 | (k / 2) << 2];
+                if !(ctx.lazy && uniform(seed, centre, lattice.cell)) {
                     live |= 1 << local(i, j, k);
                 }
             }
         }
     }
     live
+}
+
+/// Whether a cell's seed and centre prove it uniform: each of the six other corners gets its
+/// sign from the seed or the centre, and those agree (None: the seed's brick is inactive).
+fn uniform(seed: Option<f64>, centre: f64, cell: f64) -> bool {
+    if seed.is_some_and(|v| v.abs() > DIAGONAL * cell) {
+        return true;
+    }
+    if centre.is_nan() {
+        return false;
+    }
+    if centre.abs() > DIAGONAL * cell {
+        return true;
+    }
+    let Some(seed) = seed else { return false };
+    if (seed < 0.0) != (centre < 0.0) {
+        return false;
+    }
+    // Corners one cell from the seed are √2 from the centre, and the other way round.
+    let (s, t) = (seed.abs() / cell, centre.abs() / cell);
+    s > FACE || t > FACE || (s > EDGE && t > EDGE)
 }
 
 /// Bits of the 4³ local points (or cells) whose coordinate along `axis` is 0.
@@ -610,6 +597,7 @@ fn brick<V: Volume>(
     values.clear();
     values.resize(n * n * n, f64::NAN);
     missing.clear();
+    let owners: [Option<&Own>; 8] = std::array::from_fn(|bits| ctx.above(b, bits).map(|o| &own[o]));
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
@@ -617,11 +605,10 @@ fn brick<V: Volume>(
                     continue;
                 }
                 let bits = (i / B) | (j / B) << 1 | (k / B) << 2;
-                match ctx.above(b, bits) {
+                match owners[bits] {
                     Some(o) => {
-                        values[index(i, j, k)] = own[o]
-                            .get(local(i % B, j % B, k % B))
-                            .expect("the owner evaluated a needed point")
+                        values[index(i, j, k)] =
+                            o.get(local(i % B, j % B, k % B)).expect("the owner evaluated a needed point")
                     }
                     None => missing.push((i, j, k)),
                 }
