@@ -637,6 +637,8 @@ fn brick<V: Volume>(
     // is crossed by the surface, so its brick is active and makes the vertex; relative to any
     // other cell of the edge it is this brick or an upper neighbour.
     let last = [0, 1, 2].map(|a| lattice.dims[a] - 1);
+    // Away from the lattice's last points the references depend only on the cell and the edge.
+    let interior = (0..3).all(|d| at[d] + BRICK < last[d]).then(interior_refs);
     made.clear();
     made.resize(SLOTS, false);
     positions_by_slot.clear();
@@ -649,10 +651,8 @@ fn brick<V: Volume>(
                     continue;
                 }
                 let corner = |c: usize| [i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1)];
-                let v: [f64; 8] = std::array::from_fn(|c| {
-                    let [x, y, z] = corner(c);
-                    values[index(x, y, z)]
-                });
+                let first = index(i, j, k);
+                let v: [f64; 8] = std::array::from_fn(|c| values[first + CORNER_OFFSETS[c]]);
                 let case = (0..8).fold(0usize, |m, c| m | ((v[c] < 0.0) as usize) << c);
                 if case == 0 || case == 255 {
                     continue;
@@ -684,20 +684,16 @@ fn brick<V: Volume>(
                             }
                             return slot as u16;
                         }
-                        let (a, c) = EDGES[e];
-                        let axis = (c - a).trailing_zeros() as usize;
-                        let q = corner(a);
-                        let cell = |d: usize| {
-                            if d != axis && at[d] + q[d] as u64 == last[d] { q[d] - 1 } else { q[d] }
+                        let r = match interior {
+                            Some(refs) => refs[local(i, j, k) * 12 + e],
+                            None => edge_ref(corner(EDGES[e].0), e, at, last),
                         };
-                        let bits = (cell(0) / B) | (cell(1) / B) << 1 | (cell(2) / B) << 2;
-                        let o = [0, 1, 2].map(|d| q[d] - B * (bits >> d & 1));
-                        let slot = axis * N * N * N + (o[2] * N + o[1]) * N + o[0];
-                        if bits == 0 && !made[slot] {
+                        let slot = (r & ((1 << SLOT_BITS) - 1)) as usize;
+                        if r >> SLOT_BITS == 0 && !made[slot] {
                             made[slot] = true;
                             positions_by_slot.push((slot as u16, edge_position(e).as_vec3().to_array()));
                         }
-                        ((bits as u16) << SLOT_BITS) | slot as u16
+                        r
                     }));
                 }
             }
@@ -713,6 +709,40 @@ fn brick<V: Volume>(
         base: 0,
         evaluations,
     }
+}
+
+/// Offsets in a brick's corner values (x fastest, N per row) of the 8 corners of a cell from its
+/// first one, by corner bits x + 2y + 4z.
+const CORNER_OFFSETS: [usize; 8] = [0, 1, N, N + 1, N * N, N * N + 1, N * N + N, N * N + N + 1];
+
+/// The vertex on cell edge `e` whose lower point is `q` (local to the brick at `at`; `last`: the
+/// lattice's last point on each axis): owned by the brick of the edge's canonical cell, the
+/// highest of the cells around the edge (lower on an axis where the edge lies on the lattice's
+/// last plane), which is this brick or an upper neighbour.
+fn edge_ref(q: [usize; 3], e: usize, at: [u64; 3], last: [u64; 3]) -> VertexRef {
+    let (a, c) = EDGES[e];
+    let axis = (c - a).trailing_zeros() as usize;
+    let cell = |d: usize| if d != axis && at[d] + q[d] as u64 == last[d] { q[d] - 1 } else { q[d] };
+    let bits = (cell(0) / B) | (cell(1) / B) << 1 | (cell(2) / B) << 2;
+    let o = [0, 1, 2].map(|d| q[d] - B * (bits >> d & 1));
+    let slot = axis * N * N * N + (o[2] * N + o[1]) * N + o[0];
+    ((bits as u16) << SLOT_BITS) | slot as u16
+}
+
+/// [`edge_ref`] of every edge of every cell of a brick away from the lattice's last points, by
+/// local(i, j, k) · 12 + edge.
+fn interior_refs() -> &'static [VertexRef] {
+    static REFS: std::sync::OnceLock<Vec<VertexRef>> = std::sync::OnceLock::new();
+    REFS.get_or_init(|| {
+        (0..OWN * 12)
+            .map(|r| {
+                let (l, e) = (r / 12, r % 12);
+                let a = EDGES[e].0;
+                let q = [l % B + (a & 1), l / B % B + (a >> 1 & 1), l / (B * B) + (a >> 2 & 1)];
+                edge_ref(q, e, [0; 3], [u64::MAX; 3])
+            })
+            .collect()
+    })
 }
 
 /// Resolves the triangles of the bricks in `slab` to vertex numbers, into `out`: a vertex is
