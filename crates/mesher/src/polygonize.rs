@@ -135,6 +135,19 @@ impl<T> Window<T> {
     }
 }
 
+impl<T: Send + 'static> Window<T> {
+    /// [`Window::keep_from`] for data that own heap memory: they are freed on a worker thread,
+    /// while the calling thread goes on handing the mesh over.
+    fn release_from(&mut self, first: usize) {
+        let n = first.saturating_sub(self.first).min(self.items.len());
+        let gone: Vec<T> = self.items.drain(..n).collect();
+        self.first += n;
+        if !gone.is_empty() {
+            rayon::spawn(move || drop(gone));
+        }
+    }
+}
+
 impl<T> Index<usize> for Window<T> {
     type Output = T;
 
@@ -263,8 +276,8 @@ fn polygonize_with<V: Volume, S: MeshSink>(
         down.keep_from(first(t));
         up.keep_from(first(t.saturating_sub(1)));
         live.keep_from(first(t.saturating_sub(1)));
-        own.keep_from(first(t.saturating_sub(1)));
-        parts.keep_from(first(t.saturating_sub(2)));
+        own.release_from(first(t.saturating_sub(1)));
+        parts.release_from(first(t.saturating_sub(2)));
         let keep = first(t.saturating_sub(1));
         found.bricks.keep_from(keep);
     }
