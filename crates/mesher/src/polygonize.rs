@@ -54,7 +54,8 @@ const EDGE_SLOTS: usize = 3 * N * N * N;
 const SLOTS: usize = EDGE_SLOTS + 2 * B * B * B;
 
 /// A vertex as a brick sees it: its owner (0: itself, else the neighbour's offset bits
-/// x + 2y + 4z, each a step of BRICK) above bit 9, the edge's slot in its owner below.
+/// x + 2y + 4z, each a step of BRICK) above bit 9, the edge's slot in its owner below (once
+/// the brick is done, its own vertices' rank among its vertices instead).
 type VertexRef = u16;
 const SLOT_BITS: u32 = 9;
 
@@ -578,6 +579,7 @@ struct Scratch {
     found: Vec<f64>,
     positions: Vec<(u16, [f32; 3])>,
     triangles: Vec<[VertexRef; 3]>,
+    rank: Vec<u16>,
 }
 
 fn brick<V: Volume>(
@@ -591,8 +593,17 @@ fn brick<V: Volume>(
     let n = N;
     let size = [0, 1, 2].map(|a| (BRICK + 1).min(lattice.dims[a] - at[a]) as usize);
     let index = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
-    let Scratch { values, needed, made, missing, points, found, positions: positions_by_slot, triangles } =
-        scratch;
+    let Scratch {
+        values,
+        needed,
+        made,
+        missing,
+        points,
+        found,
+        positions: positions_by_slot,
+        triangles,
+        rank,
+    } = scratch;
     // The corners of the live cells.
     needed.clear();
     needed.resize(n * n * n, false);
@@ -713,6 +724,17 @@ fn brick<V: Volume>(
         }
     }
     positions_by_slot.sort_unstable_by_key(|&(slot, _)| slot);
+    // The brick's own vertices are named by their rank from here on: the weld only searches
+    // the slots of the neighbours'.
+    rank.resize(SLOTS, 0);
+    for (r, &(slot, _)) in positions_by_slot.iter().enumerate() {
+        rank[slot as usize] = r as u16;
+    }
+    for r in triangles.iter_mut().flatten() {
+        if *r >> SLOT_BITS == 0 {
+            *r = rank[*r as usize];
+        }
+    }
     BrickPart {
         slots: positions_by_slot.iter().map(|&(s, _)| s).collect(),
         positions: positions_by_slot.iter().map(|&(_, p)| p).collect(),
@@ -764,7 +786,10 @@ fn interior_refs() -> &'static [VertexRef] {
 fn weld(parts: &Window<BrickPart>, slab: Range<usize>, out: &mut Vec<[u32; 3]>) {
     let resolve = |b: usize, r: VertexRef| -> u32 {
         let (bits, slot) = ((r >> SLOT_BITS) as usize, r & ((1 << SLOT_BITS) - 1));
-        let owner = if bits == 0 { &parts[b] } else { &parts[parts[b].neighbours[bits - 1] as usize] };
+        if bits == 0 {
+            return parts[b].base + slot as u32;
+        }
+        let owner = &parts[parts[b].neighbours[bits - 1] as usize];
         owner.base + owner.slots.binary_search(&slot).expect("the owner made the vertex") as u32
     };
     // Each brick resolves its triangles into its own range of the output.
