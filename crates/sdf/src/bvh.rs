@@ -25,6 +25,9 @@ use crate::primitive::{
 };
 use crate::sweep::SweepLeaf;
 
+/// The count of a candidate that is a single capsule.
+const ONE_CAPSULE: u32 = 1 | (CAPSULE as u32) << 16;
+
 /// Leaves per BVH leaf node, at most: 16 rather than 8 halves the wide nodes (most of the
 /// tree's memory) at the same evaluation speed.
 const LEAF: usize = 16;
@@ -391,8 +394,8 @@ impl Bvh {
                         {
                             let (lo, hi) = c.bounds();
                             if gap(lo, hi) < margin {
-                                let one = 1 | (CAPSULE as u32) << 16;
-                                out.push(Candidate { first: (first + k) as u32, count: one, lo, hi });
+                                let (first, count) = ((first + k) as u32, ONE_CAPSULE);
+                                out.push(Candidate { first, count, lo, hi });
                             }
                         }
                     }
@@ -412,7 +415,14 @@ impl Bvh {
     pub fn min_value_among(&self, among: &[Candidate], p: DVec3, limit: f64, ctx: &Context) -> f64 {
         let mut best = limit;
         for c in among {
-            if signed_box_distance(c.lo, c.hi, p) < best {
+            // The largest gap along one axis is at most the box's distance: a cheap first test.
+            if (c.lo - p).max(p - c.hi).max_element() >= best {
+                continue;
+            }
+            if c.count == ONE_CAPSULE {
+                // Its value already is at least its box's distance.
+                best = best.min(capsule_value(p, &self.capsules[c.first as usize]));
+            } else if signed_box_distance(c.lo, c.hi, p) < best {
                 best = self.leaf_min(c.first, c.count, p, best, ctx);
             }
         }
