@@ -59,7 +59,7 @@ pub fn active_bricks<V: Volume>(
             (found, evaluations)
         })
         .reduce(|| (Vec::new(), 0), merge);
-    bricks.sort_unstable_by_key(|&b| order_key(b, sweep));
+    bricks.par_sort_unstable_by_key(|&b| order_key(b, sweep));
     (bricks, evaluations)
 }
 
