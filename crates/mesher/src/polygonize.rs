@@ -206,7 +206,7 @@ fn polygonize_with<V: Volume, S: MeshSink>(
     let (mut live, mut own, mut parts) = (Window::new(), Window::new(), Window::new());
     let mut evaluations = 0;
     let mut vertices = 0u32;
-    let mut buffer = (Vec::new(), Vec::new());
+    let mut resolved = Vec::new();
     for t in 0.. {
         evaluations += found.reach(field, &lattice, t);
         bar.set_position(found.searched.min(length));
@@ -255,19 +255,20 @@ fn polygonize_with<V: Volume, S: MeshSink>(
                 .into_par_iter()
                 .map_init(Scratch::default, |scratch, b| brick(&ctx, &own, live[b], b, scratch))
                 .collect();
-            buffer.0.clear();
             for part in &mut made {
                 part.base = vertices;
                 vertices += part.slots.len() as u32;
                 evaluations += part.evaluations;
-                buffer.0.extend(std::mem::take(&mut part.positions));
             }
-            sink.vertices(&buffer.0)?;
+            // Gathered (and the bricks' positions freed) by the workers, in brick order.
+            let positions: Vec<[f32; 3]> =
+                made.par_iter_mut().flat_map_iter(|part| std::mem::take(&mut part.positions)).collect();
+            sink.vertices(&positions)?;
             parts.push(r.start, made);
         }
         if let Some(r) = slab(t.checked_sub(3)) {
-            weld(&parts, r, &mut buffer.1);
-            sink.triangles(&buffer.1)?;
+            weld(&parts, r, &mut resolved);
+            sink.triangles(&resolved)?;
         }
         // What the next step reads: seeds and centres of this slab, upper neighbours, live
         // cells and own values of the previous one, the parts of the one before.
