@@ -113,7 +113,9 @@ fn split<V: Volume>(
     let boxes: [(DVec3, DVec3); 8] = std::array::from_fn(|c| children[c].1);
     let mut bounds = [0.0; 8];
     field.bounds(node.0, node.1, &boxes[..n], &mut bounds[..n]);
-    let crossed = children[..n].iter().zip(bounds).filter(|&(_, b)| !(b > 0.0)).map(|(&child, _)| child);
+    // Kept unless the bound is positive (as a NaN bound is).
+    let kept = |b: f64| b.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater);
+    let crossed = children[..n].iter().zip(bounds).filter(|&(_, b)| kept(b)).map(|(&child, _)| child);
     let mut evaluations = n as u64;
     if size >= PARALLEL {
         let crossed: Vec<Node> = crossed.collect();

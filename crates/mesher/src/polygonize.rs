@@ -430,7 +430,7 @@ fn live_cells<V>(ctx: &Context<'_, V>, b: usize) -> u64 {
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
-                let seed = seeds[(i + 1) / 2 + 3 * ((j + 1) / 2) + 9 * ((k + 1) / 2)];
+                let seed = seeds[i.div_ceil(2) + 3 * j.div_ceil(2) + 9 * k.div_ceil(2)];
                 let centre = centres[(i / 2) | (j / 2) << 1 | (k / 2) << 2];
                 if !(ctx.lazy && uniform(seed, centre, lattice.cell)) {
                     live |= 1 << local(i, j, k);
