@@ -206,7 +206,9 @@ fn polygonize_with<V: Volume, S: MeshSink>(
     let (mut live, mut own, mut parts) = (Window::new(), Window::new(), Window::new());
     let mut evaluations = 0;
     let mut vertices = 0u32;
-    let mut resolved = Vec::new();
+    // The triangles of the last slab resolved; handed over while the workers run the next
+    // step's first pass (the sink sees the same calls in the same order).
+    let (mut resolved, mut pending) = (Vec::new(), false);
     for t in 0.. {
         evaluations += found.reach(field, &lattice, t);
         bar.set_position(found.searched.min(length));
@@ -215,8 +217,16 @@ fn polygonize_with<V: Volume, S: MeshSink>(
         }
         let (bricks, slab) = (&found.bricks, |s: Option<usize>| s.and_then(|s| found.slabs.get(s)).cloned());
         if let Some(r) = slab(Some(t)) {
-            let (s, c): (Vec<Seeds>, Vec<Seeds>) =
-                r.clone().into_par_iter().map(|b| seed_values(field, &lattice, bricks[b])).unzip();
+            let mut evaluated = None;
+            rayon::in_place_scope(|scope| {
+                scope.spawn(|_| {
+                    let values =
+                        r.clone().into_par_iter().map(|b| seed_values(field, &lattice, bricks[b])).unzip();
+                    evaluated = Some(values);
+                });
+                hand_over(sink, &resolved, &mut pending)
+            })?;
+            let (s, c): (Vec<Seeds>, Vec<Seeds>) = evaluated.expect("the scope waits for its task");
             seeds.push(r.start, s);
             centres.push(r.start, c);
             up.push(r.start, slab_neighbours(bricks, sweep, r.clone(), true));
@@ -263,12 +273,14 @@ fn polygonize_with<V: Volume, S: MeshSink>(
             // Gathered (and the bricks' positions freed) by the workers, in brick order.
             let positions: Vec<[f32; 3]> =
                 made.par_iter_mut().flat_map_iter(|part| std::mem::take(&mut part.positions)).collect();
+            hand_over(sink, &resolved, &mut pending)?;
             sink.vertices(&positions)?;
             parts.push(r.start, made);
         }
         if let Some(r) = slab(t.checked_sub(3)) {
+            hand_over(sink, &resolved, &mut pending)?;
             weld(&parts, r, &mut resolved);
-            sink.triangles(&resolved)?;
+            pending = true;
         }
         // What the next step reads: seeds and centres of this slab, upper neighbours, live
         // cells and own values of the previous one, the parts of the one before.
@@ -283,8 +295,14 @@ fn polygonize_with<V: Volume, S: MeshSink>(
         let keep = first(t.saturating_sub(1));
         found.bricks.keep_from(keep);
     }
+    hand_over(sink, &resolved, &mut pending)?;
     bar.finish_and_clear();
     Ok(evaluations)
+}
+
+/// Hands the resolved triangles over to `sink` unless they already were.
+fn hand_over<S: MeshSink>(sink: &mut S, resolved: &[[u32; 3]], pending: &mut bool) -> Result<(), S::Error> {
+    if std::mem::take(pending) { sink.triangles(resolved) } else { Ok(()) }
 }
 
 /// The active bricks, found by the octree one thick slab at a time just ahead of the front.
