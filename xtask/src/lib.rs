@@ -2,6 +2,7 @@
 //!
 //! - [`bench`]: time every stage on the benchmark scenes and each stage's budget cases;
 //! - [`peer`]: time the network half beside KarstNSim;
+//! - [`regional`]: every stage on the regional scene, at two sizes;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
 //! - [`ensemble_table`]: the presets' metrics over many seeds against the real caves;
 //! - [`python`]: build and install the Python package's wheel and run its pytest suite;
@@ -14,4 +15,5 @@ pub mod ensemble_table;
 pub mod metrics_table;
 pub mod peer;
 pub mod python;
+pub mod regional;
 pub mod tools;

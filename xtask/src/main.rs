@@ -67,6 +67,13 @@ enum Task {
         /// Only the network half beside KarstNSim (pykarstnsim in .venv-peer), alternating runs.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "streams", "export"])]
         peer: bool,
+        /// Only the regional scene (fixtures/bench/regional.toml): the network half at about 1 M
+        /// and 5 M samples, then the other stages but the export at 5 M (takes tens of minutes).
+        #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "streams", "export", "peer", "geotiff", "mazes", "calibrate"])]
+        regional: bool,
+        /// With --regional: the network half only.
+        #[arg(long, requires = "regional")]
+        network: bool,
         /// Only the network statistics of mazes (grids of 40k and 250k nodes).
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "peer"])]
         mazes: bool,
@@ -139,6 +146,7 @@ fn main() -> ExitCode {
         }
         Task::Bless => bless(),
         Task::Bench { runs, peer: true, .. } => peer_bench(runs),
+        Task::Bench { regional: true, network, .. } => regional_bench(!network),
         Task::Bench {
             runs,
             costgraph,
@@ -225,6 +233,21 @@ fn peer_bench(runs: usize) -> Result<(), StageError> {
             theirs.cpu / ours.cpu
         );
     }
+    Ok(())
+}
+
+/// Every stage on the regional scene (issue 21), once; the table for BENCHMARKS.md.
+fn regional_bench(full: bool) -> Result<(), StageError> {
+    use xtask::{peer, regional};
+    let binaries = regional::binaries()?;
+    let before = peer::load_average();
+    let (small, large) = regional::run(&binaries, full)?;
+    let load = match (before, peer::load_average()) {
+        (Some(a), Some(b)) => format!("load average {a:.1} before, {b:.1} after"),
+        _ => "load average unknown".into(),
+    };
+    println!("{} (each stage once, as its own process; {load})", regional::SCENE);
+    print!("{}", regional::table(&small, &large));
     Ok(())
 }
 

@@ -59,7 +59,7 @@ pub struct Usage {
 
 impl Usage {
     /// The usage of two processes run one after the other.
-    fn then(self, next: Usage) -> Usage {
+    pub fn then(self, next: Usage) -> Usage {
         Usage {
             wall: self.wall + next.wall,
             cpu: self.cpu + next.cpu,
@@ -102,10 +102,15 @@ const NETWORK_HALF: [StageId; 3] = [StageId::Sampling, StageId::Costgraph, Stage
 /// Builds the network half's stage binaries (release) and returns their folder, beside this
 /// xtask binary.
 pub fn stage_binaries() -> Result<PathBuf, StageError> {
+    build_stage_binaries(&NETWORK_HALF)
+}
+
+/// Builds the binaries of `stages` (release) and returns their folder, beside this xtask binary.
+pub fn build_stage_binaries(stages: &[StageId]) -> Result<PathBuf, StageError> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let mut command = Command::new(cargo);
     command.args(["build", "--release", "--quiet", "--bins"]);
-    for stage in NETWORK_HALF {
+    for stage in stages {
         command.args(["--package", stage.row().binary]);
     }
     let status = command.status().map_err(|e| StageError::failure(format!("cannot run cargo: {e}")))?;
@@ -213,14 +218,14 @@ fn run_theirs(case: &PeerCase, python: &Path, out: &Path) -> Result<(Usage, usiz
     Ok((usage, samples))
 }
 
-fn first_number(text: &str) -> Option<usize> {
+pub(crate) fn first_number(text: &str) -> Option<usize> {
     text.split_whitespace().next()?.parse().ok()
 }
 
 /// Runs `command` to its end with its stdout in `log`; its wall time, its own CPU time and peak
 /// resident memory (from `wait4`), and its stdout. A failing command is an error quoting its
 /// output.
-fn measure(mut command: Command, log: &Path) -> Result<(Usage, String), StageError> {
+pub(crate) fn measure(mut command: Command, log: &Path) -> Result<(Usage, String), StageError> {
     let program = command.get_program().to_string_lossy().into_owned();
     let fail = |e: String| StageError::failure(format!("{program}: {e}"));
     let file = File::create(log).map_err(|e| fail(format!("{}: {e}", log.display())))?;

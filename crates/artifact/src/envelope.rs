@@ -140,28 +140,87 @@ pub fn write_artifact<P: Payload>(
     provenance: &Provenance,
     payload: &P,
 ) -> Result<Header, Error> {
-    let err = |e: String| Error::Encode { kind: P::STAGE.row().kind.into(), detail: e };
     let encoding = P::STAGE.row().encoding;
-    let (bytes, payload_len, payload_blake3) = match encoding {
-        Encoding::Postcard => {
-            let mut sink = Chunked::new(HashSink { hasher: blake3::Hasher::new(), len: 0 });
-            postcard::to_io(payload, &mut sink).map_err(|e| err(e.to_string()))?;
-            let sink = sink.finish().map_err(|e| err(e.to_string()))?;
-            (None, sink.len, sink.hasher.finalize().to_hex().to_string())
+    if encoding == Encoding::Postcard {
+        return write_artifact_with::<P>(path, provenance, |w| {
+            let mut kept = KeepError { inner: Chunked::new(w), error: None };
+            if let Err(e) = postcard::to_io(payload, &mut kept) {
+                return Err(kept.error.take().unwrap_or_else(|| std::io::Error::other(e)));
+            }
+            kept.inner.finish().map(|_| ())
+        });
+    }
+    let err = |e: String| Error::Encode { kind: P::STAGE.row().kind.into(), detail: e };
+    let mut bytes = serde_json::to_vec_pretty(payload).map_err(|e| err(e.to_string()))?;
+    bytes.push(b'\n');
+    let header = header::<P>(provenance, bytes.len() as u64, hash::hex(&bytes));
+    let line = serde_json::to_string(&header).map_err(|e| err(e.to_string()))?;
+    atomic::write_with(path, |w| {
+        w.write_all(JSON_OPEN)?;
+        w.write_all(line.as_bytes())?;
+        w.write_all(b",\n")?;
+        w.write_all(JSON_PAYLOAD)?;
+        w.write_all(&bytes)?;
+        w.write_all(JSON_CLOSE)
+    })
+    .map_err(|source| Error::Write { path: path.to_path_buf(), source })?;
+    Ok(header)
+}
+
+/// Atomically writes an artifact of `P`'s stage (a postcard one) whose payload bytes `encode`
+/// writes, for a stage that never holds its payload in memory (the mesher copies its surfaces
+/// from spill files). `encode` is called twice and must write the same bytes both times: once
+/// into a hasher (the header, which comes first, holds the payload's length and digest), then
+/// into the file, hashed again; a second pass that differs from the first is an error, not a
+/// corrupted artifact. The bytes must be `P`'s postcard encoding: readers decode them as `P`.
+pub fn write_artifact_with<P: Payload>(
+    path: &Path,
+    provenance: &Provenance,
+    mut encode: impl FnMut(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<Header, Error> {
+    let kind = || P::STAGE.row().kind.to_string();
+    if P::STAGE.row().encoding != Encoding::Postcard {
+        return Err(Error::Encode {
+            kind: kind(),
+            detail: "only postcard payloads are written streamed".into(),
+        });
+    }
+    let write_error = |source| Error::Write { path: path.to_path_buf(), source };
+    let mut first = HashSink { hasher: blake3::Hasher::new(), len: 0 };
+    encode(&mut first).map_err(write_error)?;
+    let header = header::<P>(provenance, first.len, first.hasher.finalize().to_hex().to_string());
+    let line =
+        serde_json::to_string(&header).map_err(|e| Error::Encode { kind: kind(), detail: e.to_string() })?;
+    atomic::write_with(path, |w| {
+        w.write_all(line.as_bytes())?;
+        w.write_all(b"\n")?;
+        let mut second = Tee { inner: w, copy: HashSink { hasher: blake3::Hasher::new(), len: 0 } };
+        encode(&mut second)?;
+        let digest = second.copy.hasher.finalize().to_hex().to_string();
+        if second.copy.len != header.payload_len || digest != header.payload_blake3 {
+            return Err(std::io::Error::other(format!(
+                "the {} payload's second encoding differs from the first ({} bytes, then {}): \
+                 this is a bug in karstgen",
+                kind(),
+                header.payload_len,
+                second.copy.len
+            )));
         }
-        Encoding::Json => {
-            let mut bytes = serde_json::to_vec_pretty(payload).map_err(|e| err(e.to_string()))?;
-            bytes.push(b'\n');
-            let (len, digest) = (bytes.len() as u64, hash::hex(&bytes));
-            (Some(bytes), len, digest)
-        }
-    };
-    let header = Header {
+        Ok(())
+    })
+    .map_err(write_error)?;
+    Ok(header)
+}
+
+/// The header of an artifact of `P`'s stage with a payload of `payload_len` bytes and digest
+/// `payload_blake3`.
+fn header<P: Payload>(provenance: &Provenance, payload_len: u64, payload_blake3: String) -> Header {
+    Header {
         format: FORMAT.to_string(),
         kind: P::STAGE,
         schema: P::SCHEMA,
         producer: provenance.producer.clone(),
-        encoding,
+        encoding: P::STAGE.row().encoding,
         key: stage_key(
             P::STAGE,
             &provenance.producer,
@@ -176,29 +235,25 @@ pub fn write_artifact<P: Payload>(
         crs: provenance.frame.crs.clone(),
         payload_len,
         payload_blake3,
-    };
-    let line = serde_json::to_string(&header).map_err(|e| err(e.to_string()))?;
-    atomic::write_with(path, |w| match &bytes {
-        Some(bytes) => {
-            w.write_all(JSON_OPEN)?;
-            w.write_all(line.as_bytes())?;
-            w.write_all(b",\n")?;
-            w.write_all(JSON_PAYLOAD)?;
-            w.write_all(bytes)?;
-            w.write_all(JSON_CLOSE)
-        }
-        None => {
-            w.write_all(line.as_bytes())?;
-            w.write_all(b"\n")?;
-            let mut kept = KeepError { inner: Chunked::new(w), error: None };
-            if let Err(e) = postcard::to_io(payload, &mut kept) {
-                return Err(kept.error.take().unwrap_or_else(|| std::io::Error::other(e)));
-            }
-            kept.inner.finish().map(|_| ())
-        }
-    })
-    .map_err(|source| Error::Write { path: path.to_path_buf(), source })?;
-    Ok(header)
+    }
+}
+
+/// Writes to `inner` and hashes what it writes into `copy`.
+struct Tee<'w> {
+    inner: &'w mut dyn Write,
+    copy: HashSink,
+}
+
+impl Write for Tee<'_> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.copy.write_all(&buf[..n])?;
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
 }
 
 /// Gathers the many small writes of postcard (one per number) into 64 KiB chunks before they
@@ -530,6 +585,33 @@ mod tests {
         assert_eq!(payload, postcard::to_stdvec(&pts).unwrap().as_slice());
         assert_eq!(header.payload_len, payload.len() as u64);
         assert_eq!(header.payload_blake3, hash::hex(payload));
+    }
+
+    #[test]
+    fn a_payload_written_by_its_encoder_is_the_artifact_of_the_payload() {
+        let (streamed, whole) = (scratch("with.bin"), scratch("whole.bin"));
+        let pts = Points((0..3000).map(|i| [i as f64, -0.5, 1e3]).collect());
+        let bytes = postcard::to_stdvec(&pts).unwrap();
+        // Written in uneven pieces, as a stage copying from its spill files would.
+        let header = write_artifact_with::<Points>(&streamed, &provenance(), |w| {
+            bytes.chunks(777).try_for_each(|piece| w.write_all(piece))
+        })
+        .unwrap();
+        assert_eq!(header, write_artifact(&whole, &provenance(), &pts).unwrap());
+        assert_eq!(fs::read(&streamed).unwrap(), fs::read(&whole).unwrap());
+        assert_eq!(read_artifact::<Points>(&streamed).unwrap().1, pts);
+        // An encoder that writes other bytes the second time: refused, the old file kept.
+        let mut calls = 0;
+        let err = write_artifact_with::<Points>(&streamed, &provenance(), |w| {
+            calls += 1;
+            w.write_all(&bytes[..bytes.len() - calls])
+        })
+        .unwrap_err();
+        let cause = std::error::Error::source(&err).map(|e| e.to_string()).unwrap_or_default();
+        assert!(cause.contains("second encoding differs"), "{err}: {cause}");
+        assert_eq!(fs::read(&streamed).unwrap(), fs::read(&whole).unwrap());
+        // A JSON stage's payload is not written streamed.
+        assert!(write_artifact_with::<Other>(&scratch("other.json"), &provenance(), |_| Ok(())).is_err());
     }
 
     #[test]

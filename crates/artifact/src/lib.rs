@@ -27,7 +27,7 @@ pub mod stream;
 
 pub use envelope::{
     Header, InputRef, Invalid, Payload, Provenance, check_frame, decode_payload, read_artifact, read_header,
-    write_artifact,
+    write_artifact, write_artifact_with,
 };
 pub use error::Error;
 pub use frame::Frame;

@@ -32,6 +32,7 @@ fn main() {
     let mut h = DefaultHasher::new();
     graph.offsets.hash(&mut h);
     graph.targets.hash(&mut h);
+    graph.own_rows.hash(&mut h);
     for set in &graph.cost_sets {
         set.costs.iter().map(|c| c.to_bits()).collect::<Vec<_>>().hash(&mut h);
     }

@@ -11,7 +11,7 @@ use karst_sampling::Samples;
 
 use crate::cost::{CostModel, EdgeTerms, NodeFields};
 use crate::knn::{self, CHUNK, Rows};
-use crate::payload::{CostGraph, CostSet};
+use crate::payload::{CostGraph, CostSet, SHARED_ROW};
 use crate::stats::{Histogram, SetStats, Summary, TermStats};
 use crate::{CostGraphError, checks};
 
@@ -67,8 +67,7 @@ struct ChunkCosts {
 /// twice. Costing into per-chunk buffers and copying them into place held every set twice at
 /// the peak (7.5 GB for the regional scene's 5 sets).
 struct InPlace {
-    arrays: Vec<*mut f32>,
-    len: usize,
+    arrays: Vec<(*mut f32, usize)>,
 }
 
 // SAFETY: the pointers are only written through `write`, whose callers write disjoint
@@ -79,19 +78,18 @@ unsafe impl Send for InPlace {}
 
 impl InPlace {
     fn new(arrays: &mut [Vec<f32>]) -> Self {
-        let len = arrays.first().map_or(0, Vec::len);
-        debug_assert!(arrays.iter().all(|a| a.len() == len));
-        InPlace { arrays: arrays.iter_mut().map(|a| a.as_mut_ptr()).collect(), len }
+        InPlace { arrays: arrays.iter_mut().map(|a| (a.as_mut_ptr(), a.len())).collect() }
     }
 
-    /// Stores `value` as the cost of `edge` in set `set`.
+    /// Stores `value` at `at` in set `set`'s array.
     ///
     /// # Safety
-    /// No other thread writes the same (set, edge) while the arrays are shared.
-    unsafe fn write(&self, set: usize, edge: usize, value: f32) {
-        assert!(edge < self.len, "edge {edge} beyond {} edges", self.len);
+    /// No other thread writes the same (set, at) while the arrays are shared.
+    unsafe fn write(&self, set: usize, at: usize, value: f32) {
+        let (array, len) = self.arrays[set];
+        assert!(at < len, "cost {at} beyond the {len} of set {set}");
         // SAFETY: in bounds (checked above) of a live array; exclusive by the caller's promise.
-        unsafe { *self.arrays[set].add(edge) = value };
+        unsafe { *array.add(at) = value };
     }
 }
 
@@ -104,12 +102,15 @@ fn costed(
 ) -> Result<CostGraph, CostGraphError> {
     let fields = model.node_fields(points);
     let empty = empty_sets(model);
-    let mut arrays = vec![vec![0f32; rows.targets.len()]; model.set_count()];
+    let (own_rows, own_edges) = own_rows(model, &fields, &rows);
+    let mut arrays: Vec<Vec<f32>> = (0..model.set_count())
+        .map(|s| vec![0f32; if s == 0 { rows.targets.len() } else { own_edges }])
+        .collect();
     let in_place = InPlace::new(&mut arrays);
     let chunks: Vec<Result<ChunkCosts, CostGraphError>> = order
         .par_chunks(CHUNK)
         .map(|chunk| {
-            let costs = cost_chunk(model, &fields, &rows, chunk, (&empty, &in_place));
+            let costs = cost_chunk(model, &fields, (&rows, &own_rows), chunk, (&empty, &in_place));
             done();
             costs
         })
@@ -136,13 +137,41 @@ fn costed(
     for chunk in &chunks {
         merge(&mut summary, chunk);
     }
-    Ok(CostGraph { offsets: rows.offsets, targets: rows.targets, cost_sets, summary })
+    Ok(CostGraph { offsets: rows.offsets, targets: rows.targets, own_rows, cost_sets, summary })
+}
+
+/// With several cost sets, where each node's row starts among the rows the later sets store
+/// apart ([`SHARED_ROW`] when every edge of the row costs the same in every set), and how many
+/// edges those rows hold; nothing with one set.
+fn own_rows(model: &CostModel, fields: &NodeFields, rows: &Rows) -> (Vec<u32>, usize) {
+    if model.set_count() <= 1 {
+        return (Vec::new(), 0);
+    }
+    let shared: Vec<bool> = (0..rows.node_count())
+        .into_par_iter()
+        .with_min_len(CHUNK)
+        .map(|i| rows.row(i).iter().all(|&j| model.same_in_every_set(fields, i, j as usize)))
+        .collect();
+    let mut next = 0usize;
+    let starts = shared
+        .iter()
+        .enumerate()
+        .map(|(i, &shared)| {
+            if shared {
+                return SHARED_ROW;
+            }
+            let start = next as u32;
+            next += rows.row(i).len();
+            start
+        })
+        .collect();
+    (starts, next)
 }
 
 fn cost_chunk(
     model: &CostModel,
     fields: &NodeFields,
-    rows: &Rows,
+    (rows, own_rows): (&Rows, &[u32]),
     chunk: &[u32],
     (sets, in_place): (&[SetStats], &InPlace),
 ) -> Result<ChunkCosts, CostGraphError> {
@@ -156,7 +185,9 @@ fn cost_chunk(
     for &i in chunk {
         let i = i as usize;
         let first = rows.offsets[i] as usize;
-        for (edge, &j) in (first..).zip(rows.row(i)) {
+        let own = own_rows.get(i).copied().filter(|&start| start != SHARED_ROW);
+        for (column, &j) in rows.row(i).iter().enumerate() {
+            let edge = first + column;
             model.edge(fields, i, j as usize, &mut terms);
             for (set, (least, &cost)) in out.least_per_metre.iter_mut().zip(&terms.cost).enumerate() {
                 // Caught where it happens: the artifact's costs are f32, finite and > 0.
@@ -164,8 +195,23 @@ fn cost_chunk(
                 if !(stored.is_finite() && stored > 0.0) {
                     return Err(CostGraphError::CostOutOfRange { cost, length: terms.length });
                 }
-                // SAFETY: `edge` is in row i, and node i is in this chunk only.
-                unsafe { in_place.write(set, edge, stored) };
+                let at = match (set, own) {
+                    (0, _) => Some(edge),
+                    (_, Some(start)) => Some(start as usize + column),
+                    (_, None) => {
+                        debug_assert_eq!(
+                            stored.to_bits(),
+                            (terms.cost[0] as f32).to_bits(),
+                            "shared row {i}"
+                        );
+                        None
+                    }
+                };
+                if let Some(at) = at {
+                    // SAFETY: `at` is in row i's place in this set, and node i is in this
+                    // chunk only.
+                    unsafe { in_place.write(set, at, stored) };
+                }
                 // As the searches would measure it: the stored cost over the length.
                 if terms.length > 0.0 {
                     *least = least.min(f64::from(stored) / terms.length);

@@ -296,6 +296,20 @@ impl CostModel {
         }
     }
 
+    /// True when edge i → j costs the same in every cost set: both its ends are above every
+    /// water table (C_WT depends on the direction alone) or at least d_max below every one
+    /// (the falloff's constant 1), the two cases where [`CostModel::edge`] computes the same
+    /// bits for every set. Other edges may happen to cost the same too; they are stored apart.
+    pub fn same_in_every_set(&self, fields: &NodeFields, i: usize, j: usize) -> bool {
+        if fields.sets <= 1 {
+            return true;
+        }
+        let sets = 4 + fields.surfaces..4 + fields.surfaces + fields.sets;
+        let ends = || fields.node(i)[sets.clone()].iter().zip(&fields.node(j)[sets.clone()]);
+        let reach = self.params.water_table_distance;
+        ends().all(|(&a, &b)| a >= 0.0 && b >= 0.0) || ends().all(|(&a, &b)| a <= -reach && b <= -reach)
+    }
+
     /// 1 − P: KarstNSim's C_P, Paris et al.'s relative resistance π.
     fn resistance_at(&self, p: DVec3) -> f64 {
         1.0 - self.geology.potential(p)

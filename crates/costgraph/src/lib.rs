@@ -23,6 +23,6 @@ mod stats;
 pub use build::{build, build_points};
 pub use cost::CostModel;
 pub use error::CostGraphError;
-pub use payload::{CostGraph, CostSet};
+pub use payload::{CostGraph, CostSet, SHARED_ROW};
 pub use stage::CostgraphStage;
 pub use stats::{Histogram, SetStats, Summary, TermStats};

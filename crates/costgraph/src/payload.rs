@@ -1,10 +1,15 @@
 //! The cost graph artifact: directed edges in compressed sparse rows, one or more cost sets.
 //!
-//! Targets are u32 and costs f32: 4 bytes per edge for the target plus 4 per edge and cost
-//! set, plus 4 per node for the row offsets. With one cost set that is 8 bytes per edge (the
-//! design budget is 40). KarstNSim's water-table term differs per water table, so the
-//! karstnsim2024 model stores one cost set per water table named by a spring; paris2021 stores
-//! one set. Set 0 is the default set.
+//! Targets are u32 and costs f32: 4 bytes per edge for the target plus 4 per edge for the first
+//! cost set, plus 4 per node for the row offsets (the design budget is 40 bytes per edge).
+//! KarstNSim's water-table term differs per water table, so the karstnsim2024 model stores one
+//! cost set per water table named by a spring; paris2021 stores one set. Set 0 is the default
+//! set and holds every edge's cost. The later sets differ from it only near the water tables:
+//! above every water table an edge's term depends on its direction alone, far below every one
+//! it is the same constant, so most rows cost the same in every set (85 % of them on the
+//! regional scene). A later set therefore stores only the rows that may differ (`own_rows`),
+//! and the others are read from set 0: on the regional scene 5 sets take 1.0 GB instead of
+//! 3.05 GB.
 
 use serde::{Deserialize, Serialize};
 
@@ -13,26 +18,36 @@ use karst_artifact::{Invalid, Payload, PayloadReader, StageId};
 
 use crate::stats::Summary;
 
+/// In `own_rows`: the row costs the same in every set and is stored in set 0 only.
+pub const SHARED_ROW: u32 = u32::MAX;
+
 /// Directed graph over the samples: the out-edges of sample `i` are
-/// `targets[offsets[i]..offsets[i + 1]]`, with costs at the same indices in every cost set.
+/// `targets[offsets[i]..offsets[i + 1]]`, with their costs in every cost set at
+/// [`CostGraph::row_costs`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CostGraph {
     #[serde(with = "karst_artifact::bulk")]
     pub offsets: Vec<u32>,
     #[serde(with = "karst_artifact::bulk")]
     pub targets: Vec<u32>,
+    /// With several cost sets, one entry per node: where its row starts in the costs of every
+    /// set after the first, or [`SHARED_ROW`] when the row costs the same in every set (set 0
+    /// holds it). Own rows follow each other in node order. Empty with one cost set.
+    #[serde(with = "karst_artifact::bulk")]
+    pub own_rows: Vec<u32>,
     /// At least one cost set; set 0 is the default.
     pub cost_sets: Vec<CostSet>,
     /// Distributions of the edge lengths and of every cost term, for `inspect`.
     pub summary: Summary,
 }
 
-/// The costs of every edge under one water table (or the only set of a model without one).
+/// The costs of the edges under one water table (or the only set of a model without one).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CostSet {
     /// The water table whose C_WT these costs use; None for paris2021.
     pub water_table: Option<String>,
-    /// One cost per edge, > 0.
+    /// Set 0: one cost per edge. A later set: the costs of the own rows only (see
+    /// [`CostGraph::own_rows`]). Every cost > 0.
     #[serde(with = "karst_artifact::bulk")]
     pub costs: Vec<f32>,
     /// The least cost per metre (stored cost / length) of the edges between distinct
@@ -44,10 +59,10 @@ pub struct CostSet {
 
 impl Payload for CostGraph {
     const STAGE: StageId = StageId::Costgraph;
-    const SCHEMA: u32 = 3;
+    const SCHEMA: u32 = 4;
 
     /// Rows that start at 0, never go back and end at the last edge; targets that are nodes;
-    /// at least one cost set, each with one finite cost > 0 per edge and a least cost per metre,
+    /// own rows (with several sets) that follow each other in node order; at least one cost set, each with one finite cost > 0 per edge and a least cost per metre,
     /// when recorded, finite and ≥ 0 (the A* heuristic's factor: NaN or ∞ would misdirect the
     /// searches).
     fn validate(&self) -> Result<(), Invalid> {
@@ -66,8 +81,10 @@ impl Payload for CostGraph {
             check::index(|| format!("targets[{e}]"), self.targets[e] as u64, nodes)?;
         }
         ensure(!self.cost_sets.is_empty(), || "cost_sets".into(), || "is empty: no cost to route on".into())?;
+        let own_edges = self.validate_own_rows()?;
         for (s, set) in self.cost_sets.iter().enumerate() {
-            check::count(|| format!("cost_sets[{s}].costs"), set.costs.len(), self.targets.len())?;
+            let edges = if s == 0 { self.targets.len() } else { own_edges };
+            check::count(|| format!("cost_sets[{s}].costs"), set.costs.len(), edges)?;
             if let Some(e) = set.costs.iter().position(|c| !(*c > 0.0 && c.is_finite())) {
                 return Err(Invalid::new(
                     format!("cost_sets[{s}].costs[{e}]"),
@@ -98,6 +115,7 @@ impl Payload for CostGraph {
 fn read_graph(bytes: &mut PayloadReader) -> Result<CostGraph, String> {
     let offsets = bytes.bulk()?;
     let targets = bytes.bulk()?;
+    let own_rows = bytes.bulk()?;
     // Each set takes at least 3 bytes: the count is bounded by the payload's length, but sets
     // are pushed one by one rather than allocated for a count a corrupted file may inflate.
     let count = bytes.length()?;
@@ -120,7 +138,7 @@ fn read_graph(bytes: &mut PayloadReader) -> Result<CostGraph, String> {
         };
         cost_sets.push(CostSet { water_table, costs, min_cost_per_metre });
     }
-    Ok(CostGraph { offsets, targets, cost_sets, summary: bytes.tail()? })
+    Ok(CostGraph { offsets, targets, own_rows, cost_sets, summary: bytes.tail()? })
 }
 
 /// Whether an option of cost set `s` holds a value (postcard: a byte 0 or 1).
@@ -151,8 +169,58 @@ impl CostGraph {
     /// Out-edges of `node` as (target, cost) in cost set `set`.
     pub fn out_edges_in(&self, set: usize, node: usize) -> impl Iterator<Item = (usize, f32)> + '_ {
         let range = self.offsets[node] as usize..self.offsets[node + 1] as usize;
-        let costs = &self.cost_sets[set].costs[range.clone()];
-        self.targets[range].iter().map(|&t| t as usize).zip(costs.iter().copied())
+        self.targets[range].iter().map(|&t| t as usize).zip(self.row_costs(set, node).iter().copied())
+    }
+
+    /// The costs of `node`'s out-edges in cost set `set`, in the order of its row.
+    #[inline]
+    pub fn row_costs(&self, set: usize, node: usize) -> &[f32] {
+        let (first, last) = (self.offsets[node] as usize, self.offsets[node + 1] as usize);
+        match self.own_start(set, node) {
+            Some(start) => &self.cost_sets[set].costs[start..start + last - first],
+            None => &self.cost_sets[0].costs[first..last],
+        }
+    }
+
+    /// [`CostGraph::row_costs`], to change them (a shared row changes in every set).
+    pub fn row_costs_mut(&mut self, set: usize, node: usize) -> &mut [f32] {
+        let (first, last) = (self.offsets[node] as usize, self.offsets[node + 1] as usize);
+        match self.own_start(set, node) {
+            Some(start) => &mut self.cost_sets[set].costs[start..start + last - first],
+            None => &mut self.cost_sets[0].costs[first..last],
+        }
+    }
+
+    /// Where `node`'s row starts in set `set`'s costs when that set stores it apart.
+    #[inline]
+    fn own_start(&self, set: usize, node: usize) -> Option<usize> {
+        if set == 0 {
+            return None;
+        }
+        self.own_rows.get(node).filter(|&&start| start != SHARED_ROW).map(|&start| start as usize)
+    }
+
+    /// Own rows empty with one set, one per node with several, each starting where the
+    /// previous own row ends; the number of edges the own rows hold.
+    fn validate_own_rows(&self) -> Result<usize, Invalid> {
+        if self.cost_sets.len() <= 1 {
+            check::count(|| "own_rows".into(), self.own_rows.len(), 0)?;
+            return Ok(0);
+        }
+        check::count(|| "own_rows".into(), self.own_rows.len(), self.node_count())?;
+        let mut next = 0usize;
+        for (i, &start) in self.own_rows.iter().enumerate() {
+            if start == SHARED_ROW {
+                continue;
+            }
+            ensure(
+                start as usize == next,
+                || format!("own_rows[{i}]"),
+                || format!("{start}: the previous own rows end at {next}"),
+            )?;
+            next += (self.offsets[i + 1] - self.offsets[i]) as usize;
+        }
+        Ok(next)
     }
 
     /// The cost set to route towards a spring of water table `name`: its own set under
@@ -167,7 +235,13 @@ impl CostGraph {
     /// Bytes the graph's arrays hold in memory (lengths, not capacities).
     pub fn bytes_in_memory(&self) -> usize {
         let costs: usize = self.cost_sets.iter().map(|s| s.costs.len() * 4).sum();
-        self.offsets.len() * 4 + self.targets.len() * 4 + costs
+        (self.offsets.len() + self.targets.len() + self.own_rows.len()) * 4 + costs
+    }
+
+    /// The share of rows that some cost set stores apart (0 with one set).
+    pub fn own_row_share(&self) -> f64 {
+        let own = self.own_rows.iter().filter(|&&s| s != SHARED_ROW).count();
+        own as f64 / self.node_count().max(1) as f64
     }
 
     /// A graph with one cost set from per-node out-edge lists, in node order (tests, tools).
@@ -186,6 +260,7 @@ impl CostGraph {
         CostGraph {
             offsets,
             targets,
+            own_rows: Vec::new(),
             cost_sets: vec![CostSet { water_table: None, costs, min_cost_per_metre: None }],
             summary: Summary::default(),
         }
@@ -203,14 +278,45 @@ mod tests {
         g.cost_sets[0].water_table = Some("high".into());
         g.cost_sets.push(CostSet {
             water_table: Some("low".into()),
-            costs: vec![3.0, 4.0],
+            costs: vec![4.0],
             min_cost_per_metre: None,
         });
+        // Row 0 is the same in both sets, row 1 is stored apart.
+        g.own_rows = vec![SHARED_ROW, 0];
+        assert_eq!(g.validate(), Ok(()));
         assert_eq!(g.cost_set_of_water_table("low"), Some(1));
         assert_eq!(g.cost_set_of_water_table("none"), None);
         assert_eq!(g.out_edges_in(1, 1).collect::<Vec<_>>(), vec![(0, 4.0)]);
+        assert_eq!(g.out_edges_in(1, 0).collect::<Vec<_>>(), vec![(1, 1.0)]);
         assert_eq!(g.out_edges(1).collect::<Vec<_>>(), vec![(0, 2.0)]);
-        assert_eq!(g.bytes_in_memory(), 3 * 4 + 2 * 4 + 2 * 2 * 4);
+        assert_eq!(g.bytes_in_memory(), 3 * 4 + 2 * 4 + 2 * 4 + 3 * 4);
+        assert_eq!(g.own_row_share(), 0.5);
+        g.row_costs_mut(1, 0)[0] = 7.0;
+        assert_eq!(g.row_costs(0, 0), [7.0], "a shared row changes in every set");
+    }
+
+    #[test]
+    fn own_rows_must_follow_each_other_and_fit_the_later_sets() {
+        let mut g = CostGraph::from_lists(vec![vec![(1, 1.0), (2, 1.0)], vec![(0, 2.0)], vec![(0, 3.0)]]);
+        g.cost_sets.push(CostSet {
+            water_table: Some("low".into()),
+            costs: vec![5.0, 6.0],
+            min_cost_per_metre: None,
+        });
+        g.cost_sets[0].water_table = Some("high".into());
+        let with = |own_rows: Vec<u32>| {
+            let mut g = g.clone();
+            g.own_rows = own_rows;
+            g.validate().map_err(|e| format!("{}: {}", e.field, e.problem))
+        };
+        assert_eq!(with(vec![0, SHARED_ROW, SHARED_ROW]), Ok(()));
+        assert_eq!(with(vec![SHARED_ROW, 0, 1]), Ok(()));
+        assert!(with(vec![SHARED_ROW, 1, 0]).unwrap_err().contains("own_rows[1]"));
+        assert!(with(vec![0, 2]).unwrap_err().contains("own_rows: has 2 items, expected 3"));
+        assert!(
+            with(vec![0, SHARED_ROW, 2]).unwrap_err().contains("cost_sets[1].costs: has 2 items, expected 3")
+        );
+        assert!(with(vec![]).is_err(), "two sets need a row map");
     }
 
     #[test]
@@ -218,7 +324,8 @@ mod tests {
         let mut g = CostGraph::from_lists(vec![vec![(1, 1.5), (2, 0.25)], vec![(0, 2.0)], vec![]]);
         g.cost_sets[0].water_table = Some("haut-é".into());
         g.cost_sets[0].min_cost_per_metre = Some(0.125);
-        g.cost_sets.push(CostSet { water_table: None, costs: vec![3.0, 4.0, 5.0], min_cost_per_metre: None });
+        g.cost_sets.push(CostSet { water_table: None, costs: vec![4.0], min_cost_per_metre: None });
+        g.own_rows = vec![SHARED_ROW, 0, SHARED_ROW];
         g.summary.model = "karstnsim2024".into();
         let bytes = postcard::to_stdvec(&g).unwrap();
         let path = std::path::Path::new("costgraph.bin");

@@ -50,6 +50,12 @@ impl Stage for CostgraphStage {
             header.payload_len,
             header.payload_len as f64 / edges
         ));
+        if graph.cost_sets.len() > 1 {
+            lines.push(format!(
+                "own rows  {:.1} % (rows that may differ between cost sets, stored in each; the others in set 0 only)",
+                100.0 * graph.own_row_share()
+            ));
+        }
         if let Some(lengths) = &graph.summary.lengths {
             lines.push(format!("length m  {}", lengths.line()));
         }

@@ -289,3 +289,44 @@ mode = "gamma"
     };
     assert!(k("") == k("forced_links = [[\"a\", \"b\"]]"));
 }
+
+/// A scene over a 100 m cube with three water tables, each named by a spring in `named`.
+fn three_water_tables(named: &[&str]) -> Scene {
+    let tables: String = [("wt-a", 30.0), ("wt-b", 45.0), ("wt-c", 70.0)]
+        .iter()
+        .map(|(name, z)| format!("[[geology.water_tables]]\nname = \"{name}\"\nelevation = {z}\ndip = 5.0\n"))
+        .collect();
+    let springs: String = named
+        .iter()
+        .enumerate()
+        .map(|(i, name)| {
+            format!(
+                "[[keypoints]]\nname = \"s{i}\"\nkind = \"spring\"\nposition = [{}, 2, 1]\nwater_table = \"{name}\"\n",
+                2 + i
+            )
+        })
+        .collect();
+    let text = format!(
+        "name = \"t\"\n[domain]\nmin = [0, 0, 0]\nmax = [100, 100, 100]\n[terrain]\nkind = \"plane\"\nelevation = 100\n{tables}[[keypoints]]\nname = \"a\"\nkind = \"sink\"\nposition = [1, 1, 1]\n{springs}[costgraph]\nk = 20\n"
+    );
+    Scene::parse(&text, Path::new("t.toml")).unwrap()
+}
+
+#[test]
+fn every_cost_set_costs_what_a_graph_of_its_water_table_alone_does() {
+    let points = cloud(8_000, [100.0; 3], [[1.0, 1.0, 1.0], [99.0, 99.0, 99.0]], 6);
+    let all = build_points(&three_water_tables(&["wt-a", "wt-b", "wt-c"]), &points).unwrap();
+    assert_eq!(all.cost_sets.len(), 3);
+    // Rows stored apart near the water tables, shared above and deep below them.
+    let share = all.own_row_share();
+    assert!(share > 0.2 && share < 0.8, "own rows {share}");
+    for (set, name) in ["wt-a", "wt-b", "wt-c"].into_iter().enumerate() {
+        let alone = build_points(&three_water_tables(&[name]), &points).unwrap();
+        assert_eq!(alone.cost_sets.len(), 1);
+        assert!(alone.own_rows.is_empty());
+        for node in 0..all.node_count() {
+            assert_eq!(all.row_costs(set, node), alone.row_costs(0, node), "set {name}, row {node}");
+        }
+        assert_eq!(all.cost_sets[set].min_cost_per_metre, alone.cost_sets[0].min_cost_per_metre);
+    }
+}

@@ -7,15 +7,34 @@ use glam::DVec3;
 use karst_geology::{KeyPointKind, Scene};
 use karst_sdf::{CarvedTerrain, SdfModel};
 
+use std::io::Write;
+
+use karst_stage::ArtifactOut;
+
 use crate::cleanup::{Solid, clean};
 use crate::error::MesherError;
-use crate::payload::Mesh;
-use crate::polygonize::polygonize;
+use crate::payload::{Mesh, SurfaceCounts};
+use crate::polygonize::{polygonize, polygonize_into};
 use crate::simplify::simplify;
+use crate::spilled::SpilledSurface;
 use crate::volume::{Cave, Water};
 
 /// The meshes of `model` under the scene's `[mesher]` cells, the sinks and springs kept open.
 pub fn build(scene: &Scene, model: &SdfModel) -> Result<Mesh, MesherError> {
+    let cave_cell = checked_cells(scene, model)?;
+    let params = scene.mesher();
+    let field = CarvedTerrain::new(model.clone());
+    let mesh = mesh_simplified(&field, params.cell_size, cave_cell, &anchors(scene), params.target_triangles);
+    not_empty(
+        mesh.cell_size,
+        mesh.cave_cell_size,
+        [mesh.terrain.triangles.len(), mesh.cave.triangles.len()],
+    )?;
+    Ok(mesh)
+}
+
+/// The cave cell of the scene's `[mesher]`, once both cells and the work they make are checked.
+fn checked_cells(scene: &Scene, model: &SdfModel) -> Result<f64, MesherError> {
     let params = scene.mesher();
     check_lattice(model, "mesher.cell_size", params.cell_size)?;
     let cave_cell = cave_cell(model, params.cell_size, params.cave_cell_size);
@@ -23,18 +42,75 @@ pub fn build(scene: &Scene, model: &SdfModel) -> Result<Mesh, MesherError> {
     crate::estimate::check(scene, model, params.cell_size, |c| {
         crate::build::cave_cell(model, c, params.cave_cell_size)
     })?;
-    let field = CarvedTerrain::new(model.clone());
-    let mesh = mesh_simplified(&field, params.cell_size, cave_cell, &anchors(scene), params.target_triangles);
-    // Degenerate results are errors: the water may be absent, the rock and the cave may not.
+    Ok(cave_cell)
+}
+
+/// Degenerate results are errors: the water may be absent, the rock and the cave may not.
+fn not_empty(cell_size: f64, cave_cell_size: f64, [terrain, cave]: [usize; 2]) -> Result<(), MesherError> {
     for (surface, field, cell_size, triangles) in [
-        ("terrain", "mesher.cell_size", mesh.cell_size, &mesh.terrain.triangles),
-        ("cave", "mesher.cave_cell_size", mesh.cave_cell_size, &mesh.cave.triangles),
+        ("terrain", "mesher.cell_size", cell_size, terrain),
+        ("cave", "mesher.cave_cell_size", cave_cell_size, cave),
     ] {
-        if triangles.is_empty() {
+        if triangles == 0 {
             return Err(MesherError::Empty { surface, field, cell_size });
         }
     }
-    Ok(mesh)
+    Ok(())
+}
+
+/// [`build`] without holding the meshes: each surface is polygonized into spill files beside
+/// `artifact` (removed after, also on error), cleaned from them, then copied into the artifact
+/// (`spilled.rs`). Returns the counts of the headline. Only for a scene that does not simplify
+/// (`mesher.target_triangles` = 0: the simplification needs the whole surface). The artifact
+/// is byte-identical to the one [`build`]'s mesh makes.
+pub fn write_streamed(
+    scene: &Scene,
+    model: &SdfModel,
+    artifact: &mut ArtifactOut<'_, Mesh>,
+) -> Result<[SurfaceCounts; 3], MesherError> {
+    let cave_cell = checked_cells(scene, model)?;
+    let cell = scene.mesher().cell_size;
+    let field = CarvedTerrain::new(model.clone());
+    let anchors = anchors(scene);
+    let failed = |e: std::io::Error| MesherError::Write(e.to_string());
+    let dir = artifact.path().parent().map_or_else(|| std::path::PathBuf::from("."), |d| d.to_path_buf());
+    let spilled =
+        |volume: &dyn Fn(&mut SpilledSurface) -> std::io::Result<u64>, name, clean: Option<(Solid, f64)>| {
+            let mut surface = SpilledSurface::create(&dir, name, clean.is_some())?;
+            surface.field_evaluations = volume(&mut surface)?;
+            surface.finish()?;
+            if let Some((solid, cell)) = clean {
+                surface.clean(solid, model, &anchors, cell)?;
+            }
+            Ok(surface)
+        };
+    let terrain = spilled(&|s| polygonize_into(&field, cell, s), "terrain", Some((Solid::Rock, cell)))
+        .map_err(failed)?;
+    let cave =
+        spilled(&|s| polygonize_into(&Cave(&field), cave_cell, s), "cave", Some((Solid::Cave, cave_cell)))
+            .map_err(failed)?;
+    let water = spilled(&|s| polygonize_into(&Water(&field), cave_cell, s), "water", None).map_err(failed)?;
+    not_empty(cell, cave_cell, [terrain.triangles() as usize, cave.triangles() as usize])?;
+    artifact
+        .write(|w| {
+            let mut w = std::io::BufWriter::with_capacity(1 << 16, w);
+            w.write_all(&cell.to_le_bytes())?;
+            w.write_all(&cave_cell.to_le_bytes())?;
+            terrain.encode(&mut w, "terrain")?;
+            cave.encode(&mut w, "cave")?;
+            water.encode(&mut w, "water")?;
+            w.flush()
+        })
+        .map_err(|e| {
+            let cause = std::error::Error::source(&e).map(|c| format!(": {c}")).unwrap_or_default();
+            MesherError::Write(format!("{e}{cause}"))
+        })?;
+    Ok([&terrain, &cave, &water].map(|s| SurfaceCounts {
+        triangles: s.triangles(),
+        vertices: s.vertices(),
+        field_evaluations: s.field_evaluations,
+        removed: s.removed,
+    }))
 }
 
 /// The sinks and springs of `scene`: the cleanup keeps the air around them even when it is

@@ -34,7 +34,7 @@ pub enum Solid {
 
 /// What a component is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Verdict {
+pub(crate) enum Verdict {
     Keep,
     Island,
     Pocket,
@@ -45,25 +45,65 @@ pub fn clean(surface: &mut TriMesh, solid: Solid, model: &SdfModel, anchors: &[D
     let (labels, count) = components::label(surface);
     let mut volume = vec![0.0; count];
     let mut reaches = vec![false; count];
-    let near = -0.25 * cell_size;
-    let boundary = |p: DVec3| match solid {
-        Solid::Rock => model.domain.signed_distance(p),
-        Solid::Cave => model.domain.signed_distance(p).max(model.terrain.distance(p)),
-    };
+    let reach = Reach::new(solid, model, cell_size);
     for (t, &c) in surface.triangles.iter().zip(&labels) {
         volume[c as usize] += surface.volume_of(std::iter::once(t));
-        reaches[c as usize] |= t.iter().any(|&v| boundary(surface.position(v)) > near);
+        reaches[c as usize] |= t.iter().any(|&v| reach.reaches(surface.position(v)));
     }
     let holds_anchor = |c: usize| anchors.iter().any(|&a| encloses(surface, &labels, c as u32, a));
-    let verdicts: Vec<Verdict> = (0..count)
-        .map(|c| match (solid, volume[c] > 0.0) {
-            (Solid::Rock, true) if !reaches[c] => Verdict::Island,
-            (Solid::Rock, false) if !holds_anchor(c) => Verdict::Pocket,
-            (Solid::Cave, false) => Verdict::Island,
-            (Solid::Cave, true) if !reaches[c] && !holds_anchor(c) => Verdict::Pocket,
-            _ => Verdict::Keep,
-        })
-        .collect();
+    let verdicts: Vec<Verdict> =
+        (0..count).map(|c| verdict(solid, volume[c], reaches[c], || holds_anchor(c))).collect();
+    surface.removed = removed(&verdicts, &volume);
+    if verdicts.iter().any(|&v| v != Verdict::Keep) {
+        retain(surface, |t| verdicts[labels[t] as usize] == Verdict::Keep);
+    }
+}
+
+/// Whether a vertex lies on the boundary the solid's components must reach to be kept: within
+/// a quarter cell of the domain box (rock), of the box or the ground (cave).
+pub(crate) struct Reach<'m> {
+    solid: Solid,
+    model: &'m SdfModel,
+    near: f64,
+}
+
+impl<'m> Reach<'m> {
+    pub(crate) fn new(solid: Solid, model: &'m SdfModel, cell_size: f64) -> Self {
+        Reach { solid, model, near: -0.25 * cell_size }
+    }
+
+    pub(crate) fn reaches(&self, p: DVec3) -> bool {
+        let boundary = match self.solid {
+            Solid::Rock => self.model.domain.signed_distance(p),
+            Solid::Cave => self.model.domain.signed_distance(p).max(self.model.terrain.distance(p)),
+        };
+        boundary > self.near
+    }
+}
+
+/// The verdict on a component of enclosed `volume` (positive: a piece of the solid, else a
+/// hole in it) that reaches the boundary or not; `holds_anchor` is asked only when it matters.
+pub(crate) fn verdict(solid: Solid, volume: f64, reaches: bool, holds_anchor: impl Fn() -> bool) -> Verdict {
+    match (solid, volume > 0.0) {
+        (Solid::Rock, true) if !reaches => Verdict::Island,
+        (Solid::Rock, false) if !holds_anchor() => Verdict::Pocket,
+        (Solid::Cave, false) => Verdict::Island,
+        (Solid::Cave, true) if !reaches && !holds_anchor() => Verdict::Pocket,
+        _ => Verdict::Keep,
+    }
+}
+
+/// Whether the anchors decide a component's verdict: a hole in the rock, or a piece of cave
+/// that does not reach the boundary.
+pub(crate) fn asks_anchors(solid: Solid, volume: f64, reaches: bool) -> bool {
+    match solid {
+        Solid::Rock => volume <= 0.0,
+        Solid::Cave => volume > 0.0 && !reaches,
+    }
+}
+
+/// What the verdicts remove: counts and volumes, summed in component order.
+pub(crate) fn removed(verdicts: &[Verdict], volume: &[f64]) -> Removed {
     let mut removed = Removed::default();
     for (c, verdict) in verdicts.iter().enumerate() {
         match verdict {
@@ -78,16 +118,13 @@ pub fn clean(surface: &mut TriMesh, solid: Solid, model: &SdfModel, anchors: &[D
             Verdict::Keep => {}
         }
     }
-    surface.removed = removed;
-    if verdicts.iter().any(|&v| v != Verdict::Keep) {
-        retain(surface, |t| verdicts[labels[t] as usize] == Verdict::Keep);
-    }
+    removed
 }
 
 /// Whether component `c` encloses `p`: parity of the crossings of a ray from p. The ray's
 /// direction is irrational in every axis so that it does not run along lattice planes.
 fn encloses(surface: &TriMesh, labels: &[u32], c: u32, p: DVec3) -> bool {
-    let direction = DVec3::new(1.0, 2f64.sqrt() * 1e-3, 3f64.sqrt() * 1e-3).normalize();
+    let direction = ray();
     let crossings = surface
         .triangles
         .iter()
@@ -97,8 +134,13 @@ fn encloses(surface: &TriMesh, labels: &[u32], c: u32, p: DVec3) -> bool {
     crossings % 2 == 1
 }
 
+/// The direction of the rays cast from the anchors.
+pub(crate) fn ray() -> DVec3 {
+    DVec3::new(1.0, 2f64.sqrt() * 1e-3, 3f64.sqrt() * 1e-3).normalize()
+}
+
 /// Möller–Trumbore: does the ray p + s·d, s > 0, cross the triangle?
-fn crosses([a, b, c]: [DVec3; 3], p: DVec3, d: DVec3) -> bool {
+pub(crate) fn crosses([a, b, c]: [DVec3; 3], p: DVec3, d: DVec3) -> bool {
     let (e1, e2) = (b - a, c - a);
     let h = d.cross(e2);
     let det = e1.dot(h);

@@ -42,7 +42,7 @@ fn find(parent: &mut [u32], mut v: u32) -> u32 {
     v
 }
 
-fn union(parent: &mut [u32], a: u32, b: u32) {
+pub(crate) fn union(parent: &mut [u32], a: u32, b: u32) {
     let (ra, rb) = (find(parent, a), find(parent, b));
     // The smaller root wins, so the result does not depend on the order of the unions.
     let (lo, hi) = (ra.min(rb), ra.max(rb));

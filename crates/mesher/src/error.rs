@@ -14,6 +14,9 @@ pub enum MesherError {
          (a terrain steeper than the domain is tall, or conduits thinner than the cell?)"
     )]
     Empty { surface: &'static str, field: &'static str, cell_size: f64 },
+    /// The streamed stage could not write its spill files or its artifact.
+    #[error("cannot write the mesh: {0}")]
+    Write(String),
     #[error(transparent)]
     OverBudget(#[from] karst_geology::budget::OverBudget),
 }
@@ -24,6 +27,7 @@ impl Failure for MesherError {
             MesherError::LatticeTooFine { .. } | MesherError::Empty { .. } | MesherError::OverBudget(_) => {
                 Blame::Scene
             }
+            MesherError::Write(_) => Blame::Internal,
         }
     }
 }

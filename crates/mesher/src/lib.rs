@@ -27,6 +27,8 @@ mod polygonize;
 mod render;
 mod simplify;
 mod sink;
+mod spill;
+mod spilled;
 pub mod stage;
 mod volume;
 pub mod watertight;

@@ -91,7 +91,7 @@ impl TriMesh {
 
     /// Signed volume under a set of triangles: Σ a·(b × c)/6.
     pub fn volume_of<'a>(&self, triangles: impl Iterator<Item = &'a [u32; 3]>) -> f64 {
-        triangles.map(|t| self.position(t[0]).dot(self.normal(t)) / 6.0).sum()
+        triangles.map(|t| signed_volume(t.map(|v| self.position(v)))).sum()
     }
 
     /// Vertex i in double precision.
@@ -108,6 +108,32 @@ impl TriMesh {
     /// Field evaluations per output vertex.
     pub fn evaluations_per_vertex(&self) -> f64 {
         self.field_evaluations as f64 / self.vertices.len().max(1) as f64
+    }
+}
+
+/// The signed volume under one triangle, a·(b × c)/6, written a·((b − a) × (c − a))/6.
+pub fn signed_volume([a, b, c]: [DVec3; 3]) -> f64 {
+    a.dot((b - a).cross(c - a)) / 6.0
+}
+
+/// The figures of one surface that the stage's headline shows, from a [`TriMesh`] or from a
+/// surface written streamed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceCounts {
+    pub triangles: u64,
+    pub vertices: u64,
+    pub field_evaluations: u64,
+    pub removed: Removed,
+}
+
+impl From<&TriMesh> for SurfaceCounts {
+    fn from(s: &TriMesh) -> Self {
+        SurfaceCounts {
+            triangles: s.triangles.len() as u64,
+            vertices: s.vertices.len() as u64,
+            field_evaluations: s.field_evaluations,
+            removed: s.removed,
+        }
     }
 }
 

@@ -8,11 +8,11 @@ use clap::Args;
 use karst_artifact::{Header, StageId, read_artifact};
 use karst_geology::Scene;
 use karst_sdf::SdfModel;
-use karst_stage::{Stage, StageError};
+use karst_stage::{ArtifactOut, Stage, StageError, Written};
 
-use crate::build::build;
+use crate::build::{build, write_streamed};
 use crate::error::MesherError;
-use crate::payload::{Mesh, TriMesh};
+use crate::payload::{Mesh, SurfaceCounts, TriMesh};
 use crate::{components, render, watertight};
 
 /// Stage 7: watertight meshes of the carved terrain, the cave alone and the water.
@@ -29,17 +29,21 @@ impl Stage for MesherStage {
     }
 
     fn headline(_: &Scene, mesh: &Mesh) -> String {
-        let (t, c, w) = (&mesh.terrain, &mesh.cave, &mesh.water);
-        format!(
-            "terrain {} triangles, cave {} triangles, water {} triangles; removed {} islands and {} \
-             pockets; {:.1} evaluations per vertex",
-            t.triangles.len(),
-            c.triangles.len(),
-            w.triangles.len(),
-            t.removed.islands + c.removed.islands,
-            t.removed.pockets + c.removed.pockets,
-            (t.field_evaluations + c.field_evaluations + w.field_evaluations) as f64
-                / (t.vertices.len() + c.vertices.len() + w.vertices.len()).max(1) as f64
+        headline([&mesh.terrain, &mesh.cave, &mesh.water].map(SurfaceCounts::from))
+    }
+
+    /// Streamed unless the scene simplifies its surfaces ([`crate::build::write_streamed`]).
+    fn write_streamed(
+        scene: &Scene,
+        (model,): &(SdfModel,),
+        artifact: &mut ArtifactOut<'_, Mesh>,
+    ) -> Option<Result<Written, MesherError>> {
+        if scene.mesher().target_triangles > 0 {
+            return None;
+        }
+        Some(
+            write_streamed(scene, model, artifact)
+                .map(|counts| Written { headline: headline(counts), notes: Vec::new() }),
         )
     }
 
@@ -53,6 +57,21 @@ impl Stage for MesherStage {
         }
         lines
     }
+}
+
+/// The run's headline: triangles per surface, what the cleanup removed, evaluations per vertex.
+fn headline([t, c, w]: [SurfaceCounts; 3]) -> String {
+    format!(
+        "terrain {} triangles, cave {} triangles, water {} triangles; removed {} islands and {} \
+         pockets; {:.1} evaluations per vertex",
+        t.triangles,
+        c.triangles,
+        w.triangles,
+        t.removed.islands + c.removed.islands,
+        t.removed.pockets + c.removed.pockets,
+        (t.field_evaluations + c.field_evaluations + w.field_evaluations) as f64
+            / (t.vertices + c.vertices + w.vertices).max(1) as f64
+    )
 }
 
 fn surface_summary(name: &str, s: &TriMesh) -> Vec<String> {

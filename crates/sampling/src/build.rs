@@ -7,6 +7,7 @@ use karst_geology::{Scene, Surface};
 use karst_stage::progress;
 
 use crate::error::SamplingError;
+use crate::order::morton_permutation;
 use crate::payload::{Samples, Tag};
 use crate::poisson::Sampler;
 use crate::spacing::SpacingField;
@@ -66,12 +67,22 @@ pub fn build(scene: &Scene) -> Result<Samples, SamplingError> {
     // near the samples themselves.
     let points = std::mem::take(&mut sampler.points);
     drop(sampler);
-    let positions = points.into_iter().map(|p| p.to_array()).collect();
+    let positions: Vec<[f64; 3]> = points.into_iter().map(|p| p.to_array()).collect();
     let mut tags = Vec::with_capacity(sampler_len(&runs));
     for (tag, n) in runs {
         tags.resize(tags.len() + n, tag);
     }
+    // Stored along a space-filling curve, so that the later stages' walks from a sample to
+    // its neighbours stay in cache (see `order.rs`).
+    let order =
+        morton_permutation(&positions, scene.keypoints().len(), (d.min().to_array(), d.max().to_array()));
+    let (positions, tags) = (permuted(positions, &order), permuted(tags, &order));
     Ok(Samples { positions, tags, radius: field.min(), radius_field: field })
+}
+
+/// `values` in the order `order` (a permutation of its indices).
+fn permuted<T: Copy>(values: Vec<T>, order: &[u32]) -> Vec<T> {
+    order.iter().map(|&i| values[i as usize]).collect()
 }
 
 fn sampler_len(runs: &[(Tag, usize)]) -> usize {

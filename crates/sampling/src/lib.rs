@@ -11,6 +11,7 @@
 mod build;
 mod error;
 mod estimate;
+mod order;
 mod payload;
 mod poisson;
 mod spacing;

@@ -36,8 +36,9 @@ pub struct TagCounts {
 /// The point cloud through which conduits can run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Samples {
-    /// Positions `[x, y, z]`, metres. Key points come first, in scene order, then surface
-    /// samples (water tables, horizons, faults), then volume samples.
+    /// Positions `[x, y, z]`, metres. Key points come first, in scene order, then every other
+    /// sample (on the surfaces or in the volume: see `tags`) along a Morton curve through the
+    /// domain, so that neighbours in space are mostly neighbours in the arrays.
     pub positions: Vec<[f64; 3]>,
     /// One tag per position.
     pub tags: Vec<Tag>,

@@ -88,11 +88,12 @@ fn without_dead_ends(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Opt
         // with the per-edge cohesion state) stay those of the full graph.
         let mut open = graph.clone();
         for u in 0..graph.node_count() {
-            for edge in graph.offsets[u] as usize..graph.offsets[u + 1] as usize {
+            let first = graph.offsets[u] as usize;
+            for edge in first..graph.offsets[u + 1] as usize {
                 if closed[u] || closed[graph.targets[edge] as usize] {
-                    for set in &mut open.cost_sets {
-                        set.costs[edge] = f32::INFINITY;
-                        set.min_cost_per_metre = None;
+                    for set in 0..open.cost_sets.len() {
+                        open.row_costs_mut(set, u)[edge - first] = f32::INFINITY;
+                        open.cost_sets[set].min_cost_per_metre = None;
                     }
                 }
             }

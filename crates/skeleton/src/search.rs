@@ -50,13 +50,13 @@ pub trait EdgeCosts: Sync {
     }
 }
 
-/// Costs a search reads straight from the cost graph: edge e costs `costs[e]`, times the
-/// factor of every cohesion layer that marks e, the layers applied in order (as nested
-/// [`Cohesive`]s do, so the products are the same bits).
+/// Costs a search reads straight from the cost graph: edge e costs its cost in cost set `set`,
+/// times the factor of every cohesion layer that marks e, the layers applied in order (as
+/// nested [`Cohesive`]s do, so the products are the same bits).
 #[derive(Clone, Copy)]
 pub struct Direct<'a> {
     pub graph: &'a CostGraph,
-    pub costs: &'a [f32],
+    pub set: usize,
     pub layers: [Option<Layer<'a>>; 2],
 }
 
@@ -75,8 +75,8 @@ impl Layer<'_> {
 }
 
 impl<'a> Direct<'a> {
-    fn plain(graph: &'a CostGraph, costs: &'a [f32]) -> Self {
-        Direct { graph, costs, layers: [None, None] }
+    fn plain(graph: &'a CostGraph, set: usize) -> Self {
+        Direct { graph, set, layers: [None, None] }
     }
 
     /// Calls `f(edge, target, cost)` for every out-edge of `node`, with one loop per number of
@@ -85,7 +85,7 @@ impl<'a> Direct<'a> {
     fn for_each_out(&self, node: usize, mut f: impl FnMut(usize, usize, f64)) {
         let g = self.graph;
         let (first, last) = (g.offsets[node] as usize, g.offsets[node + 1] as usize);
-        let edges = (first..last).zip(g.targets[first..last].iter().zip(&self.costs[first..last]));
+        let edges = (first..last).zip(g.targets[first..last].iter().zip(g.row_costs(self.set, node)));
         match self.layers {
             [None, _] => edges.for_each(|(e, (&t, &c))| f(e, t as usize, f64::from(c))),
             [Some(a), None] => edges.for_each(|(e, (&t, &c))| f(e, t as usize, a.apply(e, f64::from(c)))),
@@ -106,7 +106,7 @@ impl EdgeCosts for CostGraph {
     }
 
     fn direct(&self) -> Option<Direct<'_>> {
-        Some(Direct::plain(self, &self.cost_sets[0].costs))
+        Some(Direct::plain(self, 0))
     }
 
     fn recorded_min_cost_per_metre(&self) -> Option<f64> {
@@ -133,7 +133,7 @@ impl EdgeCosts for CostSetOf<'_> {
     }
 
     fn direct(&self) -> Option<Direct<'_>> {
-        Some(Direct::plain(self.graph, &self.graph.cost_sets[self.set].costs))
+        Some(Direct::plain(self.graph, self.set))
     }
 
     fn recorded_min_cost_per_metre(&self) -> Option<f64> {

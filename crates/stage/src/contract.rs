@@ -6,6 +6,7 @@ use karst_artifact::{Header, Payload, StageId};
 use karst_geology::Scene;
 
 use crate::inputs::Inputs;
+use crate::streamed::{ArtifactOut, Written};
 
 /// One stage of the pipeline. Implemented by a unit type in each stage crate's `stage.rs`;
 /// [`crate::runner::run`] does the rest.
@@ -46,6 +47,21 @@ pub trait Stage: 'static {
         _output: &mut Self::Output,
     ) -> std::io::Result<()> {
         Ok(())
+    }
+
+    /// For a stage whose payload is too large to hold in memory: builds the payload and writes
+    /// it itself through `artifact` ([`ArtifactOut::write`]: the same header, key and atomic
+    /// write as the runner's), then returns the headline and notes. None, the default, when
+    /// the stage returns its payload from [`Stage::build`] for the runner to validate and write
+    /// (a stage may decide per scene: the mesher keeps its surfaces in memory to simplify them).
+    /// A streamed stage writes no side files, and checks what [`karst_artifact::Payload::validate`]
+    /// would as it writes; its timing covers the build and the write.
+    fn write_streamed(
+        _scene: &Scene,
+        _inputs: &Self::Inputs,
+        _artifact: &mut ArtifactOut<'_, Self::Output>,
+    ) -> Option<Result<Written, Self::Error>> {
+        None
     }
 }
 

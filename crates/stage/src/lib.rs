@@ -7,7 +7,8 @@
 //! `inspect` summary. [`runner::run`] does everything around `build` the same way for every
 //! stage: read and check the inputs, time the build, write the side files then the artifact
 //! (atomically, keyed by the scene sections and inputs), and report. [`cli`] turns the same
-//! into a stage binary's `run` and `inspect` subcommands.
+//! into a stage binary's `run` and `inspect` subcommands. A stage whose payload is too large to
+//! hold in memory writes its artifact itself ([`Stage::write_streamed`], [`ArtifactOut`]).
 //!
 //! Library code returns its stage's typed error; only the runner and the command-line layers
 //! turn errors into the [`StageError`] that carries the process exit code (2 for bad input,
@@ -22,8 +23,10 @@ mod inputs;
 pub mod progress;
 pub mod run_dir;
 pub mod runner;
+mod streamed;
 
 pub use contract::{Blame, Failure, Stage};
 pub use error::{Input, StageError};
 pub use inputs::Inputs;
 pub use runner::{Job, Ran};
+pub use streamed::{ArtifactOut, Written};

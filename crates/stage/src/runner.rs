@@ -10,6 +10,7 @@ use karst_geology::Scene;
 use crate::contract::{Blame, Failure, Stage};
 use crate::error::StageError;
 use crate::inputs::Inputs;
+use crate::streamed::ArtifactOut;
 
 /// One run of one stage: the scene (and the file it came from, named in messages) and the
 /// output folder holding the upstream artifacts, where this stage's artifact goes too.
@@ -40,7 +41,9 @@ pub struct Ran {
 
 /// Runs stage `S`: reads and checks its inputs, builds, writes the side files (after removing
 /// an artifact of other parameters that would claim them), checks the payload, then writes the
-/// artifact (atomically, keyed by the scene sections it reads and its inputs' hashes).
+/// artifact (atomically, keyed by the scene sections it reads and its inputs' hashes). A stage
+/// that writes its artifact itself ([`Stage::write_streamed`]) gets its path and provenance
+/// instead, and the runner reports what it returns.
 pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     debug_assert_eq!(S::Inputs::stages(), S::ID.inputs(), "{}: inputs differ from its row", S::ID.name());
     let mut headers = Vec::new();
@@ -59,6 +62,9 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     };
     let path = job.artifact(S::ID);
     let start = Instant::now();
+    if let Some(ran) = run_streamed::<S>(job, &inputs, &path, &provenance, start) {
+        return ran;
+    }
     let mut output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
     invalidate_other(
         &path,
@@ -91,6 +97,30 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     write_artifact(&path, &provenance, &output)?;
     let _ = std::fs::remove_file(previous_artifact(&path));
     Ok(Ran { headline: S::headline(job.scene, &output), seconds, notes: S::notes(&output) })
+}
+
+/// Runs a stage that writes its own artifact ([`Stage::write_streamed`]); None when `S`
+/// returns its payload instead. No side files: nothing to invalidate before the atomic write.
+fn run_streamed<S: Stage>(
+    job: &Job,
+    inputs: &S::Inputs,
+    path: &Path,
+    provenance: &Provenance,
+    start: Instant,
+) -> Option<Result<Ran, StageError>> {
+    let mut artifact = ArtifactOut::new(path, provenance);
+    let written = S::write_streamed(job.scene, inputs, &mut artifact)?;
+    Some(written.map_err(|e| blame(job, &e)).and_then(|written| {
+        if !artifact.written() {
+            return Err(StageError::failure(format!(
+                "{} did not write {}: this is a bug in karstgen",
+                S::ID.name(),
+                path.display()
+            )));
+        }
+        let _ = std::fs::remove_file(previous_artifact(path));
+        Ok(Ran { headline: written.headline, seconds: start.elapsed().as_secs_f64(), notes: written.notes })
+    }))
 }
 
 /// Checks that the inputs were made from one another: a costgraph.bin made from another
