@@ -2,8 +2,11 @@
 //!
 //! A node is a cube of lattice cells. When the field's bound over the node's box is positive
 //! the surface cannot cross it and the whole subtree is skipped; otherwise it is split into
-//! eight until the brick size is reached. The field is 1-Lipschitz, so skipping is exact.
+//! eight until the brick size is reached. The field is 1-Lipschitz, so skipping is exact. The
+//! eight children of a node are bounded together ([`Volume::bounds`]), so that a field that
+//! searches for its nearest primitive gathers the candidates near the node once for the eight.
 
+use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::lattice::Lattice;
@@ -44,9 +47,19 @@ pub fn active_bricks<V: Volume>(
             roots.push(at);
         }
     }
-    let (mut bricks, evaluations) =
-        roots.par_iter().map(|&at| visit(field, lattice, cells, at, THICK)).reduce(|| (Vec::new(), 0), merge);
-    bricks.sort_unstable_by_key(|&b| order_key(b, sweep));
+    let (mut bricks, evaluations) = roots
+        .par_iter()
+        .map(|&at| {
+            let mut found = Vec::new();
+            let Some(node) = node_box(lattice, cells, at, THICK) else { return (found, 0) };
+            if field.bound(node.0, node.1) > 0.0 {
+                return (found, 1);
+            }
+            let evaluations = 1 + split(field, lattice, cells, (at, node), THICK, &mut found);
+            (found, evaluations)
+        })
+        .reduce(|| (Vec::new(), 0), merge);
+    bricks.par_sort_unstable_by_key(|&b| order_key(b, sweep));
     (bricks, evaluations)
 }
 
@@ -59,32 +72,69 @@ fn merge(mut acc: (Vec<[u64; 3]>, u64), (bricks, evaluations): (Vec<[u64; 3]>, u
 /// Nodes at least this many cells wide split their children across threads.
 const PARALLEL: u64 = 8 * BRICK;
 
-fn visit<V: Volume>(
+/// A node: its first cell and its box.
+type Node = ([u64; 3], (DVec3, DVec3));
+
+/// The box of the node of `size` cells at `at`, clipped to the lattice's cells; None when the
+/// node lies beyond them.
+fn node_box(lattice: &Lattice, cells: [u64; 3], at: [u64; 3], size: u64) -> Option<(DVec3, DVec3)> {
+    if (0..3).any(|a| at[a] >= cells[a]) {
+        return None;
+    }
+    let end = [0, 1, 2].map(|a| (at[a] + size).min(cells[a]));
+    Some((lattice.point(at), lattice.point(end)))
+}
+
+/// Adds to `found` the bricks under `node` (of `size` cells, which the surface may cross): its
+/// children are bounded together (one gathering of the field's candidates for the node's
+/// box), and those the surface may cross are split in turn. Returns the evaluations spent.
+fn split<V: Volume>(
     field: &V,
     lattice: &Lattice,
     cells: [u64; 3],
-    at: [u64; 3],
+    (at, node): Node,
     size: u64,
-) -> (Vec<[u64; 3]>, u64) {
-    if (0..3).any(|a| at[a] >= cells[a]) {
-        return (Vec::new(), 0);
-    }
-    let end = [0, 1, 2].map(|a| (at[a] + size).min(cells[a]));
-    let lo = lattice.point(at);
-    let hi = lattice.point(end);
-    if field.bound(lo, hi) > 0.0 {
-        return (Vec::new(), 1);
-    }
+    found: &mut Vec<[u64; 3]>,
+) -> u64 {
     if size <= BRICK {
-        return (vec![at], 1);
+        found.push(at);
+        return 0;
     }
     let half = size / 2;
-    let children: Vec<[u64; 3]> = (0..8u64).map(|c| [0, 1, 2].map(|a| at[a] + half * (c >> a & 1))).collect();
-    let visit_child = |&child: &[u64; 3]| visit(field, lattice, cells, child, half);
-    let (bricks, evaluations) = if size >= PARALLEL {
-        children.par_iter().map(visit_child).reduce(|| (Vec::new(), 0), merge)
+    let mut children = [([0; 3], (DVec3::ZERO, DVec3::ZERO)); 8];
+    let mut n = 0;
+    for c in 0..8u64 {
+        let child = [0, 1, 2].map(|a| at[a] + half * (c >> a & 1));
+        if let Some(b) = node_box(lattice, cells, child, half) {
+            children[n] = (child, b);
+            n += 1;
+        }
+    }
+    let boxes: [(DVec3, DVec3); 8] = std::array::from_fn(|c| children[c].1);
+    let mut bounds = [0.0; 8];
+    field.bounds(node.0, node.1, &boxes[..n], &mut bounds[..n]);
+    // Kept unless the bound is positive (as a NaN bound is).
+    let kept = |b: f64| b.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater);
+    let crossed = children[..n].iter().zip(bounds).filter(|&(_, b)| kept(b)).map(|(&child, _)| child);
+    let mut evaluations = n as u64;
+    if size >= PARALLEL {
+        let crossed: Vec<Node> = crossed.collect();
+        let below: Vec<(Vec<[u64; 3]>, u64)> = crossed
+            .into_par_iter()
+            .map(|child| {
+                let mut bricks = Vec::new();
+                let spent = split(field, lattice, cells, child, half, &mut bricks);
+                (bricks, spent)
+            })
+            .collect();
+        for (bricks, spent) in below {
+            found.extend(bricks);
+            evaluations += spent;
+        }
     } else {
-        children.iter().map(visit_child).fold((Vec::new(), 0), merge)
-    };
-    (bricks, evaluations + 1)
+        for child in crossed {
+            evaluations += split(field, lattice, cells, child, half, found);
+        }
+    }
+    evaluations
 }

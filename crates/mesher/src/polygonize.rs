@@ -54,7 +54,8 @@ const EDGE_SLOTS: usize = 3 * N * N * N;
 const SLOTS: usize = EDGE_SLOTS + 2 * B * B * B;
 
 /// A vertex as a brick sees it: its owner (0: itself, else the neighbour's offset bits
-/// x + 2y + 4z, each a step of BRICK) above bit 9, the edge's slot in its owner below.
+/// x + 2y + 4z, each a step of BRICK) above bit 9, the edge's slot in its owner below (once
+/// the brick is done, its own vertices' rank among its vertices instead).
 type VertexRef = u16;
 const SLOT_BITS: u32 = 9;
 
@@ -135,6 +136,19 @@ impl<T> Window<T> {
     }
 }
 
+impl<T: Send + 'static> Window<T> {
+    /// [`Window::keep_from`] for data that own heap memory: they are freed on a worker thread,
+    /// while the calling thread goes on handing the mesh over.
+    fn release_from(&mut self, first: usize) {
+        let n = first.saturating_sub(self.first).min(self.items.len());
+        let gone: Vec<T> = self.items.drain(..n).collect();
+        self.first += n;
+        if !gone.is_empty() {
+            rayon::spawn(move || drop(gone));
+        }
+    }
+}
+
 impl<T> Index<usize> for Window<T> {
     type Output = T;
 
@@ -192,7 +206,9 @@ fn polygonize_with<V: Volume, S: MeshSink>(
     let (mut live, mut own, mut parts) = (Window::new(), Window::new(), Window::new());
     let mut evaluations = 0;
     let mut vertices = 0u32;
-    let mut buffer = (Vec::new(), Vec::new());
+    // The triangles of the last slab resolved; handed over while the workers run the next
+    // step's first pass (the sink sees the same calls in the same order).
+    let (mut resolved, mut pending) = (Vec::new(), false);
     for t in 0.. {
         evaluations += found.reach(field, &lattice, t);
         bar.set_position(found.searched.min(length));
@@ -201,18 +217,23 @@ fn polygonize_with<V: Volume, S: MeshSink>(
         }
         let (bricks, slab) = (&found.bricks, |s: Option<usize>| s.and_then(|s| found.slabs.get(s)).cloned());
         if let Some(r) = slab(Some(t)) {
-            let (s, c): (Vec<Seeds>, Vec<Seeds>) =
-                r.clone().into_par_iter().map(|b| seed_values(field, &lattice, bricks[b])).unzip();
+            let mut evaluated = None;
+            rayon::in_place_scope(|scope| {
+                scope.spawn(|_| {
+                    let values =
+                        r.clone().into_par_iter().map(|b| seed_values(field, &lattice, bricks[b])).unzip();
+                    evaluated = Some(values);
+                });
+                hand_over(sink, &resolved, &mut pending)
+            })?;
+            let (s, c): (Vec<Seeds>, Vec<Seeds>) = evaluated.expect("the scope waits for its task");
             seeds.push(r.start, s);
             centres.push(r.start, c);
-            up.push(r.start, r.clone().into_par_iter().map(|b| neighbours(bricks, sweep, b, true)).collect());
+            up.push(r.start, slab_neighbours(bricks, sweep, r.clone(), true));
         }
         let previous = slab(t.checked_sub(1));
         if let Some(r) = &previous {
-            down.push(
-                r.start,
-                r.clone().into_par_iter().map(|b| neighbours(bricks, sweep, b, false)).collect(),
-            );
+            down.push(r.start, slab_neighbours(bricks, sweep, r.clone(), false));
         }
         let ctx = Context {
             field,
@@ -229,7 +250,11 @@ fn polygonize_with<V: Volume, S: MeshSink>(
             // The cells of each brick that the seeds and centres do not prove uniform, bit
             // local(i, j, k); then the values each brick needs among its points.
             live.push(r.start, r.clone().into_par_iter().map(|b| live_cells(&ctx, b)).collect());
-            let values: Vec<Own> = r.clone().into_par_iter().map(|b| own_values(&ctx, &live, b)).collect();
+            let values: Vec<Own> = r
+                .clone()
+                .into_par_iter()
+                .map_init(Scratch::default, |scratch, b| own_values(&ctx, &live, b, scratch))
+                .collect();
             // Seeds and centres are in the own values too.
             evaluations += values.iter().map(|o| o.values.len() as u64).sum::<u64>();
             own.push(r.start, values);
@@ -240,19 +265,22 @@ fn polygonize_with<V: Volume, S: MeshSink>(
                 .into_par_iter()
                 .map_init(Scratch::default, |scratch, b| brick(&ctx, &own, live[b], b, scratch))
                 .collect();
-            buffer.0.clear();
             for part in &mut made {
                 part.base = vertices;
                 vertices += part.slots.len() as u32;
                 evaluations += part.evaluations;
-                buffer.0.extend(std::mem::take(&mut part.positions));
             }
-            sink.vertices(&buffer.0)?;
+            // Gathered (and the bricks' positions freed) by the workers, in brick order.
+            let positions: Vec<[f32; 3]> =
+                made.par_iter_mut().flat_map_iter(|part| std::mem::take(&mut part.positions)).collect();
+            hand_over(sink, &resolved, &mut pending)?;
+            sink.vertices(&positions)?;
             parts.push(r.start, made);
         }
         if let Some(r) = slab(t.checked_sub(3)) {
-            weld(&parts, r, &mut buffer.1);
-            sink.triangles(&buffer.1)?;
+            hand_over(sink, &resolved, &mut pending)?;
+            weld(&parts, r, &mut resolved);
+            pending = true;
         }
         // What the next step reads: seeds and centres of this slab, upper neighbours, live
         // cells and own values of the previous one, the parts of the one before.
@@ -262,13 +290,19 @@ fn polygonize_with<V: Volume, S: MeshSink>(
         down.keep_from(first(t));
         up.keep_from(first(t.saturating_sub(1)));
         live.keep_from(first(t.saturating_sub(1)));
-        own.keep_from(first(t.saturating_sub(1)));
-        parts.keep_from(first(t.saturating_sub(2)));
+        own.release_from(first(t.saturating_sub(1)));
+        parts.release_from(first(t.saturating_sub(2)));
         let keep = first(t.saturating_sub(1));
         found.bricks.keep_from(keep);
     }
+    hand_over(sink, &resolved, &mut pending)?;
     bar.finish_and_clear();
     Ok(evaluations)
+}
+
+/// Hands the resolved triangles over to `sink` unless they already were.
+fn hand_over<S: MeshSink>(sink: &mut S, resolved: &[[u32; 3]], pending: &mut bool) -> Result<(), S::Error> {
+    if std::mem::take(pending) { sink.triangles(resolved) } else { Ok(()) }
 }
 
 /// The active bricks, found by the octree one thick slab at a time just ahead of the front.
@@ -307,27 +341,42 @@ impl Found {
     }
 }
 
-/// Indices of the active bricks next to brick `b`, above it (`upper`) or below it.
-fn neighbours(bricks: &Window<[u64; 3]>, sweep: usize, b: usize, upper: bool) -> Neighbours {
-    let at = bricks[b];
-    std::array::from_fn(|o| {
-        let bits = o + 1;
-        let mut q = at;
-        for (a, x) in q.iter_mut().enumerate() {
-            let step = BRICK * (bits >> a & 1) as u64;
-            *x = if upper {
-                *x + step
-            } else {
-                match x.checked_sub(step) {
-                    Some(v) => v,
-                    None => return u32::MAX,
+/// Indices of the active bricks next to each brick of `slab`, above them (`upper`) or below.
+///
+/// Adding an offset to every brick keeps their order (the order key is lexicographic), so the
+/// neighbours at one offset are found by one walk along the bricks held, whose position only
+/// moves forward: linear in the bricks, where a search per brick and offset was logarithmic.
+fn slab_neighbours(
+    bricks: &Window<[u64; 3]>,
+    sweep: usize,
+    slab: Range<usize>,
+    upper: bool,
+) -> Vec<Neighbours> {
+    let end = bricks.first + bricks.items.len();
+    let columns: Vec<Vec<u32>> = (1..8usize)
+        .into_par_iter()
+        .map(|bits| {
+            let shift = |at: [u64; 3]| -> Option<[u64; 4]> {
+                let mut q = at;
+                for (a, x) in q.iter_mut().enumerate() {
+                    let step = BRICK * (bits >> a & 1) as u64;
+                    *x = if upper { *x + step } else { x.checked_sub(step)? };
                 }
+                Some(order_key(q, sweep))
             };
-        }
-        let key = order_key(q, sweep);
-        let found = bricks.items.binary_search_by_key(&key, |&c| order_key(c, sweep));
-        found.map_or(u32::MAX, |n| (bricks.first + n) as u32)
-    })
+            let mut j = if upper { slab.start } else { bricks.first };
+            slab.clone()
+                .map(|b| {
+                    let Some(key) = shift(bricks[b]) else { return u32::MAX };
+                    while j < end && order_key(bricks[j], sweep) < key {
+                        j += 1;
+                    }
+                    if j < end && order_key(bricks[j], sweep) == key { j as u32 } else { u32::MAX }
+                })
+                .collect()
+        })
+        .collect();
+    (0..slab.len()).map(|i| std::array::from_fn(|o| columns[o][i])).collect()
 }
 
 /// What the passes over the bricks share.
@@ -352,51 +401,6 @@ impl<V> Context<'_, V> {
         } else {
             Some(self.up[b][bits - 1]).filter(|&n| n != u32::MAX).map(|n| n as usize)
         }
-    }
-
-    /// The seed of the cell at `c` (lattice cell coordinates, a cell of brick `b` or of a brick
-    /// above it): its corner of even coordinates, owned by b or a brick above it (None when that
-    /// brick is inactive).
-    fn seed(&self, b: usize, c: [u64; 3]) -> Option<f64> {
-        let at = self.bricks[b];
-        let e = c.map(|x| x + (x & 1));
-        let bits = (0..3).fold(0, |m, a| m | (((e[a] - at[a]) / BRICK) as usize) << a);
-        let owner = self.above(b, bits)?;
-        Some(self.seeds[owner][(0..3).fold(0, |m, a| m | ((e[a] % BRICK / 2) as usize) << a)])
-    }
-
-    /// Whether the seed alone proves the cell at `c` uniform.
-    fn seed_proves(&self, b: usize, c: [u64; 3]) -> bool {
-        self.lazy && self.seed(b, c).is_some_and(|v| v.abs() > DIAGONAL * self.lattice.cell)
-    }
-
-    /// Whether the seed and the centre of the cell at `c` (a cell of brick `b`, which owns its
-    /// centre) prove it uniform: each of the six other corners gets its sign from the seed or
-    /// the centre, and those agree.
-    fn uniform(&self, b: usize, c: [u64; 3]) -> bool {
-        if !self.lazy {
-            return false;
-        }
-        if self.seed_proves(b, c) {
-            return true;
-        }
-        let at = self.bricks[b];
-        let o = c.map(|x| x + ((x & 1) ^ 1));
-        let centre = self.centres[b][(0..3).fold(0, |m, a| m | (((o[a] - at[a]) / 2) as usize) << a)];
-        let cell = self.lattice.cell;
-        if centre.is_nan() {
-            return false;
-        }
-        if centre.abs() > DIAGONAL * cell {
-            return true;
-        }
-        let Some(seed) = self.seed(b, c) else { return false };
-        if (seed < 0.0) != (centre < 0.0) {
-            return false;
-        }
-        // Corners one cell from the seed are √2 from the centre, and the other way round.
-        let (s, t) = (seed.abs() / cell, centre.abs() / cell);
-        s > FACE || t > FACE || (s > EDGE && t > EDGE)
     }
 }
 
@@ -431,11 +435,22 @@ fn seed_values<V: Volume>(field: &V, lattice: &Lattice, at: [u64; 3]) -> (Seeds,
 fn live_cells<V>(ctx: &Context<'_, V>, b: usize) -> u64 {
     let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
     let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - 1 - at[a]) as usize);
+    // The seeds of the brick's cells, at local coordinates 0, 2 and 4 along each axis (4: the
+    // first seed of the brick above), None where that brick is inactive.
+    let seeds: [Option<f64>; 27] = std::array::from_fn(|s| {
+        let e = [s % 3, s / 3 % 3, s / 9];
+        let bits = (0..3).fold(0, |m, a| m | (e[a] / 2) << a);
+        let owner = ctx.above(b, bits)?;
+        Some(ctx.seeds[owner][(0..3).fold(0, |m, a| m | (e[a] % 2) << a)])
+    });
+    let centres = &ctx.centres[b];
     let mut live = 0u64;
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
-                if !ctx.uniform(b, [at[0] + i as u64, at[1] + j as u64, at[2] + k as u64]) {
+                let seed = seeds[i.div_ceil(2) + 3 * j.div_ceil(2) + 9 * k.div_ceil(2)];
+                let centre = centres[(i / 2) | (j / 2) << 1 | (k / 2) << 2];
+                if !(ctx.lazy && uniform(seed, centre, lattice.cell)) {
                     live |= 1 << local(i, j, k);
                 }
             }
@@ -444,74 +459,130 @@ fn live_cells<V>(ctx: &Context<'_, V>, b: usize) -> u64 {
     live
 }
 
+/// Whether a cell's seed and centre prove it uniform: each of the six other corners gets its
+/// sign from the seed or the centre, and those agree (None: the seed's brick is inactive).
+fn uniform(seed: Option<f64>, centre: f64, cell: f64) -> bool {
+    if seed.is_some_and(|v| v.abs() > DIAGONAL * cell) {
+        return true;
+    }
+    if centre.is_nan() {
+        return false;
+    }
+    if centre.abs() > DIAGONAL * cell {
+        return true;
+    }
+    let Some(seed) = seed else { return false };
+    if (seed < 0.0) != (centre < 0.0) {
+        return false;
+    }
+    // Corners one cell from the seed are √2 from the centre, and the other way round.
+    let (s, t) = (seed.abs() / cell, centre.abs() / cell);
+    s > FACE || t > FACE || (s > EDGE && t > EDGE)
+}
+
+/// Bits of the 4³ local points (or cells) whose coordinate along `axis` is 0.
+const fn plane_zero(axis: usize) -> u64 {
+    let mut mask = 0u64;
+    let mut l = 0;
+    while l < OWN {
+        let x = [l % B, l / B % B, l / (B * B)][axis];
+        if x == 0 {
+            mask |= 1 << l;
+        }
+        l += 1;
+    }
+    mask
+}
+
+const PLANE_ZERO: [u64; 3] = [plane_zero(0), plane_zero(1), plane_zero(2)];
+/// Local bit strides of the three axes.
+const STRIDE: [u32; 3] = [1, B as u32, (B * B) as u32];
+
+/// The points of even and of odd local coordinates: the seeds and the centres.
+const SEEDS_AND_CENTRES: u64 = {
+    let mut mask = 0u64;
+    let mut l = 0;
+    while l < OWN {
+        let (i, j, k) = (l % B, l / B % B, l / (B * B));
+        if (i % 2 == 0 && j % 2 == 0 && k % 2 == 0) || (i % 2 == 1 && j % 2 == 1 && k % 2 == 1) {
+            mask |= 1 << l;
+        }
+        l += 1;
+    }
+    mask
+};
+
+/// The points that are corners of the cells in `cells` (bits local(i, j, k) of one brick),
+/// among the points of that brick, moving only along the axes in `axes` (bits x + 2y + 4z).
+fn corners_within(cells: u64, axes: usize) -> u64 {
+    (0..3).filter(|a| axes >> a & 1 == 1).fold(cells, |m, a| m | ((m << STRIDE[a]) & !PLANE_ZERO[a]))
+}
+
+/// The points of brick `b` that are corners of live cells, its own or its lower neighbours'
+/// (a cell of the neighbour below along the axes `bits` touches b only through its last plane
+/// along them, which lands on b's first plane).
+fn corners_of_live_cells(ctx: &Context<'_, impl Sized>, live: &Window<u64>, b: usize) -> u64 {
+    let mut points = corners_within(live[b], 7);
+    for bits in 1..8usize {
+        let n = ctx.down[b][bits - 1];
+        if n == u32::MAX {
+            continue;
+        }
+        let moved = (0..3)
+            .filter(|a| bits >> a & 1 == 1)
+            .fold(live[n as usize], |m, a| (m >> (STRIDE[a] * (B as u32 - 1))) & PLANE_ZERO[a]);
+        points |= corners_within(moved, 7 & !bits);
+    }
+    points
+}
+
 /// The values brick `b` needs among the points it owns, [at, at + 4)³: its seeds, and every
 /// corner of a cell that the octree keeps (its brick is active) and no seed proves uniform.
 /// Any brick polygonizing such a cell finds these values here.
-fn own_values<V: Volume>(ctx: &Context<'_, V>, live: &Window<u64>, b: usize) -> Own {
+fn own_values<V: Volume>(ctx: &Context<'_, V>, live: &Window<u64>, b: usize, scratch: &mut Scratch) -> Own {
     let (lattice, at) = (ctx.lattice, ctx.bricks[b]);
-    let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - at[a]) as usize);
-    let cells = lattice.dims.map(|d| d - 1);
-    let mut mask = 0u64;
-    let mut points = Vec::new();
-    for k in 0..size[2] {
-        for j in 0..size[1] {
-            for i in 0..size[0] {
-                let l = [i, j, k];
-                if l.iter().all(|x| x % 2 == 0) || l.iter().all(|x| x % 2 == 1) {
-                    continue;
-                }
-                let p = [0, 1, 2].map(|a| at[a] + l[a] as u64);
-                let needed = (0..8usize).any(|d| {
-                    let step = |a: usize| (d >> a & 1) as u64;
-                    if (0..3).any(|a| p[a] < step(a) || p[a] - step(a) >= cells[a]) {
-                        return false;
-                    }
-                    // The cell's brick: b, or one below it where the cell leaves b.
-                    let below = (0..3).fold(0, |m, a| m | ((l[a] < step(a) as usize) as usize) << a);
-                    let cell_brick = if below == 0 {
-                        b
-                    } else {
-                        match ctx.down[b][below - 1] {
-                            u32::MAX => return false,
-                            n => n as usize,
-                        }
-                    };
-                    let c = [0, 1, 2].map(|a| (l[a] + B - step(a) as usize) % B);
-                    live[cell_brick] >> local(c[0], c[1], c[2]) & 1 == 1
-                });
-                if needed {
-                    mask |= 1 << local(i, j, k);
-                    points.push(lattice.point(p));
-                }
-            }
-        }
-    }
-    let mut found = Vec::with_capacity(points.len());
-    if !points.is_empty() {
-        let end = [0, 1, 2].map(|a| at[a] + size[a] as u64 - 1);
-        ctx.field.eval_block(lattice.point(at), lattice.point(end), ctx.reach, &points, &mut found);
-    }
-    // Merge the seeds in, in bit order.
     let (seeds, centres) = (&ctx.seeds[b], &ctx.centres[b]);
-    let mut next = found.into_iter();
-    let mut values = Vec::new();
-    for l in 0..OWN {
+    // Live cells lie inside the lattice, and so do their corners.
+    let evaluated = corners_of_live_cells(ctx, live, b) & !SEEDS_AND_CENTRES;
+    let Scratch { points, found, .. } = scratch;
+    points.clear();
+    let mut bits = evaluated;
+    while bits != 0 {
+        let l = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
+        points.push(lattice.point([
+            at[0] + (l % B) as u64,
+            at[1] + (l / B % B) as u64,
+            at[2] + (l / (B * B)) as u64,
+        ]));
+    }
+    found.clear();
+    if !points.is_empty() {
+        let size = [0, 1, 2].map(|a| BRICK.min(lattice.dims[a] - at[a]));
+        let end = [0, 1, 2].map(|a| at[a] + size[a] - 1);
+        ctx.field.eval_block(lattice.point(at), lattice.point(end), ctx.reach, points, found);
+    }
+    // Merge the seeds and centres in, in bit order.
+    let mut mask = evaluated;
+    for s in 0..8 {
+        let l = local(2 * (s & 1), (s >> 1 & 1) * 2, (s >> 2 & 1) * 2);
+        mask |= (!seeds[s].is_nan() as u64) << l | (!centres[s].is_nan() as u64) << (l + 1 + B + B * B);
+    }
+    let mut next = found.iter();
+    let mut values = Vec::with_capacity(mask.count_ones() as usize);
+    let mut bits = mask;
+    while bits != 0 {
+        let l = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
         let (i, j, k) = (l % B, l / B % B, l / (B * B));
-        if i % 2 == 0 && j % 2 == 0 && k % 2 == 0 {
-            let v = seeds[(i / 2) | ((j / 2) << 1) | ((k / 2) << 2)];
-            if !v.is_nan() {
-                mask |= 1 << l;
-                values.push(v);
-            }
-        } else if i % 2 == 1 && j % 2 == 1 && k % 2 == 1 {
-            let v = centres[(i / 2) | ((j / 2) << 1) | ((k / 2) << 2)];
-            if !v.is_nan() {
-                mask |= 1 << l;
-                values.push(v);
-            }
-        } else if mask >> l & 1 == 1 {
-            values.push(next.next().expect("one value per point"));
-        }
+        let s = (i / 2) | ((j / 2) << 1) | ((k / 2) << 2);
+        values.push(if evaluated >> l & 1 == 1 {
+            *next.next().expect("one value per point")
+        } else if i % 2 == 0 {
+            seeds[s]
+        } else {
+            centres[s]
+        });
     }
     Own { mask, values }
 }
@@ -527,6 +598,7 @@ struct Scratch {
     found: Vec<f64>,
     positions: Vec<(u16, [f32; 3])>,
     triangles: Vec<[VertexRef; 3]>,
+    rank: Vec<u16>,
 }
 
 fn brick<V: Volume>(
@@ -540,8 +612,17 @@ fn brick<V: Volume>(
     let n = N;
     let size = [0, 1, 2].map(|a| (BRICK + 1).min(lattice.dims[a] - at[a]) as usize);
     let index = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
-    let Scratch { values, needed, made, missing, points, found, positions: positions_by_slot, triangles } =
-        scratch;
+    let Scratch {
+        values,
+        needed,
+        made,
+        missing,
+        points,
+        found,
+        positions: positions_by_slot,
+        triangles,
+        rank,
+    } = scratch;
     // The corners of the live cells.
     needed.clear();
     needed.resize(n * n * n, false);
@@ -559,6 +640,7 @@ fn brick<V: Volume>(
     values.clear();
     values.resize(n * n * n, f64::NAN);
     missing.clear();
+    let owners: [Option<&Own>; 8] = std::array::from_fn(|bits| ctx.above(b, bits).map(|o| &own[o]));
     for k in 0..size[2] {
         for j in 0..size[1] {
             for i in 0..size[0] {
@@ -566,11 +648,10 @@ fn brick<V: Volume>(
                     continue;
                 }
                 let bits = (i / B) | (j / B) << 1 | (k / B) << 2;
-                match ctx.above(b, bits) {
+                match owners[bits] {
                     Some(o) => {
-                        values[index(i, j, k)] = own[o]
-                            .get(local(i % B, j % B, k % B))
-                            .expect("the owner evaluated a needed point")
+                        values[index(i, j, k)] =
+                            o.get(local(i % B, j % B, k % B)).expect("the owner evaluated a needed point")
                     }
                     None => missing.push((i, j, k)),
                 }
@@ -599,6 +680,8 @@ fn brick<V: Volume>(
     // is crossed by the surface, so its brick is active and makes the vertex; relative to any
     // other cell of the edge it is this brick or an upper neighbour.
     let last = [0, 1, 2].map(|a| lattice.dims[a] - 1);
+    // Away from the lattice's last points the references depend only on the cell and the edge.
+    let interior = (0..3).all(|d| at[d] + BRICK < last[d]).then(interior_refs);
     made.clear();
     made.resize(SLOTS, false);
     positions_by_slot.clear();
@@ -611,10 +694,8 @@ fn brick<V: Volume>(
                     continue;
                 }
                 let corner = |c: usize| [i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1)];
-                let v: [f64; 8] = std::array::from_fn(|c| {
-                    let [x, y, z] = corner(c);
-                    values[index(x, y, z)]
-                });
+                let first = index(i, j, k);
+                let v: [f64; 8] = std::array::from_fn(|c| values[first + CORNER_OFFSETS[c]]);
                 let case = (0..8).fold(0usize, |m, c| m | ((v[c] < 0.0) as usize) << c);
                 if case == 0 || case == 255 {
                     continue;
@@ -646,26 +727,33 @@ fn brick<V: Volume>(
                             }
                             return slot as u16;
                         }
-                        let (a, c) = EDGES[e];
-                        let axis = (c - a).trailing_zeros() as usize;
-                        let q = corner(a);
-                        let cell = |d: usize| {
-                            if d != axis && at[d] + q[d] as u64 == last[d] { q[d] - 1 } else { q[d] }
+                        let r = match interior {
+                            Some(refs) => refs[local(i, j, k) * 12 + e],
+                            None => edge_ref(corner(EDGES[e].0), e, at, last),
                         };
-                        let bits = (cell(0) / B) | (cell(1) / B) << 1 | (cell(2) / B) << 2;
-                        let o = [0, 1, 2].map(|d| q[d] - B * (bits >> d & 1));
-                        let slot = axis * N * N * N + (o[2] * N + o[1]) * N + o[0];
-                        if bits == 0 && !made[slot] {
+                        let slot = (r & ((1 << SLOT_BITS) - 1)) as usize;
+                        if r >> SLOT_BITS == 0 && !made[slot] {
                             made[slot] = true;
                             positions_by_slot.push((slot as u16, edge_position(e).as_vec3().to_array()));
                         }
-                        ((bits as u16) << SLOT_BITS) | slot as u16
+                        r
                     }));
                 }
             }
         }
     }
     positions_by_slot.sort_unstable_by_key(|&(slot, _)| slot);
+    // The brick's own vertices are named by their rank from here on: the weld only searches
+    // the slots of the neighbours'.
+    rank.resize(SLOTS, 0);
+    for (r, &(slot, _)) in positions_by_slot.iter().enumerate() {
+        rank[slot as usize] = r as u16;
+    }
+    for r in triangles.iter_mut().flatten() {
+        if *r >> SLOT_BITS == 0 {
+            *r = rank[*r as usize];
+        }
+    }
     BrickPart {
         slots: positions_by_slot.iter().map(|&(s, _)| s).collect(),
         positions: positions_by_slot.iter().map(|&(_, p)| p).collect(),
@@ -677,13 +765,50 @@ fn brick<V: Volume>(
     }
 }
 
+/// Offsets in a brick's corner values (x fastest, N per row) of the 8 corners of a cell from its
+/// first one, by corner bits x + 2y + 4z.
+const CORNER_OFFSETS: [usize; 8] = [0, 1, N, N + 1, N * N, N * N + 1, N * N + N, N * N + N + 1];
+
+/// The vertex on cell edge `e` whose lower point is `q` (local to the brick at `at`; `last`: the
+/// lattice's last point on each axis): owned by the brick of the edge's canonical cell, the
+/// highest of the cells around the edge (lower on an axis where the edge lies on the lattice's
+/// last plane), which is this brick or an upper neighbour.
+fn edge_ref(q: [usize; 3], e: usize, at: [u64; 3], last: [u64; 3]) -> VertexRef {
+    let (a, c) = EDGES[e];
+    let axis = (c - a).trailing_zeros() as usize;
+    let cell = |d: usize| if d != axis && at[d] + q[d] as u64 == last[d] { q[d] - 1 } else { q[d] };
+    let bits = (cell(0) / B) | (cell(1) / B) << 1 | (cell(2) / B) << 2;
+    let o = [0, 1, 2].map(|d| q[d] - B * (bits >> d & 1));
+    let slot = axis * N * N * N + (o[2] * N + o[1]) * N + o[0];
+    ((bits as u16) << SLOT_BITS) | slot as u16
+}
+
+/// [`edge_ref`] of every edge of every cell of a brick away from the lattice's last points, by
+/// local(i, j, k) · 12 + edge.
+fn interior_refs() -> &'static [VertexRef] {
+    static REFS: std::sync::OnceLock<Vec<VertexRef>> = std::sync::OnceLock::new();
+    REFS.get_or_init(|| {
+        (0..OWN * 12)
+            .map(|r| {
+                let (l, e) = (r / 12, r % 12);
+                let a = EDGES[e].0;
+                let q = [l % B + (a & 1), l / B % B + (a >> 1 & 1), l / (B * B) + (a >> 2 & 1)];
+                edge_ref(q, e, [0; 3], [u64::MAX; 3])
+            })
+            .collect()
+    })
+}
+
 /// Resolves the triangles of the bricks in `slab` to vertex numbers, into `out`: a vertex is
 /// its owner's base plus its rank among the owner's slots (the owner is the brick or an upper
 /// neighbour, in this slab or the next).
 fn weld(parts: &Window<BrickPart>, slab: Range<usize>, out: &mut Vec<[u32; 3]>) {
     let resolve = |b: usize, r: VertexRef| -> u32 {
         let (bits, slot) = ((r >> SLOT_BITS) as usize, r & ((1 << SLOT_BITS) - 1));
-        let owner = if bits == 0 { &parts[b] } else { &parts[parts[b].neighbours[bits - 1] as usize] };
+        if bits == 0 {
+            return parts[b].base + slot as u32;
+        }
+        let owner = &parts[parts[b].neighbours[bits - 1] as usize];
         owner.base + owner.slots.binary_search(&slot).expect("the owner made the vertex") as u32
     };
     // Each brick resolves its triangles into its own range of the output.

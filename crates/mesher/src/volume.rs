@@ -30,8 +30,31 @@ pub trait Volume: Sync {
         (self.eval_within((lo + hi) * 0.5, half_diagonal * 1.001).abs() - half_diagonal).max(0.0)
     }
 
+    /// [`Volume::bound`] of each of `boxes`, all inside the box [lo, hi], into `out` (one per
+    /// box). Fields that search for their nearest primitive gather the candidates of [lo, hi]
+    /// once ([`bounds_near`]).
+    fn bounds(&self, lo: DVec3, hi: DVec3, boxes: &[(DVec3, DVec3)], out: &mut [f64]) {
+        let _ = (lo, hi);
+        for (o, &(l, h)) in out.iter_mut().zip(boxes) {
+            *o = self.bound(l, h);
+        }
+    }
+
     /// The box the solid lies in, `(lo, hi)`.
     fn extent(&self) -> (DVec3, DVec3);
+}
+
+/// [`Volume::bounds`] as the default [`Volume::bound`] computes them, from `value(p, reach)`,
+/// the field's [`Volume::eval_within`] at the boxes' centres evaluated with the largest of the
+/// boxes' reaches (the candidates near [lo, hi] gathered once for it). Where a box's own reach
+/// would give an exact value this one is exact too, the same bits; elsewhere both bounds are
+/// positive: the octree keeps the same boxes.
+fn bounds_near(boxes: &[(DVec3, DVec3)], out: &mut [f64], mut value: impl FnMut(DVec3, f64) -> f64) {
+    let half = |&(l, h): &(DVec3, DVec3)| (h - l).length() * 0.5;
+    let reach = boxes.iter().map(|b| half(b) * 1.001).fold(0.0, f64::max);
+    for (o, b) in out.iter_mut().zip(boxes) {
+        *o = (value((b.0 + b.1) * 0.5, reach).abs() - half(b)).max(0.0);
+    }
 }
 
 /// The carved rock: inside is rock, outside is air (sky, caves, beyond the domain).
@@ -47,6 +70,13 @@ impl Volume for CarvedTerrain {
     fn eval_block(&self, lo: DVec3, hi: DVec3, reach: f64, points: &[DVec3], out: &mut Vec<f64>) {
         let near = self.near(lo, hi, reach);
         out.extend(points.iter().map(|&p| self.eval_near(&near, p, reach)));
+    }
+
+    fn bounds(&self, lo: DVec3, hi: DVec3, boxes: &[(DVec3, DVec3)], out: &mut [f64]) {
+        let mut near = None;
+        bounds_near(boxes, out, |p, reach| {
+            self.eval_near(near.get_or_insert_with(|| self.near(lo, hi, reach)), p, reach)
+        });
     }
 
     fn extent(&self) -> (DVec3, DVec3) {
@@ -73,6 +103,17 @@ impl Volume for Cave<'_> {
         out.extend(points.iter().map(|&p| self.0.cave_below_ground_near(&near, p, reach)));
     }
 
+    fn bounds(&self, lo: DVec3, hi: DVec3, boxes: &[(DVec3, DVec3)], out: &mut [f64]) {
+        let mut near = None;
+        bounds_near(boxes, out, |p, reach| {
+            self.0.cave_below_ground_near(
+                near.get_or_insert_with(|| self.0.near_cave(lo, hi, reach)),
+                p,
+                reach,
+            )
+        });
+    }
+
     fn extent(&self) -> (DVec3, DVec3) {
         self.0.extent()
     }
@@ -97,6 +138,13 @@ impl Volume for Water<'_> {
         out.extend(points.iter().map(|&p| self.0.water_near(&near, p, reach)));
     }
 
+    fn bounds(&self, lo: DVec3, hi: DVec3, boxes: &[(DVec3, DVec3)], out: &mut [f64]) {
+        let mut near = None;
+        bounds_near(boxes, out, |p, reach| {
+            self.0.water_near(near.get_or_insert_with(|| self.0.near_water(lo, hi, reach)), p, reach)
+        });
+    }
+
     fn extent(&self) -> (DVec3, DVec3) {
         self.0.extent()
     }
@@ -118,6 +166,10 @@ impl<V: Volume + ?Sized> Volume for &V {
 
     fn bound(&self, lo: DVec3, hi: DVec3) -> f64 {
         (**self).bound(lo, hi)
+    }
+
+    fn bounds(&self, lo: DVec3, hi: DVec3, boxes: &[(DVec3, DVec3)], out: &mut [f64]) {
+        (**self).bounds(lo, hi, boxes, out)
     }
 
     fn extent(&self) -> (DVec3, DVec3) {

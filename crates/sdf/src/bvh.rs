@@ -25,6 +25,9 @@ use crate::primitive::{
 };
 use crate::sweep::SweepLeaf;
 
+/// The count of a candidate that is a single capsule.
+const ONE_CAPSULE: u32 = 1 | (CAPSULE as u32) << 16;
+
 /// Leaves per BVH leaf node, at most: 16 rather than 8 halves the wide nodes (most of the
 /// tree's memory) at the same evaluation speed.
 const LEAF: usize = 16;
@@ -352,8 +355,9 @@ impl Bvh {
     }
 
     /// Appends to `out` the leaf nodes whose boxes come closer than `margin` to the box
-    /// [lo, hi]: every leaf whose value can be below `margin` somewhere in that box (a value is
-    /// at least the distance to its leaf node's box, at least the distance between the boxes).
+    /// [lo, hi], and of the capsules' leaf nodes the single capsules whose own boxes do: every
+    /// leaf whose value can be below `margin` somewhere in that box (a value is at least the
+    /// distance to its box and to its leaf node's, at least the distance between the boxes).
     /// For p in the box and limit ≤ margin, [`Bvh::min_value_among`] over them equals
     /// [`Bvh::min_value`] bit for bit: both are min(limit, the exact values below it), whatever
     /// the order of the visits. The mesher gathers once per brick and evaluates its points
@@ -364,9 +368,11 @@ impl Bvh {
         }
         // The f32 boxes are rounded outwards, so the gap from them is never too large.
         let gap = |a: DVec3, b: DVec3| (a - hi).max(lo - b).max(DVec3::ZERO).length();
-        let mut stack = vec![0u32];
-        while let Some(n) = stack.pop() {
-            let node = &self.wide[n as usize];
+        let mut stack = [0u32; 128];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let node = &self.wide[stack[top] as usize];
             for slot in 0..4 {
                 let a = DVec3::new(node.lo[0][slot] as f64, node.lo[1][slot] as f64, node.lo[2][slot] as f64);
                 let b = DVec3::new(node.hi[0][slot] as f64, node.hi[1][slot] as f64, node.hi[2][slot] as f64);
@@ -375,7 +381,24 @@ impl Bvh {
                     continue;
                 }
                 match node.count[slot] {
-                    0 => stack.push(node.child[slot]),
+                    0 => {
+                        stack[top] = node.child[slot];
+                        top += 1;
+                    }
+                    count if (count >> 16) as u8 == CAPSULE => {
+                        // A leaf node's capsules follow a conduit for tens of metres: only the
+                        // few whose own boxes come close are kept, each as its own candidate.
+                        let first = node.child[slot] as usize;
+                        for (k, c) in
+                            self.capsules[first..first + (count & 0xffff) as usize].iter().enumerate()
+                        {
+                            let (lo, hi) = c.bounds();
+                            if gap(lo, hi) < margin {
+                                let (first, count) = ((first + k) as u32, ONE_CAPSULE);
+                                out.push(Candidate { first, count, lo, hi });
+                            }
+                        }
+                    }
                     count => out.push(Candidate { first: node.child[slot], count, lo: a, hi: b }),
                 }
             }
@@ -392,7 +415,14 @@ impl Bvh {
     pub fn min_value_among(&self, among: &[Candidate], p: DVec3, limit: f64, ctx: &Context) -> f64 {
         let mut best = limit;
         for c in among {
-            if signed_box_distance(c.lo, c.hi, p) < best {
+            // The largest gap along one axis is at most the box's distance: a cheap first test.
+            if (c.lo - p).max(p - c.hi).max_element() >= best {
+                continue;
+            }
+            if c.count == ONE_CAPSULE {
+                // Its value already is at least its box's distance.
+                best = best.min(capsule_value(p, &self.capsules[c.first as usize]));
+            } else if signed_box_distance(c.lo, c.hi, p) < best {
                 best = self.leaf_min(c.first, c.count, p, best, ctx);
             }
         }

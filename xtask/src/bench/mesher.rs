@@ -78,6 +78,10 @@ impl<V: Volume> Volume for Tile<V> {
         self.inner.bound(lo, hi)
     }
 
+    fn bounds(&self, lo: DVec3, hi: DVec3, boxes: &[(DVec3, DVec3)], out: &mut [f64]) {
+        self.inner.bounds(lo, hi, boxes, out)
+    }
+
     fn extent(&self) -> (DVec3, DVec3) {
         (self.lo, self.hi)
     }
