@@ -62,9 +62,10 @@ impl Payload for CostGraph {
     const SCHEMA: u32 = 4;
 
     /// Rows that start at 0, never go back and end at the last edge; targets that are nodes;
-    /// own rows (with several sets) that follow each other in node order; at least one cost set, each with one finite cost > 0 per edge and a least cost per metre,
-    /// when recorded, finite and ≥ 0 (the A* heuristic's factor: NaN or ∞ would misdirect the
-    /// searches).
+    /// own rows (with several sets) that follow each other in node order; at least one cost
+    /// set, set 0 with one finite cost > 0 per edge, each later set with one per edge of the
+    /// own rows; a least cost per metre, when recorded, finite and ≥ 0 (the A* heuristic's
+    /// factor: NaN or ∞ would misdirect the searches).
     fn validate(&self) -> Result<(), Invalid> {
         ensure(self.offsets.first() == Some(&0), || "offsets".into(), || "must start with 0".into())?;
         if let Some(i) = self.offsets.windows(2).position(|w| w[1] < w[0]) {

@@ -9,6 +9,7 @@ use karst_sdf::{CarvedTerrain, SdfModel};
 
 use std::io::Write;
 
+use karst_artifact::check::{self, MAX_COORDINATE};
 use karst_stage::ArtifactOut;
 
 use crate::cleanup::{Solid, clean};
@@ -16,7 +17,7 @@ use crate::error::MesherError;
 use crate::payload::{Mesh, SurfaceCounts};
 use crate::polygonize::{polygonize, polygonize_into};
 use crate::simplify::simplify;
-use crate::spilled::SpilledSurface;
+use crate::spilled::{self, SpilledSurface};
 use crate::volume::{Cave, Water};
 
 /// The meshes of `model` under the scene's `[mesher]` cells, the sinks and springs kept open.
@@ -94,6 +95,9 @@ pub fn write_streamed(
     artifact
         .write(|w| {
             let mut w = std::io::BufWriter::with_capacity(1 << 16, w);
+            for (field, size) in [("cell_size", cell), ("cave_cell_size", cave_cell)] {
+                check::positive(|| field.into(), size, MAX_COORDINATE).map_err(spilled::invalid)?;
+            }
             w.write_all(&cell.to_le_bytes())?;
             w.write_all(&cave_cell.to_le_bytes())?;
             terrain.encode(&mut w, "terrain")?;

@@ -247,6 +247,10 @@ impl SpilledSurface {
         })?;
         varint(w, self.field_evaluations)?;
         let r = &self.removed;
+        check::within(|| format!("{name}.removed.island_volume"), r.island_volume, 0.0, f64::MAX)
+            .map_err(invalid)?;
+        check::within(|| format!("{name}.removed.pocket_volume"), r.pocket_volume, 0.0, f64::MAX)
+            .map_err(invalid)?;
         varint(w, u64::from(r.islands))?;
         w.write_all(&r.island_volume.to_le_bytes())?;
         varint(w, u64::from(r.pockets))?;
@@ -339,7 +343,7 @@ fn varint(w: &mut dyn Write, mut value: u64) -> io::Result<()> {
 }
 
 /// A failed check of the payload as an I/O error: the artifact is not written.
-fn invalid(e: karst_artifact::Invalid) -> io::Error {
+pub(crate) fn invalid(e: karst_artifact::Invalid) -> io::Error {
     io::Error::other(format!(
         "built an invalid mesh payload ({}: {}): this is a bug in karstgen",
         e.field, e.problem

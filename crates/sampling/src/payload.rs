@@ -51,7 +51,7 @@ pub struct Samples {
 
 impl Payload for Samples {
     const STAGE: StageId = StageId::Sampling;
-    const SCHEMA: u32 = 3;
+    const SCHEMA: u32 = 4;
 
     /// One tag per position, finite positions, no two alike (an edge between them would have no
     /// direction), key point `i` at index `i`, a usable radius field.

@@ -368,11 +368,11 @@ impl Bvh {
         }
         // The f32 boxes are rounded outwards, so the gap from them is never too large.
         let gap = |a: DVec3, b: DVec3| (a - hi).max(lo - b).max(DVec3::ZERO).length();
-        let mut stack = [0u32; 128];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let node = &self.wide[stack[top] as usize];
+        // Once per brick, not per point: a vector, so no tree depth can overflow it.
+        let mut stack: Vec<u32> = Vec::with_capacity(128);
+        stack.push(0);
+        while let Some(at) = stack.pop() {
+            let node = &self.wide[at as usize];
             for slot in 0..4 {
                 let a = DVec3::new(node.lo[0][slot] as f64, node.lo[1][slot] as f64, node.lo[2][slot] as f64);
                 let b = DVec3::new(node.hi[0][slot] as f64, node.hi[1][slot] as f64, node.hi[2][slot] as f64);
@@ -381,10 +381,7 @@ impl Bvh {
                     continue;
                 }
                 match node.count[slot] {
-                    0 => {
-                        stack[top] = node.child[slot];
-                        top += 1;
-                    }
+                    0 => stack.push(node.child[slot]),
                     count if (count >> 16) as u8 == CAPSULE => {
                         // A leaf node's capsules follow a conduit for tens of metres: only the
                         // few whose own boxes come close are kept, each as its own candidate.
