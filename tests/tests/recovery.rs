@@ -28,7 +28,7 @@ fn a_second_run_into_the_same_folder_is_refused_while_the_first_writes() {
     assert!(!out.join("samples.bin").exists());
     // Exports on demand and the viewer write into the run folder too: they wait their turn.
     let args = karst_export::stage::ExportArgs {
-        dir: out.clone(),
+        dir: out.to_path_buf(),
         format: vec!["csv".into()],
         scene: None,
         json: false,
@@ -170,7 +170,7 @@ fn wrong_payloads_with_right_checksums_are_refused_by_every_reader() {
     };
     bad_input(karst_mesher::stage::render(&args));
     let args = karst_export::stage::ExportArgs {
-        dir: out.clone(),
+        dir: out.to_path_buf(),
         format: vec!["obj".into()],
         scene: None,
         json: false,

@@ -17,7 +17,7 @@ fn stderr(out: &Output) -> String {
 }
 
 /// A copy of the tiny run's artifacts in a scratch folder.
-fn copy_of_tiny(tag: &str, files: &[&str]) -> std::path::PathBuf {
+fn copy_of_tiny(tag: &str, files: &[&str]) -> karst_testkit::Scratch {
     let dir = scratch(tag);
     for f in files {
         std::fs::copy(tiny().join(f), dir.join(f)).unwrap();

@@ -20,7 +20,7 @@ impl Drop for Folder {
 
 impl Folder {
     fn new(test: &str) -> Folder {
-        let s = Folder(scratch(test));
+        let s = Folder(scratch(test).keep());
         s.rasters();
         s
     }

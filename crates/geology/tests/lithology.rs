@@ -136,7 +136,7 @@ fn check(scene: &Scene, what: &str) {
 #[test]
 fn every_vtk_and_numpy_layout_reads_as_written() {
     let dir = scratch("lithology");
-    let out = Command::new(python()).args(["-c", WRITER]).arg(&dir).output().unwrap();
+    let out = Command::new(python()).args(["-c", WRITER]).arg(dir.as_os_str()).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let files: Vec<String> = String::from_utf8(out.stdout).unwrap().lines().map(str::to_string).collect();
     assert!(files.len() > 40, "{files:?}");
@@ -156,7 +156,7 @@ fn every_vtk_and_numpy_layout_reads_as_written() {
 #[test]
 fn wrong_grids_are_refused_naming_file_and_value() {
     let dir = scratch("lithology-bad");
-    let out = Command::new(python()).args(["-c", WRITER]).arg(&dir).output().unwrap();
+    let out = Command::new(python()).args(["-c", WRITER]).arg(dir.as_os_str()).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let vti = "appended-base64-zlib-UInt64-int32-points.vti";
     let problems = |text: String| {

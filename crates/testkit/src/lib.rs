@@ -29,13 +29,53 @@ pub fn fixture(relative: &str) -> PathBuf {
 }
 
 /// A fresh, empty folder for one test: unique per process and call, removed first if present.
-pub fn scratch(name: &str) -> PathBuf {
+/// It is removed again when the returned [`Scratch`] is dropped, unless the test is failing
+/// (then it stays, to be looked at).
+pub fn scratch(name: &str) -> Scratch {
     static CALLS: AtomicUsize = AtomicUsize::new(0);
     let call = CALLS.fetch_add(1, Ordering::Relaxed);
     let dir = std::env::temp_dir().join(format!("karstgen-test-{}-{call}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("the temporary folder is writable");
-    dir
+    Scratch(dir)
+}
+
+/// A test's scratch folder ([`scratch`]): a path, removed with everything in it when dropped
+/// while the thread is not panicking. The suite used to leave every run's folders behind
+/// (57 folders, 255 MB a run).
+#[derive(Debug)]
+pub struct Scratch(PathBuf);
+
+impl Scratch {
+    /// The folder as a plain path that is never removed: for a run shared by every test of a
+    /// test binary (kept in a static, which is never dropped).
+    pub fn keep(mut self) -> PathBuf {
+        let path = std::mem::take(&mut self.0);
+        std::mem::forget(self);
+        path
+    }
+}
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if !std::thread::panicking() {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
 }
 
 /// Runs stage `S` on the scene file `scene` into `out`, as `karst-<stage> run` does.

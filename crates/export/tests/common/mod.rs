@@ -29,7 +29,7 @@ pub fn network_run(name: &str) -> PathBuf {
     runs.entry(name.to_string())
         .or_insert_with(|| {
             let scene = SceneFile::load(&root().join(format!("fixtures/scenes/{name}.toml"))).unwrap();
-            let out = scratch(&format!("run-{name}"));
+            let out = scratch(&format!("run-{name}")).keep();
             for stage in [
                 StageId::Sampling,
                 StageId::Costgraph,
@@ -96,9 +96,10 @@ impl Run {
     }
 }
 
-/// Exports `formats` of `run` into a scratch folder; returns the folder and the manifest.
+/// Exports `formats` of `run` into a scratch folder, kept for the caller; returns the folder
+/// and the manifest.
 pub fn export_run(run: &Run, formats: &[ExportFormat], tag: &str) -> (PathBuf, Manifest) {
-    let dir = scratch(tag);
+    let dir = scratch(tag).keep();
     let params = ExportParams { formats: formats.to_vec(), ..ExportParams::default() };
     let manifest = export(&run.inputs(), &params, &dir).unwrap_or_else(|e| panic!("{tag}: {e}"));
     (dir.join(karst_export::FOLDER), manifest)
