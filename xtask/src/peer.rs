@@ -157,22 +157,28 @@ pub fn run_case(case: &PeerCase, runs: usize, bin: &Path, python: &Path) -> Resu
 
 /// The peer scene with the case's radius and k.
 fn write_scene(case: &PeerCase, path: &Path) -> Result<(), StageError> {
+    let edits = [
+        ("sampling", "radius", toml::Value::Float(case.radius)),
+        ("costgraph", "k", toml::Value::Integer(case.k as i64)),
+    ];
+    write_edited_scene(Path::new(SCENE), path, &edits)
+}
+
+/// Writes `source`'s scene to `path` with each (section, key, value) of `edits` set.
+pub(crate) fn write_edited_scene(
+    source: &Path,
+    path: &Path,
+    edits: &[(&str, &str, toml::Value)],
+) -> Result<(), StageError> {
     let fail = |p: &Path, e: String| StageError::failure(format!("{}: {e}", p.display()));
-    let text = std::fs::read_to_string(SCENE).map_err(|e| fail(Path::new(SCENE), e.to_string()))?;
-    let mut scene: toml::Table =
-        text.parse().map_err(|e: toml::de::Error| fail(Path::new(SCENE), e.to_string()))?;
-    let section = |scene: &mut toml::Table, name: &str| -> Result<toml::Table, StageError> {
-        match scene.remove(name) {
-            Some(toml::Value::Table(t)) => Ok(t),
-            _ => Err(fail(Path::new(SCENE), format!("no [{name}] section"))),
-        }
-    };
-    let mut sampling = section(&mut scene, "sampling")?;
-    sampling.insert("radius".into(), toml::Value::Float(case.radius));
-    scene.insert("sampling".into(), toml::Value::Table(sampling));
-    let mut costgraph = section(&mut scene, "costgraph")?;
-    costgraph.insert("k".into(), toml::Value::Integer(case.k as i64));
-    scene.insert("costgraph".into(), toml::Value::Table(costgraph));
+    let text = std::fs::read_to_string(source).map_err(|e| fail(source, e.to_string()))?;
+    let mut scene: toml::Table = text.parse().map_err(|e: toml::de::Error| fail(source, e.to_string()))?;
+    for (name, key, value) in edits {
+        let Some(toml::Value::Table(section)) = scene.get_mut(*name) else {
+            return Err(fail(source, format!("no [{name}] section")));
+        };
+        section.insert((*key).into(), value.clone());
+    }
     std::fs::create_dir_all(path.parent().unwrap_or(Path::new(".")))
         .map_err(|e| fail(path, e.to_string()))?;
     std::fs::write(path, scene.to_string()).map_err(|e| fail(path, e.to_string()))
@@ -218,6 +224,7 @@ fn run_theirs(case: &PeerCase, python: &Path, out: &Path) -> Result<(Usage, usiz
     Ok((usage, samples))
 }
 
+/// The first word of a stage's report as a number (the sampling stage reports its sample count).
 pub(crate) fn first_number(text: &str) -> Option<usize> {
     text.split_whitespace().next()?.parse().ok()
 }

@@ -62,7 +62,8 @@ pub fn run(bin: &Path, full: bool) -> Result<(SizeRun, SizeRun), StageError> {
 
 fn run_in(scratch: &Path, bin: &Path, full: bool) -> Result<(SizeRun, SizeRun), StageError> {
     let small_scene = scratch.join("regional-1m.toml");
-    write_scene(&small_scene, SMALL_RADIUS)?;
+    let radius = [("sampling", "radius", toml::Value::Float(SMALL_RADIUS))];
+    peer::write_edited_scene(Path::new(SCENE), &small_scene, &radius)?;
     let small = run_stages(&small_scene, &scratch.join("1m"), bin, &NETWORK_HALF)?;
     let _ = std::fs::remove_dir_all(scratch.join("1m"));
     let stages: Vec<StageId> = if full {
@@ -72,21 +73,6 @@ fn run_in(scratch: &Path, bin: &Path, full: bool) -> Result<(SizeRun, SizeRun), 
     };
     let large = run_stages(Path::new(SCENE), &scratch.join("5m"), bin, &stages)?;
     Ok((small, large))
-}
-
-/// The regional scene with `sampling.radius` set to `radius`.
-fn write_scene(path: &Path, radius: f64) -> Result<(), StageError> {
-    let fail = |p: &Path, e: String| StageError::failure(format!("{}: {e}", p.display()));
-    let text = std::fs::read_to_string(SCENE).map_err(|e| fail(Path::new(SCENE), e.to_string()))?;
-    let mut scene: toml::Table =
-        text.parse().map_err(|e: toml::de::Error| fail(Path::new(SCENE), e.to_string()))?;
-    let Some(toml::Value::Table(sampling)) = scene.get_mut("sampling") else {
-        return Err(fail(Path::new(SCENE), "no [sampling] section".into()));
-    };
-    sampling.insert("radius".into(), toml::Value::Float(radius));
-    std::fs::create_dir_all(path.parent().unwrap_or(Path::new(".")))
-        .map_err(|e| fail(path, e.to_string()))?;
-    std::fs::write(path, scene.to_string()).map_err(|e| fail(path, e.to_string()))
 }
 
 /// Runs `stages` in order on `scene` into `out`, each as its own process.

@@ -176,29 +176,26 @@ impl CostGraph {
     /// The costs of `node`'s out-edges in cost set `set`, in the order of its row.
     #[inline]
     pub fn row_costs(&self, set: usize, node: usize) -> &[f32] {
-        let (first, last) = (self.offsets[node] as usize, self.offsets[node + 1] as usize);
-        match self.own_start(set, node) {
-            Some(start) => &self.cost_sets[set].costs[start..start + last - first],
-            None => &self.cost_sets[0].costs[first..last],
-        }
+        let (stored, range) = self.row_place(set, node);
+        &self.cost_sets[stored].costs[range]
     }
 
     /// [`CostGraph::row_costs`], to change them (a shared row changes in every set).
     pub fn row_costs_mut(&mut self, set: usize, node: usize) -> &mut [f32] {
-        let (first, last) = (self.offsets[node] as usize, self.offsets[node + 1] as usize);
-        match self.own_start(set, node) {
-            Some(start) => &mut self.cost_sets[set].costs[start..start + last - first],
-            None => &mut self.cost_sets[0].costs[first..last],
-        }
+        let (stored, range) = self.row_place(set, node);
+        &mut self.cost_sets[stored].costs[range]
     }
 
-    /// Where `node`'s row starts in set `set`'s costs when that set stores it apart.
+    /// Which set stores `node`'s row of set `set`, and where in that set's costs: the set's own
+    /// array for an own row of a later set, set 0's otherwise.
     #[inline]
-    fn own_start(&self, set: usize, node: usize) -> Option<usize> {
-        if set == 0 {
-            return None;
+    fn row_place(&self, set: usize, node: usize) -> (usize, std::ops::Range<usize>) {
+        let (first, last) = (self.offsets[node] as usize, self.offsets[node + 1] as usize);
+        let own = (set > 0).then(|| self.own_rows.get(node).copied()).flatten().filter(|&s| s != SHARED_ROW);
+        match own {
+            Some(start) => (set, start as usize..start as usize + last - first),
+            None => (0, first..last),
         }
-        self.own_rows.get(node).filter(|&&start| start != SHARED_ROW).map(|&start| start as usize)
     }
 
     /// Own rows empty with one set, one per node with several, each starting where the
