@@ -44,59 +44,10 @@ impl Rows {
         Rows { offsets, targets }
     }
 
-    /// The graph with every edge reversed, each row's sources in increasing order.
-    ///
-    /// A counting sort whose writes land all over the result (a cache miss per edge): the
-    /// nodes are split into one range per thread, and each thread scans every edge but writes
-    /// only the rows of its own range. Each row's sources come in increasing order whatever
-    /// the split, so the result does not depend on the number of threads.
+    /// The graph with every edge reversed ([`transpose`]).
     pub fn transpose(&self) -> Rows {
-        let n = self.node_count();
-        let parts = rayon::current_num_threads().clamp(1, n.max(1));
-        let bounds: Vec<usize> = (0..=parts).map(|p| p * n / parts).collect();
-        let ranges: Vec<(usize, usize)> = bounds.windows(2).map(|w| (w[0], w[1])).collect();
-        let counts: Vec<Vec<u32>> = ranges.par_iter().map(|&range| self.in_degrees(range)).collect();
-        let mut offsets = Vec::with_capacity(n + 1);
-        offsets.push(0u32);
-        for count in counts.iter().flatten() {
-            offsets.push(offsets[offsets.len() - 1] + count);
-        }
-        let mut sources = vec![0u32; self.targets.len()];
-        let mut rest = sources.as_mut_slice();
-        let mut pieces = Vec::with_capacity(parts);
-        for &(lo, hi) in &ranges {
-            let (piece, tail) = rest.split_at_mut((offsets[hi] - offsets[lo]) as usize);
-            pieces.push(((lo, hi), piece));
-            rest = tail;
-        }
-        pieces.into_par_iter().for_each(|(range, piece)| self.place_sources(range, &offsets, piece));
-        Rows { offsets, targets: sources }
-    }
-
-    /// How many edges end at each node of `lo..hi`.
-    fn in_degrees(&self, (lo, hi): (usize, usize)) -> Vec<u32> {
-        let mut counts = vec![0u32; hi - lo];
-        for &t in &self.targets {
-            if let Some(count) = (t as usize).checked_sub(lo).and_then(|at| counts.get_mut(at)) {
-                *count += 1;
-            }
-        }
-        counts
-    }
-
-    /// Writes the sources of the edges ending in `lo..hi` into `piece`, the transpose's rows of
-    /// those nodes (`offsets` are the transpose's).
-    fn place_sources(&self, (lo, hi): (usize, usize), offsets: &[u32], piece: &mut [u32]) {
-        let base = offsets[lo];
-        let mut next: Vec<u32> = offsets[lo..hi].iter().map(|&o| o - base).collect();
-        for i in 0..self.node_count() {
-            for &t in self.row(i) {
-                if let Some(at) = (t as usize).checked_sub(lo).and_then(|at| next.get_mut(at)) {
-                    piece[*at as usize] = i as u32;
-                    *at += 1;
-                }
-            }
-        }
+        let (offsets, targets) = transpose(&self.offsets, &self.targets);
+        Rows { offsets, targets }
     }
 
     /// Adds the reverse j → i of every edge i → j that is missing. Each row keeps its
@@ -132,6 +83,84 @@ impl Rows {
             .collect();
         Rows::from_chunks(&identity, chunks)
     }
+}
+
+/// The rows `offsets`/`targets` (out-edges of node i: `targets[offsets[i]..offsets[i + 1]]`)
+/// reversed: the in-edges' sources of every node, in increasing order, as rows.
+pub fn transpose(offsets: &[u32], targets: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    let reversed = reversed_offsets(offsets, targets);
+    let mut sources = vec![0u32; targets.len()];
+    transpose_values(offsets, targets, &reversed, |source, _| source as u32, &mut sources);
+    (reversed, sources)
+}
+
+/// The row offsets of the reversed rows: where the in-edges of every node start.
+pub fn reversed_offsets(offsets: &[u32], targets: &[u32]) -> Vec<u32> {
+    let n = offsets.len().saturating_sub(1);
+    let counts: Vec<Vec<u32>> = node_ranges(n).par_iter().map(|&range| in_degrees(targets, range)).collect();
+    let mut reversed = Vec::with_capacity(n + 1);
+    reversed.push(0u32);
+    for count in counts.iter().flatten() {
+        reversed.push(reversed[reversed.len() - 1] + count);
+    }
+    reversed
+}
+
+/// Writes `value(source, edge)` of every edge into `values` (one per edge), laid out as the
+/// reversed rows `reversed` (from [`reversed_offsets`]): the in-edges of each node, by
+/// increasing source.
+///
+/// A counting sort whose writes land all over the result (a cache miss per edge): the nodes are
+/// split into one range per thread, and each thread scans every edge but writes only the rows of
+/// its own range. Each row's sources come in increasing order whatever the split, so the result
+/// does not depend on the number of threads.
+pub fn transpose_values<T: Send>(
+    offsets: &[u32],
+    targets: &[u32],
+    reversed: &[u32],
+    value: impl Fn(usize, usize) -> T + Sync,
+    values: &mut [T],
+) {
+    assert_eq!(values.len(), targets.len(), "one value per edge");
+    let n = offsets.len().saturating_sub(1);
+    let mut rest = values;
+    let mut pieces = Vec::new();
+    for (lo, hi) in node_ranges(n) {
+        let (piece, tail) = rest.split_at_mut((reversed[hi] - reversed[lo]) as usize);
+        pieces.push(((lo, hi), piece));
+        rest = tail;
+    }
+    pieces.into_par_iter().for_each(|((lo, hi), piece)| {
+        let base = reversed[lo];
+        let mut next: Vec<u32> = reversed[lo..hi].iter().map(|&o| o - base).collect();
+        for (source, row) in offsets.windows(2).enumerate() {
+            let first = row[0] as usize;
+            for (edge, &target) in (first..).zip(&targets[first..row[1] as usize]) {
+                let slot = (target as usize).checked_sub(lo).and_then(|at| next.get_mut(at));
+                if let Some(at) = slot {
+                    piece[*at as usize] = value(source, edge);
+                    *at += 1;
+                }
+            }
+        }
+    });
+}
+
+/// One range of nodes per thread, covering `0..n`.
+fn node_ranges(n: usize) -> Vec<(usize, usize)> {
+    let parts = rayon::current_num_threads().clamp(1, n.max(1));
+    (0..parts).map(|p| (p * n / parts, (p + 1) * n / parts)).collect()
+}
+
+/// How many of `targets` are in `lo..hi`, per node of that range.
+fn in_degrees(targets: &[u32], (lo, hi): (usize, usize)) -> Vec<u32> {
+    let mut counts = vec![0u32; hi - lo];
+    for &t in targets {
+        if let Some(count) = (t as usize).checked_sub(lo).and_then(|at| counts.get_mut(at)) {
+            *count += 1;
+        }
+    }
+    counts
 }
 
 /// Copies per-chunk values, listed row by row for the nodes of `order`'s chunks, to the rows'

@@ -41,6 +41,24 @@
 //! cost and the path the tree keeps for it (its first relaxation at that cost) are those of
 //! the old heuristic unless two paths cost exactly the same.
 //!
+//! ## With the least costs to the spring
+//! When many legs go to one spring, `spring_distance.rs` computes T(v) = d(v, t), the least
+//! cost from v to t on the phase's costs before cohesion. With T̃(v) = max(T(v), α·|v − t|)
+//! (both lower bounds of d(v, t), both consistent on those costs, so their max is too) the
+//! bound becomes
+//!
+//! h(v) = min(T̃(v), P·T̃(v) + (1 − P)·α·(L(v) + D))
+//!
+//! which is never below the bound above (T̃ ≥ α·|v − t|) and equals T̃ while the network is
+//! empty (D = +∞). *Admissible:* a path without used edges costs at least d(v, t) ≥ T̃(v);
+//! otherwise it pays every edge at least P times its cost, and the parts before its first used
+//! edge and after its last one in full: cost ≥ P·d(v, t) + (1 − P)·α·(|v − a| + |b − t|) ≥
+//! P·T̃(v) + (1 − P)·α·(L(v) + D). *Consistent:* on an unused edge u → v (cost c ≥ α·|u − v|)
+//! each term of the min grows by at most c (T̃ by consistency, the second by P·c + (1 − P)·c as
+//! L is 1-Lipschitz); on a used edge (cost P·c, both ends in N, L = 0) h = P·T̃ + (1 − P)·α·D
+//! at both ends (T̃(v) ≥ α·|v − t| ≥ α·D for v in N), which changes by at most P·c. With
+//! P ≥ 1 it is T̃ alone.
+//!
 //! ## The distance to the network
 //! [`NetworkDistance`] keeps L for every sample, updated as legs join the network: each new
 //! network sample lowers L of the samples within R of it, found through a uniform grid of the
@@ -234,6 +252,10 @@ pub struct CohesionBound<'a> {
     /// The network so far; None: the plain bound α·min(P, 1)·|v − t| (no distance kept).
     pub network: Option<&'a NetworkDistance<'a>>,
     pub target: usize,
+    /// T(v), the least cost from every sample to the target before cohesion
+    /// (`spring_distance.rs`), when it was computed: the bound then uses it in place of
+    /// α·|v − t| (module docs, "With the least costs to the spring").
+    pub to_spring: Option<&'a [f64]>,
 }
 
 impl CohesionBound<'_> {
@@ -247,11 +269,20 @@ impl CohesionBound<'_> {
         let from_target = network.map_or(f64::INFINITY, |n| n.exact(goal));
         move |v: usize| {
             let straight = direct(v);
-            match network {
-                None => self.per_metre * p * straight,
-                Some(n) => {
+            match (network, self.to_spring) {
+                (None, None) => self.per_metre * p * straight,
+                (Some(n), None) => {
                     let via = (1.0 - p) * (n.at(v) + from_target) + p * straight;
                     self.per_metre * straight.min(via)
+                }
+                (network, Some(to_spring)) => {
+                    let least = to_spring[v].max(self.per_metre * straight);
+                    match network {
+                        None => p * least,
+                        Some(n) => {
+                            least.min(p * least + (1.0 - p) * self.per_metre * (n.at(v) + from_target))
+                        }
+                    }
                 }
             }
         }
@@ -263,6 +294,7 @@ mod tests {
     use super::*;
     use crate::karstnsim::mark_used;
     use crate::search::{Cohesive, EdgeCosts, astar_to_set, dijkstra, min_cost_per_metre};
+    use crate::spring_distance::{InEdges, costs_to};
     use karst_costgraph::CostGraph;
     use karst_geology::rng::Random;
 
@@ -317,34 +349,47 @@ mod tests {
         let mut used = vec![false; graph.edge_count()];
         let mut field = NetworkDistance::with_reach(&positions, 15.0);
         let targets = [3, 250, 511, 698];
+        let in_edges = InEdges::of(&graph);
+        let plain = graph.direct().expect("graph costs");
+        let to_springs: Vec<Vec<f64>> = targets
+            .iter()
+            .map(|&t| costs_to(&plain, &in_edges, t, &mut Vec::new()).expect("stored costs"))
+            .collect();
         for (round, (source, target)) in [(10, 600), (42, 17), (300, 5)].into_iter().enumerate() {
             let costs = Cohesive { base: &graph, used: &used, factor };
-            for t in targets {
-                let bound = CohesionBound {
+            for (t, to_spring) in targets.into_iter().zip(&to_springs) {
+                let bound = |to_spring| CohesionBound {
                     positions: &positions,
                     per_metre,
                     factor,
                     network: Some(&field),
                     target: t,
+                    to_spring,
                 };
-                let h = bound.heuristic();
-                assert_eq!(h(t), 0.0);
-                for u in 0..positions.len() {
-                    costs.for_each_out(u, &mut |_, v, c| {
-                        assert!(
-                            h(u) <= c + h(v) + 1e-9,
-                            "round {round}, edge {u} → {v}: {} > {c} + {}",
-                            h(u),
-                            h(v)
-                        );
-                    });
+                let (straight, exact_bound) = (bound(None), bound(Some(to_spring)));
+                let (coarse, h) = (straight.heuristic(), exact_bound.heuristic());
+                for (h, name) in [(&coarse, "straight line"), (&h, "least costs")] {
+                    assert_eq!(h(t), 0.0);
+                    for u in 0..positions.len() {
+                        costs.for_each_out(u, &mut |_, v, c| {
+                            assert!(
+                                h(u) <= c + h(v) + 1e-9,
+                                "{name}, round {round}, edge {u} → {v}: {} > {c} + {}",
+                                h(u),
+                                h(v)
+                            );
+                        });
+                    }
+                    for s in [0, 77, 444] {
+                        let exact = dijkstra(&costs, s, &[t]);
+                        let (guided, _) = astar_to_set(&costs, s, h, |v| v == t);
+                        assert_eq!(guided.cost(t), exact.cost(t), "{name}, round {round}, {s} → {t}");
+                        assert_eq!(guided.path(t), exact.path(t), "{name}, round {round}, {s} → {t}");
+                    }
                 }
-                for s in [0, 77, 444] {
-                    let exact = dijkstra(&costs, s, &[t]);
-                    let (guided, _) = astar_to_set(&costs, s, &h, |v| v == t);
-                    assert_eq!(guided.cost(t), exact.cost(t), "round {round}, {s} → {t}");
-                    assert_eq!(guided.path(t), exact.path(t), "round {round}, {s} → {t}");
-                }
+                // The least costs never weaken the bound, and strengthen it somewhere.
+                assert!((0..positions.len()).all(|v| h(v) >= coarse(v)));
+                assert!((0..positions.len()).any(|v| h(v) > 1.5 * coarse(v)), "round {round}, {t}");
             }
             // The network grows by the least-cost path of this round, as a leg joins it.
             let tree = dijkstra(&costs, source, &[target]);
@@ -362,7 +407,14 @@ mod tests {
         let mut field = NetworkDistance::with_reach(&positions, 10.0);
         field.add(&[1, 2, 3]);
         for (factor, network) in [(1.0, Some(&field)), (1.5, Some(&field)), (0.4, None)] {
-            let bound = CohesionBound { positions: &positions, per_metre: 2.0, factor, network, target: 7 };
+            let bound = CohesionBound {
+                positions: &positions,
+                per_metre: 2.0,
+                factor,
+                network,
+                target: 7,
+                to_spring: None,
+            };
             let h = bound.heuristic();
             let straight = DVec3::from_array(positions[9]).distance(DVec3::from_array(positions[7]));
             assert_eq!(h(9), 2.0 * factor.min(1.0) * straight);

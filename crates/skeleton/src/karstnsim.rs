@@ -35,6 +35,7 @@ use crate::cohesion_bound::{CohesionBound, NetworkDistance};
 use crate::ends::{End, candidate_springs, chosen_springs, ends, sample_of};
 use crate::error::SkeletonError;
 use crate::search::{Cohesive, EdgeCosts, Tree, astar_to_set, min_cost_per_metre};
+use crate::spring_distance::{InEdges, LEGS_WORTH_THE_COSTS, costs_to};
 
 /// The cost set of a water table, by name.
 pub type CostSets<'g> = dyn Fn(&str) -> &'g (dyn EdgeCosts + 'g) + 'g;
@@ -86,6 +87,73 @@ pub fn route<'g>(
     sinks: &[End],
     phase: &PhaseSetup,
 ) -> Result<PhaseRoutes, SkeletonError> {
+    route_mapping(scene, samples, (graph, cost_set), sinks, phase, LEGS_WORTH_THE_COSTS)
+}
+
+/// [`route`], computing the least costs to a spring (`spring_distance.rs`) for the springs with
+/// at least `legs_worth` candidate legs. The routes are the same whatever `legs_worth` (the
+/// heuristic only changes which samples the searches settle), unless two paths cost exactly
+/// the same.
+pub(crate) fn route_mapping<'g>(
+    scene: &Scene,
+    samples: &Samples,
+    (graph, cost_set): (&CostGraph, &CostSets<'g>),
+    sinks: &[End],
+    phase: &PhaseSetup,
+    legs_worth: usize,
+) -> Result<PhaseRoutes, SkeletonError> {
+    let mut worth = springs_worth_their_costs(scene, samples, cost_set, (sinks, phase), legs_worth)?;
+    if !spring_costs_fit(scene, graph, worth.len()) {
+        worth.clear();
+    }
+    std::thread::scope(|scope| {
+        // The least costs to the springs are computed on a thread of their own, in the order the
+        // sinks first need them, while the sinks are routed: a leg waits for its spring's costs
+        // (it never runs without them), so the routes do not depend on which finishes first.
+        // With one thread they are all computed first.
+        let (send, costs_ready) = std::sync::mpsc::channel();
+        let wanted: Vec<usize> = worth.iter().map(|w| w.0).collect();
+        if rayon::current_num_threads() > 1 {
+            scope.spawn(move || costs_to_springs(graph, phase, worth, &send));
+        } else {
+            costs_to_springs(graph, phase, worth, &send);
+        }
+        let mut to_springs = SpringCosts { wanted, ready: BTreeMap::new(), costs_ready };
+        route_sinks(scene, samples, (graph, cost_set), (sinks, phase), &mut to_springs)
+    })
+}
+
+/// The least costs to the springs that have them (`spring_distance.rs`), as their thread
+/// delivers them.
+struct SpringCosts {
+    /// The spring rows whose costs are computed.
+    wanted: Vec<usize>,
+    ready: BTreeMap<usize, Option<Vec<f64>>>,
+    costs_ready: std::sync::mpsc::Receiver<(usize, Option<Vec<f64>>)>,
+}
+
+impl SpringCosts {
+    /// Waits until the costs of spring `row` are ready, if they are computed.
+    fn wait_for(&mut self, row: usize) {
+        while self.wanted.contains(&row) && !self.ready.contains_key(&row) {
+            let (done, costs) = self.costs_ready.recv().expect("the spring costs' thread sends every spring");
+            self.ready.insert(done, costs);
+        }
+    }
+
+    fn of(&self, row: usize) -> Option<&[f64]> {
+        self.ready.get(&row).and_then(|c| c.as_deref())
+    }
+}
+
+/// Routes `sinks` one after the other (the body of [`route_mapping`]).
+fn route_sinks<'g>(
+    scene: &Scene,
+    samples: &Samples,
+    (graph, cost_set): (&CostGraph, &CostSets<'g>),
+    (sinks, phase): (&[End], &PhaseSetup),
+    to_springs: &mut SpringCosts,
+) -> Result<PhaseRoutes, SkeletonError> {
     let springs = &phase.springs;
     let mut used = vec![false; graph.edge_count()];
     let mut per_metre: BTreeMap<String, f64> = BTreeMap::new();
@@ -105,13 +173,16 @@ pub fn route<'g>(
                 .entry(table.name.clone())
                 .or_insert_with(|| min_cost_per_metre(base, &samples.positions) * phase.inherited_cost);
             searches.push((spring.row, base, table, m, sample_of(samples, &spring)?));
+            to_springs.wait_for(spring.row);
         }
+        let ready = &*to_springs;
+        let searches: Vec<_> = searches.into_iter().map(|s| (s, ready.of(s.0))).collect();
         let found: Vec<(usize, Option<Leg>)> = searches
             .into_par_iter()
-            .map(|(row, base, table, m, target)| {
+            .map(|((row, base, table, m, target), to_spring)| {
                 let costs = &Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
-                let network = network.as_ref();
-                (row, leg(scene, samples, costs, &used, network, m, table, source, target))
+                let known = Known { network: network.as_ref(), to_spring };
+                (row, leg(scene, samples, costs, &used, known, m, table, source, target))
             })
             .collect();
         let costs: BTreeMap<usize, f64> =
@@ -143,6 +214,80 @@ pub fn route<'g>(
     Ok(PhaseRoutes { routes, used })
 }
 
+/// The springs of `phase` with at least `legs_worth` candidate legs among `sinks`, in the order
+/// the sinks first need them, with their cost set and sample.
+#[allow(clippy::type_complexity)]
+fn springs_worth_their_costs<'g>(
+    scene: &Scene,
+    samples: &Samples,
+    cost_set: &CostSets<'g>,
+    (sinks, phase): (&[End], &PhaseSetup),
+    legs_worth: usize,
+) -> Result<Vec<(usize, &'g (dyn EdgeCosts + 'g), usize)>, SkeletonError> {
+    let mut legs: Vec<(usize, usize)> = Vec::new();
+    for sink in sinks {
+        for spring in candidate_springs(scene, sink, &phase.springs) {
+            match legs.iter_mut().find(|(row, _)| *row == spring.row) {
+                Some((_, n)) => *n += 1,
+                None => legs.push((spring.row, 1)),
+            }
+        }
+    }
+    let mut worth = Vec::new();
+    for (row, _) in legs.into_iter().filter(|&(_, n)| n >= legs_worth) {
+        let spring =
+            phase.springs.iter().find(|s| s.row == row).expect("a candidate is a spring of the phase");
+        worth.push((row, cost_set(&water_table_of(scene, spring).name), sample_of(samples, spring)?));
+    }
+    Ok(worth)
+}
+
+/// Whether the least costs to `springs` springs fit in the memory budget beside the cost graph:
+/// they are a speed-up, so a run near its budget does without them rather than exceed it. They
+/// take 4 bytes per edge for the reversed rows and 4 for one spring's reversed costs, 8 bytes
+/// per sample per spring for T, and a search's 9 bytes per sample.
+fn spring_costs_fit(scene: &Scene, graph: &CostGraph, springs: usize) -> bool {
+    let nodes = graph.node_count() as f64;
+    let extra = 8.0 * graph.edge_count() as f64 + nodes * (8.0 * springs as f64 + 9.0);
+    // The cost graph, the samples (about 64 bytes each with their tags) and the searches'
+    // per-sample arrays (about 100 bytes) are in memory already.
+    let resident = graph.bytes_in_memory() as f64 + 164.0 * nodes;
+    springs == 0 || resident + extra <= scene.budget().bytes as f64
+}
+
+/// Computes T, the least cost from every sample to each spring of `worth` (`spring_distance.rs`),
+/// on the phase's costs before cohesion, one spring after the other, and sends it by spring row
+/// (None when those costs are not the stored ones). One spring at a time: side by side, each
+/// held its reversed costs (600 MB on the regional scene, whose skeleton then went over 4 GB).
+fn costs_to_springs(
+    graph: &CostGraph,
+    phase: &PhaseSetup,
+    worth: Vec<(usize, &(dyn EdgeCosts + '_), usize)>,
+    send: &std::sync::mpsc::Sender<(usize, Option<Vec<f64>>)>,
+) {
+    if worth.is_empty() {
+        return;
+    }
+    let in_edges = InEdges::of(graph);
+    let mut reversed = Vec::new();
+    for (row, base, target) in worth {
+        let costs = Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
+        let least = costs.direct().and_then(|d| costs_to(&d, &in_edges, target, &mut reversed));
+        if send.send((row, least)).is_err() {
+            return; // The routing stopped (an error): nobody waits for the rest.
+        }
+    }
+}
+
+/// What a phreatic leg's bound knows besides the costs (`cohesion_bound.rs`).
+#[derive(Clone, Copy)]
+struct Known<'a> {
+    /// The network so far (None without cohesion).
+    network: Option<&'a NetworkDistance<'a>>,
+    /// The least costs to the leg's spring, when computed.
+    to_spring: Option<&'a [f64]>,
+}
+
 fn water_table_of<'s>(scene: &'s Scene, spring: &End) -> &'s Surface {
     let name = scene.keypoints()[spring.keypoint].water_table.as_deref().unwrap_or_default();
     scene.water_table(name).expect("validation: every spring names a defined water table")
@@ -155,7 +300,7 @@ fn leg(
     samples: &Samples,
     costs: &dyn EdgeCosts,
     used: &[bool],
-    network: Option<&NetworkDistance>,
+    known: Known,
     per_metre: f64,
     table: &Surface,
     source: usize,
@@ -176,8 +321,9 @@ fn leg(
         positions: &samples.positions,
         per_metre,
         factor: p.cohesion_phreatic,
-        network,
+        network: known.network,
         target,
+        to_spring: known.to_spring,
     };
     let (phreatic, _) = astar_to_set(&phreatic_costs, entry, bound.heuristic(), |v| v == target);
     joined((&vadose, entry), (&phreatic, target))

@@ -2,7 +2,8 @@
 //!
 //! Two published methods, chosen by `skeleton.mode`: Paris et al. 2021's γ-skeleton of the key
 //! points (`gamma.rs`) and KarstNSim's vadose-then-phreatic routing of every sink with cohesion
-//! (`karstnsim.rs`), both on the least-cost paths of the cost graph (`search.rs`) between the
+//! (`karstnsim.rs`, its phreatic legs' A* bounds in `cohesion_bound.rs` and `spring_distance.rs`),
+//! both on the least-cost paths of the cost graph (`search.rs`) between the
 //! route ends (`ends.rs`). The paths are
 //! merged into one network and cut into conduits (`assemble.rs`); every segment gets a tunnel
 //! type (`classify.rs`) and a radius ([`ConduitRadii`]). [`build`] is the algorithm's entry
@@ -28,6 +29,7 @@ mod planes;
 mod radii;
 mod render;
 mod search;
+mod spring_distance;
 pub mod stage;
 mod tortuosity;
 

@@ -128,6 +128,33 @@ fn without_cohesion_routes_do_not_depend_on_sink_order() {
     assert_eq!(route(&scene, &samples, &graph, &order), route(&scene, &samples, &graph, &reversed));
 }
 
+#[test]
+fn the_least_costs_to_the_springs_change_no_route() {
+    for extra in ["", "[skeleton]\ncohesion_vadose = 0.2\ncohesion_phreatic = 0.2\n"] {
+        let scene = scene(extra);
+        let (samples, graph) = inputs(&scene);
+        let order = sinks_in_order(&scene);
+        let cost_set = |_: &str| -> &dyn EdgeCosts { &graph };
+        let phase = karstnsim::PhaseSetup::single(&scene, &graph);
+        let routes = |legs_worth: usize| {
+            let run = || {
+                karstnsim::route_mapping(&scene, &samples, (&graph, &cost_set), &order, &phase, legs_worth)
+            };
+            let paths = |r: karstnsim::PhaseRoutes| -> Vec<(String, String, Vec<usize>)> {
+                r.routes.into_iter().map(|(r, path)| (r.sink, r.spring, path)).collect()
+            };
+            let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a pool");
+            (paths(run().unwrap()), paths(one_thread.install(run).unwrap()))
+        };
+        let (plain, plain_alone) = routes(usize::MAX);
+        let (mapped, mapped_alone) = routes(1);
+        assert!(!plain.is_empty());
+        assert_eq!(mapped, plain, "{extra:?}");
+        assert_eq!(mapped_alone, plain_alone, "{extra:?}");
+        assert_eq!(mapped_alone, plain, "{extra:?}");
+    }
+}
+
 fn distinct_links(routes: &BTreeMap<(String, String), Vec<usize>>) -> usize {
     let links: BTreeSet<(usize, usize)> =
         routes.values().flat_map(|p| p.windows(2).map(|w| (w[0].min(w[1]), w[0].max(w[1])))).collect();

@@ -448,14 +448,14 @@ fn grow(
 }
 
 /// A monotone radix heap of (key, node): pops never return a key below the last one popped.
-struct RadixHeap {
+pub(crate) struct RadixHeap {
     last: u64,
     len: usize,
     buckets: [Vec<(u64, u32)>; 65],
 }
 
 impl RadixHeap {
-    fn new() -> Self {
+    pub(crate) fn new() -> Self {
         RadixHeap { last: 0, len: 0, buckets: std::array::from_fn(|_| Vec::new()) }
     }
 
@@ -463,14 +463,14 @@ impl RadixHeap {
         (64 - (key ^ self.last).leading_zeros()) as usize
     }
 
-    fn push(&mut self, key: u64, node: u32) {
+    pub(crate) fn push(&mut self, key: u64, node: u32) {
         let key = key.max(self.last);
         let b = self.bucket(key);
         self.buckets[b].push((key, node));
         self.len += 1;
     }
 
-    fn pop(&mut self) -> Option<u32> {
+    pub(crate) fn pop(&mut self) -> Option<u32> {
         if self.len == 0 {
             return None;
         }
