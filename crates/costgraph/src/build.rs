@@ -147,10 +147,11 @@ fn own_rows(model: &CostModel, fields: &NodeFields, rows: &Rows) -> (Vec<u32>, u
     if model.set_count() <= 1 {
         return (Vec::new(), 0);
     }
+    let sharing = model.sharing(fields);
     let shared: Vec<bool> = (0..rows.node_count())
         .into_par_iter()
         .with_min_len(CHUNK)
-        .map(|i| rows.row(i).iter().all(|&j| model.same_in_every_set(fields, i, j as usize)))
+        .map(|i| rows.row(i).iter().all(|&j| sharing[i] & sharing[j as usize] != 0))
         .collect();
     let mut next = 0usize;
     let starts = shared

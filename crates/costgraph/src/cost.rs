@@ -44,6 +44,11 @@ use karst_geology::{Geology, KeyPointKind, Scene, Surface};
 
 use crate::falloff::{smoothstep, wyvill};
 
+/// In [`CostModel::sharing`]: the node is above every water table.
+pub const ABOVE_EVERY_TABLE: u8 = 1;
+/// In [`CostModel::sharing`]: the node is at least d_max below every water table.
+pub const DEEP_BELOW_EVERY_TABLE: u8 = 2;
+
 /// One fracture family, prepared for the edge tests.
 #[derive(Debug, Clone)]
 struct Family {
@@ -296,18 +301,26 @@ impl CostModel {
         }
     }
 
-    /// True when edge i → j costs the same in every cost set: both its ends are above every
-    /// water table (C_WT depends on the direction alone) or at least d_max below every one
-    /// (the falloff's constant 1), the two cases where [`CostModel::edge`] computes the same
-    /// bits for every set. Other edges may happen to cost the same too; they are stored apart.
-    pub fn same_in_every_set(&self, fields: &NodeFields, i: usize, j: usize) -> bool {
-        if fields.sets <= 1 {
-            return true;
-        }
+    /// Per node, the cases in which its edges cost the same in every cost set: bit
+    /// [`ABOVE_EVERY_TABLE`] when it is above every water table, bit [`DEEP_BELOW_EVERY_TABLE`]
+    /// when it is at least d_max below every one. An edge whose two ends share a bit costs the
+    /// same in every set (C_WT depends on the direction alone above the tables and is the
+    /// falloff's constant 1 that deep below them: [`CostModel::edge`] computes the same bits
+    /// for every set). Other edges may happen to cost the same too; they are stored apart.
+    /// Classifying the nodes once spares testing every set at both ends of every edge.
+    pub fn sharing(&self, fields: &NodeFields) -> Vec<u8> {
         let sets = 4 + fields.surfaces..4 + fields.surfaces + fields.sets;
-        let ends = || fields.node(i)[sets.clone()].iter().zip(&fields.node(j)[sets.clone()]);
         let reach = self.params.water_table_distance;
-        ends().all(|(&a, &b)| a >= 0.0 && b >= 0.0) || ends().all(|(&a, &b)| a <= -reach && b <= -reach)
+        (0..fields.data.len() / fields.stride)
+            .into_par_iter()
+            .with_min_len(4096)
+            .map(|i| {
+                let heights = &fields.node(i)[sets.clone()];
+                let above = heights.iter().all(|&h| h >= 0.0);
+                let deep = heights.iter().all(|&h| h <= -reach);
+                (if above { ABOVE_EVERY_TABLE } else { 0 }) | (if deep { DEEP_BELOW_EVERY_TABLE } else { 0 })
+            })
+            .collect()
     }
 
     /// 1 − P: KarstNSim's C_P, Paris et al.'s relative resistance π.

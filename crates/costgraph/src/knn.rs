@@ -44,26 +44,59 @@ impl Rows {
         Rows { offsets, targets }
     }
 
-    /// The graph with every edge reversed.
+    /// The graph with every edge reversed, each row's sources in increasing order.
+    ///
+    /// A counting sort whose writes land all over the result (a cache miss per edge): the
+    /// nodes are split into one range per thread, and each thread scans every edge but writes
+    /// only the rows of its own range. Each row's sources come in increasing order whatever
+    /// the split, so the result does not depend on the number of threads.
     pub fn transpose(&self) -> Rows {
         let n = self.node_count();
-        let mut counts = vec![0u32; n + 1];
-        for &t in &self.targets {
-            counts[t as usize + 1] += 1;
+        let parts = rayon::current_num_threads().clamp(1, n.max(1));
+        let bounds: Vec<usize> = (0..=parts).map(|p| p * n / parts).collect();
+        let ranges: Vec<(usize, usize)> = bounds.windows(2).map(|w| (w[0], w[1])).collect();
+        let counts: Vec<Vec<u32>> = ranges.par_iter().map(|&range| self.in_degrees(range)).collect();
+        let mut offsets = Vec::with_capacity(n + 1);
+        offsets.push(0u32);
+        for count in counts.iter().flatten() {
+            offsets.push(offsets[offsets.len() - 1] + count);
         }
-        for i in 0..n {
-            counts[i + 1] += counts[i];
-        }
-        let offsets = counts.clone();
-        let mut next = counts;
         let mut sources = vec![0u32; self.targets.len()];
-        for i in 0..n {
-            for &t in self.row(i) {
-                sources[next[t as usize] as usize] = i as u32;
-                next[t as usize] += 1;
+        let mut rest = sources.as_mut_slice();
+        let mut pieces = Vec::with_capacity(parts);
+        for &(lo, hi) in &ranges {
+            let (piece, tail) = rest.split_at_mut((offsets[hi] - offsets[lo]) as usize);
+            pieces.push(((lo, hi), piece));
+            rest = tail;
+        }
+        pieces.into_par_iter().for_each(|(range, piece)| self.place_sources(range, &offsets, piece));
+        Rows { offsets, targets: sources }
+    }
+
+    /// How many edges end at each node of `lo..hi`.
+    fn in_degrees(&self, (lo, hi): (usize, usize)) -> Vec<u32> {
+        let mut counts = vec![0u32; hi - lo];
+        for &t in &self.targets {
+            if let Some(count) = (t as usize).checked_sub(lo).and_then(|at| counts.get_mut(at)) {
+                *count += 1;
             }
         }
-        Rows { offsets, targets: sources }
+        counts
+    }
+
+    /// Writes the sources of the edges ending in `lo..hi` into `piece`, the transpose's rows of
+    /// those nodes (`offsets` are the transpose's).
+    fn place_sources(&self, (lo, hi): (usize, usize), offsets: &[u32], piece: &mut [u32]) {
+        let base = offsets[lo];
+        let mut next: Vec<u32> = offsets[lo..hi].iter().map(|&o| o - base).collect();
+        for i in 0..self.node_count() {
+            for &t in self.row(i) {
+                if let Some(at) = (t as usize).checked_sub(lo).and_then(|at| next.get_mut(at)) {
+                    piece[*at as usize] = i as u32;
+                    *at += 1;
+                }
+            }
+        }
     }
 
     /// Adds the reverse j → i of every edge i → j that is missing. Each row keeps its
@@ -203,6 +236,25 @@ mod tests {
             all.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
             let expected: Vec<u32> = all.iter().take(7).filter(|n| n.1 <= 30.0).map(|n| n.0).collect();
             assert_eq!(got.row(i), expected.as_slice(), "node {i}");
+        }
+    }
+
+    #[test]
+    fn transpose_lists_every_source_in_order_whatever_the_threads() {
+        let points = cloud(700);
+        let rows = neighbours(&points, &spatial_order(&points), (6, None), &|| ());
+        let mut expected = vec![Vec::new(); rows.node_count()];
+        for i in 0..rows.node_count() {
+            for &t in rows.row(i) {
+                expected[t as usize].push(i as u32);
+            }
+        }
+        for threads in [1, 2, 3, 8] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a pool");
+            let reverse = pool.install(|| rows.transpose());
+            for (j, sources) in expected.iter().enumerate() {
+                assert_eq!(reverse.row(j), sources.as_slice(), "row {j} with {threads} threads");
+            }
         }
     }
 

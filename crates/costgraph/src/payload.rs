@@ -11,6 +11,7 @@
 //! and the others are read from set 0: on the regional scene 5 sets take 1.0 GB instead of
 //! 3.05 GB.
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use karst_artifact::check::{self, ensure};
@@ -78,7 +79,9 @@ impl Payload for CostGraph {
         let last = self.offsets.last().copied().unwrap_or(0) as usize;
         check::count(|| "targets".into(), self.targets.len(), last)?;
         let nodes = self.node_count();
-        if let Some(e) = self.targets.iter().position(|&t| t as usize >= nodes) {
+        // Targets and costs are hundreds of millions of numbers on a regional scene: they are
+        // scanned on every core ([`first_where`]).
+        if let Some(e) = first_where(&self.targets, |&t| t as usize >= nodes) {
             check::index(|| format!("targets[{e}]"), self.targets[e] as u64, nodes)?;
         }
         ensure(!self.cost_sets.is_empty(), || "cost_sets".into(), || "is empty: no cost to route on".into())?;
@@ -86,7 +89,7 @@ impl Payload for CostGraph {
         for (s, set) in self.cost_sets.iter().enumerate() {
             let edges = if s == 0 { self.targets.len() } else { own_edges };
             check::count(|| format!("cost_sets[{s}].costs"), set.costs.len(), edges)?;
-            if let Some(e) = set.costs.iter().position(|c| !(*c > 0.0 && c.is_finite())) {
+            if let Some(e) = first_where(&set.costs, |c| !(*c > 0.0 && c.is_finite())) {
                 return Err(Invalid::new(
                     format!("cost_sets[{s}].costs[{e}]"),
                     format!("{} is not a finite cost > 0", set.costs[e]),
@@ -140,6 +143,15 @@ fn read_graph(bytes: &mut PayloadReader) -> Result<CostGraph, String> {
         cost_sets.push(CostSet { water_table, costs, min_cost_per_metre });
     }
     Ok(CostGraph { offsets, targets, own_rows, cost_sets, summary: bytes.tail()? })
+}
+
+/// The index of the first element of `values` for which `bad` holds, scanning blocks of them
+/// on every core (a parallel search element by element would test an atomic flag per element).
+fn first_where<T: Sync>(values: &[T], bad: impl Fn(&T) -> bool + Sync) -> Option<usize> {
+    const BLOCK: usize = 1 << 16;
+    let block = values.par_chunks(BLOCK).position_first(|block| block.iter().any(&bad))?;
+    let start = block * BLOCK;
+    values[start..].iter().position(bad).map(|at| start + at)
 }
 
 /// Whether an option of cost set `s` holds a value (postcard: a byte 0 or 1).
