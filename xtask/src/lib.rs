@@ -6,7 +6,8 @@
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
 //! - [`ensemble_table`]: the presets' metrics over many seeds against the real caves;
 //! - [`python`]: build and install the Python package's wheel and run its pytest suite;
-//! - [`tools`]: install the outside programs the tests check outputs with.
+//! - [`tools`]: install the outside programs the tests check outputs with;
+//! - [`temp_folder`]: the tasks' scratch folders, removed however the task ends.
 //!
 //! Running the pipeline, diffs and ensembles are `karstgen`'s (crates/pipeline).
 
@@ -16,4 +17,5 @@ pub mod metrics_table;
 pub mod peer;
 pub mod python;
 pub mod regional;
+pub mod temp_folder;
 pub mod tools;

@@ -15,6 +15,7 @@ use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::{self, SceneFile};
 use karst_stage::StageError;
 use karst_stage::cli::finish;
+use xtask::temp_folder::TempFolder;
 use xtask::tools::Tools;
 use xtask::{bench, metrics_table};
 
@@ -256,7 +257,7 @@ fn workspace_root() -> PathBuf {
 }
 
 fn bless() -> Result<(), StageError> {
-    let scratch = std::env::temp_dir().join(format!("karstgen-bless-{}", std::process::id()));
+    let scratch = TempFolder::new("bless");
     let selection = Selection { force: true, ..Selection::default() };
     make::run(&SceneFile::load(Path::new(GOLDEN_SCENE))?, &scratch, &selection, &mut |_| {})?;
     let golden = Path::new(GOLDEN_DIR);
@@ -270,7 +271,6 @@ fn bless() -> Result<(), StageError> {
         }
         std::fs::copy(&new, &old).map_err(|e| StageError::failure(format!("{}: {e}", old.display())))?;
     }
-    let _ = std::fs::remove_dir_all(&scratch);
     Ok(())
 }
 

@@ -19,6 +19,8 @@ use std::time::Instant;
 use karst_artifact::StageId;
 use karst_stage::StageError;
 
+use crate::temp_folder::TempFolder;
+
 /// The scene both sides run.
 pub const SCENE: &str = "fixtures/bench/karstnsim-peer.toml";
 const REQUIREMENTS: &str = "tools/peer/requirements.txt";
@@ -129,7 +131,7 @@ pub fn peer_python(root: &Path) -> Result<PathBuf, StageError> {
 
 /// Runs `case` `runs` times on each side, alternately; `bin` holds the stage binaries.
 pub fn run_case(case: &PeerCase, runs: usize, bin: &Path, python: &Path) -> Result<PeerResult, StageError> {
-    let scratch = std::env::temp_dir().join(format!("karstgen-peer-{}", std::process::id()));
+    let scratch = TempFolder::new("peer");
     let scene = scratch.join("scene.toml");
     write_scene(case, &scene)?;
     let mut result = PeerResult { ours: Vec::new(), theirs: Vec::new(), our_samples: 0, their_samples: 0 };
@@ -151,7 +153,6 @@ pub fn run_case(case: &PeerCase, runs: usize, bin: &Path, python: &Path) -> Resu
             )));
         }
     }
-    let _ = std::fs::remove_dir_all(&scratch);
     Ok(result)
 }
 

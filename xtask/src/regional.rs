@@ -14,6 +14,8 @@ use std::process::Command;
 use karst_artifact::StageId;
 use karst_stage::StageError;
 
+use crate::temp_folder::TempFolder;
+
 use crate::peer::{self, Usage};
 
 /// The scene.
@@ -54,10 +56,7 @@ impl SizeRun {
 /// Runs the network half at the small size, then at the scene's size the network half or, with
 /// `full`, every stage but the export; `bin` holds the stage binaries.
 pub fn run(bin: &Path, full: bool) -> Result<(SizeRun, SizeRun), StageError> {
-    let scratch = std::env::temp_dir().join(format!("karstgen-regional-{}", std::process::id()));
-    let result = run_in(&scratch, bin, full);
-    let _ = std::fs::remove_dir_all(&scratch);
-    result
+    run_in(&TempFolder::new("regional"), bin, full)
 }
 
 fn run_in(scratch: &Path, bin: &Path, full: bool) -> Result<(SizeRun, SizeRun), StageError> {

@@ -124,17 +124,11 @@ fn process_runs(pid: u32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn scratch(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("karst-atomic-{}-{name}", std::process::id()));
-        let _ = fs::remove_dir_all(&dir);
-        fs::create_dir_all(&dir).unwrap();
-        dir
-    }
+    use crate::scratch::scratch;
 
     #[test]
     fn failed_write_keeps_the_old_file() {
-        let dir = scratch("fail");
+        let dir = scratch("atomic-fail");
         let target = dir.join("a.bin");
         write_bytes(&target, b"old").unwrap();
         let err = write_with(&target, |w| {
@@ -156,7 +150,7 @@ mod tests {
 
     #[test]
     fn leftovers_of_a_crash_are_cleaned() {
-        let dir = scratch("leftover");
+        let dir = scratch("atomic-leftover");
         let target = dir.join("b.bin");
         fs::write(dir.join(format!(".b.bin.tmp-{}", dead_pid())), b"torn").unwrap();
         write_bytes(&target, b"new").unwrap();
@@ -167,7 +161,7 @@ mod tests {
     #[test]
     fn a_live_writer_keeps_its_temporary_file() {
         // Another process writing the same file: its temporary file must survive our write.
-        let dir = scratch("live");
+        let dir = scratch("atomic-live");
         let target = dir.join("c.bin");
         let live = dir.join(format!(".c.bin.tmp-{}", std::os::unix::process::parent_id()));
         fs::write(&live, b"in progress").unwrap();

@@ -539,6 +539,8 @@ fn check_kind_and_schema<P: Payload>(path: &Path, header: &Header) -> Result<(),
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scratch::Scratch;
+    use std::path::PathBuf;
 
     #[derive(Debug, PartialEq, Serialize, Deserialize)]
     struct Points(Vec<[f64; 3]>);
@@ -558,15 +560,16 @@ mod tests {
         Provenance { producer: "test 0".into(), inputs: vec![], params: "p".into(), frame: Frame::default() }
     }
 
-    fn scratch(name: &str) -> std::path::PathBuf {
-        let dir = std::env::temp_dir().join(format!("karst-envelope-{}", std::process::id()));
-        fs::create_dir_all(&dir).unwrap();
-        dir.join(name)
+    /// A file `name` in a fresh scratch folder, which is removed when the test passes.
+    fn scratch(name: &str) -> (Scratch, PathBuf) {
+        let dir = crate::scratch::scratch(&format!("envelope-{name}"));
+        let path = dir.join(name);
+        (dir, path)
     }
 
     #[test]
     fn round_trip() {
-        let path = scratch("rt.bin");
+        let (_dir, path) = scratch("rt.bin");
         let pts = Points(vec![[1.0, 2.0, 3.5], [-4.0, 0.0, 1e9]]);
         let header = write_artifact(&path, &provenance(), &pts).unwrap();
         let (read_back_header, back) = read_artifact::<Points>(&path).unwrap();
@@ -577,7 +580,7 @@ mod tests {
 
     #[test]
     fn streamed_payload_is_the_encoded_payload() {
-        let path = scratch("stream.bin");
+        let (_dir, path) = scratch("stream.bin");
         let pts = Points((0..5000).map(|i| [i as f64, 0.5 * i as f64, -1.25]).collect());
         let header = write_artifact(&path, &provenance(), &pts).unwrap();
         let bytes = fs::read(&path).unwrap();
@@ -589,7 +592,7 @@ mod tests {
 
     #[test]
     fn a_payload_written_by_its_encoder_is_the_artifact_of_the_payload() {
-        let (streamed, whole) = (scratch("with.bin"), scratch("whole.bin"));
+        let ((_with, streamed), (_whole, whole)) = (scratch("with.bin"), scratch("whole.bin"));
         let pts = Points((0..3000).map(|i| [i as f64, -0.5, 1e3]).collect());
         let bytes = postcard::to_stdvec(&pts).unwrap();
         // Written in uneven pieces, as a stage copying from its spill files would.
@@ -611,12 +614,13 @@ mod tests {
         assert!(cause.contains("second encoding differs"), "{err}: {cause}");
         assert_eq!(fs::read(&streamed).unwrap(), fs::read(&whole).unwrap());
         // A JSON stage's payload is not written streamed.
-        assert!(write_artifact_with::<Other>(&scratch("other.json"), &provenance(), |_| Ok(())).is_err());
+        let (_dir, other) = scratch("other.json");
+        assert!(write_artifact_with::<Other>(&other, &provenance(), |_| Ok(())).is_err());
     }
 
     #[test]
     fn flipped_byte_is_a_checksum_error_naming_the_file() {
-        let path = scratch("flip.bin");
+        let (_dir, path) = scratch("flip.bin");
         write_artifact(&path, &provenance(), &Points(vec![[1.0, 2.0, 3.0]; 10])).unwrap();
         let mut bytes = fs::read(&path).unwrap();
         let last = bytes.len() - 5;
@@ -630,7 +634,7 @@ mod tests {
 
     #[test]
     fn truncated_wrong_kind_and_garbage_are_rejected() {
-        let path = scratch("trunc.bin");
+        let (_dir, path) = scratch("trunc.bin");
         write_artifact(&path, &provenance(), &Points(vec![[1.0, 2.0, 3.0]; 10])).unwrap();
         let bytes = fs::read(&path).unwrap();
         fs::write(&path, &bytes[..bytes.len() - 3]).unwrap();
@@ -647,7 +651,7 @@ mod tests {
 
     #[test]
     fn json_artifacts_are_one_json_document() {
-        let path = scratch("doc.json");
+        let (_dir, path) = scratch("doc.json");
         let value = Other(42);
         let header = write_artifact(&path, &provenance(), &value).unwrap();
         let whole: serde_json::Value = serde_json::from_slice(&fs::read(&path).unwrap()).unwrap();
@@ -663,7 +667,7 @@ mod tests {
 
     #[test]
     fn a_length_beyond_the_file_is_refused_before_allocating() {
-        let path = scratch("huge.bin");
+        let (_dir, path) = scratch("huge.bin");
         write_artifact(&path, &provenance(), &Points(vec![[1.0, 2.0, 3.0]])).unwrap();
         let text = fs::read(&path).unwrap();
         let line_end = text.iter().position(|b| *b == b'\n').unwrap();
@@ -689,7 +693,7 @@ mod tests {
                 }
             }
         }
-        let path = scratch("invalid.json");
+        let (_dir, path) = scratch("invalid.json");
         write_artifact(&path, &provenance(), &Positive(-1.0)).unwrap();
         let err = read_artifact::<Positive>(&path).unwrap_err();
         assert!(matches!(err, Error::Invalid { .. }), "{err}");
@@ -725,7 +729,7 @@ mod tests {
 
     #[test]
     fn the_header_records_the_frame_and_another_frame_is_refused() {
-        let path = scratch("frame.bin");
+        let (_dir, path) = scratch("frame.bin");
         let lambert = Frame { origin: [651000.0, 6862000.0, 250.0], crs: Some("EPSG:2154".into()) };
         let header =
             write_artifact(&path, &Provenance { frame: lambert.clone(), ..provenance() }, &Points(vec![]))
@@ -740,7 +744,7 @@ mod tests {
 
     #[test]
     fn other_schema_says_what_to_rerun() {
-        let path = scratch("schema.bin");
+        let (_dir, path) = scratch("schema.bin");
         write_artifact(&path, &provenance(), &Points(vec![])).unwrap();
         let text = fs::read_to_string(&path).unwrap().replacen("\"schema\":7", "\"schema\":6", 1);
         fs::write(&path, text).unwrap();

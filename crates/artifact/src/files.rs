@@ -82,8 +82,7 @@ mod tests {
 
     #[test]
     fn devices_folders_and_oversized_files_are_refused() {
-        let dir = std::env::temp_dir().join(format!("karst-files-{}", std::process::id()));
-        fs::create_dir_all(&dir).unwrap();
+        let dir = crate::scratch::scratch("files");
         let err = read_regular(&dir, 10).unwrap_err();
         assert!(err.to_string().contains("a folder"), "{err}");
         #[cfg(unix)]
@@ -104,6 +103,5 @@ mod tests {
         fs::write(&file, b"0123456789ab").unwrap();
         assert!(read_regular(&file, 10).unwrap_err().to_string().contains("12 bytes"));
         assert_eq!(read_regular(&file, 12).unwrap(), b"0123456789ab");
-        fs::remove_dir_all(&dir).unwrap();
     }
 }

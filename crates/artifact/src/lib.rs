@@ -22,6 +22,8 @@ pub mod files;
 pub mod frame;
 pub mod hash;
 pub mod lock;
+#[cfg(test)]
+mod scratch;
 pub mod stages;
 pub mod stream;
 

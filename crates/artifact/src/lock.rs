@@ -50,7 +50,8 @@ mod tests {
 
     #[test]
     fn a_second_writer_is_refused_until_the_first_is_done() {
-        let dir = std::env::temp_dir().join(format!("karst-lock-{}", std::process::id()));
+        let scratch = crate::scratch::scratch("lock");
+        let dir = scratch.join("out");
         let first = lock_output(&dir).unwrap();
         let err = lock_output(&dir).unwrap_err();
         assert!(err.to_string().contains("another run is writing to"), "{err}");
@@ -58,7 +59,5 @@ mod tests {
         drop(first);
         let again = lock_output(&dir).unwrap();
         assert_eq!(again.dir(), dir);
-        drop(again);
-        fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -25,7 +25,7 @@ fn values(report: &serde_json::Value, section: &str, name: &str) -> Vec<f64> {
 fn vtk_reads_the_network_with_the_artifacts_counts_and_arrays() {
     for scene in ["default", "karstnsim"] {
         let run = Run::load(&network_run(scene));
-        let (dir, _) = export_run(&run, &[ExportFormat::Vtk], &format!("vtk-{scene}"));
+        let (_scratch, dir, _) = export_run(&run, &[ExportFormat::Vtk], &format!("vtk-{scene}"));
         let file = dir.join("network.vtp");
         let report = python_json("read_vtp.py", &[file.to_str().unwrap()]);
         assert_eq!(report["log"], "", "{scene}: VTK wrote errors or warnings");
@@ -81,7 +81,7 @@ fn vtk_and_csv_carry_the_surface_streams_with_types_flows_and_falls() {
     let run = Run::load(&network_run("waterfall"));
     let streams = &run.streams;
     assert!(streams.falls() >= 3, "the waterfall preset has falls");
-    let (dir, _) = export_run(&run, &[ExportFormat::Vtk, ExportFormat::Csv], "streams");
+    let (_scratch, dir, _) = export_run(&run, &[ExportFormat::Vtk, ExportFormat::Csv], "streams");
     let report = python_json("read_vtp.py", &[dir.join("streams.vtp").to_str().unwrap()]);
     assert_eq!(report["log"], "", "VTK wrote errors or warnings");
     assert_eq!(report["points"], streams.nodes.len());
@@ -129,7 +129,7 @@ fn vtk_and_csv_carry_the_surface_streams_with_types_flows_and_falls() {
 #[test]
 fn vtk_reads_the_meshes_with_their_normals() {
     let run = Run::load(&tiny());
-    let (dir, _) = export_run(&run, &[ExportFormat::VtkMeshes], "vtk-meshes");
+    let (_scratch, dir, _) = export_run(&run, &[ExportFormat::VtkMeshes], "vtk-meshes");
     let mesh = run.mesh.as_ref().unwrap();
     for (name, surface) in mesh.surfaces() {
         let file = dir.join(format!("{name}.vtp"));
@@ -157,7 +157,7 @@ fn vtk_reads_the_meshes_with_their_normals() {
 fn karstnet_reads_the_pline_and_finds_metrics_json() {
     for scene in ["default", "karstnsim", "branchwork"] {
         let run = Run::load(&network_run(scene));
-        let (dir, _) = export_run(&run, &[ExportFormat::Gocad], &format!("pline-{scene}"));
+        let (_scratch, dir, _) = export_run(&run, &[ExportFormat::Gocad], &format!("pline-{scene}"));
         let oracle = common::root().join("crates/metrics/tests/karstnet_oracle.py");
         let out = std::process::Command::new(common::python())
             .arg(oracle)
@@ -183,7 +183,7 @@ fn karstnet_reads_the_pline_and_finds_metrics_json() {
 #[test]
 fn tsurfs_read_back_to_the_same_vertices() {
     let run = Run::load(&tiny());
-    let (dir, _) = export_run(&run, &[ExportFormat::GocadMeshes], "tsurf");
+    let (_scratch, dir, _) = export_run(&run, &[ExportFormat::GocadMeshes], "tsurf");
     for (name, surface) in run.mesh.as_ref().unwrap().surfaces() {
         if surface.triangles.is_empty() {
             continue;
@@ -217,7 +217,7 @@ fn legs_of_dump(dump: &str) -> (usize, f64) {
 fn cavern_processes_the_survey_without_warning_with_every_leg() {
     for scene in ["default", "karstnsim", "branchwork"] {
         let run = Run::load(&network_run(scene));
-        let (dir, _) = export_run(&run, &[ExportFormat::Survex], &format!("survex-{scene}"));
+        let (_scratch, dir, _) = export_run(&run, &[ExportFormat::Survex], &format!("survex-{scene}"));
         let out = run_tool("cavern", &["network.svx"], &dir);
         let text =
             format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
@@ -251,7 +251,7 @@ struct Outfall {
 /// The SWMM model of a run, run by the real engine: (continuity error %, springs, notes).
 fn swmm_run(scene: &str) -> (f64, Vec<Outfall>, Vec<String>) {
     let run = Run::load(&network_run(scene));
-    let (dir, _) = export_run(&run, &[ExportFormat::Swmm], &format!("swmm-{scene}"));
+    let (_scratch, dir, _) = export_run(&run, &[ExportFormat::Swmm], &format!("swmm-{scene}"));
     let view = karst_export::NetworkView::new(&run.skeleton, &run.hydro).unwrap();
     let names: Vec<String> = view.springs.iter().map(|s| s.name.clone()).collect();
     let model = dir.join("network.inp");
@@ -314,7 +314,7 @@ fn swmm_is_steady(scenes: &[&str]) {
 #[test]
 fn gltf_validator_accepts_the_scene_with_named_nodes_and_typed_lines() {
     let run = Run::load(&tiny());
-    let (dir, manifest) = export_run(&run, &[ExportFormat::Gltf], "gltf");
+    let (_scratch, dir, manifest) = export_run(&run, &[ExportFormat::Gltf], "gltf");
     assert_eq!(manifest.files.len(), 1);
     let file = dir.join("karst.glb");
     let report = validate_gltf(&file);
@@ -350,7 +350,7 @@ fn gltf_validator_accepts_the_scene_with_named_nodes_and_typed_lines() {
 fn csv_tables_read_back_with_karst_metrics() {
     let dir = network_run("karstnsim");
     let run = Run::load(&dir);
-    let (export_dir, _) = export_run(&run, &[ExportFormat::Csv], "csv");
+    let (_scratch, export_dir, _) = export_run(&run, &[ExportFormat::Csv], "csv");
     // Links come in another order than the skeleton's: sums may differ in the last digit.
     let expected = run.metrics.network.to_pairs();
     let check = |nodes: &Path, links: &Path| {
@@ -372,8 +372,8 @@ fn csv_tables_read_back_with_karst_metrics() {
 fn manifest_names_every_file_with_its_size_and_digest_and_repeats_exactly() {
     let run = Run::load(&tiny());
     let all = karst_export::ExportFormat::ALL;
-    let (dir, first) = export_run(&run, &all, "manifest-a");
-    let (_, second) = export_run(&run, &all, "manifest-b");
+    let (_scratch, dir, first) = export_run(&run, &all, "manifest-a");
+    let (_second_scratch, _, second) = export_run(&run, &all, "manifest-b");
     assert_eq!(first, second, "the same run exports the same bytes");
     let mut names: Vec<&str> = first.files.iter().map(|f| f.name.as_str()).collect();
     names.sort();

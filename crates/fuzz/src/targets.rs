@@ -86,14 +86,14 @@ fn read(relative: &str) -> Vec<u8> {
     std::fs::read(root().join(relative)).unwrap_or_else(|e| panic!("{relative}: {e}"))
 }
 
+thread_local! {
+    /// This thread's scratch folder, removed when the thread ends.
+    static SCRATCH: karst_testkit::Scratch = karst_testkit::scratch("fuzz");
+}
+
 /// A scratch folder of this thread, for the readers that take files.
 fn scratch() -> PathBuf {
-    let dir = std::env::temp_dir().join(
-        format!("karst-fuzz-{}-{:?}", std::process::id(), std::thread::current().id())
-            .replace(['(', ')'], ""),
-    );
-    std::fs::create_dir_all(&dir).expect("the temporary folder is writable");
-    dir
+    SCRATCH.with(|dir| dir.to_path_buf())
 }
 
 // ---- scenes ----------------------------------------------------------------------------

@@ -8,7 +8,7 @@ use karst_artifact::read_artifact;
 use karst_hydro::stage::{RenderArgs, render};
 use karst_hydro::{Hydro, WaterType};
 use karst_skeleton::{ConduitType, Skeleton, Zone};
-use karst_testkit::root;
+use karst_testkit::{root, scratch};
 
 fn run_to_hydro(scene: &Path, out: &Path) -> (Skeleton, Hydro) {
     std::fs::create_dir_all(out).unwrap();
@@ -24,7 +24,7 @@ fn run_to_hydro(scene: &Path, out: &Path) -> (Skeleton, Hydro) {
 
 #[test]
 fn default_scene_shafts_with_water_are_free_falls() {
-    let out = std::env::temp_dir().join(format!("karst-hydro-default-{}", std::process::id()));
+    let out = scratch("hydro-default");
     let (skeleton, hydro) = run_to_hydro(&root().join("fixtures/scenes/default.toml"), &out);
     let mut shafts = Vec::new();
     for (c, w) in skeleton.conduits.iter().zip(&hydro.conduits) {
@@ -53,7 +53,7 @@ fn default_scene_shafts_with_water_are_free_falls() {
         assert!(s.water.is_free_fall(), "{:?} at {} rad", s.water, s.slope);
     }
     assert!(out.join("hydro_nodes.csv").exists() && out.join("hydro_links.csv").exists());
-    render(&RenderArgs { dir: out.clone(), png: None }).unwrap();
+    render(&RenderArgs { dir: out.to_path_buf(), png: None }).unwrap();
     let png = std::fs::read(out.join("hydro.png")).unwrap();
     assert_eq!(&png[1..4], b"PNG");
 
@@ -71,5 +71,4 @@ fn default_scene_shafts_with_water_are_free_falls() {
     let total: f64 = hydro.sinks.iter().map(|s| s.recharge).sum();
     let spring: f64 = hydro.springs.iter().map(|s| s.flow).sum();
     assert!((total - spring).abs() <= 1e-9 * total);
-    std::fs::remove_dir_all(&out).unwrap();
 }

@@ -388,8 +388,7 @@ fn flow_sized_radii_grow_with_flow() {
 fn the_csv_export_loads_back_as_nodes_and_links() {
     let skeleton = random_network(3);
     let h = compute(&skeleton, &HydroParams::default(), &Inputs::default()).unwrap();
-    let dir = std::env::temp_dir().join(format!("karst-hydro-csv-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = karst_testkit::scratch("hydro-csv");
     export::write(&dir, &skeleton, &h).unwrap();
     let table = |name: &str| -> (Vec<String>, Vec<Vec<String>>) {
         let text = std::fs::read_to_string(dir.join(name)).unwrap();
@@ -431,7 +430,6 @@ fn the_csv_export_loads_back_as_nodes_and_links() {
         .sum();
     let expected = HydroParams::default().total_discharge * linked / recharge;
     assert!(expected > 0.0 && (outlets - expected).abs() < 1e-9, "{outlets} {expected}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

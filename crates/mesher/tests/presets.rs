@@ -10,7 +10,7 @@ use karst_mesher::anchors;
 use karst_mesher::mesh_with;
 use karst_mesher::{TriMesh, watertight};
 use karst_sdf::{CarvedTerrain, SdfModel};
-use karst_testkit::root;
+use karst_testkit::{root, scratch};
 
 /// The cell of the cave alone and of the water in this test, metres.
 const CAVE_CELL: f64 = 1.0;
@@ -18,8 +18,8 @@ const CAVE_CELL: f64 = 1.0;
 /// The scene's sdf model, its upstream stages run into a scratch folder.
 fn preset_model(name: &str) -> (Scene, SdfModel) {
     let scene = root().join(format!("fixtures/scenes/{name}.toml"));
-    let out = std::env::temp_dir().join(format!("karst-mesher-{name}-{}", std::process::id()));
-    let args = (scene.clone(), out.clone());
+    let out = scratch(&format!("mesher-{name}"));
+    let args = (scene.clone(), out.to_path_buf());
     karst_testkit::run::<karst_sampling::SamplingStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1).unwrap();
@@ -27,7 +27,6 @@ fn preset_model(name: &str) -> (Scene, SdfModel) {
     karst_testkit::run::<karst_streams::StreamsStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_sdf::SdfStage>(&args.0, &args.1).unwrap();
     let (_, model): (_, SdfModel) = read_artifact(&out.join("sdf.bin")).unwrap();
-    let _ = std::fs::remove_dir_all(&out);
     (Scene::load(&scene).unwrap(), model)
 }
 

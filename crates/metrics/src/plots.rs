@@ -269,7 +269,7 @@ mod tests {
 
     #[test]
     fn pictures_decode_at_their_size_and_are_not_blank() {
-        let dir = std::env::temp_dir().join(format!("karst-metrics-plots-{}", std::process::id()));
+        let dir = karst_testkit::scratch("metrics-plots");
         let range = CaveRange { min: 1.0, max: 2.0, min_network: "a".into(), max_network: "b".into(), n: 3 };
         let rows = [("x", Compared { value: f64::NAN, real_caves: range, inside: false })];
         write_all(&dir, &[1.0, 2.0, 3.0], &[5.0, 6.0], &rows).unwrap();
@@ -282,6 +282,5 @@ mod tests {
             assert_eq!((w, h), size, "{file}");
             assert!(colours > 10, "{file}: {colours} colours");
         }
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -9,12 +9,13 @@
 mod common;
 
 use common::{
-    CaveSpec, as_map, assert_same, json_map, karstnet_metrics, python, random_cave, temp_dir, write_karstnet,
+    CaveSpec, as_map, assert_same, json_map, karstnet_metrics, python, random_cave, write_karstnet,
 };
 use karst_metrics::{Network, characterize};
+use karst_testkit::scratch;
 
 fn check(python: &str, name: &str, net: &Network) {
-    let dir = temp_dir(name);
+    let dir = scratch(name);
     let base = dir.join(name);
     write_karstnet(net, &base);
     let theirs = json_map(&karstnet_metrics(python, &base));

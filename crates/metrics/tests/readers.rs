@@ -5,9 +5,10 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{caves_dir, temp_dir};
+use common::caves_dir;
 use karst_metrics::readers::{read_csv, read_karstnet, read_pline};
 use karst_metrics::{Network, ReadError, characterize};
+use karst_testkit::scratch;
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let path = dir.join(name);
@@ -28,7 +29,7 @@ fn assert_line_error(result: Result<Network, ReadError>, file: &str, line: usize
 
 #[test]
 fn karstnet_files_2d_comments_and_blank_lines() {
-    let dir = temp_dir("dat");
+    let dir = scratch("dat");
     write(&dir, "c_nodes.dat", "# x y\n0 0\n\n3 4\n6 8\n");
     write(&dir, "c_links.dat", "1 2\n2 3\n");
     let net = read_karstnet(&dir.join("c")).expect("valid");
@@ -38,7 +39,7 @@ fn karstnet_files_2d_comments_and_blank_lines() {
 
 #[test]
 fn karstnet_bad_input() {
-    let dir = temp_dir("dat-bad");
+    let dir = scratch("dat-bad");
     let base = dir.join("c");
     write(&dir, "c_nodes.dat", "0 0 0\n1 1 1\n2 2 2\n");
     write(&dir, "c_links.dat", "1 2\n3 3\n");
@@ -61,7 +62,7 @@ fn karstnet_bad_input() {
 
 #[test]
 fn pline_atoms_share_their_vertex() {
-    let dir = temp_dir("pl");
+    let dir = scratch("pl");
     let text = "GOCAD PLine 1\nILINE\nVRTX 1 0 0 0\nPVRTX 2 1 0 0 7.5\nSEG 1 2\nILINE\nATOM 3 2\nVRTX 4 1 1 0\nSEG 3 4\nEND\n";
     let net = read_pline(&write(&dir, "a.pl", text)).expect("valid");
     assert_eq!(net.nodes.len(), 3);
@@ -70,7 +71,7 @@ fn pline_atoms_share_their_vertex() {
 
 #[test]
 fn pline_bad_input() {
-    let dir = temp_dir("pl-bad");
+    let dir = scratch("pl-bad");
     let self_loop = "VRTX 1 0 0 0\nVRTX 2 1 0 0\nSEG 1 2\nATOM 3 1\nSEG 3 1\n";
     assert_line_error(read_pline(&write(&dir, "a.pl", self_loop)), "a.pl", 5, "SEG 3 1");
     let undefined = "VRTX 1 0 0 0\nVRTX 2 1 0 0\nSEG 1 9\n";
@@ -83,7 +84,7 @@ fn pline_bad_input() {
 
 #[test]
 fn csv_ids_and_columns_in_any_order() {
-    let dir = temp_dir("csv");
+    let dir = scratch("csv");
     let nodes = write(&dir, "n.csv", "z,name,id,x,y\n0,a,100,0,0\n0,b,-5,3,4\n1,c,7,3,4\n");
     let edges = write(&dir, "e.csv", "\"to\",\"from\",kind\n-5,100,x\n7,-5,y\n");
     let net = read_csv(&nodes, &edges).expect("valid");
@@ -103,7 +104,7 @@ fn csv_ids_and_columns_in_any_order() {
 #[test]
 fn the_three_formats_agree_on_sakany() {
     let dat = read_karstnet(&caves_dir().join("Sakany")).expect("Sakany");
-    let dir = temp_dir("sakany-csv");
+    let dir = scratch("sakany-csv");
     let mut nodes = String::from("id,x,y,z\n");
     for (i, [x, y, z]) in dat.nodes.iter().enumerate() {
         nodes += &format!("{},{x:?},{y:?},{z:?}\n", 1000 + 3 * i);
@@ -128,7 +129,7 @@ fn the_three_formats_agree_on_sakany() {
 /// `source,target` edges; errors name the file, the line and the column.
 #[test]
 fn csv_layouts_of_real_data() {
-    let dir = temp_dir("csv-layouts");
+    let dir = scratch("csv-layouts");
     let nodes = write(&dir, "kn_nodes.csv", "id;x;y;z\n1;0.0;0.0;10.5\n2;3.0;4.0;10.0\n3;3.0;8.0;9.0\n");
     let edges = write(&dir, "kn_links.csv", "from_id;to_id\n1;2\n2;3\n");
     let net = read_csv(&nodes, &edges).expect("KNdata layout");

@@ -11,11 +11,12 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{as_map, assert_same, json_map, karstnet_metrics, python, temp_dir};
+use common::{as_map, assert_same, json_map, karstnet_metrics, python};
 use karst_artifact::read_artifact;
 use karst_metrics::MetricsReport;
 use karst_metrics::characterize;
 use karst_metrics::readers::read_karstnet;
+use karst_testkit::scratch;
 
 fn scenes() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scenes");
@@ -52,7 +53,7 @@ fn every_scene_matches_karstnet() {
     assert!(scenes.len() >= 2, "fixtures/scenes holds at least default and tiny");
     for scene in scenes {
         let name = scene.file_stem().expect("a file name").to_string_lossy().into_owned();
-        let out = temp_dir(&format!("scene-{name}"));
+        let out = scratch(&format!("scene-{name}"));
         run_stages(&scene, &out);
         let base = out.join(karst_skeleton::stage::KARSTNET_BASE);
         let theirs = json_map(&karstnet_metrics(&python, &base));

@@ -15,7 +15,7 @@ use karst_hydro::Hydro;
 use karst_sdf::{CarvedTerrain, add_streams, build, synthetic};
 use karst_skeleton::Skeleton;
 use karst_streams::Streams;
-use karst_testkit::root;
+use karst_testkit::{root, scratch};
 
 /// The tree of `scene` from the skeleton, hydro and streams artifacts in `dir`, as the sdf
 /// stage builds it.
@@ -133,16 +133,14 @@ fn tiny_tree_is_one_lipschitz() {
 /// The tree of a preset scene, its upstream stages run into a scratch folder.
 fn preset_field(name: &str) -> CarvedTerrain {
     let scene = root().join(format!("fixtures/scenes/{name}.toml"));
-    let out = std::env::temp_dir().join(format!("karst-sdf-{name}-{}", std::process::id()));
-    let args = (scene.clone(), out.clone());
+    let out = scratch(&format!("sdf-{name}"));
+    let args = (scene.clone(), out.to_path_buf());
     karst_testkit::run::<karst_sampling::SamplingStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_hydro::HydroStage>(&args.0, &args.1).unwrap();
     karst_testkit::run::<karst_streams::StreamsStage>(&args.0, &args.1).unwrap();
-    let field = field_of(&scene, &out);
-    let _ = std::fs::remove_dir_all(&out);
-    field
+    field_of(&scene, &out)
 }
 
 /// On a preset's tree: 1-Lipschitz on pairs near its leaves (and a quarter anywhere); the BVH

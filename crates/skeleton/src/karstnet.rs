@@ -104,8 +104,7 @@ mod tests {
             conduits: vec![conduit(vec![0, 1, 1, 2], 1.0, 1), conduit(vec![2, 1], 3.0, 0)],
             routes: Vec::new(),
         };
-        let dir = std::env::temp_dir().join(format!("karstgen-karstnet-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = karst_testkit::scratch("karstnet");
         write(&skeleton, &dir.join("net")).unwrap();
         let links = std::fs::read_to_string(dir.join("net_links.dat")).unwrap();
         assert_eq!(links, "1 2\n2 3\n");
@@ -113,6 +112,5 @@ mod tests {
         let rows: Vec<&str> = csv.lines().collect();
         assert_eq!(rows[1], "1,0,0,0,0,\"a, b\",vadose,1,1");
         assert_eq!(rows[2], "2,1,0,0,1,,vadose,3,0");
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -196,9 +196,8 @@ mod tests {
     use std::io::Read;
 
     /// A view folder with index.html and data/a.json, beside a secret file.
-    fn fixture(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("karst-view-server-{}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
+    fn fixture(name: &str) -> karst_testkit::Scratch {
+        let dir = karst_testkit::scratch(&format!("view-server-{name}"));
         std::fs::create_dir_all(dir.join("view/data")).unwrap();
         std::fs::write(dir.join("view/index.html"), "<html>karst</html>").unwrap();
         std::fs::write(dir.join("view/data/a.json"), "{\"a\":1}").unwrap();

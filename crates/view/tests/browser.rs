@@ -8,7 +8,7 @@ use std::process::Command;
 
 use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::SceneFile;
-use karst_testkit::root;
+use karst_testkit::{root, scratch};
 use karst_view::{Server, write_view};
 
 const CHROMIUM: &str = "/usr/bin/chromium";
@@ -58,8 +58,7 @@ fn serve(view: &Path) -> String {
 #[test]
 fn the_default_scene_in_headless_chromium() {
     let modules = node_modules();
-    let out = std::env::temp_dir().join(format!("karst-view-browser-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let out = scratch("view-browser");
     let scene = root().join("fixtures/scenes/default.toml");
     make::run(
         &SceneFile::load(&scene).expect("the default scene loads"),
@@ -82,5 +81,4 @@ fn the_default_scene_in_headless_chromium() {
     let report = write_view(&partial, Some(&scene)).unwrap();
     let results = drive(&modules, "missing", &serve(&report.dir), Path::new("mesh.bin"));
     println!("without meshes: {results}");
-    let _ = std::fs::remove_dir_all(&out);
 }

@@ -10,13 +10,11 @@ use karst_pipeline::scene::SceneFile;
 use karst_view::{ViewError, write_view};
 use serde_json::Value;
 
-use karst_testkit::root;
+use karst_testkit::{Scratch, root, scratch};
 
 /// A scratch copy of the tiny scene's golden run, without the files named in `drop`.
-fn tiny_run(name: &str, drop: &[&str]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("karst-view-write-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+fn tiny_run(name: &str, drop: &[&str]) -> Scratch {
+    let dir = scratch(name);
     for entry in std::fs::read_dir(root().join("fixtures/golden/tiny")).unwrap() {
         let path = entry.unwrap().path();
         let file = path.file_name().unwrap().to_str().unwrap().to_string();
@@ -173,8 +171,7 @@ fn a_corrupted_artifact_is_a_problem_that_says_what_to_rerun() {
 
 #[test]
 fn a_folder_that_is_not_a_run_is_refused() {
-    let empty = std::env::temp_dir().join(format!("karst-view-write-{}-empty", std::process::id()));
-    std::fs::create_dir_all(&empty).unwrap();
+    let empty = scratch("empty");
     let err = write_view(&empty, None).unwrap_err();
     assert!(matches!(err, ViewError::NotARun { .. }), "{err}");
     assert!(err.to_string().contains("not a karstgen run"), "{err}");

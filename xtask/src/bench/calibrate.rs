@@ -17,7 +17,7 @@ const TARGET: &str = "fixtures/caves/Sakany_nodes.dat";
 /// Runs the calibration into a scratch folder (removed afterwards) and prints its figures.
 pub fn calibrate_bench() -> Result<(), StageError> {
     let out = super::scratch_dir(Path::new(SCENE));
-    let args = CalibrateArgs { scene: SCENE.into(), target: vec![TARGET.into()], out: out.clone() };
+    let args = CalibrateArgs { scene: SCENE.into(), target: vec![TARGET.into()], out: out.to_path_buf() };
     let (cpu0, start) = (probes::cpu_seconds(), Instant::now());
     let summary = run(&args)?;
     let wall = start.elapsed().as_secs_f64();
@@ -36,7 +36,7 @@ pub fn calibrate_bench() -> Result<(), StageError> {
             row.split(',').nth(3).and_then(|d| d.parse::<f64>().ok()).is_some_and(|d| d <= before / 2.0)
         })
         .map_or("never".into(), |i| format!("candidate {}", i + 1));
-    let _ = std::fs::remove_dir_all(&out);
+    drop(out);
     println!("{summary}");
     println!(
         "| scene | target | candidates × seeds | distance before → after | half reached at | wall s | CPU s |"

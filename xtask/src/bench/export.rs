@@ -8,6 +8,8 @@ use karst_artifact::read_artifact;
 use karst_export::{ExportFormat, ExportParams, Inputs, export};
 use karst_stage::StageError;
 
+use crate::temp_folder::TempFolder;
+
 /// One timed case: its name, median seconds and bytes written.
 pub struct ExportTime {
     pub case: String,
@@ -34,7 +36,7 @@ pub fn time_exports(dir: &Path, runs: usize) -> Result<Vec<ExportTime>, StageErr
         scene: None,
         frame: &frame,
     };
-    let scratch = std::env::temp_dir().join(format!("karstgen-bench-export-{}", std::process::id()));
+    let scratch = TempFolder::new("bench-export");
     let mut cases = vec![("default".to_string(), ExportParams::default().formats)];
     cases.extend(ExportFormat::ALL.iter().map(|f| (f.name().to_string(), vec![*f])));
     let mut times = Vec::new();

@@ -13,6 +13,8 @@ use karst_geology::Scene;
 use karst_geology::geotiff::testing::{Encoding, write};
 use karst_stage::StageError;
 
+use crate::temp_folder::TempFolder;
+
 use super::probes;
 
 /// Pixels along each side of the benchmark raster.
@@ -32,7 +34,7 @@ pub struct GeotiffTiming {
 
 /// Writes the raster, then loads the scene `runs` times.
 pub fn time_geotiff_terrain(runs: usize) -> Result<GeotiffTiming, StageError> {
-    let folder = std::env::temp_dir().join(format!("karst-bench-geotiff-{}", std::process::id()));
+    let folder = TempFolder::new("bench-geotiff");
     std::fs::create_dir_all(&folder)
         .map_err(|e| StageError::failure(format!("{}: {e}", folder.display())))?;
     let scene = write_case(&folder).map_err(|e| StageError::failure(format!("{}: {e}", folder.display())))?;
@@ -50,7 +52,6 @@ pub fn time_geotiff_terrain(runs: usize) -> Result<GeotiffTiming, StageError> {
         drop(loaded);
         times.push((seconds, cpu, peak));
     }
-    let _ = std::fs::remove_dir_all(&folder);
     times.sort_by(|a, b| a.0.total_cmp(&b.0));
     let (seconds, cpu_seconds, peak_above) = times[times.len() / 2];
     Ok(GeotiffTiming { file_bytes, seconds, cpu_seconds, peak_above })

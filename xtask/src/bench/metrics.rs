@@ -63,7 +63,6 @@ pub fn time_networks(runs: usize) -> Result<Vec<NetworkTiming>, StageError> {
             karstnet,
         });
     }
-    let _ = std::fs::remove_dir_all(&scratch);
     Ok(timings)
 }
 

@@ -7,6 +7,8 @@ use std::path::{Path, PathBuf};
 use karst_artifact::StageId;
 use karst_stage::StageError;
 
+use crate::temp_folder::TempFolder;
+
 mod calibrate;
 mod costgraph;
 mod export;
@@ -278,9 +280,10 @@ fn median(mut values: Vec<f64>) -> f64 {
     values[values.len() / 2]
 }
 
-fn scratch_dir(scene: &Path) -> PathBuf {
+/// The scratch folder of a bench on `scene` (or of a name), removed when dropped.
+fn scratch_dir(scene: &Path) -> TempFolder {
     let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    std::env::temp_dir().join(format!("karstgen-bench-{}-{name}", std::process::id()))
+    TempFolder::new(&format!("bench-{name}"))
 }
 
 fn export_bench(dir: &Path, runs: usize) -> Result<(), StageError> {

@@ -23,7 +23,6 @@ pub fn time_scene(scene: &Path, runs: usize) -> Result<Vec<(StageId, f64)>, Stag
             times[i].push(start.elapsed().as_secs_f64());
         }
     }
-    let _ = std::fs::remove_dir_all(&out);
     Ok(StageId::ALL.into_iter().zip(times.into_iter().map(median)).collect())
 }
 
@@ -43,6 +42,5 @@ pub fn time_stage(scene: &Path, stage: StageId, runs: usize) -> Result<(f64, Str
         headline = registry::stage(stage).run(&job)?.headline;
         times.push(start.elapsed().as_secs_f64());
     }
-    let _ = std::fs::remove_dir_all(&out);
     Ok((median(times), headline))
 }

@@ -49,7 +49,7 @@ pub fn sdf_preset(scene: &Path, runs: usize) -> Result<SdfBench, StageError> {
     }
     let (_, skeleton) = read_artifact::<karst_skeleton::Skeleton>(&job.artifact(StageId::Skeleton))?;
     let (_, hydro) = read_artifact::<karst_hydro::Hydro>(&job.artifact(StageId::Hydro))?;
-    let _ = std::fs::remove_dir_all(&out);
+    drop(out);
     sdf_tree(&loaded.scene, &skeleton, &hydro, runs)
 }
 
@@ -78,7 +78,7 @@ fn sdf_tree(
         frame: Default::default(),
     };
     let header = karst_artifact::write_artifact(&dir.join("sdf.bin"), &provenance, field.model())?;
-    let _ = std::fs::remove_dir_all(&dir);
+    drop(dir);
 
     let [uniform, near] = karst_sdf::synthetic::eval_points(&field, skeleton, 200_000);
     let time = |points: &[DVec3]| {

@@ -79,7 +79,6 @@ fn upstream(scene: &Path) -> Result<Upstream, StageError> {
     let (_, skeleton) = read_artifact::<Skeleton>(&job.artifact(StageId::Skeleton))?;
     let (_, hydro) = read_artifact::<Hydro>(&job.artifact(StageId::Hydro))?;
     let (_, streams) = read_artifact::<Streams>(&job.artifact(StageId::Streams))?;
-    let _ = std::fs::remove_dir_all(&out);
     Ok(Upstream { scene: loaded.scene, skeleton, hydro, streams })
 }
 

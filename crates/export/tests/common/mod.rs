@@ -96,13 +96,18 @@ impl Run {
     }
 }
 
-/// Exports `formats` of `run` into a scratch folder, kept for the caller; returns the folder
-/// and the manifest.
-pub fn export_run(run: &Run, formats: &[ExportFormat], tag: &str) -> (PathBuf, Manifest) {
-    let dir = scratch(tag).keep();
+/// Exports `formats` of `run` into a scratch folder; returns that folder (removed when dropped,
+/// if the test passes), the export folder inside it and the manifest.
+pub fn export_run(
+    run: &Run,
+    formats: &[ExportFormat],
+    tag: &str,
+) -> (karst_testkit::Scratch, PathBuf, Manifest) {
+    let dir = scratch(tag);
     let params = ExportParams { formats: formats.to_vec(), ..ExportParams::default() };
     let manifest = export(&run.inputs(), &params, &dir).unwrap_or_else(|e| panic!("{tag}: {e}"));
-    (dir.join(karst_export::FOLDER), manifest)
+    let folder = dir.join(karst_export::FOLDER);
+    (dir, folder, manifest)
 }
 
 /// The venv's Python with karstnet, vtk and swmm-toolkit.

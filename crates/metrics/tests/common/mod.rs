@@ -262,15 +262,6 @@ pub fn write_karstnet(net: &Network, base: &Path) {
     std::fs::write(format!("{}_links.dat", base.display()), links).expect("write links");
 }
 
-/// A fresh empty directory under the system temp dir.
-pub fn temp_dir(tag: &str) -> PathBuf {
-    let nanos =
-        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos());
-    let dir = std::env::temp_dir().join(format!("karst-metrics-{tag}-{}-{nanos}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("create temp dir");
-    dir
-}
-
 /// The Python of `KARSTNET_PYTHON` (set by `cargo xtask test`); panics when unset, so that the
 /// comparisons with karstnet never pass silently.
 pub fn python() -> String {
