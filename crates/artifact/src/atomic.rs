@@ -124,7 +124,7 @@ fn process_runs(pid: u32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scratch::scratch;
+    use karst_testkit::scratch;
 
     #[test]
     fn failed_write_keeps_the_old_file() {

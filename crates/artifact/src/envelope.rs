@@ -539,7 +539,7 @@ fn check_kind_and_schema<P: Payload>(path: &Path, header: &Header) -> Result<(),
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scratch::Scratch;
+    use karst_testkit::Scratch;
     use std::path::PathBuf;
 
     #[derive(Debug, PartialEq, Serialize, Deserialize)]
@@ -562,7 +562,7 @@ mod tests {
 
     /// A file `name` in a fresh scratch folder, which is removed when the test passes.
     fn scratch(name: &str) -> (Scratch, PathBuf) {
-        let dir = crate::scratch::scratch(&format!("envelope-{name}"));
+        let dir = karst_testkit::scratch(&format!("envelope-{name}"));
         let path = dir.join(name);
         (dir, path)
     }

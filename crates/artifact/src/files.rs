@@ -82,7 +82,7 @@ mod tests {
 
     #[test]
     fn devices_folders_and_oversized_files_are_refused() {
-        let dir = crate::scratch::scratch("files");
+        let dir = karst_testkit::scratch("files");
         let err = read_regular(&dir, 10).unwrap_err();
         assert!(err.to_string().contains("a folder"), "{err}");
         #[cfg(unix)]

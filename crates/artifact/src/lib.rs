@@ -22,8 +22,6 @@ pub mod files;
 pub mod frame;
 pub mod hash;
 pub mod lock;
-#[cfg(test)]
-mod scratch;
 pub mod stages;
 pub mod stream;
 

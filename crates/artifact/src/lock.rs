@@ -50,7 +50,7 @@ mod tests {
 
     #[test]
     fn a_second_writer_is_refused_until_the_first_is_done() {
-        let scratch = crate::scratch::scratch("lock");
+        let scratch = karst_testkit::scratch("lock");
         let dir = scratch.join("out");
         let first = lock_output(&dir).unwrap();
         let err = lock_output(&dir).unwrap_err();

@@ -95,7 +95,7 @@ pub fn transpose(offsets: &[u32], targets: &[u32]) -> (Vec<u32>, Vec<u32>) {
 }
 
 /// The row offsets of the reversed rows: where the in-edges of every node start.
-pub fn reversed_offsets(offsets: &[u32], targets: &[u32]) -> Vec<u32> {
+fn reversed_offsets(offsets: &[u32], targets: &[u32]) -> Vec<u32> {
     let n = offsets.len().saturating_sub(1);
     let counts: Vec<Vec<u32>> = node_ranges(n).par_iter().map(|&range| in_degrees(targets, range)).collect();
     let mut reversed = Vec::with_capacity(n + 1);
@@ -107,7 +107,7 @@ pub fn reversed_offsets(offsets: &[u32], targets: &[u32]) -> Vec<u32> {
 }
 
 /// Writes `value(source, edge)` of every edge into `values` (one per edge), laid out as the
-/// reversed rows `reversed` (from [`reversed_offsets`]): the in-edges of each node, by
+/// reversed rows whose offsets are `reversed` (from [`transpose`]): the in-edges of each node, by
 /// increasing source.
 ///
 /// A counting sort whose writes land all over the result (a cache miss per edge): the nodes are

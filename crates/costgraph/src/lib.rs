@@ -23,7 +23,7 @@ mod stats;
 pub use build::{build, build_points};
 pub use cost::CostModel;
 pub use error::CostGraphError;
-pub use knn::{reversed_offsets, transpose, transpose_values};
+pub use knn::{transpose, transpose_values};
 pub use payload::{CostGraph, CostSet, SHARED_ROW};
 pub use stage::CostgraphStage;
 pub use stats::{Histogram, SetStats, Summary, TermStats};

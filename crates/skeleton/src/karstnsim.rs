@@ -112,7 +112,7 @@ pub(crate) fn route_mapping<'g>(
         // (it never runs without them), so the routes do not depend on which finishes first.
         // With one thread they are all computed first.
         let (send, costs_ready) = std::sync::mpsc::channel();
-        let wanted: Vec<usize> = worth.iter().map(|w| w.0).collect();
+        let wanted: Vec<usize> = worth.iter().map(|w| w.row).collect();
         if rayon::current_num_threads() > 1 {
             scope.spawn(move || costs_to_springs(graph, phase, worth, &send));
         } else {
@@ -214,16 +214,22 @@ fn route_sinks<'g>(
     Ok(PhaseRoutes { routes, used })
 }
 
+/// A spring whose least costs are computed: its row, its cost set, its sample.
+struct Mapped<'g> {
+    row: usize,
+    costs: &'g (dyn EdgeCosts + 'g),
+    target: usize,
+}
+
 /// The springs of `phase` with at least `legs_worth` candidate legs among `sinks`, in the order
-/// the sinks first need them, with their cost set and sample.
-#[allow(clippy::type_complexity)]
+/// the sinks first need them.
 fn springs_worth_their_costs<'g>(
     scene: &Scene,
     samples: &Samples,
     cost_set: &CostSets<'g>,
     (sinks, phase): (&[End], &PhaseSetup),
     legs_worth: usize,
-) -> Result<Vec<(usize, &'g (dyn EdgeCosts + 'g), usize)>, SkeletonError> {
+) -> Result<Vec<Mapped<'g>>, SkeletonError> {
     let mut legs: Vec<(usize, usize)> = Vec::new();
     for sink in sinks {
         for spring in candidate_springs(scene, sink, &phase.springs) {
@@ -237,7 +243,8 @@ fn springs_worth_their_costs<'g>(
     for (row, _) in legs.into_iter().filter(|&(_, n)| n >= legs_worth) {
         let spring =
             phase.springs.iter().find(|s| s.row == row).expect("a candidate is a spring of the phase");
-        worth.push((row, cost_set(&water_table_of(scene, spring).name), sample_of(samples, spring)?));
+        let costs = cost_set(&water_table_of(scene, spring).name);
+        worth.push(Mapped { row, costs, target: sample_of(samples, spring)? });
     }
     Ok(worth)
 }
@@ -262,7 +269,7 @@ fn spring_costs_fit(scene: &Scene, graph: &CostGraph, springs: usize) -> bool {
 fn costs_to_springs(
     graph: &CostGraph,
     phase: &PhaseSetup,
-    worth: Vec<(usize, &(dyn EdgeCosts + '_), usize)>,
+    worth: Vec<Mapped>,
     send: &std::sync::mpsc::Sender<(usize, Option<Vec<f64>>)>,
 ) {
     if worth.is_empty() {
@@ -270,7 +277,7 @@ fn costs_to_springs(
     }
     let in_edges = InEdges::of(graph);
     let mut reversed = Vec::new();
-    for (row, base, target) in worth {
+    for Mapped { row, costs: base, target } in worth {
         let costs = Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
         let least = costs.direct().and_then(|d| costs_to(&d, &in_edges, target, &mut reversed));
         if send.send((row, least)).is_err() {
