@@ -195,12 +195,7 @@ impl<'a> Grid<'a> {
             }
             let from = self.starts[row + start] as usize;
             let to = self.starts[row + x + 1] as usize;
-            for &(q, j) in &self.sorted[from..to] {
-                let d2 = distance2(p, &q);
-                if d2 <= limit && j as usize != i {
-                    out.push(key(d2, j));
-                }
-            }
+            gather_within(&self.sorted[from..to], (i, p), limit, out);
             x += 1;
         }
     }
@@ -211,6 +206,22 @@ impl<'a> Grid<'a> {
         let hi = lo + self.cell;
         ((lo - v).max(v - hi) - self.margin).max(0.0)
     }
+}
+
+/// Appends the [`key`] of every entry of `run` other than point `i` within squared distance
+/// `limit` of `p`. Without a branch per entry: every key is written, and the end of `out`
+/// moves past those that qualify (about one in three does, at random, so a branch would be
+/// mispredicted often).
+#[inline]
+fn gather_within(run: &[([f64; 3], u32)], (i, p): (usize, &[f64; 3]), limit: f64, out: &mut Vec<u128>) {
+    let mut end = out.len();
+    out.resize(end + run.len(), 0);
+    for &(q, j) in run {
+        let d2 = distance2(p, &q);
+        out[end] = key(d2, j);
+        end += usize::from((d2 <= limit) & (j as usize != i));
+    }
+    out.truncate(end);
 }
 
 /// A candidate as one sortable number: the bits of its squared distance (≥ 0, so they order
