@@ -284,14 +284,15 @@ impl CostModel {
                     out.cost.push(length * shared);
                 }
                 // Depends on the direction only; acos is dear, so only when an edge has a
-                // vadose part, and once for all the cost sets.
-                let vadose_term = std::cell::OnceCell::new();
-                let vadose = || {
-                    *vadose_term
-                        .get_or_init(|| 1.0 - direction.z.clamp(-1.0, 1.0).acos() / std::f64::consts::PI)
+                // vadose part (an end at or above a water table), and once for all the sets.
+                let tables = 4 + fields.surfaces..4 + fields.surfaces + fields.sets;
+                let vadose_part = tables.clone().any(|s| from[s] >= 0.0 || to[s] >= 0.0);
+                let vadose = if vadose_part {
+                    1.0 - direction.z.clamp(-1.0, 1.0).acos() / std::f64::consts::PI
+                } else {
+                    f64::NAN
                 };
-                let first = 4 + fields.surfaces;
-                for s in first..first + fields.sets {
+                for s in tables {
                     let ends = (from[s], to[s]);
                     let c = self.water_table_term(ends, vadose, &mut out.cuts);
                     out.water_table.push(c);
@@ -352,21 +353,22 @@ impl CostModel {
     }
 
     /// Mean C_WT along an edge whose ends lie at signed distances `(a, b)` from the water
-    /// table: `vadose` above it, s(d_WT) below, split where the edge crosses it.
-    fn water_table_term(&self, (a, b): (f64, f64), vadose: impl Fn() -> f64, cuts: &mut Vec<f64>) -> f64 {
+    /// table: `vadose` above it, s(d_WT) below, split where the edge crosses it. `vadose` is
+    /// only read when an end is at or above the table.
+    fn water_table_term(&self, (a, b): (f64, f64), vadose: f64, cuts: &mut Vec<f64>) -> f64 {
         let phreatic = |from: f64, to: f64, cuts: &mut Vec<f64>| {
             mean_of_nearest(&[from], &[to], (self.params.water_table_distance, wyvill_of_ratio), cuts)
         };
         match (a >= 0.0, b >= 0.0) {
-            (true, true) => vadose(),
+            (true, true) => vadose,
             (false, false) => phreatic(a, b, cuts),
             (true, false) => {
                 let t = a / (a - b);
-                t * vadose() + (1.0 - t) * phreatic(0.0, b, cuts)
+                t * vadose + (1.0 - t) * phreatic(0.0, b, cuts)
             }
             (false, true) => {
                 let t = a / (a - b);
-                t * phreatic(a, 0.0, cuts) + (1.0 - t) * vadose()
+                t * phreatic(a, 0.0, cuts) + (1.0 - t) * vadose
             }
         }
     }
