@@ -81,12 +81,42 @@ impl Payload for Samples {
     }
 }
 
-/// Two samples at the same position, (smaller index, larger index), if any.
+/// Two samples at the same position, if any: the first sample (in file order) whose position
+/// an earlier one has, and the first of those earlier ones.
+///
+/// Each position's bits (−0 read as +0) are hashed to one number, sorted with the sample's index
+/// beside it (sorting the indices by their positions looked every position up at each
+/// comparison: the largest part of reading a samples artifact), and the positions of equal
+/// hashes are compared; a collision of different positions costs a comparison, nothing more.
 fn coincident(positions: &[[f64; 3]]) -> Option<(usize, usize)> {
-    let key = |i: u32| positions[i as usize].map(|c| (c + 0.0).to_bits());
-    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
-    order.par_sort_unstable_by_key(|&i| (key(i), i));
-    order.windows(2).find(|w| key(w[0]) == key(w[1])).map(|w| (w[0] as usize, w[1] as usize))
+    let bits = |i: usize| positions[i].map(|c| (c + 0.0).to_bits());
+    let mut keyed: Vec<u128> = (0..positions.len())
+        .into_par_iter()
+        .map(|i| u128::from(position_hash(bits(i))) << 32 | i as u128)
+        .collect();
+    keyed.par_sort_unstable();
+    let index = |key: &u128| *key as u32 as usize;
+    let mut first: Option<(usize, usize)> = None;
+    for run in keyed.chunk_by(|a, b| a >> 32 == b >> 32).filter(|run| run.len() > 1) {
+        for (n, later) in run.iter().enumerate().skip(1) {
+            let later = index(later);
+            let earlier = run[..n].iter().map(index).find(|&a| bits(a) == bits(later));
+            if let Some(a) = earlier.filter(|_| first.is_none_or(|(_, b)| later < b)) {
+                first = Some((a, later));
+            }
+        }
+    }
+    first
+}
+
+/// A 64-bit hash of a position's bits (splitmix64's finaliser on each coordinate in turn).
+fn position_hash(bits: [u64; 3]) -> u64 {
+    let mix = |mut z: u64| {
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    };
+    bits.iter().fold(0x9E37_79B9_7F4A_7C15, |h, &b| mix(h ^ b))
 }
 
 impl Samples {
@@ -116,5 +146,37 @@ impl Samples {
             }
         }
         c
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The first sample whose position an earlier one has, by comparing every pair.
+    fn brute(positions: &[[f64; 3]]) -> Option<(usize, usize)> {
+        let same = |a: &[f64; 3], b: &[f64; 3]| a.iter().zip(b).all(|(x, y)| x == y);
+        (0..positions.len())
+            .find_map(|b| (0..b).find(|&a| same(&positions[a], &positions[b])).map(|a| (a, b)))
+    }
+
+    #[test]
+    fn coincident_samples_are_the_first_repeat_in_file_order() {
+        let mut state = 7u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % 8) as f64 - 4.0
+        };
+        // Coarse coordinates repeat often; the sets grow until repeats appear and beyond.
+        for n in [1, 2, 50, 120, 300, 600] {
+            let positions: Vec<[f64; 3]> = (0..n).map(|_| [next(), next(), next() * 0.5]).collect();
+            assert_eq!(coincident(&positions), brute(&positions), "{n} samples");
+        }
+        let distinct: Vec<[f64; 3]> = (0..1000).map(|i| [i as f64, (i % 7) as f64, 0.0]).collect();
+        assert_eq!(coincident(&distinct), None);
+        let signed_zero = [[1.0, 2.0, 3.0], [0.0, 5.0, -0.0], [9.0, 9.0, 9.0], [-0.0, 5.0, 0.0]];
+        assert_eq!(coincident(&signed_zero), Some((1, 3)));
     }
 }
