@@ -107,7 +107,7 @@ impl<'a> Grid<'a> {
     /// space need similar radii): every point within it is gathered; when fewer than `k` are
     /// found (and the radius is below the maximum length and the grid) it grows by half and
     /// the search is redone. The guess changes the work, never the result.
-    pub fn nearest(&self, i: usize, k: usize, max2: f64, radius: &mut f64, out: &mut Vec<u128>) {
+    pub fn nearest(&self, i: usize, k: usize, max2: f64, radius: &mut f64, out: &mut Vec<u64>) {
         let p = self.points[i];
         loop {
             out.clear();
@@ -119,19 +119,31 @@ impl<'a> Grid<'a> {
             }
             *radius *= 1.5;
         }
-        if out.len() > k {
-            if out.len() > 2 * k {
-                out.select_nth_unstable(k - 1);
-                out.truncate(k);
-            }
-            out.sort_unstable();
-            out.truncate(k);
-        } else {
-            out.sort_unstable();
+        if out.len() > 2 * k {
+            keep_the_least(out, k);
         }
+        out.sort_unstable();
+        self.order_near_ties(&p, out);
+        out.truncate(k);
         if out.len() == k {
             // Next guess: 10 % beyond this k-th distance (never below half a cell).
-            *radius = (1.1 * squared_distance(out[k - 1]).sqrt()).max(0.5 * self.cell);
+            let kth = distance2(&p, &self.points[index(out[k - 1]) as usize]);
+            *radius = (1.1 * kth.sqrt()).max(0.5 * self.cell);
+        }
+    }
+
+    /// Sorts every run of `keys` (sorted) that share their rounded distance by the exact
+    /// distances to `p`, then by index: the order of the exact squared distances, ties by index.
+    fn order_near_ties(&self, p: &[f64; 3], keys: &mut [u64]) {
+        let mut start = 0;
+        while start < keys.len() {
+            let rounded = keys[start] >> 32;
+            let end = start + keys[start..].iter().take_while(|&&c| c >> 32 == rounded).count();
+            if end - start > 1 {
+                let exact = |c: &u64| (distance2(p, &self.points[index(*c) as usize]).to_bits(), index(*c));
+                keys[start..end].sort_unstable_by_key(exact);
+            }
+            start = end;
         }
     }
 
@@ -145,7 +157,7 @@ impl<'a> Grid<'a> {
 
     /// Adds every point other than `i` within squared distance `limit` of `p`, scanning the
     /// cells whose box is within that distance.
-    fn scan_ball(&self, i: usize, p: &[f64; 3], limit: f64, out: &mut Vec<u128>) {
+    fn scan_ball(&self, i: usize, p: &[f64; 3], limit: f64, out: &mut Vec<u64>) {
         let reach = limit.sqrt() + self.margin;
         let range = |a: usize| {
             let cell = |v: f64| (((v - self.lo[a]) / self.cell).max(0.0) as usize).min(self.dims[a] - 1);
@@ -174,7 +186,7 @@ impl<'a> Grid<'a> {
         [x0, x1]: [usize; 2],
         (y, z): (usize, usize),
         (base, limit): (f64, f64),
-        out: &mut Vec<u128>,
+        out: &mut Vec<u64>,
     ) {
         let row = (z * self.dims[1] + y) * self.dims[0];
         let mut x = x0;
@@ -213,7 +225,7 @@ impl<'a> Grid<'a> {
 /// moves past those that qualify (about one in three does, at random, so a branch would be
 /// mispredicted often).
 #[inline]
-fn gather_within(run: &[([f64; 3], u32)], (i, p): (usize, &[f64; 3]), limit: f64, out: &mut Vec<u128>) {
+fn gather_within(run: &[([f64; 3], u32)], (i, p): (usize, &[f64; 3]), limit: f64, out: &mut Vec<u64>) {
     let mut end = out.len();
     out.resize(end + run.len(), 0);
     for &(q, j) in run {
@@ -224,19 +236,36 @@ fn gather_within(run: &[([f64; 3], u32)], (i, p): (usize, &[f64; 3]), limit: f64
     out.truncate(end);
 }
 
-/// A candidate as one sortable number: the bits of its squared distance (≥ 0, so they order
-/// as the values do), then its index (ties go to the smaller one).
-fn key(d2: f64, j: u32) -> u128 {
-    (u128::from(d2.to_bits()) << 32) | u128::from(j)
+/// Keeps in `keys` (unsorted, more than `k`) the `k` least in their order and every other
+/// that shares the rounded distance of the k-th (whose exact distance may be smaller).
+fn keep_the_least(keys: &mut Vec<u64>, k: usize) {
+    let (_, &mut kth, rest) = keys.select_nth_unstable(k - 1);
+    let tied = rest.iter().filter(|&&c| c >> 32 == kth >> 32).count();
+    if tied > 0 {
+        // Move the tied ones right after the k least (their order is settled later).
+        let mut at = k;
+        for n in k..keys.len() {
+            if keys[n] >> 32 == kth >> 32 {
+                keys.swap(at, n);
+                at += 1;
+            }
+        }
+    }
+    keys.truncate(k + tied);
 }
 
-/// The squared distance of a candidate [`key`].
-pub fn squared_distance(key: u128) -> f64 {
-    f64::from_bits((key >> 32) as u64)
+/// A candidate as one sortable number: the bits of its squared distance rounded to f32 (≥ 0,
+/// so they order as the values do; rounding to nearest never inverts two distances, it may
+/// only make them equal), then its index. Half the width of the exact (f64, index) pair, so
+/// the sort of the candidates, the largest part of a query after the distances, moves and
+/// compares half the bytes; the candidates that share a rounded distance (a few queries in
+/// 10,000) are put in exact order afterwards ([`Grid::order_near_ties`]).
+fn key(d2: f64, j: u32) -> u64 {
+    (u64::from((d2 as f32).to_bits()) << 32) | u64::from(j)
 }
 
 /// The index of a candidate [`key`].
-pub fn index(key: u128) -> u32 {
+pub fn index(key: u64) -> u32 {
     key as u32
 }
 
@@ -265,13 +294,13 @@ mod tests {
     use super::*;
 
     fn brute(points: &[[f64; 3]], i: usize, k: usize, max2: f64) -> Vec<u32> {
-        let mut all: Vec<u128> = (0..points.len())
+        let mut all: Vec<(u64, u32)> = (0..points.len())
             .filter(|&j| j != i)
-            .map(|j| key(distance2(&points[i], &points[j]), j as u32))
-            .filter(|&c| squared_distance(c) <= max2)
+            .map(|j| (distance2(&points[i], &points[j]).to_bits(), j as u32))
+            .filter(|&(d2, _)| f64::from_bits(d2) <= max2)
             .collect();
         all.sort_unstable();
-        all.iter().take(k).map(|&c| index(c)).collect()
+        all.iter().take(k).map(|&(_, j)| j).collect()
     }
 
     fn check(points: &[[f64; 3]], k: usize, max_length: f64) {
@@ -309,5 +338,29 @@ mod tests {
         check(&uniform, 25, 6.0);
         check(&clustered, 60, 1.5);
         check(&line[..3], 5, f64::INFINITY);
+    }
+
+    #[test]
+    fn exact_when_distances_differ_below_f32_resolution() {
+        // A query at the origin among points on the unit sphere whose distances differ in the
+        // last bits of an f64 only, the nearest with the larger indices: the candidates' keys
+        // tie and the exact order must come from the distances. 40 candidates for k = 5 take
+        // the path that selects before sorting.
+        let mut points = vec![[0.0, 0.0, 0.0]];
+        for n in 0..40 {
+            let angle = n as f64 * 0.157;
+            let r = 1.0 + (40 - n) as f64 * 3e-15;
+            points.push([r * angle.cos(), r * angle.sin(), 0.0]);
+        }
+        let grid = Grid::new(&points);
+        let mut out = Vec::new();
+        for k in [1, 5, 17] {
+            let mut radius = 2.0;
+            grid.nearest(0, k, f64::INFINITY, &mut radius, &mut out);
+            let got: Vec<u32> = out.iter().map(|&c| index(c)).collect();
+            assert_eq!(got, brute(&points, 0, k, f64::INFINITY), "k {k}");
+            assert_eq!(got[0], 40, "k {k}");
+        }
+        check(&points, 5, f64::INFINITY);
     }
 }

@@ -223,7 +223,7 @@ pub fn neighbours(
         .map(|nodes| {
             let mut lengths = Vec::with_capacity(nodes.len());
             let mut list = Vec::with_capacity(nodes.len() * k);
-            let mut row: Vec<u128> = Vec::with_capacity(4 * k);
+            let mut row: Vec<u64> = Vec::with_capacity(4 * k);
             let mut radius = grid.initial_radius(k);
             for &i in nodes {
                 grid.nearest(i as usize, k, max2, &mut radius, &mut row);
