@@ -1,4 +1,4 @@
-//! Times one cost-graph build on uniform random points in a scene's domain, as `cargo xtask
+//! Times one cost-graph build on uniform random points in a scene's domain (in Morton order), as `cargo xtask
 //! bench --costgraph` does, and prints a fingerprint of the result (to check that an
 //! optimisation leaves the graph bit-identical). Small enough to run under callgrind:
 //!
@@ -20,6 +20,9 @@ fn main() {
     let (min, max) = (scene.domain().min, scene.domain().max);
     let points: Vec<[f64; 3]> =
         (0..samples).map(|_| std::array::from_fn(|axis| rng.range(min[axis], max[axis]))).collect();
+    // In the sampler's storage order, as the bench does.
+    let order = karst_sampling::morton_permutation(&points, 0, (min, max));
+    let points: Vec<[f64; 3]> = order.iter().map(|&i| points[i as usize]).collect();
     let mut times = Vec::new();
     let mut graph = None;
     for _ in 0..runs.max(1) {

@@ -1,8 +1,12 @@
 //! Building the cost graph: k nearest neighbours, optional symmetrisation, the input checks,
 //! then the cost of every edge in every cost set with the distributions of its terms.
 //!
-//! Work is split into fixed chunks of nodes ([`knn::CHUNK`]) whose results are concatenated in
-//! chunk order, so the graph is byte-identical whatever the number of threads.
+//! Work is split into fixed chunks of consecutive nodes ([`knn::CHUNK`]) whose results are
+//! concatenated in chunk order, so the graph is byte-identical whatever the number of threads.
+//! The samples come in Morton order, so a chunk of consecutive nodes is a compact region whose
+//! neighbours' data stays in cache; and a chunk's rows are one range of every array (in the
+//! later cost sets too: their own rows are consecutive in node order), so each chunk writes
+//! into slices of its own.
 
 use rayon::prelude::*;
 
@@ -26,26 +30,26 @@ pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, CostGraphErr
     let chunks = samples.len().div_ceil(CHUNK) as u64;
     let bar = karst_stage::progress::bar(2 * chunks, "costgraph");
     let done = || bar.inc(1);
-    let order = knn::spatial_order(&samples.positions);
-    let rows = edges(scene, &samples.positions, &order, &done);
+    let rows = edges(scene, &samples.positions, &done);
     checks::isolated_keypoints(scene, samples, &rows)?;
     checks::sinks_reach_their_springs(scene, samples, &rows)?;
-    let graph = costed(&model, &samples.positions, (rows, &order), &done);
+    let graph = costed(&model, &samples.positions, rows, &done);
     bar.finish_and_clear();
     graph
 }
 
-/// The cost graph of bare `points` (no key-point checks): what `cargo xtask bench` times.
+/// The cost graph of bare `points` (no key-point checks): what `cargo xtask bench` times. Any
+/// order of the points gives the same graph; points stored along a space-filling curve, as
+/// samples are, give it fastest.
 pub fn build_points(scene: &Scene, points: &[[f64; 3]]) -> Result<CostGraph, CostGraphError> {
-    let order = knn::spatial_order(points);
-    let rows = edges(scene, points, &order, &|| ());
-    costed(&CostModel::from_scene(scene), points, (rows, &order), &|| ())
+    let rows = edges(scene, points, &|| ());
+    costed(&CostModel::from_scene(scene), points, rows, &|| ())
 }
 
 /// The edges: k nearest neighbours within the maximum length, symmetrised when asked.
-fn edges(scene: &Scene, points: &[[f64; 3]], order: &[u32], done: &(dyn Fn() + Sync)) -> Rows {
+fn edges(scene: &Scene, points: &[[f64; 3]], done: &(dyn Fn() + Sync)) -> Rows {
     let p = scene.costgraph();
-    let rows = knn::neighbours(points, order, (p.k, p.max_edge_length), done);
+    let rows = knn::neighbours(points, (p.k, p.max_edge_length), done);
     if p.symmetrise { rows.symmetrised() } else { rows }
 }
 
@@ -61,43 +65,11 @@ struct ChunkCosts {
     sets: Vec<SetStats>,
 }
 
-/// The cost arrays of every set, written in place by the parallel chunks: a chunk writes the
-/// rows of its own nodes only, rows are disjoint ranges of the arrays and every node is in
-/// exactly one chunk (the chunks split a permutation of the nodes), so no element is written
-/// twice. Costing into per-chunk buffers and copying them into place held every set twice at
-/// the peak (7.5 GB for the regional scene's 5 sets).
-struct InPlace {
-    arrays: Vec<(*mut f32, usize)>,
-}
-
-// SAFETY: the pointers are only written through `write`, whose callers write disjoint
-// elements (see the type's comment); the arrays outlive every chunk and are not read or moved
-// until all chunks are done.
-unsafe impl Sync for InPlace {}
-unsafe impl Send for InPlace {}
-
-impl InPlace {
-    fn new(arrays: &mut [Vec<f32>]) -> Self {
-        InPlace { arrays: arrays.iter_mut().map(|a| (a.as_mut_ptr(), a.len())).collect() }
-    }
-
-    /// Stores `value` at `at` in set `set`'s array.
-    ///
-    /// # Safety
-    /// No other thread writes the same (set, at) while the arrays are shared.
-    unsafe fn write(&self, set: usize, at: usize, value: f32) {
-        let (array, len) = self.arrays[set];
-        assert!(at < len, "cost {at} beyond the {len} of set {set}");
-        // SAFETY: in bounds (checked above) of a live array; exclusive by the caller's promise.
-        unsafe { *array.add(at) = value };
-    }
-}
-
-/// Costs every edge of `rows` under `model`, in chunks of nodes in spatial order.
+/// Costs every edge of `rows` under `model`, in chunks of consecutive nodes.
 fn costed(
     model: &CostModel,
     points: &[[f64; 3]],
-    (rows, order): (Rows, &[u32]),
+    rows: Rows,
     done: &(dyn Fn() + Sync),
 ) -> Result<CostGraph, CostGraphError> {
     let fields = model.node_fields(points);
@@ -106,16 +78,18 @@ fn costed(
     let mut arrays: Vec<Vec<f32>> = (0..model.set_count())
         .map(|s| vec![0f32; if s == 0 { rows.targets.len() } else { own_edges }])
         .collect();
-    let in_place = InPlace::new(&mut arrays);
-    let chunks: Vec<Result<ChunkCosts, CostGraphError>> = order
-        .par_chunks(CHUNK)
-        .map(|chunk| {
-            let costs = cost_chunk(model, &fields, (&rows, &own_rows), chunk, (&empty, &in_place));
+    let places = chunk_places(&rows, &own_rows);
+    let chunks: Vec<Result<ChunkCosts, CostGraphError>> = split_by_chunk(&mut arrays, &places)
+        .into_par_iter()
+        .enumerate()
+        .map(|(c, costs)| {
+            let nodes = c * CHUNK..((c + 1) * CHUNK).min(rows.node_count());
+            let place = ChunkPlace { first_edge: places[c].0, first_own: places[c].1, costs };
+            let chunk = cost_chunk(model, &fields, (&rows, &own_rows), nodes, (&empty, place));
             done();
-            costs
+            chunk
         })
         .collect();
-    drop(in_place);
     let chunks: Vec<ChunkCosts> = chunks.into_iter().collect::<Result<_, _>>()?;
     let longest = chunks.iter().flat_map(|c| &c.lengths).copied().fold(0.0, f64::max);
     let mut summary =
@@ -169,26 +143,83 @@ fn own_rows(model: &CostModel, fields: &NodeFields, rows: &Rows) -> (Vec<u32>, u
     (starts, next)
 }
 
+/// Where a chunk's costs go: its slice of every set's array (its rows in set 0, its own rows in
+/// the later sets), and the array indices at which those slices start.
+struct ChunkPlace<'c> {
+    first_edge: usize,
+    first_own: usize,
+    costs: Vec<&'c mut [f32]>,
+}
+
+/// Per chunk of [`CHUNK`] nodes, the index of its first edge and of its first edge among the
+/// later sets' own rows.
+fn chunk_places(rows: &Rows, own_rows: &[u32]) -> Vec<(usize, usize)> {
+    let chunks = rows.node_count().div_ceil(CHUNK);
+    let own_edges: Vec<usize> = (0..chunks)
+        .into_par_iter()
+        .map(|c| {
+            let nodes = c * CHUNK..((c + 1) * CHUNK).min(rows.node_count());
+            nodes
+                .filter(|&i| own_rows.get(i).is_some_and(|&start| start != SHARED_ROW))
+                .map(|i| rows.row(i).len())
+                .sum()
+        })
+        .collect();
+    let mut first_own = 0;
+    (0..chunks)
+        .map(|c| {
+            let place = (rows.offsets[c * CHUNK] as usize, first_own);
+            first_own += own_edges[c];
+            place
+        })
+        .collect()
+}
+
+/// Splits every set's array into the chunks' slices ([`chunk_places`]): per chunk, one slice
+/// per set.
+fn split_by_chunk<'c>(arrays: &'c mut [Vec<f32>], places: &[(usize, usize)]) -> Vec<Vec<&'c mut [f32]>> {
+    let mut per_chunk: Vec<Vec<&mut [f32]>> = places.iter().map(|_| Vec::new()).collect();
+    for (set, array) in arrays.iter_mut().enumerate() {
+        let mut rest: &mut [f32] = array;
+        let mut taken = 0;
+        for (c, chunk) in per_chunk.iter_mut().enumerate() {
+            let end = match places.get(c + 1) {
+                Some(&(edge, own)) => {
+                    if set == 0 {
+                        edge
+                    } else {
+                        own
+                    }
+                }
+                None => taken + rest.len(),
+            };
+            let (slice, tail) = std::mem::take(&mut rest).split_at_mut(end - taken);
+            chunk.push(slice);
+            rest = tail;
+            taken = end;
+        }
+    }
+    per_chunk
+}
+
 fn cost_chunk(
     model: &CostModel,
     fields: &NodeFields,
     (rows, own_rows): (&Rows, &[u32]),
-    chunk: &[u32],
-    (sets, in_place): (&[SetStats], &InPlace),
+    nodes: std::ops::Range<usize>,
+    (sets, mut place): (&[SetStats], ChunkPlace),
 ) -> Result<ChunkCosts, CostGraphError> {
-    let edges: usize = chunk.iter().map(|&i| rows.row(i as usize).len()).sum();
+    let edges = (rows.offsets[nodes.end] - rows.offsets[nodes.start]) as usize;
     let mut out = ChunkCosts {
         least_per_metre: vec![f64::INFINITY; model.set_count()],
         lengths: Vec::with_capacity(edges / STATS_STRIDE + 1),
         sets: sets.to_vec(),
     };
     let mut terms = EdgeTerms::default();
-    for &i in chunk {
-        let i = i as usize;
-        let first = rows.offsets[i] as usize;
+    for i in nodes {
+        let first = rows.offsets[i] as usize - place.first_edge;
         let own = own_rows.get(i).copied().filter(|&start| start != SHARED_ROW);
         for (column, &j) in rows.row(i).iter().enumerate() {
-            let edge = first + column;
             model.edge(fields, i, j as usize, &mut terms);
             for (set, (least, &cost)) in out.least_per_metre.iter_mut().zip(&terms.cost).enumerate() {
                 // Caught where it happens: the artifact's costs are f32, finite and > 0.
@@ -196,22 +227,12 @@ fn cost_chunk(
                 if !(stored.is_finite() && stored > 0.0) {
                     return Err(CostGraphError::CostOutOfRange { cost, length: terms.length });
                 }
-                let at = match (set, own) {
-                    (0, _) => Some(edge),
-                    (_, Some(start)) => Some(start as usize + column),
+                match (set, own) {
+                    (0, _) => place.costs[0][first + column] = stored,
+                    (_, Some(start)) => place.costs[set][start as usize - place.first_own + column] = stored,
                     (_, None) => {
-                        debug_assert_eq!(
-                            stored.to_bits(),
-                            (terms.cost[0] as f32).to_bits(),
-                            "shared row {i}"
-                        );
-                        None
+                        debug_assert_eq!(stored.to_bits(), (terms.cost[0] as f32).to_bits(), "shared row {i}")
                     }
-                };
-                if let Some(at) = at {
-                    // SAFETY: `at` is in row i's place in this set, and node i is in this
-                    // chunk only.
-                    unsafe { in_place.write(set, at, stored) };
                 }
                 // As the searches would measure it: the stored cost over the length.
                 if terms.length > 0.0 {

@@ -1,6 +1,6 @@
 //! The cost graph's work estimate, made before the neighbours are searched: k edges per sample
-//! (twice as many when symmetrised), each with its target (built in chunks then assembled, so
-//! held twice at the peak) and one f32 cost per cost set, plus per-sample fields (position,
+//! (twice as many when symmetrised), each with its target (held twice while the rows are
+//! symmetrised, which reassembles them) and one f32 cost per cost set, plus per-sample fields (position,
 //! potential, one distance per surface and per water table) and the search grid. The costs are
 //! counted as if every row were stored apart in every later set (the upper bound: which rows
 //! share set 0's costs is known only once they are costed).
@@ -10,7 +10,7 @@ use karst_geology::budget::{Cheaper, Estimate, OverBudget};
 
 /// Bytes per edge and per cost set at the peak: its f32 cost, written in place.
 const BYTES_PER_EDGE_AND_SET: f64 = 4.0;
-/// Bytes per edge besides its costs: the chunk's target, the graph's, the stats' share.
+/// Bytes per edge besides its costs: its target (twice while symmetrising), the stats' share.
 const BYTES_PER_EDGE: f64 = 12.0;
 /// Bytes per sample besides its fields: the grid's copy of the points, the order, offsets.
 const BYTES_PER_SAMPLE: f64 = 64.0;

@@ -181,35 +181,18 @@ pub fn scatter<'a, T: Copy + 'a>(
     }
 }
 
-/// The nodes in Morton (Z-curve) order of their position: consecutive nodes are close in
-/// space, so a chunk of them shares its neighbours and their data stays in cache.
-pub fn spatial_order(points: &[[f64; 3]]) -> Vec<u32> {
-    let (lo, hi) = grid::bounds(points);
-    let cell = |p: &[f64; 3], axis: usize| {
-        let span = (hi[axis] - lo[axis]).max(f64::MIN_POSITIVE);
-        (((p[axis] - lo[axis]) / span) * 1023.0) as u64
-    };
-    let mut keyed: Vec<(u64, u32)> = points
-        .par_iter()
-        .enumerate()
-        .map(|(i, p)| (morton(cell(p, 0)) | morton(cell(p, 1)) << 1 | morton(cell(p, 2)) << 2, i as u32))
-        .collect();
-    keyed.par_sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
-}
-
-/// Spreads the 10 low bits of `x` to every third bit.
-fn morton(x: u64) -> u64 {
-    (0..10).map(|bit| ((x >> bit) & 1) << (3 * bit)).fold(0, |a, b| a | b)
-}
-
 /// For every point, its `k` nearest other points, nearest first (ties by index), leaving out
-/// those farther than `max_length`, queried in chunks of `order` (a permutation of the points,
-/// [`spatial_order`] for speed). Results depend on neither the order nor the number of
-/// threads. `done` is called after each chunk of [`CHUNK`] points (progress).
+/// those farther than `max_length`. Results depend on neither the number of threads nor the
+/// order of the queries.
+///
+/// Queried in chunks of [`CHUNK`] consecutive points, each row written in place in a table of
+/// `k` slots per point (then closed up when some rows are shorter): no per-chunk lists copied
+/// into place afterwards, which held every target twice. Samples come in Morton order
+/// (karst-sampling's storage order), so a chunk of consecutive samples is a compact region:
+/// its queries share their neighbours' cells in cache, and each query's search radius, guessed
+/// from the previous one, is a good guess. `done` is called after each chunk (progress).
 pub fn neighbours(
     points: &[[f64; 3]],
-    order: &[u32],
     (k, max_length): (usize, Option<f64>),
     done: &(dyn Fn() + Sync),
 ) -> Rows {
@@ -218,23 +201,42 @@ pub fn neighbours(
     }
     let grid = Grid::new(points);
     let max2 = max_length.map(|l| l * l).unwrap_or(f64::INFINITY);
-    let chunks: Vec<(Vec<u32>, Vec<u32>)> = order
-        .par_chunks(CHUNK)
-        .map(|nodes| {
-            let mut lengths = Vec::with_capacity(nodes.len());
-            let mut list = Vec::with_capacity(nodes.len() * k);
+    let mut table = vec![0u32; points.len() * k];
+    let mut lengths = vec![0u32; points.len()];
+    table.par_chunks_mut(CHUNK * k).zip(lengths.par_chunks_mut(CHUNK)).enumerate().for_each(
+        |(c, (rows, lengths))| {
             let mut row: Vec<u64> = Vec::with_capacity(4 * k);
             let mut radius = grid.initial_radius(k);
-            for &i in nodes {
-                grid.nearest(i as usize, k, max2, &mut radius, &mut row);
-                lengths.push(row.len() as u32);
-                list.extend(row.iter().map(|&key| grid::index(key)));
+            for (at, (slots, length)) in rows.chunks_mut(k).zip(lengths.iter_mut()).enumerate() {
+                grid.nearest(c * CHUNK + at, k, max2, &mut radius, &mut row);
+                *length = row.len() as u32;
+                for (slot, &key) in slots.iter_mut().zip(&row) {
+                    *slot = grid::index(key);
+                }
             }
             done();
-            (lengths, list)
-        })
-        .collect();
-    Rows::from_chunks(order, chunks)
+        },
+    );
+    closed_up(table, &lengths, k)
+}
+
+/// The rows of `table` (`k` slots per node, the first `lengths[i]` used) as compressed rows,
+/// moved down in place over the unused slots.
+fn closed_up(mut table: Vec<u32>, lengths: &[u32], k: usize) -> Rows {
+    let mut offsets = Vec::with_capacity(lengths.len() + 1);
+    offsets.push(0u32);
+    let mut end = 0usize;
+    for (i, &length) in lengths.iter().enumerate() {
+        let length = length as usize;
+        if end != i * k {
+            table.copy_within(i * k..i * k + length, end);
+        }
+        end += length;
+        offsets.push(end as u32);
+    }
+    table.truncate(end);
+    table.shrink_to_fit();
+    Rows { offsets, targets: table }
 }
 
 #[cfg(test)]
@@ -256,22 +258,27 @@ mod tests {
     #[test]
     fn matches_brute_force() {
         let points = cloud(300);
-        let got = neighbours(&points, &spatial_order(&points), (7, Some(30.0)), &|| ());
-        for i in 0..points.len() {
-            let mut all: Vec<(u32, f64)> = (0..points.len())
-                .filter(|&j| j != i)
-                .map(|j| (j as u32, distance2(&points[i], &points[j]).sqrt()))
-                .collect();
-            all.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
-            let expected: Vec<u32> = all.iter().take(7).filter(|n| n.1 <= 30.0).map(|n| n.0).collect();
-            assert_eq!(got.row(i), expected.as_slice(), "node {i}");
+        // A loose and a tight maximum length: with the tight one most rows are short or empty,
+        // and the table of k slots per node is closed up.
+        for max_length in [30.0, 12.0] {
+            let got = neighbours(&points, (7, Some(max_length)), &|| ());
+            for i in 0..points.len() {
+                let mut all: Vec<(u32, f64)> = (0..points.len())
+                    .filter(|&j| j != i)
+                    .map(|j| (j as u32, distance2(&points[i], &points[j]).sqrt()))
+                    .collect();
+                all.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+                let expected: Vec<u32> =
+                    all.iter().take(7).filter(|n| n.1 <= max_length).map(|n| n.0).collect();
+                assert_eq!(got.row(i), expected.as_slice(), "node {i}, max length {max_length}");
+            }
         }
     }
 
     #[test]
     fn transpose_lists_every_source_in_order_whatever_the_threads() {
         let points = cloud(700);
-        let rows = neighbours(&points, &spatial_order(&points), (6, None), &|| ());
+        let rows = neighbours(&points, (6, None), &|| ());
         let mut expected = vec![Vec::new(); rows.node_count()];
         for i in 0..rows.node_count() {
             for &t in rows.row(i) {
@@ -290,7 +297,7 @@ mod tests {
     #[test]
     fn symmetrised_graph_has_every_reverse_edge_once() {
         let points = cloud(500);
-        let rows = neighbours(&points, &spatial_order(&points), (5, None), &|| ());
+        let rows = neighbours(&points, (5, None), &|| ());
         let sym = rows.symmetrised();
         assert!(sym.targets.len() > rows.targets.len());
         for i in 0..sym.node_count() {

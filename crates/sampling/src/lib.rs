@@ -20,6 +20,7 @@ mod surfaces;
 
 pub use build::build;
 pub use error::SamplingError;
+pub use order::morton_permutation;
 pub use payload::{Samples, Tag, TagCounts};
 pub use spacing::SpacingField;
 pub use stage::SamplingStage;

@@ -9,7 +9,7 @@ use super::median;
 use super::probes::{cpu_seconds, peak_memory, reset_peak_memory};
 
 /// One cost-graph budget case: `samples` uniform random points (seeded) in the scene's domain,
-/// `k` neighbours, the scene's geology and cost model. Only the graph build is timed.
+/// in Morton order, `k` neighbours, the scene's geology and cost model. Only the graph build is timed.
 pub struct CostgraphCase {
     pub samples: usize,
     pub k: usize,
@@ -35,6 +35,10 @@ pub fn time_costgraph(scene: &Path, case: &CostgraphCase, runs: usize) -> Result
     let (min, max) = (scene.domain().min, scene.domain().max);
     let points: Vec<[f64; 3]> =
         (0..case.samples).map(|_| std::array::from_fn(|axis| rng.range(min[axis], max[axis]))).collect();
+    // Stored as the sampler stores samples, along a Morton curve: the order the cost graph
+    // works in (chunks of consecutive nodes).
+    let order = karst_sampling::morton_permutation(&points, 0, (min, max));
+    let points: Vec<[f64; 3]> = order.iter().map(|&i| points[i as usize]).collect();
     reset_peak_memory();
     let mut times = Vec::new();
     let mut cpu = Vec::new();
