@@ -135,6 +135,8 @@ impl Invalid {
 ///
 /// Postcard payloads are encoded twice, streaming: once into a hasher (for the header's length
 /// and digest), then into the file, so that no copy of a large payload is ever held in memory.
+/// The second encoding is not hashed again: it encodes the same value in memory, which cannot
+/// come out different (a payload copied from elsewhere, [`write_artifact_with`], is).
 pub fn write_artifact<P: Payload>(
     path: &Path,
     provenance: &Provenance,
@@ -142,7 +144,7 @@ pub fn write_artifact<P: Payload>(
 ) -> Result<Header, Error> {
     let encoding = P::STAGE.row().encoding;
     if encoding == Encoding::Postcard {
-        return write_artifact_with::<P>(path, provenance, |w| {
+        return write_encoded::<P>(path, provenance, Recheck::No, |w| {
             let mut kept = KeepError { inner: Chunked::new(w), error: None };
             if let Err(e) = postcard::to_io(payload, &mut kept) {
                 return Err(kept.error.take().unwrap_or_else(|| std::io::Error::other(e)));
@@ -176,6 +178,23 @@ pub fn write_artifact<P: Payload>(
 pub fn write_artifact_with<P: Payload>(
     path: &Path,
     provenance: &Provenance,
+    encode: impl FnMut(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<Header, Error> {
+    write_encoded::<P>(path, provenance, Recheck::Yes, encode)
+}
+
+/// Whether the second encoding of a payload is hashed and compared with the first.
+#[derive(PartialEq)]
+enum Recheck {
+    Yes,
+    No,
+}
+
+/// [`write_artifact_with`], the second pass checked or not.
+fn write_encoded<P: Payload>(
+    path: &Path,
+    provenance: &Provenance,
+    recheck: Recheck,
     mut encode: impl FnMut(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<Header, Error> {
     let kind = || P::STAGE.row().kind.to_string();
@@ -194,6 +213,9 @@ pub fn write_artifact_with<P: Payload>(
     atomic::write_with(path, |w| {
         w.write_all(line.as_bytes())?;
         w.write_all(b"\n")?;
+        if recheck == Recheck::No {
+            return encode(w);
+        }
         let mut second = Tee { inner: w, copy: HashSink { hasher: blake3::Hasher::new(), len: 0 } };
         encode(&mut second)?;
         let digest = second.copy.hasher.finalize().to_hex().to_string();
