@@ -20,6 +20,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 /// A number stored in a bulk array: fixed width, little-endian.
 pub trait Element: Copy + Serialize + for<'de> Deserialize<'de> + 'static {
     const WIDTH: usize;
+    const ZERO: Self;
     fn from_le(bytes: &[u8]) -> Self;
     fn write_le(self, out: &mut Vec<u8>);
 }
@@ -28,6 +29,7 @@ macro_rules! element {
     ($($t:ty),*) => {$(
         impl Element for $t {
             const WIDTH: usize = std::mem::size_of::<$t>();
+            const ZERO: Self = 0 as $t;
             #[inline]
             fn from_le(bytes: &[u8]) -> Self {
                 <$t>::from_le_bytes(bytes.try_into().expect("chunks of the element's width"))
@@ -60,6 +62,16 @@ fn le_bytes<T: Element>(values: &[T]) -> std::borrow::Cow<'_, [u8]> {
     let bytes =
         unsafe { std::slice::from_raw_parts(values.as_ptr().cast::<u8>(), std::mem::size_of_val(values)) };
     std::borrow::Cow::Borrowed(bytes)
+}
+
+/// The memory of `values` as bytes to fill with their little-endian encoding (on
+/// little-endian machines, where that is their memory): bulk arrays are read straight into it.
+#[cfg(target_endian = "little")]
+pub(crate) fn le_bytes_mut<T: Element>(values: &mut [T]) -> &mut [u8] {
+    // SAFETY: as in `le_bytes`; moreover every bit pattern is a valid u32, u64, f32 or f64, so
+    // any bytes written through the slice leave valid values. The slice borrows `values`
+    // mutably and covers exactly its `len * WIDTH` bytes.
+    unsafe { std::slice::from_raw_parts_mut(values.as_mut_ptr().cast::<u8>(), std::mem::size_of_val(values)) }
 }
 
 #[cfg(not(target_endian = "little"))]

@@ -40,13 +40,22 @@ impl<'r> PayloadReader<'r> {
 
     /// Reads the next `n` bytes (at most [`CHUNK`]) into the buffer and hashes them.
     fn fill(&mut self, n: usize) -> Result<&[u8], String> {
+        let mut buffer = std::mem::take(&mut self.buffer);
+        buffer.resize(n, 0);
+        let read = self.read_into(&mut buffer);
+        self.buffer = buffer;
+        read.map(|()| self.buffer.as_slice())
+    }
+
+    /// Fills `out` with the next bytes of the payload and hashes them.
+    fn read_into(&mut self, out: &mut [u8]) -> Result<(), String> {
+        let n = out.len();
         if n as u64 > self.left() {
             return Err(format!("{n} bytes wanted, {} left in the payload", self.left()));
         }
-        self.buffer.resize(n, 0);
         let mut got = 0;
         while got < n {
-            match self.source.read(&mut self.buffer[got..]) {
+            match self.source.read(&mut out[got..]) {
                 Ok(0) => break,
                 Ok(k) => got += k,
                 Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
@@ -55,12 +64,12 @@ impl<'r> PayloadReader<'r> {
         }
         // What was read is hashed and counted even when it falls short, so that the envelope
         // reports the payload's true length.
-        hash::update(&mut self.hasher, &self.buffer[..got]);
+        hash::update(&mut self.hasher, &out[..got]);
         self.read += got as u64;
         if got < n {
             return Err(format!("the payload ends after {} bytes", self.read));
         }
-        Ok(&self.buffer)
+        Ok(())
     }
 
     /// One byte.
@@ -109,8 +118,25 @@ impl<'r> PayloadReader<'r> {
         if !n.is_multiple_of(T::WIDTH) {
             return Err(format!("a bulk array of {}-byte numbers has {n} bytes", T::WIDTH));
         }
-        let mut values = Vec::with_capacity(n / T::WIDTH);
-        let mut left = n;
+        self.bulk_values(n / T::WIDTH)
+    }
+
+    /// `count` values of a bulk array, read straight into their vector (little-endian machines:
+    /// the file's bytes are the values' memory, so no copy through the buffer), a chunk at a
+    /// time so that each is hashed while it is in cache.
+    #[cfg(target_endian = "little")]
+    fn bulk_values<T: Element>(&mut self, count: usize) -> Result<Vec<T>, String> {
+        let mut values = vec![T::ZERO; count];
+        for piece in crate::bulk::le_bytes_mut(&mut values).chunks_mut(CHUNK) {
+            self.read_into(piece)?;
+        }
+        Ok(values)
+    }
+
+    #[cfg(not(target_endian = "little"))]
+    fn bulk_values<T: Element>(&mut self, count: usize) -> Result<Vec<T>, String> {
+        let mut values = Vec::with_capacity(count);
+        let mut left = count * T::WIDTH;
         while left > 0 {
             let step = left.min(CHUNK - CHUNK % T::WIDTH);
             values.extend(self.fill(step)?.chunks_exact(T::WIDTH).map(T::from_le));
