@@ -14,7 +14,7 @@ use karst_geology::Scene;
 use karst_sampling::Samples;
 
 use crate::cost::{CostModel, EdgeTerms, NodeFields};
-use crate::knn::{self, CHUNK, Rows};
+use crate::knn::{self, CHUNK, Rows, chunk_nodes};
 use crate::payload::{CostGraph, CostSet, SHARED_ROW};
 use crate::stats::{Histogram, SetStats, Summary, TermStats};
 use crate::{CostGraphError, checks};
@@ -83,7 +83,7 @@ fn costed(
         .into_par_iter()
         .enumerate()
         .map(|(c, costs)| {
-            let nodes = c * CHUNK..((c + 1) * CHUNK).min(rows.node_count());
+            let nodes = chunk_nodes(c, rows.node_count());
             let place = ChunkPlace { first_edge: places[c].0, first_own: places[c].1, costs };
             let chunk = cost_chunk(model, &fields, (&rows, &own_rows), nodes, (&empty, place));
             done();
@@ -158,8 +158,7 @@ fn chunk_places(rows: &Rows, own_rows: &[u32]) -> Vec<(usize, usize)> {
     let own_edges: Vec<usize> = (0..chunks)
         .into_par_iter()
         .map(|c| {
-            let nodes = c * CHUNK..((c + 1) * CHUNK).min(rows.node_count());
-            nodes
+            chunk_nodes(c, rows.node_count())
                 .filter(|&i| own_rows.get(i).is_some_and(|&start| start != SHARED_ROW))
                 .map(|i| rows.row(i).len())
                 .sum()
@@ -180,19 +179,11 @@ fn chunk_places(rows: &Rows, own_rows: &[u32]) -> Vec<(usize, usize)> {
 fn split_by_chunk<'c>(arrays: &'c mut [Vec<f32>], places: &[(usize, usize)]) -> Vec<Vec<&'c mut [f32]>> {
     let mut per_chunk: Vec<Vec<&mut [f32]>> = places.iter().map(|_| Vec::new()).collect();
     for (set, array) in arrays.iter_mut().enumerate() {
+        let first = |&(edge, own): &(usize, usize)| if set == 0 { edge } else { own };
+        let ends = places.iter().skip(1).map(first).chain([array.len()]);
         let mut rest: &mut [f32] = array;
         let mut taken = 0;
-        for (c, chunk) in per_chunk.iter_mut().enumerate() {
-            let end = match places.get(c + 1) {
-                Some(&(edge, own)) => {
-                    if set == 0 {
-                        edge
-                    } else {
-                        own
-                    }
-                }
-                None => taken + rest.len(),
-            };
+        for (chunk, end) in per_chunk.iter_mut().zip(ends) {
             let (slice, tail) = std::mem::take(&mut rest).split_at_mut(end - taken);
             chunk.push(slice);
             rest = tail;

@@ -135,15 +135,9 @@ impl<'a> Grid<'a> {
     /// Sorts every run of `keys` (sorted) that share their rounded distance by the exact
     /// distances to `p`, then by index: the order of the exact squared distances, ties by index.
     fn order_near_ties(&self, p: &[f64; 3], keys: &mut [u64]) {
-        let mut start = 0;
-        while start < keys.len() {
-            let rounded = keys[start] >> 32;
-            let end = start + keys[start..].iter().take_while(|&&c| c >> 32 == rounded).count();
-            if end - start > 1 {
-                let exact = |c: &u64| (distance2(p, &self.points[index(*c) as usize]).to_bits(), index(*c));
-                keys[start..end].sort_unstable_by_key(exact);
-            }
-            start = end;
+        let exact = |c: &u64| (distance2(p, &self.points[index(*c) as usize]).to_bits(), index(*c));
+        for run in keys.chunk_by_mut(|a, b| a >> 32 == b >> 32).filter(|run| run.len() > 1) {
+            run.sort_unstable_by_key(exact);
         }
     }
 

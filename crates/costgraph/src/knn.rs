@@ -8,6 +8,11 @@ use crate::grid::{self, Grid};
 /// Nodes per parallel work item. Fixed, so that results never depend on the thread count.
 pub const CHUNK: usize = 2048;
 
+/// The nodes of chunk `c` of `n` nodes: [`CHUNK`] consecutive ones (fewer in the last).
+pub fn chunk_nodes(c: usize, n: usize) -> std::ops::Range<usize> {
+    c * CHUNK..((c + 1) * CHUNK).min(n)
+}
+
 /// Directed edges in compressed rows: the out-edges of node `i` are
 /// `targets[offsets[i]..offsets[i + 1]]`.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,22 +30,14 @@ impl Rows {
         &self.targets[self.offsets[i] as usize..self.offsets[i + 1] as usize]
     }
 
-    /// Assembles rows computed in chunks of `order` (chunk c holds the rows of
-    /// `order[c * CHUNK..]`, as row lengths and concatenated targets) into node order.
-    fn from_chunks(order: &[u32], chunks: Vec<(Vec<u32>, Vec<u32>)>) -> Rows {
-        let mut lengths = vec![0u32; order.len()];
-        for (c, (chunk_lengths, _)) in chunks.iter().enumerate() {
-            for (&node, &len) in order[c * CHUNK..].iter().zip(chunk_lengths) {
-                lengths[node as usize] = len;
-            }
-        }
-        let mut offsets = Vec::with_capacity(order.len() + 1);
-        offsets.push(0u32);
-        for len in lengths {
+    /// Assembles rows computed in chunks of consecutive nodes (chunk c holds the rows of
+    /// [`chunk_nodes`]`(c, ..)`, as row lengths and concatenated targets).
+    fn from_chunks(chunks: Vec<(Vec<u32>, Vec<u32>)>) -> Rows {
+        let mut offsets = vec![0u32];
+        for len in chunks.iter().flat_map(|(lengths, _)| lengths) {
             offsets.push(offsets[offsets.len() - 1] + len);
         }
-        let mut targets = vec![0u32; offsets[order.len()] as usize];
-        scatter(order, &offsets, chunks.iter().map(|c| c.1.as_slice()), &mut targets);
+        let targets = chunks.into_iter().flat_map(|(_, targets)| targets).collect();
         Rows { offsets, targets }
     }
 
@@ -65,14 +62,13 @@ impl Rows {
         // Missing reverse edges, as (row j, source i): for each j the sources come in
         // increasing i because the transpose lists them so.
         let reverse = self.transpose();
-        let identity: Vec<u32> = (0..n as u32).collect();
-        let chunks: Vec<(Vec<u32>, Vec<u32>)> = identity
-            .par_chunks(CHUNK)
-            .map(|nodes| {
+        let chunks: Vec<(Vec<u32>, Vec<u32>)> = (0..n.div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|c| {
+                let nodes = chunk_nodes(c, n);
                 let mut lengths = Vec::with_capacity(nodes.len());
                 let mut list = Vec::new();
-                for &j in nodes {
-                    let j = j as usize;
+                for j in nodes {
                     let start = list.len();
                     list.extend_from_slice(self.row(j));
                     list.extend(reverse.row(j).iter().filter(|&&i| sorted[j].binary_search(&i).is_err()));
@@ -81,7 +77,7 @@ impl Rows {
                 (lengths, list)
             })
             .collect();
-        Rows::from_chunks(&identity, chunks)
+        Rows::from_chunks(chunks)
     }
 }
 
@@ -161,24 +157,6 @@ fn in_degrees(targets: &[u32], (lo, hi): (usize, usize)) -> Vec<u32> {
         }
     }
     counts
-}
-
-/// Copies per-chunk values, listed row by row for the nodes of `order`'s chunks, to the rows'
-/// places (`offsets`) in `all`.
-pub fn scatter<'a, T: Copy + 'a>(
-    order: &[u32],
-    offsets: &[u32],
-    chunks: impl Iterator<Item = &'a [T]>,
-    all: &mut [T],
-) {
-    for (c, values) in chunks.enumerate() {
-        let mut at = 0;
-        for &node in order[c * CHUNK..].iter().take(CHUNK) {
-            let (start, end) = (offsets[node as usize] as usize, offsets[node as usize + 1] as usize);
-            all[start..end].copy_from_slice(&values[at..at + end - start]);
-            at += end - start;
-        }
-    }
 }
 
 /// For every point, its `k` nearest other points, nearest first (ties by index), leaving out

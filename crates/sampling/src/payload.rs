@@ -162,13 +162,8 @@ mod tests {
 
     #[test]
     fn coincident_samples_are_the_first_repeat_in_file_order() {
-        let mut state = 7u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % 8) as f64 - 4.0
-        };
+        let mut rng = karst_geology::rng::Random::stream(7, "test", "coincident");
+        let mut next = || rng.index(8) as f64 - 4.0;
         // Coarse coordinates repeat often; the sets grow until repeats appear and beyond.
         for n in [1, 2, 50, 120, 300, 600] {
             let positions: Vec<[f64; 3]> = (0..n).map(|_| [next(), next(), next() * 0.5]).collect();
