@@ -206,7 +206,7 @@ fn fuzz(minutes: f64, seed: u64) -> Result<(), StageError> {
 fn peer_bench(runs: usize) -> Result<(), StageError> {
     use xtask::peer;
     let python = peer::peer_python(&workspace_root())?;
-    let binaries = peer::stage_binaries()?;
+    let karstgen = peer::karstgen_binary()?;
     println!("{} vs KarstNSim (pykarstnsim 2.0.1), {runs} alternating runs each, medians", peer::SCENE);
     println!(
         "| case | samples (ours / theirs) | KarstNSim wall / CPU / peak | karstgen wall / CPU / peak | ratio wall / CPU | load |"
@@ -214,7 +214,7 @@ fn peer_bench(runs: usize) -> Result<(), StageError> {
     println!("|---|---|---|---|---|---|");
     for case in peer::CASES {
         let load = peer::load_average();
-        let r = peer::run_case(case, runs, &binaries, &python)?;
+        let r = peer::run_case(case, runs, &karstgen, &python)?;
         let (ours, theirs) = r.medians();
         let show = |u: peer::Usage| {
             format!("{:.2} s / {:.2} s / {:.0} MB", u.wall, u.cpu, u.peak_bytes as f64 / 1e6)

@@ -34,7 +34,7 @@ pub fn scenes(dir: &Path) -> Result<Vec<PathBuf>, StageError> {
 /// Runs the stages up to metrics for `scene` into `out` and reads its report.
 pub fn scene_report(scene: &Path, out: &Path) -> Result<MetricsReport, StageError> {
     let loaded = SceneFile::load(scene)?;
-    let job = Job { scene_path: scene, scene: &loaded.scene, out };
+    let job = Job::new(scene, &loaded.scene, out);
     let stages = [
         StageId::Sampling,
         StageId::Costgraph,

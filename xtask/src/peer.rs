@@ -1,8 +1,8 @@
 //! `cargo xtask bench --peer`: karstgen's network half beside KarstNSim (issue 21).
 //!
 //! Both sides run as whole processes on one scene, `fixtures/bench/karstnsim-peer.toml`:
-//! karstgen as its three stage binaries (`karst-sampling`, `karst-costgraph`,
-//! `karst-skeleton`, artifacts written and read back as in `cargo xtask run`), KarstNSim as
+//! karstgen as a user runs it, `karstgen run SCENE --to skeleton` (the sampling, cost graph and
+//! skeleton stages in one process, every artifact written and synced), KarstNSim as
 //! PyPI `pykarstnsim` (its C++ core, single-threaded) driven by `tools/peer/pykarstnsim_run.py`,
 //! installed into `.venv-peer` from `tools/peer/requirements.txt`. The runs alternate (ours,
 //! theirs, ours, ...) so that a change of the machine's load hits both sides alike. Each child
@@ -98,13 +98,17 @@ fn median_usage(runs: &[Usage]) -> Usage {
     }
 }
 
-/// karstgen's network half: the stages KarstNSim's run covers.
-const NETWORK_HALF: [StageId; 3] = [StageId::Sampling, StageId::Costgraph, StageId::Skeleton];
-
-/// Builds the network half's stage binaries (release) and returns their folder, beside this
-/// xtask binary.
-pub fn stage_binaries() -> Result<PathBuf, StageError> {
-    build_stage_binaries(&NETWORK_HALF)
+/// Builds karstgen (release) and returns its path, beside this xtask binary.
+pub fn karstgen_binary() -> Result<PathBuf, StageError> {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let status = Command::new(cargo)
+        .args(["build", "--release", "--quiet", "--package", "karstgen", "--bin", "karstgen"])
+        .status()
+        .map_err(|e| StageError::failure(format!("cannot run cargo: {e}")))?;
+    if !status.success() {
+        return Err(StageError::failure("building karstgen failed"));
+    }
+    Ok(beside_xtask()?.join("karstgen"))
 }
 
 /// Builds the binaries of `stages` (release) and returns their folder, beside this xtask binary.
@@ -119,6 +123,11 @@ pub fn build_stage_binaries(stages: &[StageId]) -> Result<PathBuf, StageError> {
     if !status.success() {
         return Err(StageError::failure("building the stage binaries failed"));
     }
+    beside_xtask()
+}
+
+/// The folder of this xtask binary, where cargo puts the release binaries.
+fn beside_xtask() -> Result<PathBuf, StageError> {
     let exe = std::env::current_exe().map_err(StageError::failure)?;
     let dir = exe.parent().ok_or_else(|| StageError::failure("the xtask binary has no folder"))?;
     Ok(dir.to_path_buf())
@@ -129,14 +138,19 @@ pub fn peer_python(root: &Path) -> Result<PathBuf, StageError> {
     crate::tools::ensure_venv(root, REQUIREMENTS, VENV).map_err(StageError::failure)
 }
 
-/// Runs `case` `runs` times on each side, alternately; `bin` holds the stage binaries.
-pub fn run_case(case: &PeerCase, runs: usize, bin: &Path, python: &Path) -> Result<PeerResult, StageError> {
+/// Runs `case` `runs` times on each side, alternately; `karstgen` is our binary.
+pub fn run_case(
+    case: &PeerCase,
+    runs: usize,
+    karstgen: &Path,
+    python: &Path,
+) -> Result<PeerResult, StageError> {
     let scratch = TempFolder::new("peer");
     let scene = scratch.join("scene.toml");
     write_scene(case, &scene)?;
     let mut result = PeerResult { ours: Vec::new(), theirs: Vec::new(), our_samples: 0, their_samples: 0 };
     for _ in 0..runs.max(1) {
-        let (usage, samples) = run_ours(case, &scene, &scratch.join("ours"), bin)?;
+        let (usage, samples) = run_ours(case, &scene, &scratch.join("ours"), karstgen)?;
         result.ours.push(usage);
         result.our_samples = samples;
         let (usage, samples) = run_theirs(case, python, &scratch.join("theirs"))?;
@@ -185,25 +199,33 @@ pub(crate) fn write_edited_scene(
     std::fs::write(path, scene.to_string()).map_err(|e| fail(path, e.to_string()))
 }
 
-/// karstgen's network half: the three stage processes in order, from an empty folder.
-fn run_ours(case: &PeerCase, scene: &Path, out: &Path, bin: &Path) -> Result<(Usage, usize), StageError> {
+/// karstgen's network half, the stages KarstNSim's run covers, as a user runs it: one
+/// `karstgen run SCENE --to skeleton` from an empty folder (the sampling, cost graph and
+/// skeleton stages; every artifact written, the payloads handed from stage to stage).
+fn run_ours(
+    case: &PeerCase,
+    scene: &Path,
+    out: &Path,
+    karstgen: &Path,
+) -> Result<(Usage, usize), StageError> {
     let _ = std::fs::remove_dir_all(out);
-    let mut total = Usage::default();
-    let mut samples = 0;
-    for stage in NETWORK_HALF {
-        let mut command = Command::new(bin.join(stage.row().binary));
-        command.arg("run").arg(scene).arg("--out").arg(out);
-        if let Some(threads) = case.threads {
-            command.env("RAYON_NUM_THREADS", threads.to_string());
-        }
-        let (usage, stdout) = measure(command, &out.with_extension(format!("{}.log", stage.name())))?;
-        if stage == StageId::Sampling {
-            samples = first_number(&stdout)
-                .ok_or_else(|| StageError::failure(format!("sampling said {stdout:?}")))?;
-        }
-        total = total.then(usage);
+    let mut command = Command::new(karstgen);
+    command.arg("run").arg(scene).arg("--out").arg(out).args(["--to", StageId::Skeleton.name()]);
+    if let Some(threads) = case.threads {
+        command.env("RAYON_NUM_THREADS", threads.to_string());
     }
-    Ok((total, samples))
+    let (usage, report) = measure(command, &out.with_extension("log"))?;
+    let samples =
+        sample_count(&report).ok_or_else(|| StageError::failure(format!("karstgen run said {report:?}")))?;
+    Ok((usage, samples))
+}
+
+/// The sample count in `karstgen run`'s report: the first figure of the sampling stage's line
+/// ("sampling   ran   0.15 s  100234 samples, …").
+fn sample_count(report: &str) -> Option<usize> {
+    let line = report.lines().find(|l| l.starts_with(StageId::Sampling.name()))?;
+    let (_, figures) = line.split_once(" s ")?;
+    first_number(figures)
 }
 
 /// KarstNSim on the same scene.
@@ -284,4 +306,18 @@ fn tail(text: &str) -> String {
 /// The machine's 1-minute load average (Linux), to print beside the figures.
 pub fn load_average() -> Option<f64> {
     std::fs::read_to_string("/proc/loadavg").ok()?.split_whitespace().next()?.parse().ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_sample_count_is_read_from_the_run_report() {
+        let report = "scene s.toml → out\n\
+                      sampling   ran            0.11 s  101371 samples (7 key points)\n\
+                      costgraph  ran            0.32 s  101371 nodes, 5068550 edges\n";
+        assert_eq!(sample_count(report), Some(101371));
+        assert_eq!(sample_count("sampling   up to date     0.00 s\n"), None);
+    }
 }

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use karst_artifact::stages::{producer, stage_key};
 use karst_artifact::{InputRef, StageId, read_header};
-use karst_stage::{Job, StageError};
+use karst_stage::{Handoff, Job, StageError};
 
 use crate::registry;
 use crate::scene::SceneFile;
@@ -80,9 +80,13 @@ pub fn run(
     karst_stage::run_dir::record_scene(out, &scene.path).map_err(|e| {
         StageError::failure(format!("{}: cannot record the scene's path: {e}", out.display()))
     })?;
-    let job = Job { scene_path: &scene.path, scene: &scene.scene, out };
+    // Each stage takes the payloads it reads from the stage before it when they are still in
+    // memory, instead of reading back the artifacts just written.
+    let handoff = Handoff::new();
+    let job = Job { handoff: Some(&handoff), ..Job::new(&scene.path, &scene.scene, out) };
     let mut reports = Vec::new();
     for stage in StageId::ALL {
+        handoff.begin(stage);
         let start = Instant::now();
         let outcome = if !selected(stage, selection) {
             Outcome::Skipped

@@ -43,7 +43,7 @@ fn every_stage_reads_exactly_the_sections_it_declares() {
         let out = scratch("sections");
         for &stage in *stages {
             let audited = scene.scene.audited();
-            let job = Job { scene_path: &scene.path, scene: &audited, out: &out };
+            let job = Job::new(&scene.path, &audited, &out);
             registry::stage(stage).run(&job).unwrap_or_else(|e| panic!("{path}: {}: {e}", stage.name()));
             let sections: BTreeSet<&str> = audited.sections_read().into_iter().map(Section::key).collect();
             let declared: BTreeSet<&str> = stage.row().sections.iter().copied().collect();

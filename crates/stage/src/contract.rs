@@ -16,8 +16,8 @@ pub trait Stage: 'static {
     const ID: StageId;
     /// The upstream payloads it reads, in the row's order.
     type Inputs: Inputs;
-    /// The payload of its artifact.
-    type Output: Payload;
+    /// The payload of its artifact (handed to the next stage of a pipeline run: [`crate::Handoff`]).
+    type Output: Payload + Send;
     /// Its typed error.
     type Error: Failure;
 

@@ -18,6 +18,7 @@
 pub mod cli;
 mod contract;
 mod error;
+mod handoff;
 pub mod human;
 mod inputs;
 pub mod progress;
@@ -27,6 +28,7 @@ mod streamed;
 
 pub use contract::{Blame, Failure, Stage};
 pub use error::{Input, StageError};
+pub use handoff::Handoff;
 pub use inputs::Inputs;
 pub use runner::{Job, Ran};
 pub use streamed::{ArtifactOut, Written};

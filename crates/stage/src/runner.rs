@@ -9,6 +9,7 @@ use karst_geology::Scene;
 
 use crate::contract::{Blame, Failure, Stage};
 use crate::error::StageError;
+use crate::handoff::Handoff;
 use crate::inputs::Inputs;
 use crate::streamed::ArtifactOut;
 
@@ -19,9 +20,17 @@ pub struct Job<'a> {
     pub scene_path: &'a Path,
     pub scene: &'a Scene,
     pub out: &'a Path,
+    /// Within a pipeline run, the payloads the previous stages handed over ([`Handoff`]);
+    /// None for a stage run alone, which reads every input from its file.
+    pub handoff: Option<&'a Handoff>,
 }
 
-impl Job<'_> {
+impl<'a> Job<'a> {
+    /// A stage run alone: every input is read from its file.
+    pub fn new(scene_path: &'a Path, scene: &'a Scene, out: &'a Path) -> Self {
+        Job { scene_path, scene, out, handoff: None }
+    }
+
     /// The path of `stage`'s artifact in the output folder.
     pub fn artifact(&self, stage: karst_artifact::StageId) -> PathBuf {
         self.out.join(stage.file_name())
@@ -48,7 +57,7 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     debug_assert_eq!(S::Inputs::stages(), S::ID.inputs(), "{}: inputs differ from its row", S::ID.name());
     let mut headers = Vec::new();
     let frame = job.scene.frame();
-    let inputs = S::Inputs::read(job.out, &frame, &mut headers)?;
+    let inputs = S::Inputs::read(job.out, &frame, job.handoff, &mut headers)?;
     consistent(job, &headers)?;
     let refs = headers
         .iter()
@@ -94,9 +103,13 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
             invalid.problem
         ))
     })?;
-    write_artifact(&path, &provenance, &output)?;
+    let header = write_artifact(&path, &provenance, &output)?;
     let _ = std::fs::remove_file(previous_artifact(&path));
-    Ok(Ran { headline: S::headline(job.scene, &output), seconds, notes: S::notes(&output) })
+    let ran = Ran { headline: S::headline(job.scene, &output), seconds, notes: S::notes(&output) };
+    if let Some(handoff) = job.handoff {
+        handoff.keep(header, output);
+    }
+    Ok(ran)
 }
 
 /// Runs a stage that writes its own artifact ([`Stage::write_streamed`]); None when `S`

@@ -81,5 +81,5 @@ impl Drop for Scratch {
 /// Runs stage `S` on the scene file `scene` into `out`, as `karst-<stage> run` does.
 pub fn run<S: Stage>(scene: &Path, out: &Path) -> Result<Ran, StageError> {
     let loaded = Scene::load(scene)?;
-    karst_stage::runner::run::<S>(&Job { scene_path: scene, scene: &loaded, out })
+    karst_stage::runner::run::<S>(&Job::new(scene, &loaded, out))
 }

@@ -14,7 +14,7 @@ use super::{median, scratch_dir};
 pub fn time_scene(scene: &Path, runs: usize) -> Result<Vec<(StageId, f64)>, StageError> {
     let out = scratch_dir(scene);
     let loaded = SceneFile::load(scene)?;
-    let job = Job { scene_path: scene, scene: &loaded.scene, out: &out };
+    let job = Job::new(scene, &loaded.scene, &out);
     let mut times: Vec<Vec<f64>> = vec![Vec::new(); StageId::ALL.len()];
     for _ in 0..runs.max(1) {
         for (i, stage) in StageId::ALL.into_iter().enumerate() {
@@ -31,7 +31,7 @@ pub fn time_scene(scene: &Path, runs: usize) -> Result<Vec<(StageId, f64)>, Stag
 pub fn time_stage(scene: &Path, stage: StageId, runs: usize) -> Result<(f64, String), StageError> {
     let out = scratch_dir(scene);
     let loaded = SceneFile::load(scene)?;
-    let job = Job { scene_path: scene, scene: &loaded.scene, out: &out };
+    let job = Job::new(scene, &loaded.scene, &out);
     for earlier in StageId::ALL.into_iter().take_while(|s| *s != stage) {
         registry::stage(earlier).run(&job)?;
     }

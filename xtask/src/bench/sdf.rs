@@ -43,7 +43,7 @@ pub fn sdf_network(conduits: usize, runs: usize) -> Result<SdfBench, StageError>
 pub fn sdf_preset(scene: &Path, runs: usize) -> Result<SdfBench, StageError> {
     let out = scratch_dir(scene);
     let loaded = SceneFile::load(scene)?;
-    let job = Job { scene_path: scene, scene: &loaded.scene, out: &out };
+    let job = Job::new(scene, &loaded.scene, &out);
     for stage in [StageId::Sampling, StageId::Costgraph, StageId::Skeleton, StageId::Hydro] {
         registry::stage(stage).run(&job)?;
     }

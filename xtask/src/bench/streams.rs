@@ -71,7 +71,7 @@ struct Upstream {
 fn upstream(scene: &Path) -> Result<Upstream, StageError> {
     let out = scratch_dir(scene);
     let loaded = SceneFile::load(scene)?;
-    let job = Job { scene_path: scene, scene: &loaded.scene, out: &out };
+    let job = Job::new(scene, &loaded.scene, &out);
     for stage in [StageId::Sampling, StageId::Costgraph, StageId::Skeleton, StageId::Hydro, StageId::Streams]
     {
         registry::stage(stage).run(&job)?;

@@ -13,7 +13,7 @@ use karst_artifact::{StageId, read_artifact};
 use karst_hydro::Hydro;
 use karst_metrics::MetricsReport;
 use karst_skeleton::Skeleton;
-use karst_stage::{Job, StageError};
+use karst_stage::{Handoff, Job, StageError};
 
 use super::Plan;
 use super::record::{Figures, Outcome, Record, SpringDischarge, realization_dir};
@@ -68,8 +68,10 @@ fn figures(plan: &Plan, out: &Path, seed: u64) -> Result<Figures, StageError> {
     let dir = realization_dir(out, seed);
     std::fs::create_dir_all(&dir).map_err(|e| StageError::failure(format!("{}: {e}", dir.display())))?;
     let scene = plan.scene.with_seed(seed);
-    let job = Job { scene_path: &scene.path, scene: &scene.scene, out: &dir };
+    let handoff = Handoff::new();
+    let job = Job { handoff: Some(&handoff), ..Job::new(&scene.path, &scene.scene, &dir) };
     for &stage in plan.stages() {
+        handoff.begin(stage);
         if !make::up_to_date(&job, stage) {
             registry::stage(stage).run(&job)?;
         }
