@@ -22,7 +22,7 @@ fn refusal<S: Stage>(out: &Path, edit: (&str, &str), budget: &str) -> String {
     fs::write(&scene_path, text.replace(edit.0, edit.1)).unwrap();
     let mut scene = Scene::load(&scene_path).unwrap();
     scene.set_budget(budget.parse::<Budget>().unwrap());
-    match runner::run::<S>(&Job { scene_path: &scene_path, scene: &scene, out }) {
+    match runner::run::<S>(&Job::new(&scene_path, &scene, out)) {
         Err(e @ StageError::BadInput(_)) => {
             assert_eq!(e.exit_code(), 2);
             e.to_string()
