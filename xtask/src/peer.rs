@@ -100,30 +100,29 @@ fn median_usage(runs: &[Usage]) -> Usage {
 
 /// Builds karstgen (release) and returns its path, beside this xtask binary.
 pub fn karstgen_binary() -> Result<PathBuf, StageError> {
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let status = Command::new(cargo)
-        .args(["build", "--release", "--quiet", "--package", "karstgen", "--bin", "karstgen"])
-        .status()
-        .map_err(|e| StageError::failure(format!("cannot run cargo: {e}")))?;
-    if !status.success() {
-        return Err(StageError::failure("building karstgen failed"));
-    }
+    build_release(&["--package", "karstgen"], "karstgen")?;
     Ok(beside_xtask()?.join("karstgen"))
 }
 
 /// Builds the binaries of `stages` (release) and returns their folder, beside this xtask binary.
 pub fn build_stage_binaries(stages: &[StageId]) -> Result<PathBuf, StageError> {
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let mut command = Command::new(cargo);
-    command.args(["build", "--release", "--quiet", "--bins"]);
-    for stage in stages {
-        command.args(["--package", stage.row().binary]);
-    }
-    let status = command.status().map_err(|e| StageError::failure(format!("cannot run cargo: {e}")))?;
-    if !status.success() {
-        return Err(StageError::failure("building the stage binaries failed"));
-    }
+    let packages: Vec<&str> = stages.iter().flat_map(|s| ["--package", s.row().binary]).collect();
+    build_release(&packages, "the stage binaries")?;
     beside_xtask()
+}
+
+/// `cargo build --release --quiet --bins` with `args`; `what` names what it builds in errors.
+fn build_release(args: &[&str], what: &str) -> Result<(), StageError> {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let status = Command::new(cargo)
+        .args(["build", "--release", "--quiet", "--bins"])
+        .args(args)
+        .status()
+        .map_err(|e| StageError::failure(format!("cannot run cargo: {e}")))?;
+    if !status.success() {
+        return Err(StageError::failure(format!("building {what} failed")));
+    }
+    Ok(())
 }
 
 /// The folder of this xtask binary, where cargo puts the release binaries.

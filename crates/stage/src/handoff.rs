@@ -34,6 +34,13 @@ struct State {
     entries: Vec<Entry>,
 }
 
+impl State {
+    /// Whether the stage after the running one reads the artifact of `input`.
+    fn read_next(&self, input: StageId) -> bool {
+        self.running.is_some_and(|running| read_next(running, input))
+    }
+}
+
 /// One payload and the header of the artifact it was written to.
 struct Entry {
     header: Header,
@@ -50,16 +57,14 @@ impl Handoff {
     pub fn begin(&self, stage: StageId) {
         let mut state = self.lock();
         state.running = Some(stage);
-        state.entries.retain(|e| {
-            read_by(stage, e.header.kind) || next(stage).is_some_and(|n| read_by(n, e.header.kind))
-        });
+        state.entries.retain(|e| read_by(stage, e.header.kind) || read_next(stage, e.header.kind));
     }
 
     /// Keeps `payload`, just written with `header`, when the stage after the running one reads
     /// it.
     pub fn keep<P: Payload + Send + 'static>(&self, header: Header, payload: P) {
         let mut state = self.lock();
-        let wanted = state.running.and_then(next).is_some_and(|n| read_by(n, P::STAGE));
+        let wanted = state.read_next(P::STAGE);
         state.entries.retain(|e| e.header.kind != P::STAGE);
         if wanted {
             state.entries.push(Entry { header, payload: Box::new(payload) });
@@ -76,8 +81,7 @@ impl Handoff {
             state.entries.remove(at);
             return None;
         }
-        let again = state.running.and_then(next).is_some_and(|n| read_by(n, P::STAGE));
-        if again {
+        if state.read_next(P::STAGE) {
             let entry = &state.entries[at];
             let payload = entry.payload.downcast_ref::<P>()?.clone();
             return Some((entry.header.clone(), payload));
@@ -110,9 +114,9 @@ fn read_by(stage: StageId, input: StageId) -> bool {
     stage.inputs().contains(&input)
 }
 
-/// The stage after `stage` in the pipeline's order.
-fn next(stage: StageId) -> Option<StageId> {
-    StageId::ALL.into_iter().skip_while(|s| *s != stage).nth(1)
+/// Whether the stage after `stage` in the pipeline's order reads the artifact of `input`.
+fn read_next(stage: StageId, input: StageId) -> bool {
+    StageId::ALL.into_iter().skip_while(|s| *s != stage).nth(1).is_some_and(|next| read_by(next, input))
 }
 
 #[cfg(test)]
@@ -140,12 +144,17 @@ mod tests {
         write_artifact(path, &provenance, points).unwrap()
     }
 
+    /// A scratch folder, the path of the samples' artifact in it and an empty handoff.
+    fn setup(name: &str) -> (karst_testkit::Scratch, std::path::PathBuf, Handoff) {
+        let dir = karst_testkit::scratch(name);
+        let path = dir.join(StageId::Sampling.file_name());
+        (dir, path, Handoff::new())
+    }
+
     #[test]
     fn a_payload_is_copied_while_a_later_stage_reads_it_then_moved() {
-        let dir = karst_testkit::scratch("handoff-copied-then-moved");
-        let path = dir.join(StageId::Sampling.file_name());
+        let (_dir, path, handoff) = setup("handoff-copied-then-moved");
         let points = Points(vec![3, 1, 4]);
-        let handoff = Handoff::new();
         handoff.begin(StageId::Sampling);
         handoff.keep(written(&path, &points), points.clone());
         handoff.begin(StageId::Costgraph);
@@ -159,9 +168,7 @@ mod tests {
 
     #[test]
     fn a_rewritten_artifact_is_read_from_its_file() {
-        let dir = karst_testkit::scratch("handoff-rewritten");
-        let path = dir.join(StageId::Sampling.file_name());
-        let handoff = Handoff::new();
+        let (dir, path, handoff) = setup("handoff-rewritten");
         handoff.begin(StageId::Sampling);
         handoff.keep(written(&path, &Points(vec![1, 2])), Points(vec![1, 2]));
         written(&path, &Points(vec![1, 2, 3]));
@@ -175,9 +182,7 @@ mod tests {
 
     #[test]
     fn only_what_the_next_stages_read_is_kept() {
-        let dir = karst_testkit::scratch("handoff-next-stages");
-        let path = dir.join(StageId::Sampling.file_name());
-        let handoff = Handoff::new();
+        let (_dir, path, handoff) = setup("handoff-next-stages");
         // Written by a stage whose next one does not read it (the skeleton: hydro is next).
         handoff.begin(StageId::Skeleton);
         handoff.keep(written(&path, &Points(vec![7])), Points(vec![7]));
