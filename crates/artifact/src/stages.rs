@@ -93,6 +93,7 @@ const TABLE: [StageRow; 9] = [
         file: "skeleton.json",
         encoding: Json,
         inputs: &[Sampling, Costgraph],
+        // Costgraph: the skeleton costs the edges its searches read (`karst_costgraph::Costing`).
         sections: &[
             "seed",
             "domain",
@@ -101,6 +102,7 @@ const TABLE: [StageRow; 9] = [
             "keypoints",
             "connectivity",
             "phases",
+            "costgraph",
             "skeleton",
         ],
     },

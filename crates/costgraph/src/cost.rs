@@ -76,6 +76,7 @@ pub struct CostModel {
 /// Per-node values the edges share, packed node by node so that reading a neighbour costs one
 /// cache miss: position, 1 − P, signed distances to every inception surface, then to the water
 /// table of every cost set (positive above).
+#[derive(Clone)]
 pub struct NodeFields {
     data: Vec<f64>,
     stride: usize,
@@ -96,6 +97,11 @@ impl NodeFields {
     pub fn position(&self, i: usize) -> DVec3 {
         let n = self.node(i);
         DVec3::new(n[0], n[1], n[2])
+    }
+
+    /// Number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.data.len() / self.stride
     }
 }
 
@@ -202,6 +208,38 @@ impl CostModel {
         };
         let floor = self.params.cost_floor;
         (floor, floor + constant + self.terms().iter().map(|t| t.1).sum::<f64>())
+    }
+
+    /// A lower bound of the cost per metre of every edge in every cost set, from the model's
+    /// parameters alone: ε plus each weight times the least its term can be, and the forced
+    /// links' cost. A term whose field reaches its cheap end somewhere can be 0 there (on an
+    /// inception surface, along the strongest fracture family, falling straight down or along
+    /// the water table, at full potential); without surfaces or families the term is 1, and a
+    /// uniform potential gives its own value. The searches' A* heuristic is this bound times
+    /// the distance, so it never reads the edges' costs (which are made only for the rows the
+    /// searches reach: `costs.rs`).
+    pub fn least_cost_per_metre(&self) -> f64 {
+        let p = &self.params;
+        let least_where = |reached: bool| if reached { 0.0 } else { 1.0 };
+        let inception = least_where(!self.inception.is_empty());
+        let fracture = least_where(!self.families.is_empty());
+        let resistance = if self.uniform_potential { self.resistance_at(DVec3::ZERO) } else { 0.0 };
+        match self.kind {
+            CostModelKind::Paris2021 => {
+                let model = p.cost_floor
+                    + p.w_distance
+                    + p.w_horizon * inception
+                    + p.w_fracture * fracture
+                    + p.w_permeability * resistance;
+                if self.corridors.is_empty() { model } else { model.min(p.forced_link_cost) }
+            }
+            CostModelKind::Karstnsim2024 => {
+                p.cost_floor
+                    + p.alpha_inception * inception
+                    + p.alpha_fracture * fracture
+                    + p.alpha_potential * resistance
+            }
+        }
     }
 
     /// The values every edge of a node shares, in parallel.

@@ -11,6 +11,7 @@
 mod build;
 mod checks;
 mod cost;
+mod costs;
 mod error;
 mod estimate;
 mod falloff;
@@ -22,8 +23,9 @@ mod stats;
 
 pub use build::{build, build_points};
 pub use cost::CostModel;
+pub use costs::Costing;
 pub use error::CostGraphError;
 pub use knn::{transpose, transpose_values};
-pub use payload::{CostGraph, CostSet, SHARED_ROW};
+pub use payload::{CostGraph, CostSet, CostingError, SHARED_ROW};
 pub use stage::CostgraphStage;
 pub use stats::{Histogram, SetStats, Summary, TermStats};

@@ -97,8 +97,10 @@ fn negative_and_nan_weights_and_k_zero_are_refused() {
 #[test]
 fn the_graph_of_good_input_has_positive_costs() {
     let scene = scene("[costgraph]\nk = 8").unwrap();
-    let graph = build(&scene, &samples(10.0, 0.0, 100.0)).unwrap();
+    let samples = samples(10.0, 0.0, 100.0);
+    let graph = build(&scene, &samples).unwrap();
     assert_eq!(graph.edge_count(), 8 * graph.node_count());
-    assert!(graph.cost_sets[0].costs.iter().all(|&c| c > 0.0));
+    graph.cost_from(&scene, &samples.positions, karst_costgraph::Costing::Every).unwrap();
+    assert!((0..graph.node_count()).all(|u| graph.row_costs(0, u).iter().all(|&c| c > 0.0)));
     assert_eq!(graph.cost_set_of_water_table("wt"), Some(0));
 }

@@ -5,7 +5,7 @@ use std::collections::BinaryHeap;
 use std::path::Path;
 
 use glam::DVec3;
-use karst_costgraph::{CostGraph, build_points};
+use karst_costgraph::{CostGraph, Costing, build_points};
 use karst_geology::Scene;
 use karst_geology::rng::Random;
 
@@ -46,6 +46,13 @@ fn cloud(n: usize, size: [f64; 3], first: [[f64; 3]; 2], seed: u64) -> Vec<[f64;
     points
         .extend((2..n).map(|_| [rng.range(0.0, size[0]), rng.range(0.0, size[1]), rng.range(0.0, size[2])]));
     points
+}
+
+/// The cost graph of `points` under `scene`, every row costed.
+fn costed(scene: &Scene, points: &[[f64; 3]]) -> CostGraph {
+    let graph = build_points(scene, points).unwrap();
+    graph.cost_from(scene, points, Costing::Every).unwrap();
+    graph
 }
 
 /// Least-cost path 0 → 1 in cost set `set`, as node indices.
@@ -100,7 +107,7 @@ fn homogeneous_paths_are_nearly_straight() {
         [(1, [[5.0, 5.0, 5.0], [95.0, 95.0, 95.0]]), (2, [[5.0, 50.0, 90.0], [95.0, 50.0, 10.0]])]
     {
         let points = cloud(20_000, size, ends, seed);
-        let graph = build_points(&scene, &points).unwrap();
+        let graph = costed(&scene, &points);
         let straight = at(&points, 0).distance(at(&points, 1));
         let ratio = length(&points, &path(&graph, 0)) / straight;
         eprintln!("seed {seed}: path / straight line = {ratio:.4}");
@@ -146,7 +153,7 @@ tolerance = 8.0
         let params = format!(
             "{families}[costgraph]\nmodel = \"{model}\"\nk = 60\nalpha_inception = 0.0\nalpha_water_table = 0.0\nalpha_potential = 0.0\nw_horizon = 0.0\nw_permeability = 0.0\nw_distance = 0.0\nw_fracture = 4.0\nalpha_fracture = 4.0"
         );
-        let graph = build_points(&scene(size, &params), &points).unwrap();
+        let graph = costed(&scene(size, &params), &points);
         let nodes = path(&graph, 0);
         let within = fraction_along(&points, &nodes, &[20.0, 110.0], 8.0);
         eprintln!("{model}: {:.1} % of the horizontal length within the families", within * 100.0);
@@ -161,7 +168,7 @@ fn vadose_paths_descend() {
     let params = "[costgraph]\nk = 40\nalpha_inception = 0.0\nalpha_fracture = 0.0\nalpha_potential = 0.0";
     let scene = scene(size, params);
     let points = cloud(20_000, size, [[10.0, 50.0, 95.0], [90.0, 50.0, 5.0]], 4);
-    let graph = build_points(&scene, &points).unwrap();
+    let graph = costed(&scene, &points);
     let set = graph.cost_set_of_water_table("wt").unwrap();
     let nodes = path(&graph, set);
     let climbs: f64 = nodes.windows(2).map(|w| (points[w[1]][2] - points[w[0]][2]).max(0.0)).sum();
@@ -175,7 +182,7 @@ fn vadose_paths_descend() {
     let down = route_cost(&graph, &nodes);
     let swapped: Vec<[f64; 3]> =
         [points[1], points[0]].into_iter().chain(points[2..].iter().copied()).collect();
-    let graph_up = build_points(&scene, &swapped).unwrap();
+    let graph_up = costed(&scene, &swapped);
     let up = route_cost(&graph_up, &path(&graph_up, set));
     eprintln!("vadose route: {down:.1} down, {up:.1} up");
     assert!(up > 3.0 * down, "climbing ({up:.1}) should cost far more than falling ({down:.1})");
@@ -200,11 +207,26 @@ symmetrise = true
     let points = cloud(12_000, size, [[1.0, 1.0, 1.0], [99.0, 99.0, 49.0]], 5);
     let with = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| build_points(&scene, &points).unwrap())
+        pool.install(|| costed(&scene, &points))
     };
     let (one, two) = (with(1), with(2));
     assert!(one == two, "the graphs differ between 1 and 2 threads");
-    assert!(one.cost_sets[0].costs.iter().all(|&c| c > 0.0));
+    // Rows costed on demand, by two threads reading them at once, cost what rows costed all
+    // at once do.
+    let lazy = build_points(&scene, &points).unwrap();
+    lazy.cost_from(&scene, &points, Costing::OnDemand).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    pool.install(|| {
+        let read = |u: usize| lazy.row_costs(0, u).len();
+        rayon::join(
+            || (0..points.len()).map(read).sum::<usize>(),
+            || (0..points.len()).rev().map(read).sum::<usize>(),
+        )
+    });
+    for u in 0..points.len() {
+        assert_eq!(lazy.row_costs(0, u), one.row_costs(0, u), "row {u}");
+        assert!(one.row_costs(0, u).iter().all(|&c| c > 0.0));
+    }
 }
 
 /// Largest distance from the path's nodes to the segment between its ends.
@@ -267,7 +289,7 @@ mode = "gamma"
     let points = cloud(20_000, size, [a, b], 6);
     let route = |forced: &str| {
         let scene = Scene::parse(&text(forced), Path::new("t.toml")).unwrap();
-        let graph = build_points(&scene, &points).unwrap();
+        let graph = costed(&scene, &points);
         path(&graph, 0)
     };
     let free = route("");
@@ -285,7 +307,7 @@ mode = "gamma"
     // Under karstnsim2024 forced links do not change the costs (KarstNSim has none).
     let k = |forced: &str| {
         let t = text(forced).replace("model = \"paris2021\"", "model = \"karstnsim2024\"");
-        build_points(&Scene::parse(&t, Path::new("t.toml")).unwrap(), &points).unwrap()
+        costed(&Scene::parse(&t, Path::new("t.toml")).unwrap(), &points)
     };
     assert!(k("") == k("forced_links = [[\"a\", \"b\"]]"));
 }
@@ -315,13 +337,13 @@ fn three_water_tables(named: &[&str]) -> Scene {
 #[test]
 fn every_cost_set_costs_what_a_graph_of_its_water_table_alone_does() {
     let points = cloud(8_000, [100.0; 3], [[1.0, 1.0, 1.0], [99.0, 99.0, 99.0]], 6);
-    let all = build_points(&three_water_tables(&["wt-a", "wt-b", "wt-c"]), &points).unwrap();
+    let all = costed(&three_water_tables(&["wt-a", "wt-b", "wt-c"]), &points);
     assert_eq!(all.cost_sets.len(), 3);
     // Rows stored apart near the water tables, shared above and deep below them.
     let share = all.own_row_share();
     assert!(share > 0.2 && share < 0.8, "own rows {share}");
     for (set, name) in ["wt-a", "wt-b", "wt-c"].into_iter().enumerate() {
-        let alone = build_points(&three_water_tables(&[name]), &points).unwrap();
+        let alone = costed(&three_water_tables(&[name]), &points);
         assert_eq!(alone.cost_sets.len(), 1);
         assert!(alone.own_rows.is_empty());
         for node in 0..all.node_count() {

@@ -2,7 +2,7 @@
 //! the sample paths on the cost graph, the key points it did not route are joined, the
 //! network is amplified, and the [`NetworkBuilder`] turns the paths into the artifact.
 
-use karst_costgraph::CostGraph;
+use karst_costgraph::{CostGraph, Costing};
 use karst_geology::params::SkeletonMode;
 use karst_geology::{KeyPointKind, Scene};
 use karst_sampling::Samples;
@@ -22,6 +22,7 @@ pub fn build(scene: &Scene, samples: &Samples, full: &CostGraph) -> Result<Skele
     if full.node_count() != samples.len() {
         return Err(SkeletonError::GraphOfOtherSamples { nodes: full.node_count(), samples: samples.len() });
     }
+    full.cost_from(scene, &samples.positions, costing(scene, full))?;
     let mut network = NetworkBuilder::default();
     let closed = without_dead_ends(scene, samples, full);
     let graph = closed.as_ref().unwrap_or(full);
@@ -35,6 +36,7 @@ pub fn build(scene: &Scene, samples: &Samples, full: &CostGraph) -> Result<Skele
 /// no conduits): what the skeleton budgets of `cargo xtask bench` time. Returns the number of
 /// routes.
 pub fn mode_paths(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<usize, SkeletonError> {
+    graph.cost_from(scene, &samples.positions, costing(scene, graph))?;
     mode_routes(scene, samples, graph, &mut NetworkBuilder::default()).map(|routes| routes.len())
 }
 
@@ -92,14 +94,23 @@ fn without_dead_ends(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Opt
             for edge in first..graph.offsets[u + 1] as usize {
                 if closed[u] || closed[graph.targets[edge] as usize] {
                     for set in 0..open.cost_sets.len() {
+                        // The least cost per metre stays a lower bound of the open edges'.
                         open.row_costs_mut(set, u)[edge - first] = f32::INFINITY;
-                        open.cost_sets[set].min_cost_per_metre = None;
                     }
                 }
             }
         }
         open
     })
+}
+
+/// How the cost graph's rows are costed: all at once, in parallel, when some phase computes the
+/// least costs to a spring (which reads every edge of its cost set: `spring_distance.rs`), else
+/// each when a search first reads it.
+fn costing(scene: &Scene, graph: &CostGraph) -> Costing {
+    let whole = scene.skeleton().mode == SkeletonMode::Karstnsim
+        && phase_setups(scene, graph).iter().any(|phase| karstnsim::maps_springs(scene, graph, phase));
+    if whole { Costing::Every } else { Costing::OnDemand }
 }
 
 /// The phases of the scene, oldest first (one with every spring when it lists none); their

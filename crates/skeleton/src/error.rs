@@ -23,6 +23,8 @@ pub enum SkeletonError {
     KeyPointNotSampled { name: String },
     #[error("the cost graph has {nodes} nodes but samples.bin has {samples} samples")]
     GraphOfOtherSamples { nodes: usize, samples: usize },
+    #[error("the cost graph {0}")]
+    Costing(#[from] karst_costgraph::CostingError),
 }
 
 impl Failure for SkeletonError {
@@ -32,7 +34,9 @@ impl Failure for SkeletonError {
             | SkeletonError::KeyPointsApart { .. }
             | SkeletonError::KeyPointOffNetwork { .. } => Blame::Scene,
             SkeletonError::KeyPointNotSampled { .. } => Blame::Artifact(StageId::Sampling),
-            SkeletonError::GraphOfOtherSamples { .. } => Blame::Artifact(StageId::Costgraph),
+            SkeletonError::GraphOfOtherSamples { .. } | SkeletonError::Costing(_) => {
+                Blame::Artifact(StageId::Costgraph)
+            }
         }
     }
 }

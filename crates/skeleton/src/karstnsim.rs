@@ -32,7 +32,7 @@ use rayon::prelude::*;
 
 use crate::Route;
 use crate::cohesion_bound::{CohesionBound, NetworkDistance};
-use crate::ends::{End, candidate_springs, chosen_springs, ends, sample_of};
+use crate::ends::{End, candidate_springs, chosen_springs, ends, sample_of, sinks_in_order};
 use crate::error::SkeletonError;
 use crate::search::{Cohesive, EdgeCosts, Tree, astar_to_set, min_cost_per_metre};
 use crate::spring_distance::{InEdges, LEGS_WORTH_THE_COSTS, costs_to};
@@ -230,6 +230,19 @@ fn springs_worth_their_costs<'g>(
     (sinks, phase): (&[End], &PhaseSetup),
     legs_worth: usize,
 ) -> Result<Vec<Mapped<'g>>, SkeletonError> {
+    let mut worth = Vec::new();
+    for row in springs_with_legs(scene, (sinks, phase), legs_worth) {
+        let spring =
+            phase.springs.iter().find(|s| s.row == row).expect("a candidate is a spring of the phase");
+        let costs = cost_set(&water_table_of(scene, spring).name);
+        worth.push(Mapped { row, costs, target: sample_of(samples, spring)? });
+    }
+    Ok(worth)
+}
+
+/// The rows of the springs of `phase` with at least `legs_worth` candidate legs among `sinks`,
+/// in the order the sinks first need them.
+fn springs_with_legs(scene: &Scene, (sinks, phase): (&[End], &PhaseSetup), legs_worth: usize) -> Vec<usize> {
     let mut legs: Vec<(usize, usize)> = Vec::new();
     for sink in sinks {
         for spring in candidate_springs(scene, sink, &phase.springs) {
@@ -239,14 +252,14 @@ fn springs_worth_their_costs<'g>(
             }
         }
     }
-    let mut worth = Vec::new();
-    for (row, _) in legs.into_iter().filter(|&(_, n)| n >= legs_worth) {
-        let spring =
-            phase.springs.iter().find(|s| s.row == row).expect("a candidate is a spring of the phase");
-        let costs = cost_set(&water_table_of(scene, spring).name);
-        worth.push(Mapped { row, costs, target: sample_of(samples, spring)? });
-    }
-    Ok(worth)
+    legs.into_iter().filter(|&(_, n)| n >= legs_worth).map(|(row, _)| row).collect()
+}
+
+/// Whether [`route`] computes the least costs to some spring of `phase` (`spring_distance.rs`),
+/// which reads every edge of the spring's cost set.
+pub fn maps_springs(scene: &Scene, graph: &CostGraph, phase: &PhaseSetup) -> bool {
+    let springs = springs_with_legs(scene, (&sinks_in_order(scene), phase), LEGS_WORTH_THE_COSTS).len();
+    phase.inherited_cost == 1.0 && springs > 0 && spring_costs_fit(scene, graph, springs)
 }
 
 /// Whether the least costs to `springs` springs fit in the memory budget beside the cost graph:
