@@ -12,7 +12,7 @@ use crate::error::SkeletonError;
 use crate::karstnsim;
 use crate::payload::Skeleton;
 use crate::search::EdgeCosts;
-use karst_costgraph::CostGraph;
+use karst_costgraph::{CostGraph, Costing};
 use karst_geology::Scene;
 use karst_sampling::Samples;
 
@@ -72,9 +72,11 @@ fn scene(extra: &str) -> Scene {
     Scene::parse(&format!("{SCENE}\n{extra}"), Path::new("two-springs.toml")).unwrap()
 }
 
+/// The samples and the cost graph of `scene`, costed on demand (as the skeleton stage does).
 fn inputs(scene: &Scene) -> (Samples, CostGraph) {
     let samples = karst_sampling::build(scene).unwrap();
     let graph = karst_costgraph::build(scene, &samples).unwrap();
+    graph.cost_from(scene, &samples.positions, Costing::OnDemand).unwrap();
     (samples, graph)
 }
 
@@ -187,6 +189,8 @@ fn gamma_mode_joins_every_key_point_and_honours_forced_links() {
     let dense = build(&scene("[skeleton]\nmode = \"gamma\"\ngamma = 0.5\n"), &samples, &graph).unwrap();
     assert!(dense.total_length() > rng.total_length());
     let forced = scene("[skeleton]\nmode = \"gamma\"\ngamma = 60.0\nforced_links = [[\"s1\", \"east\"]]\n");
+    // Forced links are part of the cost graph's scene sections: the graph is made again.
+    let (samples, graph) = inputs(&forced);
     let with_link = build(&forced, &samples, &graph).unwrap();
     assert!(with_link.total_length() > rng.total_length());
     assert!(!with_link.routes.is_empty());
