@@ -48,6 +48,20 @@ pub(crate) struct RowsOf<'g> {
     pub own_rows: &'g [u32],
 }
 
+impl RowsOf<'_> {
+    /// Which set stores `node`'s row of set `set`, and where in that set's costs: the set's own
+    /// array for an own row of a later set, set 0's otherwise.
+    #[inline]
+    pub(crate) fn place(&self, set: usize, node: usize) -> (usize, std::ops::Range<usize>) {
+        let (first, last) = (self.offsets[node] as usize, self.offsets[node + 1] as usize);
+        let own = (set > 0).then(|| self.own_rows.get(node).copied()).flatten().filter(|&s| s != SHARED_ROW);
+        match own {
+            Some(start) => (set, start as usize..start as usize + last - first),
+            None => (0, first..last),
+        }
+    }
+}
+
 /// What costs a row on demand.
 #[derive(Clone)]
 struct Maker {
@@ -160,23 +174,22 @@ impl Costs {
         state.store(READY, Ordering::Release);
     }
 
-    /// Costs the row of `node` in every set (the thread holds it busy).
+    /// Costs the row of `node` in every set (the thread holds it busy); a row a later set shares
+    /// with set 0 is written once, in set 0.
     fn write_row(&self, maker: &Maker, rows: RowsOf, node: usize, terms: &mut EdgeTerms) {
         let first = rows.offsets[node] as usize;
-        let own = rows.own_rows.get(node).copied().filter(|&start| start != SHARED_ROW);
         let targets = &rows.targets[first..rows.offsets[node + 1] as usize];
         for (column, &target) in targets.iter().enumerate() {
             maker.model.edge(&maker.fields, node, target as usize, terms);
             for (set, &cost) in terms.cost.iter().enumerate() {
+                let (stored, range) = rows.place(set, node);
+                if stored != set {
+                    continue;
+                }
                 // The cost graph stage checked that every cost of the model fits ([`crate::build`]).
-                let stored = cost as f32;
-                debug_assert!(stored.is_finite() && stored > 0.0, "edge {node} → {target}: cost {cost}");
-                let at = match (set, own) {
-                    (0, _) => first + column,
-                    (_, Some(start)) => start as usize + column,
-                    (_, None) => continue,
-                };
-                self.sets[set][at].store(stored.to_bits(), Ordering::Relaxed);
+                let bits = cost as f32;
+                debug_assert!(bits.is_finite() && bits > 0.0, "edge {node} → {target}: cost {cost}");
+                self.sets[set][range.start + column].store(bits.to_bits(), Ordering::Relaxed);
             }
         }
     }

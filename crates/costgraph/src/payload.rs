@@ -246,14 +246,15 @@ impl CostGraph {
     /// When the graph is not costed: [`CostGraph::cost_from`] comes first.
     #[inline]
     pub fn row_costs(&self, set: usize, node: usize) -> &[f32] {
-        let (stored, range) = self.row_place(set, node);
-        self.costs().row(self.rows_of(), node, stored, range)
+        let rows = self.rows_of();
+        let (stored, range) = rows.place(set, node);
+        self.costs().row(rows, node, stored, range)
     }
 
     /// [`CostGraph::row_costs`], to change them (a shared row changes in every set).
     pub fn row_costs_mut(&mut self, set: usize, node: usize) -> &mut [f32] {
-        let (stored, range) = self.row_place(set, node);
         let rows = RowsOf { offsets: &self.offsets, targets: &self.targets, own_rows: &self.own_rows };
+        let (stored, range) = rows.place(set, node);
         self.costs.get_mut().expect(UNCOSTED).row_mut(rows, node, stored, range)
     }
 
@@ -272,18 +273,6 @@ impl CostGraph {
             .map(|i| (self.offsets[i + 1] - self.offsets[i]) as usize)
             .sum();
         (0..self.cost_sets.len()).map(|s| if s == 0 { self.edge_count() } else { own }).collect()
-    }
-
-    /// Which set stores `node`'s row of set `set`, and where in that set's costs: the set's own
-    /// array for an own row of a later set, set 0's otherwise.
-    #[inline]
-    fn row_place(&self, set: usize, node: usize) -> (usize, std::ops::Range<usize>) {
-        let (first, last) = (self.offsets[node] as usize, self.offsets[node + 1] as usize);
-        let own = (set > 0).then(|| self.own_rows.get(node).copied()).flatten().filter(|&s| s != SHARED_ROW);
-        match own {
-            Some(start) => (set, start as usize..start as usize + last - first),
-            None => (0, first..last),
-        }
     }
 
     /// Own rows empty with one set, one per node with several, each starting where the
