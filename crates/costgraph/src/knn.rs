@@ -86,7 +86,7 @@ impl Rows {
 pub fn transpose(offsets: &[u32], targets: &[u32]) -> (Vec<u32>, Vec<u32>) {
     let reversed = reversed_offsets(offsets, targets);
     let mut sources = vec![0u32; targets.len()];
-    transpose_values(offsets, targets, &reversed, |source, _| source as u32, &mut sources);
+    transpose_values(offsets, targets, &reversed, |source| move |_| source as u32, &mut sources);
     (reversed, sources)
 }
 
@@ -102,19 +102,20 @@ fn reversed_offsets(offsets: &[u32], targets: &[u32]) -> Vec<u32> {
     reversed
 }
 
-/// Writes `value(source, edge)` of every edge into `values` (one per edge), laid out as the
-/// reversed rows whose offsets are `reversed` (from [`transpose`]): the in-edges of each node, by
-/// increasing source.
+/// Writes the value of every edge into `values` (one per edge), laid out as the reversed rows
+/// whose offsets are `reversed` (from [`transpose`]): the in-edges of each node, by increasing
+/// source. `row(source)` gives the values of a source's out-edges by their place in its row, so
+/// that a row stored elsewhere (a cost set's costs) is looked up once per row, not per edge.
 ///
 /// A counting sort whose writes land all over the result (a cache miss per edge): the nodes are
 /// split into one range per thread, and each thread scans every edge but writes only the rows of
 /// its own range. Each row's sources come in increasing order whatever the split, so the result
 /// does not depend on the number of threads.
-pub fn transpose_values<T: Send>(
+pub fn transpose_values<T: Send, R: Fn(usize) -> T>(
     offsets: &[u32],
     targets: &[u32],
     reversed: &[u32],
-    value: impl Fn(usize, usize) -> T + Sync,
+    row: impl Fn(usize) -> R + Sync,
     values: &mut [T],
 ) {
     assert_eq!(values.len(), targets.len(), "one value per edge");
@@ -129,12 +130,12 @@ pub fn transpose_values<T: Send>(
     pieces.into_par_iter().for_each(|((lo, hi), piece)| {
         let base = reversed[lo];
         let mut next: Vec<u32> = reversed[lo..hi].iter().map(|&o| o - base).collect();
-        for (source, row) in offsets.windows(2).enumerate() {
-            let first = row[0] as usize;
-            for (edge, &target) in (first..).zip(&targets[first..row[1] as usize]) {
+        for (source, bounds) in offsets.windows(2).enumerate() {
+            let value = row(source);
+            for (place, &target) in targets[bounds[0] as usize..bounds[1] as usize].iter().enumerate() {
                 let slot = (target as usize).checked_sub(lo).and_then(|at| next.get_mut(at));
                 if let Some(at) = slot {
-                    piece[*at as usize] = value(source, edge);
+                    piece[*at as usize] = value(place);
                     *at += 1;
                 }
             }

@@ -64,7 +64,10 @@ pub fn costs_to(
         return None;
     }
     let graph = costs.graph;
-    let stored = |u: usize, edge: usize| graph.row_costs(costs.set, u)[edge - graph.offsets[u] as usize];
+    let stored = |u: usize| {
+        let row = graph.row_costs(costs.set, u);
+        move |place: usize| row[place]
+    };
     reversed.resize(graph.edge_count(), 0.0);
     karst_costgraph::transpose_values(&graph.offsets, &graph.targets, &in_edges.offsets, stored, reversed);
     let mut least = vec![f64::INFINITY; graph.node_count()];
