@@ -46,28 +46,26 @@ pub fn build(scene: &Scene) -> Result<Samples, SamplingError> {
     for (surfaces, tag, purpose) in lists {
         for (i, s) in surfaces.iter().enumerate() {
             let key = Random::stream(scene.seed(), "sampling", &format!("{purpose} {i}")).uniform().to_bits();
-            let before = sampler.points.len();
+            let before = sampler.count();
             fill_surface(&mut sampler, s, frame, attempts, key, region);
-            runs.push((tag(i as u32), sampler.points.len() - before));
+            runs.push((tag(i as u32), sampler.count() - before));
         }
     }
     let key = Random::stream(scene.seed(), "sampling", "volume").uniform().to_bits();
     let bar = progress::bar(sampler.work() as u64, "sampling");
     sampler.fill_volume(key, region, |n| bar.set_position(n));
     bar.finish_and_clear();
-    let volume = sampler.points.len() - runs.iter().map(|r| r.1).sum::<usize>();
+    let volume = sampler.count() - runs.iter().map(|r| r.1).sum::<usize>();
     runs.push((Tag::Volume, volume));
-    if sampler.points.len() == scene.keypoints().len() {
+    if sampler.count() == scene.keypoints().len() {
         return Err(SamplingError::NothingToSample {
             smallest: field.min(),
             radius: scene.sampling().radius,
         });
     }
-    // Free the background grid first, and convert the positions in place: peak memory stays
-    // near the samples themselves.
-    let points = std::mem::take(&mut sampler.points);
-    drop(sampler);
-    let positions: Vec<[f64; 3]> = points.into_iter().map(|p| p.to_array()).collect();
+    // Free the background grid first, and convert the positions in place (the grid's records
+    // become the positions): peak memory stays near the samples themselves.
+    let positions: Vec<[f64; 3]> = sampler.into_points().into_iter().map(|p| p.to_array()).collect();
     let mut tags = Vec::with_capacity(sampler_len(&runs));
     for (tag, n) in runs {
         tags.resize(tags.len() + n, tag);
