@@ -42,6 +42,8 @@ pub enum Geometry {
         dip: f64,
         /// Degrees clockwise from north.
         dip_direction: f64,
+        /// The trigonometry of `dip` and `dip_direction`, computed once.
+        frame: PlaneFrame,
     },
     Tin {
         /// The file as written in the scene (relative to the scene's folder).
@@ -51,6 +53,33 @@ pub enum Geometry {
         /// The triangles, filled when loaded.
         mesh: Arc<Tin>,
     },
+}
+
+/// A plane's orientation as the distances and elevations use it. Every sample's distance to
+/// every water table reads it (millions per run), and the sines and cosines of the angles cost
+/// more than the distance itself; computed from the angles alone, so moving a plane (its
+/// elevation and origin) keeps it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlaneFrame {
+    /// Upward unit normal, pointing to the dip direction.
+    normal: Point,
+    /// Sine and cosine of the dip direction.
+    direction: (f64, f64),
+    /// Tangent of the dip.
+    slope: f64,
+}
+
+impl PlaneFrame {
+    /// The frame of a plane dipping `dip` degrees towards `dip_direction` degrees.
+    pub fn new(dip: f64, dip_direction: f64) -> Self {
+        let (sin_dip, cos_dip) = dip.to_radians().sin_cos();
+        let (sin_dir, cos_dir) = dip_direction.to_radians().sin_cos();
+        PlaneFrame {
+            normal: Point::new(sin_dip * sin_dir, sin_dip * cos_dir, cos_dip),
+            direction: (sin_dir, cos_dir),
+            slope: dip.to_radians().tan(),
+        }
+    }
 }
 
 /// A surface as written in the scene: a plane's fields, or a `file`.
@@ -77,12 +106,16 @@ impl TryFrom<SurfaceEntry> for Surface {
 
     fn try_from(e: SurfaceEntry) -> Result<Self, String> {
         let geometry = match (e.elevation, e.file) {
-            (Some(elevation), None) => Geometry::Plane {
-                elevation,
-                origin: e.origin.unwrap_or_default(),
-                dip: e.dip.unwrap_or_default(),
-                dip_direction: e.dip_direction.unwrap_or_default(),
-            },
+            (Some(elevation), None) => {
+                let (dip, dip_direction) = (e.dip.unwrap_or_default(), e.dip_direction.unwrap_or_default());
+                Geometry::Plane {
+                    elevation,
+                    origin: e.origin.unwrap_or_default(),
+                    dip,
+                    dip_direction,
+                    frame: PlaneFrame::new(dip, dip_direction),
+                }
+            }
             (None, Some(file)) => {
                 if e.origin.is_some() || e.dip.is_some() || e.dip_direction.is_some() {
                     return Err(format!(
@@ -115,7 +148,7 @@ impl From<Surface> for SurfaceEntry {
             content: None,
         };
         match s.geometry {
-            Geometry::Plane { elevation, origin, dip, dip_direction } => {
+            Geometry::Plane { elevation, origin, dip, dip_direction, .. } => {
                 (e.elevation, e.origin, e.dip, e.dip_direction) =
                     (Some(elevation), Some(origin), Some(dip), Some(dip_direction));
             }
@@ -128,7 +161,11 @@ impl From<Surface> for SurfaceEntry {
 impl Surface {
     /// A plane surface.
     pub fn plane(name: &str, elevation: f64, origin: [f64; 2], dip: f64, dip_direction: f64) -> Surface {
-        Surface { name: name.into(), geometry: Geometry::Plane { elevation, origin, dip, dip_direction } }
+        let frame = PlaneFrame::new(dip, dip_direction);
+        Surface {
+            name: name.into(),
+            geometry: Geometry::Plane { elevation, origin, dip, dip_direction, frame },
+        }
     }
 
     /// A triangulated surface.
@@ -151,11 +188,7 @@ impl Surface {
     /// dip direction), the area-weighted mean normal of a TIN.
     pub fn normal(&self) -> Point {
         match &self.geometry {
-            Geometry::Plane { dip, dip_direction, .. } => {
-                let (sin_dip, cos_dip) = dip.to_radians().sin_cos();
-                let (sin_dir, cos_dir) = dip_direction.to_radians().sin_cos();
-                Point::new(sin_dip * sin_dir, sin_dip * cos_dir, cos_dip)
-            }
+            Geometry::Plane { frame, .. } => frame.normal,
             Geometry::Tin { mesh, .. } => mesh.mean_normal(),
         }
     }
@@ -164,8 +197,8 @@ impl Surface {
     /// [`ON_SURFACE`] of it.
     pub fn signed_distance(&self, p: Point) -> f64 {
         on_surface(match &self.geometry {
-            Geometry::Plane { elevation, origin, .. } => {
-                self.normal().dot(p - Point::new(origin[0], origin[1], *elevation))
+            Geometry::Plane { elevation, origin, frame, .. } => {
+                frame.normal.dot(p - Point::new(origin[0], origin[1], *elevation))
             }
             Geometry::Tin { mesh, .. } => {
                 let (q, n) = mesh.closest(p);
@@ -202,10 +235,10 @@ impl Surface {
     /// Elevation of the surface at (x, y) (not for vertical surfaces).
     pub fn elevation_at(&self, x: f64, y: f64) -> f64 {
         match &self.geometry {
-            Geometry::Plane { elevation, origin, dip, dip_direction } => {
-                let (sin, cos) = dip_direction.to_radians().sin_cos();
+            Geometry::Plane { elevation, origin, frame, .. } => {
+                let (sin, cos) = frame.direction;
                 let along = (x - origin[0]) * sin + (y - origin[1]) * cos;
-                elevation - dip.to_radians().tan() * along
+                elevation - frame.slope * along
             }
             Geometry::Tin { mesh, .. } => mesh.elevation_at(x, y),
         }

@@ -367,7 +367,7 @@ impl Checks<'_> {
     fn surfaces(&mut self, list: &str, surfaces: &[Surface], vertical_allowed: bool) {
         for (i, s) in surfaces.iter().enumerate() {
             let at = |f: &str| format!("{list}[{i}].{f}");
-            if let Geometry::Plane { elevation, origin, dip, dip_direction } = &s.geometry {
+            if let Geometry::Plane { elevation, origin, dip, dip_direction, .. } = &s.geometry {
                 self.coordinates(&at("elevation"), &[*elevation]);
                 self.coordinates(&at("origin"), origin);
                 self.within(&at("dip_direction"), *dip_direction, -360.0, 360.0);
