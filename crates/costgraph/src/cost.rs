@@ -105,6 +105,14 @@ impl NodeFields {
     }
 }
 
+/// The terms of an edge that do not depend on the cost set.
+struct SharedTerms {
+    length: f64,
+    inception: f64,
+    resistance: f64,
+    fracture: f64,
+}
+
 /// The terms of one edge (each the mean along the edge, before its weight) and its costs.
 #[derive(Debug, Clone, Default)]
 pub struct EdgeTerms {
@@ -281,45 +289,79 @@ impl CostModel {
 
     /// Fills `out` with the terms and costs of the edge from node `i` to node `j`.
     pub fn edge(&self, fields: &NodeFields, i: usize, j: usize, out: &mut EdgeTerms) {
+        out.water_table.clear();
+        out.cost.clear();
+        let (water_table, cost) = (&mut out.water_table, &mut out.cost);
+        let shared = self.edge_with(fields, (i, j), &mut out.cuts, |c_wt, c| {
+            water_table.extend(c_wt);
+            cost.push(c);
+        });
+        (out.length, out.inception, out.resistance, out.fracture) =
+            (shared.length, shared.inception, shared.resistance, shared.fracture);
+    }
+
+    /// The cost of edge i → j in every cost set, into `costs` (one per set), without its
+    /// terms: what the searches read ([`crate::Costs`]), the same bits as [`CostModel::edge`].
+    #[inline]
+    pub fn edge_costs(
+        &self,
+        fields: &NodeFields,
+        (i, j): (usize, usize),
+        cuts: &mut Vec<f64>,
+        costs: &mut [f64],
+    ) {
+        let mut set = 0;
+        self.edge_with(fields, (i, j), cuts, |_, c| {
+            costs[set] = c;
+            set += 1;
+        });
+    }
+
+    /// The terms of edge i → j that every cost set shares; `set_cost(C_WT, cost)` hears each
+    /// cost set's cost in order (with its C_WT under karstnsim2024).
+    #[inline]
+    fn edge_with(
+        &self,
+        fields: &NodeFields,
+        (i, j): (usize, usize),
+        cuts: &mut Vec<f64>,
+        mut set_cost: impl FnMut(Option<f64>, f64),
+    ) -> SharedTerms {
         let (from, to) = (fields.node(i), fields.node(j));
         let (a, b) = (fields.position(i), fields.position(j));
         let length = a.distance(b);
         let direction = (b - a) / length;
-        out.length = length;
         let p = &self.params;
         let (falloff, reach): (fn(f64) -> f64, f64) = match self.kind {
             CostModelKind::Paris2021 => (smoothstep, p.horizon_distance),
             CostModelKind::Karstnsim2024 => (wyvill_of_ratio, p.inception_distance),
         };
         let surfaces = 4..4 + fields.surfaces;
-        out.inception =
-            mean_of_nearest(&from[surfaces.clone()], &to[surfaces], (reach, falloff), &mut out.cuts);
+        let inception = mean_of_nearest(&from[surfaces.clone()], &to[surfaces], (reach, falloff), cuts);
         // A uniform potential (no layer, grid or potential tree) is the same at the middle as
         // at the ends: skip its evaluation, keep the same arithmetic (bit-identical).
         let middle = if self.uniform_potential { from[3] } else { self.resistance_at((a + b) * 0.5) };
-        out.resistance = (from[3] + 4.0 * middle + to[3]) / 6.0;
-        out.fracture = self.fracture(direction);
-        out.water_table.clear();
-        out.cost.clear();
+        let resistance = (from[3] + 4.0 * middle + to[3]) / 6.0;
+        let fracture = self.fracture(direction);
         match self.kind {
             CostModelKind::Paris2021 => {
                 let mut per_metre = p.cost_floor
                     + p.w_distance
-                    + p.w_horizon * out.inception
-                    + p.w_fracture * out.fracture
-                    + p.w_permeability * out.resistance;
+                    + p.w_horizon * inception
+                    + p.w_fracture * fracture
+                    + p.w_permeability * resistance;
                 if fields.words > 0 && self.along_forced_link(fields, i, j) {
                     per_metre = per_metre.min(p.forced_link_cost);
                 }
-                out.cost.push(length * per_metre);
+                set_cost(None, length * per_metre);
             }
             CostModelKind::Karstnsim2024 => {
                 let shared = p.cost_floor
-                    + p.alpha_inception * out.inception
-                    + p.alpha_fracture * out.fracture
-                    + p.alpha_potential * out.resistance;
+                    + p.alpha_inception * inception
+                    + p.alpha_fracture * fracture
+                    + p.alpha_potential * resistance;
                 if fields.sets == 0 {
-                    out.cost.push(length * shared);
+                    set_cost(None, length * shared);
                 }
                 // Depends on the direction only; acos is dear, so only when an edge has a
                 // vadose part (an end at or above a water table), and once for all the sets.
@@ -331,13 +373,12 @@ impl CostModel {
                     f64::NAN
                 };
                 for s in tables {
-                    let ends = (from[s], to[s]);
-                    let c = self.water_table_term(ends, vadose, &mut out.cuts);
-                    out.water_table.push(c);
-                    out.cost.push(length * (shared + p.alpha_water_table * c));
+                    let c = self.water_table_term((from[s], to[s]), vadose, cuts);
+                    set_cost(Some(c), length * (shared + p.alpha_water_table * c));
                 }
             }
         }
+        SharedTerms { length, inception, resistance, fracture }
     }
 
     /// Per node, the cases in which its edges cost the same in every cost set: bit

@@ -20,7 +20,7 @@ use std::sync::atomic::{AtomicU8, AtomicU32, Ordering};
 
 use rayon::prelude::*;
 
-use crate::cost::{CostModel, EdgeTerms, NodeFields};
+use crate::cost::{CostModel, NodeFields};
 use crate::payload::SHARED_ROW;
 
 /// A row whose costs are not made yet.
@@ -169,27 +169,37 @@ impl Costs {
         // (and meets the same panic) instead of waiting forever.
         let busy = Busy(state);
         let maker = self.maker.as_ref().expect("a graph whose rows are not all costed keeps its cost model");
-        TERMS.with_borrow_mut(|terms| self.write_row(maker, rows, node, terms));
+        SCRATCH.with_borrow_mut(|scratch| self.write_row(maker, rows, node, scratch));
         std::mem::forget(busy);
         state.store(READY, Ordering::Release);
     }
 
     /// Costs the row of `node` in every set (the thread holds it busy); a row a later set shares
     /// with set 0 is written once, in set 0.
-    fn write_row(&self, maker: &Maker, rows: RowsOf, node: usize, terms: &mut EdgeTerms) {
+    fn write_row(&self, maker: &Maker, rows: RowsOf, node: usize, scratch: &mut Scratch) {
         let first = rows.offsets[node] as usize;
         let targets = &rows.targets[first..rows.offsets[node + 1] as usize];
+        let sets = self.sets.len();
+        // Where each set stores this row: None for a later set that shares set 0's.
+        scratch.places.clear();
+        scratch.places.extend((0..sets).map(|set| {
+            let (stored, range) = rows.place(set, node);
+            (stored == set).then_some(range.start)
+        }));
+        scratch.costs.resize(sets, 0.0);
         for (column, &target) in targets.iter().enumerate() {
-            maker.model.edge(&maker.fields, node, target as usize, terms);
-            for (set, &cost) in terms.cost.iter().enumerate() {
-                let (stored, range) = rows.place(set, node);
-                if stored != set {
-                    continue;
-                }
+            maker.model.edge_costs(
+                &maker.fields,
+                (node, target as usize),
+                &mut scratch.cuts,
+                &mut scratch.costs,
+            );
+            for ((set, &cost), place) in scratch.costs.iter().enumerate().zip(&scratch.places) {
+                let Some(start) = place else { continue };
                 // The cost graph stage checked that every cost of the model fits ([`crate::build`]).
                 let bits = cost as f32;
                 debug_assert!(bits.is_finite() && bits > 0.0, "edge {node} → {target}: cost {cost}");
-                self.sets[set][range.start + column].store(bits.to_bits(), Ordering::Relaxed);
+                self.sets[set][start + column].store(bits.to_bits(), Ordering::Relaxed);
             }
         }
     }
@@ -207,9 +217,20 @@ impl Costs {
     }
 }
 
+/// A thread's scratch space for costing rows (reused from row to row).
+#[derive(Default)]
+struct Scratch {
+    /// Breakpoints of the edge being integrated.
+    cuts: Vec<f64>,
+    /// The edge's cost in every set.
+    costs: Vec<f64>,
+    /// Where each set stores the row (None: in set 0).
+    places: Vec<Option<usize>>,
+}
+
 thread_local! {
-    /// Each thread's scratch terms for costing rows.
-    static TERMS: std::cell::RefCell<EdgeTerms> = std::cell::RefCell::new(EdgeTerms::default());
+    /// Each thread's scratch space for costing rows.
+    static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::default());
 }
 
 /// Puts a row back to empty when dropped (only while unwinding: it is forgotten otherwise).
