@@ -471,6 +471,11 @@ impl RadixHeap {
     }
 
     pub(crate) fn pop(&mut self) -> Option<u32> {
+        self.pop_entry().map(|(_, node)| node)
+    }
+
+    /// [`RadixHeap::pop`] with the key the node was pushed with (raised to the last key popped).
+    pub(crate) fn pop_entry(&mut self) -> Option<(u64, u32)> {
         if self.len == 0 {
             return None;
         }
@@ -487,7 +492,7 @@ impl RadixHeap {
             self.buckets[i] = items;
         }
         self.len -= 1;
-        self.buckets[0].pop().map(|(_, node)| node)
+        self.buckets[0].pop()
     }
 }
 

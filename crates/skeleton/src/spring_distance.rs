@@ -71,16 +71,18 @@ pub fn costs_to(
     reversed.resize(graph.edge_count(), 0.0);
     karst_costgraph::transpose_values(&graph.offsets, &graph.targets, &in_edges.offsets, stored, reversed);
     let mut least = vec![f64::INFINITY; graph.node_count()];
-    let mut settled = vec![false; graph.node_count()];
     let mut heap = RadixHeap::new();
     least[spring] = 0.0;
     heap.push(0.0f64.to_bits(), spring as u32);
-    while let Some(v) = heap.pop() {
+    while let Some((key, v)) = heap.pop_entry() {
         let v = v as usize;
-        if std::mem::replace(&mut settled[v], true) {
+        // A node is pushed again only with a smaller cost (never raised: costs ≥ 0), so the
+        // entry holding its least cost is the one to settle it and any other is stale. (No
+        // settled flags: their reads were a cache miss per pop, a tenth of the time here.)
+        let here = least[v];
+        if key != here.to_bits() {
             continue;
         }
-        let here = least[v];
         for k in in_edges.into(v) {
             // A settled source has its least cost already, never above this (costs ≥ 0).
             let (u, through) = (in_edges.sources[k] as usize, here + f64::from(reversed[k]));
