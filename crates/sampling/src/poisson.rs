@@ -144,7 +144,8 @@ impl<'a> Sampler<'a> {
         // sample rejects a dart does not change the samples (only whether one does), and the
         // nearest cells hold the likely ones, so the darts' tests end sooner.
         let centres = |o: &[i32; 3]| o.iter().map(|c| c * c).sum::<i32>();
-        offsets.sort_by(|a, b| a.1.total_cmp(&b.1).then(centres(&a.0).cmp(&centres(&b.0))).then(a.0.cmp(&b.0)));
+        offsets
+            .sort_by(|a, b| a.1.total_cmp(&b.1).then(centres(&a.0).cmp(&centres(&b.0))).then(a.0.cmp(&b.0)));
         let deltas = offsets
             .iter()
             .map(|([x, y, z], g)| {
