@@ -63,8 +63,8 @@ pub fn build(scene: &Scene) -> Result<Samples, SamplingError> {
             radius: scene.sampling().radius,
         });
     }
-    // Free the background grid first, and convert the positions in place (the grid's records
-    // become the positions): peak memory stays near the samples themselves.
+    // Free the background grid first: the positions are copied out of its records (32 bytes a
+    // sample, so not in place), then converted in place.
     let positions: Vec<[f64; 3]> = sampler.into_points().into_iter().map(|p| p.to_array()).collect();
     let mut tags = Vec::with_capacity(sampler_len(&runs));
     for (tag, n) in runs {

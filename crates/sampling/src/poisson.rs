@@ -232,12 +232,9 @@ impl<'a> Sampler<'a> {
         for z in a[2]..=b[2] {
             for y in a[1]..=b[1] {
                 for x in a[0]..=b[0] {
-                    let mut id = self.head[self.index([x, y, z])];
-                    while id != NONE {
-                        let e = &self.entries[id as usize];
-                        out.push((e.position, e.radius as f64));
-                        id = e.next;
-                    }
+                    out.extend(
+                        self.cell_samples(self.index([x, y, z])).map(|e| (e.position, e.radius as f64)),
+                    );
                 }
             }
         }
@@ -251,6 +248,18 @@ impl<'a> Sampler<'a> {
         }
     }
 
+    /// The samples of cell `c` (index), newest first: its linked list. (The list ends at
+    /// [`NONE`], past every sample, so one lookup both ends the walk and reads the sample.)
+    #[inline]
+    fn cell_samples(&self, c: usize) -> impl Iterator<Item = &Entry> {
+        let mut id = self.head[c];
+        std::iter::from_fn(move || {
+            let e = self.entries.get(id as usize)?;
+            id = e.next;
+            Some(e)
+        })
+    }
+
     /// The samples of the cells around cell `c` (coordinates) closer than `gap` to it.
     fn neighbours(&self, c: [usize; 3], gap: f64, mut visit: impl FnMut(&Entry) -> bool) {
         let k = self.reach;
@@ -260,13 +269,8 @@ impl<'a> Sampler<'a> {
                 if g >= gap {
                     break;
                 }
-                let mut id = self.head[(centre + delta) as usize];
-                while id != NONE {
-                    let e = &self.entries[id as usize];
-                    if !visit(e) {
-                        return;
-                    }
-                    id = e.next;
+                if !self.cell_samples((centre + delta) as usize).all(&mut visit) {
+                    return;
                 }
             }
             return;
@@ -281,13 +285,8 @@ impl<'a> Sampler<'a> {
             if x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2] {
                 continue;
             }
-            let mut id = self.head[((z * dims[1] + y) * dims[0] + x) as usize];
-            while id != NONE {
-                let e = &self.entries[id as usize];
-                if !visit(e) {
-                    return;
-                }
-                id = e.next;
+            if !self.cell_samples(((z * dims[1] + y) * dims[0] + x) as usize).all(&mut visit) {
+                return;
             }
         }
     }
