@@ -11,9 +11,11 @@
 //! row costed first, in parallel ([`Costing::Every`]).
 //!
 //! Rows are costed from whichever thread reads them first (the searches towards several springs
-//! run in parallel): each row has a state, empty, busy (one thread costing it) or ready, and its
-//! costs are written only while it is busy, by the thread that made it so; a reader of a busy
-//! row waits for it. A row's costs are the same bits whichever thread makes them, so the
+//! run in parallel), or by a helper costing rows ahead of a search, which never waits for one
+//! ([`CostGraph::cost_row_ahead`](crate::CostGraph::cost_row_ahead)). Each row has a state,
+//! empty, busy (one thread costing it) or ready, and its costs are written only while it is
+//! busy, by the thread that made it so; a reader of a busy row waits for it. A row's costs are
+//! the same bits whichever thread makes them, so the
 //! networks do not depend on the number of threads.
 
 use std::sync::atomic::{AtomicU8, AtomicU32, Ordering};
@@ -165,6 +167,24 @@ impl Costs {
                 Err(_) => std::thread::yield_now(),
             }
         }
+        self.make_held(rows, node);
+    }
+
+    /// Makes the row of `node` if nobody has begun it, without waiting: for a thread that costs
+    /// rows ahead of a search ([`crate::CostGraph::cost_row_ahead`]). True when this call made it.
+    pub(crate) fn make_ahead(&self, rows: RowsOf, node: usize) -> bool {
+        let state = &self.rows[node];
+        let free = state.load(Ordering::Relaxed) == EMPTY
+            && state.compare_exchange(EMPTY, BUSY, Ordering::Acquire, Ordering::Relaxed).is_ok();
+        if free {
+            self.make_held(rows, node);
+        }
+        free
+    }
+
+    /// Costs the row of `node`, which this thread holds busy, and marks it ready.
+    fn make_held(&self, rows: RowsOf, node: usize) {
+        let state = &self.rows[node];
         // Back to empty if costing panics, so that a waiting thread costs the row itself
         // (and meets the same panic) instead of waiting forever.
         let busy = Busy(state);

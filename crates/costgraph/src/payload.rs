@@ -251,6 +251,14 @@ impl CostGraph {
         self.costs().row(rows, node, stored, range)
     }
 
+    /// Costs the row of `node` in every set now, unless it is made or another thread is making
+    /// it (never waits): a thread with nothing else to do costs the rows a search will read
+    /// soon, so that the search finds them made. Nothing happens on a graph not costed yet.
+    /// True when this call costed the row.
+    pub fn cost_row_ahead(&self, node: usize) -> bool {
+        self.costs.get().is_some_and(|costs| costs.make_ahead(self.rows_of(), node))
+    }
+
     /// [`CostGraph::row_costs`], to change them (a shared row changes in every set).
     pub fn row_costs_mut(&mut self, set: usize, node: usize) -> &mut [f32] {
         let rows = RowsOf { offsets: &self.offsets, targets: &self.targets, own_rows: &self.own_rows };

@@ -234,6 +234,21 @@ symmetrise = true
         assert_eq!(lazy.row_costs(0, u), one.row_costs(0, u), "row {u}");
         assert!(one.row_costs(0, u).iter().all(|&c| c > 0.0));
     }
+    // Rows costed ahead (by a thread that never waits) cost the same; a row is costed once.
+    let ahead = build_points(&scene, &points).unwrap();
+    ahead.cost_from(&scene, &points, Costing::OnDemand).unwrap();
+    let made = pool.install(|| {
+        let read = |u: usize| usize::from(ahead.cost_row_ahead(u));
+        rayon::join(
+            || (0..points.len()).map(read).sum::<usize>(),
+            || (0..points.len()).rev().map(read).sum::<usize>(),
+        )
+    });
+    assert_eq!(made.0 + made.1, points.len(), "every row costed by exactly one of the two");
+    for u in 0..points.len() {
+        assert!(!ahead.cost_row_ahead(u), "row {u} costed twice");
+        assert_eq!(ahead.row_costs(0, u), one.row_costs(0, u), "row {u}");
+    }
 }
 
 /// Largest distance from the path's nodes to the segment between its ends.

@@ -382,7 +382,7 @@ mod tests {
                     }
                     for s in [0, 77, 444] {
                         let exact = dijkstra(&costs, s, &[t]);
-                        let (guided, _) = astar_to_set(&costs, s, h, |v| v == t);
+                        let (guided, _) = astar_to_set((&costs, None), s, h, |v| v == t);
                         assert_eq!(guided.cost(t), exact.cost(t), "{name}, round {round}, {s} → {t}");
                         assert_eq!(guided.path(t), exact.path(t), "{name}, round {round}, {s} → {t}");
                     }

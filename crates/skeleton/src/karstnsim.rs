@@ -31,6 +31,7 @@ use karst_sampling::Samples;
 use rayon::prelude::*;
 
 use crate::Route;
+use crate::ahead::Ahead;
 use crate::cohesion_bound::{CohesionBound, NetworkDistance};
 use crate::ends::{End, candidate_springs, chosen_springs, ends, sample_of, sinks_in_order};
 use crate::error::SkeletonError;
@@ -106,20 +107,22 @@ pub(crate) fn route_mapping<'g>(
     if !spring_costs_fit(scene, graph, worth.len()) {
         worth.clear();
     }
-    std::thread::scope(|scope| {
-        // The least costs to the springs are computed on a thread of their own, in the order the
-        // sinks first need them, while the sinks are routed: a leg waits for its spring's costs
-        // (it never runs without them), so the routes do not depend on which finishes first.
-        // With one thread they are all computed first.
-        let (send, costs_ready) = std::sync::mpsc::channel();
-        let wanted: Vec<usize> = worth.iter().map(|w| w.row).collect();
-        if rayon::current_num_threads() > 1 {
-            scope.spawn(move || costs_to_springs(graph, phase, worth, &send));
-        } else {
-            costs_to_springs(graph, phase, worth, &send);
-        }
-        let mut to_springs = SpringCosts { wanted, ready: BTreeMap::new(), costs_ready };
-        route_sinks(scene, samples, (graph, cost_set), (sinks, phase), &mut to_springs)
+    Ahead::run(graph, |ahead| {
+        std::thread::scope(|scope| {
+            // The least costs to the springs are computed on a thread of their own, in the order
+            // the sinks first need them, while the sinks are routed: a leg waits for its spring's
+            // costs (it never runs without them), so the routes do not depend on which finishes
+            // first. With one thread they are all computed first.
+            let (send, costs_ready) = std::sync::mpsc::channel();
+            let wanted: Vec<usize> = worth.iter().map(|w| w.row).collect();
+            if rayon::current_num_threads() > 1 {
+                scope.spawn(move || costs_to_springs(graph, phase, worth, &send));
+            } else {
+                costs_to_springs(graph, phase, worth, &send);
+            }
+            let mut to_springs = SpringCosts { wanted, ready: BTreeMap::new(), costs_ready };
+            route_sinks(scene, samples, (graph, cost_set), (sinks, phase), (&mut to_springs, ahead))
+        })
     })
 }
 
@@ -152,7 +155,7 @@ fn route_sinks<'g>(
     samples: &Samples,
     (graph, cost_set): (&CostGraph, &CostSets<'g>),
     (sinks, phase): (&[End], &PhaseSetup),
-    to_springs: &mut SpringCosts,
+    (to_springs, ahead): (&mut SpringCosts, Option<&Ahead>),
 ) -> Result<PhaseRoutes, SkeletonError> {
     let springs = &phase.springs;
     let mut used = vec![false; graph.edge_count()];
@@ -181,7 +184,7 @@ fn route_sinks<'g>(
             .into_par_iter()
             .map(|((row, base, table, m, target), to_spring)| {
                 let costs = &Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
-                let known = Known { network: network.as_ref(), to_spring };
+                let known = Known { network: network.as_ref(), to_spring, ahead };
                 (row, leg(scene, samples, costs, &used, known, m, table, source, target))
             })
             .collect();
@@ -299,13 +302,16 @@ fn costs_to_springs(
     }
 }
 
-/// What a phreatic leg's bound knows besides the costs (`cohesion_bound.rs`).
+/// What a leg knows besides the costs: the phreatic leg's bound (`cohesion_bound.rs`), and the
+/// helper costing rows ahead.
 #[derive(Clone, Copy)]
 struct Known<'a> {
     /// The network so far (None without cohesion).
     network: Option<&'a NetworkDistance<'a>>,
     /// The least costs to the leg's spring, when computed.
     to_spring: Option<&'a [f64]>,
+    /// The helper that costs the rows the searches read next, if any.
+    ahead: Option<&'a Ahead<'a>>,
 }
 
 fn water_table_of<'s>(scene: &'s Scene, spring: &End) -> &'s Surface {
@@ -334,7 +340,7 @@ fn leg(
     // `depth_bound` away: A* towards it.
     let vadose_per_metre = per_metre * p.cohesion_vadose.min(1.0);
     let to_water_table = |v: usize| vadose_per_metre * depth_bound(table, at(v));
-    let (vadose, reached) = astar_to_set(&vadose_costs, source, to_water_table, phreatic);
+    let (vadose, reached) = astar_to_set((&vadose_costs, known.ahead), source, to_water_table, phreatic);
     let entry = reached?;
     let phreatic_costs = Cohesive { base: costs, used, factor: p.cohesion_phreatic };
     let bound = CohesionBound {
@@ -345,7 +351,8 @@ fn leg(
         target,
         to_spring: known.to_spring,
     };
-    let (phreatic, _) = astar_to_set(&phreatic_costs, entry, bound.heuristic(), |v| v == target);
+    let (phreatic, _) =
+        astar_to_set((&phreatic_costs, known.ahead), entry, bound.heuristic(), |v| v == target);
     joined((&vadose, entry), (&phreatic, target))
 }
 

@@ -10,6 +10,7 @@
 //! (`build.rs`), [`SkeletonStage`] the stage. Output: `skeleton.json` ([`Skeleton`],
 //! `payload.rs`), plus karstnet's `network_nodes.dat` / `network_links.dat`.
 
+mod ahead;
 mod amplify;
 mod assemble;
 mod build;

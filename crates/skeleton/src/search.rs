@@ -28,6 +28,8 @@ use glam::DVec3;
 use karst_costgraph::CostGraph;
 use rayon::prelude::*;
 
+use crate::ahead::{Ahead, HINT_EVERY, HINTED};
+
 /// No predecessor.
 const NONE: u32 = u32::MAX;
 
@@ -342,7 +344,7 @@ impl Tree {
 pub fn dijkstra(graph: &dyn EdgeCosts, source: usize, targets: &[usize]) -> Tree {
     let mut remaining = targets.len();
     grow(
-        graph,
+        (graph, None),
         source,
         |_| 0.0,
         |u| {
@@ -361,15 +363,16 @@ pub fn dijkstra_to_set(
     source: usize,
     is_target: impl Fn(usize) -> bool,
 ) -> (Tree, Option<usize>) {
-    astar_to_set(graph, source, |_| 0.0, is_target)
+    astar_to_set((graph, None), source, |_| 0.0, is_target)
 }
 
 /// A* from `source` to the cheapest node for which `is_target` holds. `heuristic` must be a
 /// consistent lower bound of the cost to the set (0 on its members, and never dropping by
 /// more than an edge's cost along it): the first member settled is then the cheapest, as with
-/// [`dijkstra_to_set`], after settling fewer nodes.
+/// [`dijkstra_to_set`], after settling fewer nodes. With `ahead`, a helper costs the rows the
+/// search reads next.
 pub fn astar_to_set(
-    graph: &dyn EdgeCosts,
+    graph: (&dyn EdgeCosts, Option<&Ahead>),
     source: usize,
     heuristic: impl Fn(usize) -> f64,
     is_target: impl Fn(usize) -> bool,
@@ -396,12 +399,14 @@ pub fn astar(
 ) -> Tree {
     let goal = DVec3::from_array(positions[target]);
     let heuristic = |v: usize| DVec3::from_array(positions[v]).distance(goal) * per_metre;
-    grow(graph, source, heuristic, |u| u == target)
+    grow((graph, None), source, heuristic, |u| u == target)
 }
 
 /// The common loop: nodes leave the heap by cost + heuristic; `settle(u)` returns true to stop.
+/// With `ahead` serving the graph's rows, the nodes of least key are hinted to it every
+/// [`HINT_EVERY`] settled nodes.
 fn grow(
-    graph: &dyn EdgeCosts,
+    (graph, ahead): (&dyn EdgeCosts, Option<&Ahead>),
     source: usize,
     heuristic: impl Fn(usize) -> f64,
     mut settle: impl FnMut(usize) -> bool,
@@ -411,6 +416,8 @@ fn grow(
     let mut settled = spare(|s| &mut s.settled, n, false);
     let mut heap = RadixHeap::new();
     let direct = graph.direct();
+    let ahead = ahead.filter(|a| direct.as_ref().is_some_and(|d| a.serves(d.graph)));
+    let (mut hint, mut until_hint) = (Vec::with_capacity(HINTED), HINT_EVERY);
     tree.nodes[source].cost = 0.0;
     heap.push(heuristic(source).to_bits(), source as u32);
     while let Some(node) = heap.pop() {
@@ -421,6 +428,14 @@ fn grow(
         settled[u] = true;
         if settle(u) {
             break;
+        }
+        if let Some(ahead) = ahead {
+            until_hint -= 1;
+            if until_hint == 0 {
+                until_hint = HINT_EVERY;
+                heap.lowest(HINTED, |v| !settled[v as usize], &mut hint);
+                ahead.hint(&mut hint);
+            }
         }
         let here = tree.nodes[u].cost;
         let mut relax = |edge: usize, v: usize, c: f64| {
@@ -438,6 +453,9 @@ fn grow(
             Some(d) => d.for_each_out(u, relax),
             None => graph.for_each_out(u, &mut relax),
         }
+    }
+    if let Some(ahead) = ahead {
+        ahead.forget();
     }
     // Only reached nodes are ever settled.
     for &v in &tree.reached {
@@ -468,6 +486,15 @@ impl RadixHeap {
         let b = self.bucket(key);
         self.buckets[b].push((key, node));
         self.len += 1;
+    }
+
+    /// Up to `n` nodes for which `wanted` holds among the entries of least key, into `out`, at
+    /// the buckets' grain: the buckets in order (every key of a bucket is below every key of
+    /// the next), in any order within one. Looks at no more than 4n entries, however many of
+    /// them are unwanted.
+    pub(crate) fn lowest(&self, n: usize, wanted: impl Fn(u32) -> bool, out: &mut Vec<u32>) {
+        let entries = self.buckets.iter().flat_map(|bucket| bucket.iter().rev());
+        out.extend(entries.take(4 * n).map(|&(_, node)| node).filter(|&node| wanted(node)).take(n));
     }
 
     pub(crate) fn pop(&mut self) -> Option<u32> {
@@ -526,6 +553,24 @@ mod tests {
         }
         keys.sort_by(f64::total_cmp);
         assert_eq!(popped, keys);
+    }
+
+    #[test]
+    fn the_lowest_entries_are_the_least_keys_wanted() {
+        let mut heap = RadixHeap::new();
+        let keys = [1.0f64, 1.5, 1.25, 1.75, 3.0, 5.0];
+        for (node, k) in keys.iter().enumerate() {
+            heap.push(k.to_bits(), node as u32);
+        }
+        assert_eq!(heap.pop(), Some(0));
+        let mut lowest = Vec::new();
+        heap.lowest(2, |node| node != 2, &mut lowest);
+        lowest.sort_unstable();
+        // The two least keys but the unwanted 1.25: 1.5 and 1.75, whose bucket is below 3's and 5's.
+        assert_eq!(lowest, vec![1, 3]);
+        lowest.clear();
+        heap.lowest(9, |_| true, &mut lowest);
+        assert_eq!(lowest.len(), 5, "every entry left");
     }
 
     #[test]
