@@ -123,6 +123,11 @@ impl Costs {
         self
     }
 
+    /// Whether every row is made (costs given as lists, or [`Costing::Every`]).
+    pub(crate) fn every_row_made(&self) -> bool {
+        self.maker.is_none()
+    }
+
     /// The costs of set `set` at `range`, the row of `node` (made first if need be).
     #[inline]
     pub(crate) fn row(&self, rows: RowsOf, node: usize, set: usize, range: std::ops::Range<usize>) -> &[f32] {

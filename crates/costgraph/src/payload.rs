@@ -251,6 +251,12 @@ impl CostGraph {
         self.costs().row(rows, node, stored, range)
     }
 
+    /// Whether every row's costs are made already (from lists, or [`Costing::Every`]): no
+    /// search will cost a row.
+    pub fn every_row_costed(&self) -> bool {
+        self.costs.get().is_some_and(Costs::every_row_made)
+    }
+
     /// Costs the row of `node` in every set now, unless it is made or another thread is making
     /// it (never waits): a thread with nothing else to do costs the rows a search will read
     /// soon, so that the search finds them made. Nothing happens on a graph not costed yet.
