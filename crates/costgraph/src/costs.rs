@@ -15,8 +15,8 @@
 //! ([`CostGraph::cost_row_ahead`](crate::CostGraph::cost_row_ahead)). Each row has a state,
 //! empty, busy (one thread costing it) or ready, and its costs are written only while it is
 //! busy, by the thread that made it so; a reader of a busy row waits for it. A row's costs are
-//! the same bits whichever thread makes them, so the
-//! networks do not depend on the number of threads.
+//! the same bits whichever thread makes them, so the networks do not depend on the number of
+//! threads.
 
 use std::sync::atomic::{AtomicU8, AtomicU32, Ordering};
 
