@@ -417,7 +417,7 @@ fn grow(
     let mut heap = RadixHeap::new();
     let direct = graph.direct();
     let ahead = ahead.filter(|a| direct.as_ref().is_some_and(|d| a.serves(d.graph)));
-    let (mut hint, mut until_hint) = (Vec::with_capacity(HINTED), HINT_EVERY);
+    let (mut hint, mut until_hint) = (Vec::new(), HINT_EVERY);
     tree.nodes[source].cost = 0.0;
     heap.push(heuristic(source).to_bits(), source as u32);
     while let Some(node) = heap.pop() {
