@@ -6,7 +6,7 @@
 //! matrix, last phase's springs) along the network's links, through no node twice.
 
 use karst_artifact::{StageId, read_artifact};
-use karst_geology::{KeyPointKind, Link, Scene};
+use karst_geology::{KeyPointKind, Link, Scene, keypoints_of};
 use karst_pipeline::make::Selection;
 use karst_skeleton::{ConduitType, Skeleton};
 use karstgen_tests::{root, run, scratch};
@@ -47,7 +47,10 @@ struct End<'a> {
 }
 
 fn ends(scene: &Scene, kind: KeyPointKind) -> Vec<End<'_>> {
-    scene.keypoints_of(kind).enumerate().map(|(row, (_, k))| End { row, name: &k.name }).collect()
+    keypoints_of(scene.keypoints(), kind)
+        .enumerate()
+        .map(|(row, (_, k))| End { row, name: &k.name })
+        .collect()
 }
 
 /// (1) spring not reached, or a route that does not follow the links from its sink to its spring.
@@ -63,7 +66,7 @@ fn route_failures(scene: &Scene, skeleton: &Skeleton, preset: &str) -> Vec<Strin
             failures.push(format!("{preset}: sink {} has no route", sink.name));
         }
         for spring in &springs {
-            let link = scene.link(sink.row, spring.row);
+            let link = scene.connectivity().link(sink.row, spring.row);
             let reached = routes.iter().any(|r| r.spring == spring.name);
             if reached && (link == Link::None || !active(spring.name)) {
                 failures.push(format!(

@@ -1,8 +1,8 @@
 //! The stage table: which stages exist, in which order, and for each one row saying what it
 //! is called, which binary runs it, which artifact file it writes and how that file is
-//! encoded, which upstream artifacts it reads and which scene sections it reads. `karstgen
-//! run`, every stage binary and the artifact reader all use this one table, so that they
-//! always agree on staleness and on what to rerun.
+//! encoded, and which upstream artifacts it reads. `karstgen run`, every stage binary and the
+//! artifact reader all use this one table, so that they always agree on staleness and on what
+//! to rerun. (The scene sections a stage reads are its view's, declared in its crate.)
 
 use serde::{Deserialize, Serialize};
 
@@ -58,9 +58,6 @@ pub struct StageRow {
     pub encoding: Encoding,
     /// The upstream stages whose artifacts it reads.
     pub inputs: &'static [StageId],
-    /// The scene sections it reads; their hash is part of the artifact key, so editing any
-    /// other section leaves the artifact up to date. A dotted name is one field of a section.
-    pub sections: &'static [&'static str],
 }
 
 use Encoding::{Json, Postcard};
@@ -75,7 +72,6 @@ const TABLE: [StageRow; 9] = [
         file: "samples.bin",
         encoding: Postcard,
         inputs: &[],
-        sections: &["seed", "domain", "terrain", "geology", "keypoints", "sampling"],
     },
     StageRow {
         name: "costgraph",
@@ -84,7 +80,6 @@ const TABLE: [StageRow; 9] = [
         file: "costgraph.bin",
         encoding: Postcard,
         inputs: &[Sampling],
-        sections: &["geology", "keypoints", "connectivity", "costgraph", "skeleton.forced_links"],
     },
     StageRow {
         name: "skeleton",
@@ -93,18 +88,6 @@ const TABLE: [StageRow; 9] = [
         file: "skeleton.json",
         encoding: Json,
         inputs: &[Sampling, Costgraph],
-        // Costgraph: the skeleton costs the edges its searches read (`karst_costgraph::Costing`).
-        sections: &[
-            "seed",
-            "domain",
-            "terrain",
-            "geology",
-            "keypoints",
-            "connectivity",
-            "phases",
-            "costgraph",
-            "skeleton",
-        ],
     },
     StageRow {
         name: "hydro",
@@ -113,7 +96,6 @@ const TABLE: [StageRow; 9] = [
         file: "hydro.json",
         encoding: Json,
         inputs: &[Skeleton],
-        sections: &["domain", "terrain", "keypoints", "hydro"],
     },
     StageRow {
         name: "streams",
@@ -122,8 +104,6 @@ const TABLE: [StageRow; 9] = [
         file: "streams.json",
         encoding: Json,
         inputs: &[Hydro],
-        // Key points: the springs; hydro.total_discharge: their discharge in m³/s.
-        sections: &["domain", "terrain", "keypoints", "hydro.total_discharge", "streams"],
     },
     StageRow {
         name: "sdf",
@@ -132,8 +112,6 @@ const TABLE: [StageRow; 9] = [
         file: "sdf.bin",
         encoding: Postcard,
         inputs: &[Skeleton, Hydro, Streams],
-        // Streams: the banks' slope, the sheets' thickness and the mouths' radius.
-        sections: &["seed", "domain", "terrain", "streams", "sdf"],
     },
     StageRow {
         name: "mesher",
@@ -142,8 +120,6 @@ const TABLE: [StageRow; 9] = [
         file: "mesh.bin",
         encoding: Postcard,
         inputs: &[Sdf],
-        // Key points: the cleanup keeps the air around sinks and springs.
-        sections: &["keypoints", "mesher"],
     },
     StageRow {
         name: "metrics",
@@ -152,7 +128,6 @@ const TABLE: [StageRow; 9] = [
         file: "metrics.json",
         encoding: Json,
         inputs: &[Skeleton, Hydro, Streams],
-        sections: &[],
     },
     StageRow {
         name: "export",
@@ -161,8 +136,6 @@ const TABLE: [StageRow; 9] = [
         file: "export.json",
         encoding: Json,
         inputs: &[Sampling, Skeleton, Hydro, Streams, Mesher, Metrics],
-        // Geology: the rock layer of each sample in the GOCAD VSet.
-        sections: &["geology", "export"],
     },
 ];
 

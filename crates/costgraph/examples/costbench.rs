@@ -4,6 +4,8 @@
 //!
 //! `cargo run --release -p karst-costgraph --example costbench -- SCENE SAMPLES K [RUNS]`
 
+use karst_costgraph::CostgraphView;
+use karst_geology::SceneView;
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::Path;
 use std::time::Instant;
@@ -28,7 +30,7 @@ fn main() {
     for _ in 0..runs.max(1) {
         drop(graph.take());
         let start = Instant::now();
-        graph = Some(karst_costgraph::build_points(&scene, &points).expect("graph"));
+        graph = Some(karst_costgraph::build_points(&CostgraphView::of(&scene), &points).expect("graph"));
         times.push(start.elapsed().as_secs_f64());
     }
     let graph = graph.expect("one run");
@@ -37,7 +39,9 @@ fn main() {
     graph.targets.hash(&mut h);
     graph.own_rows.hash(&mut h);
     // The costs are made for the rows the searches read; here every row, after the timing.
-    graph.cost_from(&scene, &points, karst_costgraph::Costing::Every).expect("the graph's own scene");
+    graph
+        .cost_from(&CostgraphView::of(&scene), &points, karst_costgraph::Costing::Every)
+        .expect("the graph's own scene");
     for set in 0..graph.cost_sets.len() {
         for node in 0..graph.node_count() {
             graph.row_costs(set, node).iter().map(|c| c.to_bits()).for_each(|bits| bits.hash(&mut h));

@@ -9,33 +9,34 @@
 //! The samples come in Morton order, so a chunk of consecutive nodes is a compact region whose
 //! neighbours' data stays in cache.
 
-use karst_artifact::StageId;
 use rayon::prelude::*;
 
-use karst_geology::Scene;
+use karst_geology::SceneView;
+use karst_geology::params::CostgraphParams;
 use karst_sampling::Samples;
 
 use crate::cost::{CostModel, EdgeTerms, NodeFields};
 use crate::knn::{self, CHUNK, Rows, chunk_nodes};
 use crate::payload::{CostGraph, CostSet, SHARED_ROW};
 use crate::stats::{Histogram, SetStats, Summary, TermStats};
+use crate::view::CostgraphView;
 use crate::{CostGraphError, checks};
 
-/// Builds the cost graph of `samples` under `scene`'s geology, with every input check.
-pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, CostGraphError> {
-    let k = scene.costgraph().k;
+/// Builds the cost graph of `samples` under the scene's geology, with every input check.
+pub fn build(view: &CostgraphView, samples: &Samples) -> Result<CostGraph, CostGraphError> {
+    let k = view.costgraph.k;
     if k >= samples.len() {
         return Err(CostGraphError::TooFewSamples { k, samples: samples.len() });
     }
-    let model = CostModel::from_scene(scene);
-    crate::estimate::check(scene, samples.len(), model.set_count())?;
+    let model = CostModel::new(view);
+    crate::estimate::check(view, samples.len(), model.set_count())?;
     let chunks = samples.len().div_ceil(CHUNK) as u64;
     let bar = karst_stage::progress::bar(2 * chunks, "costgraph");
     let done = || bar.inc(1);
-    let (rows, lengths) = edges(scene, &samples.positions, &done);
-    checks::isolated_keypoints(scene, samples, &rows)?;
-    checks::sinks_reach_their_springs(scene, samples, &rows)?;
-    let graph = graph_of(scene, &model, &samples.positions, (rows, lengths), &done);
+    let (rows, lengths) = edges(view.costgraph, &samples.positions, &done);
+    checks::isolated_keypoints(view, samples, &rows)?;
+    checks::sinks_reach_their_springs(view, samples, &rows)?;
+    let graph = graph_of(view, &model, &samples.positions, (rows, lengths), &done);
     bar.finish_and_clear();
     graph
 }
@@ -43,15 +44,14 @@ pub fn build(scene: &Scene, samples: &Samples) -> Result<CostGraph, CostGraphErr
 /// The cost graph of bare `points` (no key-point checks): what `cargo xtask bench` times. Any
 /// order of the points gives the same graph; points stored along a space-filling curve, as
 /// samples are, give it fastest.
-pub fn build_points(scene: &Scene, points: &[[f64; 3]]) -> Result<CostGraph, CostGraphError> {
-    let edges = edges(scene, points, &|| ());
-    graph_of(scene, &CostModel::from_scene(scene), points, edges, &|| ())
+pub fn build_points(view: &CostgraphView, points: &[[f64; 3]]) -> Result<CostGraph, CostGraphError> {
+    let edges = edges(view.costgraph, points, &|| ());
+    graph_of(view, &CostModel::new(view), points, edges, &|| ())
 }
 
 /// The edges: k nearest neighbours within the maximum length, symmetrised when asked, and the
 /// shortest and longest edge's lengths.
-fn edges(scene: &Scene, points: &[[f64; 3]], done: &(dyn Fn() + Sync)) -> (Rows, Option<(f64, f64)>) {
-    let p = scene.costgraph();
+fn edges(p: &CostgraphParams, points: &[[f64; 3]], done: &(dyn Fn() + Sync)) -> (Rows, Option<(f64, f64)>) {
     let rows = knn::neighbours(points, (p.k, p.max_edge_length), done);
     // A reversed edge j → i added by the symmetrisation is as long as i → j, which lies within
     // the lengths of the neighbours' rows.
@@ -82,7 +82,7 @@ const BOUND_MARGIN: f64 = 8.0 * f32::EPSILON as f64;
 /// the distributions of a sample of the costs. Refuses a model some of whose costs would not
 /// be finite f32 > 0.
 fn graph_of(
-    scene: &Scene,
+    view: &CostgraphView,
     model: &CostModel,
     points: &[[f64; 3]],
     (rows, lengths): (Rows, Option<(f64, f64)>),
@@ -100,7 +100,7 @@ fn graph_of(
         .into_iter()
         .map(|water_table| CostSet { water_table, min_cost_per_metre: Some(least) })
         .collect();
-    let made_under = scene.sections_hash(StageId::Costgraph.row().sections);
+    let made_under = view.sections_hash();
     Ok(CostGraph::uncosted((rows.offsets, rows.targets, own_rows), cost_sets, made_under, summary))
 }
 

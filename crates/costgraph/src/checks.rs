@@ -17,20 +17,26 @@ use std::collections::BinaryHeap;
 
 use rayon::prelude::*;
 
-use karst_geology::{KeyPointKind, Link, Scene};
+use karst_geology::params::CostgraphParams;
+use karst_geology::{KeyPointKind, Link, keypoints_of};
 use karst_sampling::Samples;
 
 use crate::CostGraphError;
 use crate::knn::Rows;
+use crate::view::CostgraphView;
 
 /// A key point with no out-edge (no neighbour within `max_edge_length`).
-pub fn isolated_keypoints(scene: &Scene, samples: &Samples, rows: &Rows) -> Result<(), CostGraphError> {
-    for (i, keypoint) in scene.keypoints().iter().enumerate() {
+pub fn isolated_keypoints(
+    view: &CostgraphView,
+    samples: &Samples,
+    rows: &Rows,
+) -> Result<(), CostGraphError> {
+    for (i, keypoint) in view.keypoints.iter().enumerate() {
         let Some(sample) = samples.keypoint_sample(i) else { continue };
         if rows.row(sample).is_empty() {
             return Err(CostGraphError::IsolatedKeyPoint {
                 name: keypoint.name.clone(),
-                max_edge_length: scene.costgraph().max_edge_length.unwrap_or(f64::INFINITY),
+                max_edge_length: view.costgraph.max_edge_length.unwrap_or(f64::INFINITY),
             });
         }
     }
@@ -40,16 +46,14 @@ pub fn isolated_keypoints(scene: &Scene, samples: &Samples, rows: &Rows) -> Resu
 /// Every sink reaches each spring its connectivity row marks 1, and, when the row has no 1,
 /// at least one of the springs it marks 2. The sinks are checked in parallel.
 pub fn sinks_reach_their_springs(
-    scene: &Scene,
+    view: &CostgraphView,
     samples: &Samples,
     rows: &Rows,
 ) -> Result<(), CostGraphError> {
-    let springs: Vec<(&str, Option<usize>)> = scene
-        .keypoints_of(KeyPointKind::Spring)
+    let springs: Vec<(&str, Option<usize>)> = keypoints_of(view.keypoints, KeyPointKind::Spring)
         .map(|(i, k)| (k.name.as_str(), samples.keypoint_sample(i)))
         .collect();
-    let sinks: Vec<(usize, &str, usize)> = scene
-        .keypoints_of(KeyPointKind::Sink)
+    let sinks: Vec<(usize, &str, usize)> = keypoints_of(view.keypoints, KeyPointKind::Sink)
         .enumerate()
         .filter_map(|(row, (i, k))| Some((row, k.name.as_str(), samples.keypoint_sample(i)?)))
         .collect();
@@ -59,16 +63,16 @@ pub fn sinks_reach_their_springs(
             // A spring without a sample of its own is not checked (as if reached).
             let reaches =
                 |col: usize| springs[col].1.is_none_or(|s| reaches(rows, &samples.positions, sink_sample, s));
-            let links: Vec<Link> = (0..springs.len()).map(|col| scene.link(row, col)).collect();
+            let links: Vec<Link> = (0..springs.len()).map(|col| view.connectivity.link(row, col)).collect();
             if links.contains(&Link::Connected) {
                 let missing = (0..springs.len()).find(|&c| links[c] == Link::Connected && !reaches(c));
-                missing.map(|col| unreachable(scene, sink, &[springs[col].0]))
+                missing.map(|col| unreachable(view.costgraph, sink, &[springs[col].0]))
             } else {
                 let candidates: Vec<usize> =
                     (0..springs.len()).filter(|&c| links[c] == Link::Uncertain).collect();
                 let none = !candidates.is_empty() && !candidates.iter().any(|&c| reaches(c));
                 let names: Vec<&str> = candidates.iter().map(|&c| springs[c].0).collect();
-                none.then(|| unreachable(scene, sink, &names))
+                none.then(|| unreachable(view.costgraph, sink, &names))
             }
         })
         .collect();
@@ -76,12 +80,12 @@ pub fn sinks_reach_their_springs(
     failures.into_iter().flatten().next().map_or(Ok(()), Err)
 }
 
-fn unreachable(scene: &Scene, sink: &str, springs: &[&str]) -> CostGraphError {
+fn unreachable(p: &CostgraphParams, sink: &str, springs: &[&str]) -> CostGraphError {
     CostGraphError::Unreachable {
         sink: sink.to_string(),
         springs: springs.iter().map(|s| format!("\"{s}\"")).collect::<Vec<_>>().join(" or "),
-        k: scene.costgraph().k,
-        max_edge_length: scene.costgraph().max_edge_length.unwrap_or(f64::INFINITY),
+        k: p.k,
+        max_edge_length: p.max_edge_length.unwrap_or(f64::INFINITY),
     }
 }
 

@@ -40,7 +40,9 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use karst_geology::params::{CostModelKind, CostgraphParams};
-use karst_geology::{Geology, KeyPointKind, Scene, Surface};
+use karst_geology::{Geology, KeyPoint, KeyPointKind, Surface, keypoints_of};
+
+use crate::view::CostgraphView;
 
 use crate::falloff::{smoothstep, wyvill};
 
@@ -129,10 +131,11 @@ pub struct EdgeTerms {
 }
 
 impl CostModel {
-    pub fn from_scene(scene: &Scene) -> Self {
-        let max_weight = scene.geology().fractures.iter().map(|f| f.weight).fold(0.0, f64::max);
-        let families = scene
-            .geology()
+    /// The cost model of the scene's geology, key points, forced links and `[costgraph]`.
+    pub fn new(view: &CostgraphView) -> Self {
+        let max_weight = view.geology.fractures.iter().map(|f| f.weight).fold(0.0, f64::max);
+        let families = view
+            .geology
             .fractures
             .iter()
             .filter(|f| f.weight > 0.0)
@@ -142,22 +145,22 @@ impl CostModel {
                 relative_weight: f.weight / max_weight,
             })
             .collect();
-        let water_tables = match scene.costgraph().model {
+        let water_tables = match view.costgraph.model {
             CostModelKind::Paris2021 => Vec::new(),
-            CostModelKind::Karstnsim2024 => spring_water_tables(scene),
+            CostModelKind::Karstnsim2024 => spring_water_tables(view.geology, view.keypoints),
         };
         CostModel {
-            kind: scene.costgraph().model,
-            params: scene.costgraph().clone(),
-            geology: scene.geology().clone(),
-            inception: scene.geology().inception_surfaces().cloned().collect(),
+            kind: view.costgraph.model,
+            params: view.costgraph.clone(),
+            geology: view.geology.clone(),
+            inception: view.geology.inception_surfaces().cloned().collect(),
             families,
             water_tables,
-            corridors: match scene.costgraph().model {
-                CostModelKind::Paris2021 => forced_corridors(scene),
+            corridors: match view.costgraph.model {
+                CostModelKind::Paris2021 => forced_corridors(view.keypoints, view.forced_links),
                 CostModelKind::Karstnsim2024 => Vec::new(),
             },
-            uniform_potential: scene.geology().uniform_potential(),
+            uniform_potential: view.geology.uniform_potential(),
         }
     }
 
@@ -454,10 +457,9 @@ impl CostModel {
 }
 
 /// The ends of every forced link (`skeleton.forced_links`), at the scene's key point positions.
-fn forced_corridors(scene: &Scene) -> Vec<(DVec3, DVec3)> {
-    let at =
-        |name: &str| scene.keypoints().iter().find(|k| k.name == name).map(|k| DVec3::from_array(k.position));
-    scene.forced_links().iter().filter_map(|[a, b]| Some((at(a)?, at(b)?))).collect()
+fn forced_corridors(keypoints: &[KeyPoint], forced_links: &[[String; 2]]) -> Vec<(DVec3, DVec3)> {
+    let at = |name: &str| keypoints.iter().find(|k| k.name == name).map(|k| DVec3::from_array(k.position));
+    forced_links.iter().filter_map(|[a, b]| Some((at(a)?, at(b)?))).collect()
 }
 
 /// Distance from `p` to the segment a–b.
@@ -469,10 +471,10 @@ fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
 }
 
 /// Water tables named by springs, in [geology.water_tables] order.
-fn spring_water_tables(scene: &Scene) -> Vec<Surface> {
+fn spring_water_tables(geology: &Geology, keypoints: &[KeyPoint]) -> Vec<Surface> {
     let named: Vec<&str> =
-        scene.keypoints_of(KeyPointKind::Spring).filter_map(|(_, k)| k.water_table.as_deref()).collect();
-    scene.geology().water_tables.iter().filter(|w| named.contains(&w.name.as_str())).cloned().collect()
+        keypoints_of(keypoints, KeyPointKind::Spring).filter_map(|(_, k)| k.water_table.as_deref()).collect();
+    geology.water_tables.iter().filter(|w| named.contains(&w.name.as_str())).cloned().collect()
 }
 
 /// KarstNSim's falloff as a function of x = d / d_max.
@@ -546,7 +548,9 @@ mod tests {
     use super::*;
     use std::path::Path;
 
-    fn scene(extra: &str) -> Scene {
+    use karst_geology::{Scene, SceneView};
+
+    fn model(extra: &str) -> CostModel {
         let text = format!(
             r#"
 name = "t"
@@ -574,7 +578,7 @@ water_table = "wt"
 {extra}
 "#
         );
-        Scene::parse(&text, Path::new("t.toml")).unwrap()
+        CostModel::new(&CostgraphView::of(&Scene::parse(&text, Path::new("t.toml")).unwrap()))
     }
 
     fn cost(model: &CostModel, a: DVec3, b: DVec3) -> EdgeTerms {
@@ -586,7 +590,7 @@ water_table = "wt"
 
     #[test]
     fn falling_is_cheap_and_climbing_is_dear_above_the_water_table() {
-        let m = CostModel::from_scene(&scene(""));
+        let m = model("");
         let (hi, lo) = (DVec3::new(50.0, 50.0, 80.0), DVec3::new(50.0, 50.0, 70.0));
         assert!(cost(&m, hi, lo).water_table[0].abs() < 1e-12);
         assert!((cost(&m, lo, hi).water_table[0] - 1.0).abs() < 1e-12);
@@ -596,7 +600,7 @@ water_table = "wt"
 
     #[test]
     fn cost_is_integrated_along_the_edge() {
-        let m = CostModel::from_scene(&scene("[costgraph]\ninception_distance = 10.0"));
+        let m = model("[costgraph]\ninception_distance = 10.0");
         // Both ends 10 m from the horizon (term 1), the middle on it (term 0).
         let e = cost(&m, DVec3::new(50.0, 50.0, 40.0), DVec3::new(50.0, 50.0, 60.0));
         assert!(e.inception < 0.8, "{}", e.inception);
@@ -607,7 +611,7 @@ water_table = "wt"
 
     #[test]
     fn crossing_the_water_table_splits_the_term() {
-        let m = CostModel::from_scene(&scene("[costgraph]\nwater_table_distance = 10.0"));
+        let m = model("[costgraph]\nwater_table_distance = 10.0");
         // Straight down from 5 m above to 5 m below: half vadose (0), half phreatic.
         let e = cost(&m, DVec3::new(50.0, 50.0, 25.0), DVec3::new(50.0, 50.0, 15.0));
         // Mean of s over d ∈ [0, 5] with d_max = 10: 2·∫₀^½ 1 − (1 − x)³ dx = 2·(½ − 15/64).
@@ -617,9 +621,7 @@ water_table = "wt"
 
     #[test]
     fn every_cost_is_positive_even_when_every_term_vanishes() {
-        let m = CostModel::from_scene(&scene(
-            "[costgraph]\nalpha_inception = 0.0\nalpha_fracture = 0.0\nalpha_potential = 0.0",
-        ));
+        let m = model("[costgraph]\nalpha_inception = 0.0\nalpha_fracture = 0.0\nalpha_potential = 0.0");
         let e = cost(&m, DVec3::new(50.0, 50.0, 80.0), DVec3::new(50.0, 50.0, 70.0));
         assert_eq!(e.water_table[0], 0.0);
         assert!((e.cost[0] - 10.0 * 0.01).abs() < 1e-12);
@@ -628,7 +630,7 @@ water_table = "wt"
     #[test]
     fn edges_along_a_fracture_family_are_cheap() {
         let fractures = "[[geology.fractures]]\nname = \"n030\"\nazimuth = 30.0\ntolerance = 5.0\n";
-        let m = CostModel::from_scene(&scene(fractures));
+        let m = model(fractures);
         let along = |deg: f64| {
             let (s, c) = deg.to_radians().sin_cos();
             cost(&m, DVec3::new(50.0, 50.0, 80.0), DVec3::new(50.0 + 5.0 * s, 50.0 + 5.0 * c, 80.0)).fracture
@@ -636,7 +638,7 @@ water_table = "wt"
         assert_eq!(along(32.0), 0.0);
         assert_eq!(along(212.0), 0.0);
         assert_eq!(along(40.0), 1.0);
-        let paris = CostModel::from_scene(&scene(&format!("{fractures}[costgraph]\nmodel = \"paris2021\"")));
+        let paris = model(&format!("{fractures}[costgraph]\nmodel = \"paris2021\""));
         let e = |deg: f64| {
             let (s, c) = deg.to_radians().sin_cos();
             cost(&paris, DVec3::new(50.0, 50.0, 80.0), DVec3::new(50.0 + 5.0 * s, 50.0 + 5.0 * c, 80.0))

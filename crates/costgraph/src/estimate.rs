@@ -5,8 +5,9 @@
 //! counted as if every row were stored apart in every later set (the upper bound: which rows
 //! share set 0's costs is known only once they are costed).
 
-use karst_geology::Scene;
 use karst_geology::budget::{Cheaper, Estimate, OverBudget};
+
+use crate::view::CostgraphView;
 
 /// Bytes per edge and per cost set at the peak: its f32 cost, written in place.
 const BYTES_PER_EDGE_AND_SET: f64 = 4.0;
@@ -16,9 +17,9 @@ const BYTES_PER_EDGE: f64 = 12.0;
 const BYTES_PER_SAMPLE: f64 = 64.0;
 
 /// Refuses a cost graph of `samples` samples that would not fit in the memory budget.
-pub fn check(scene: &Scene, samples: usize, sets: usize) -> Result<(), OverBudget> {
-    let p = scene.costgraph();
-    let g = scene.geology();
+pub fn check(view: &CostgraphView, samples: usize, sets: usize) -> Result<(), OverBudget> {
+    let p = view.costgraph;
+    let g = view.geology;
     let fields = 4 + g.horizons.len() + g.faults.len() + sets;
     let n = samples as f64;
     let bytes = |k: f64| {
@@ -33,5 +34,5 @@ pub fn check(scene: &Scene, samples: usize, sets: usize) -> Result<(), OverBudge
         field: "costgraph.k".into(),
         value: k,
     };
-    scene.budget().check(estimate, Cheaper::Smaller, true, bytes)
+    view.budget.check(estimate, Cheaper::Smaller, true, bytes)
 }

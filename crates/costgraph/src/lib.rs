@@ -20,6 +20,7 @@ mod knn;
 mod payload;
 mod stage;
 mod stats;
+mod view;
 
 pub use build::{build, build_points};
 pub use cost::CostModel;
@@ -29,3 +30,4 @@ pub use knn::{transpose, transpose_values};
 pub use payload::{CostGraph, CostSet, CostingError, SHARED_ROW};
 pub use stage::CostgraphStage;
 pub use stats::{Histogram, SetStats, Summary, TermStats};
+pub use view::CostgraphView;

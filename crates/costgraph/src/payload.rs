@@ -22,11 +22,12 @@ use serde::{Deserialize, Serialize};
 
 use karst_artifact::check::{self, ensure};
 use karst_artifact::{Invalid, Payload, PayloadReader, StageId};
-use karst_geology::Scene;
+use karst_geology::SceneView;
 
 use crate::cost::CostModel;
 use crate::costs::{Costing, Costs, RowsOf};
 use crate::stats::Summary;
+use crate::view::CostgraphView;
 
 /// In `own_rows`: the row costs the same in every set and is held in set 0 only.
 pub const SHARED_ROW: u32 = u32::MAX;
@@ -208,18 +209,19 @@ impl CostGraph {
         self.targets[range].iter().map(|&t| t as usize).zip(self.row_costs(set, node).iter().copied())
     }
 
-    /// Costs the graph's edges under `scene`'s cost model, the samples at `positions`: each
-    /// row when first read, or every row now ([`Costing`]). Nothing changes when the graph is
-    /// costed already (from lists, or by an earlier call: the scene is then checked all the
-    /// same). Refused when the graph was made under other scene sections, or over other samples.
+    /// Costs the graph's edges under the cost model of `view` (the cost graph stage's sections,
+    /// [`CostgraphView`]), the samples at `positions`: each row when first read, or every row
+    /// now ([`Costing`]). Nothing changes when the graph is costed already (from lists, or by an
+    /// earlier call: the view is then checked all the same). Refused when the graph was made
+    /// under other scene sections, or over other samples.
     pub fn cost_from(
         &self,
-        scene: &Scene,
+        view: &CostgraphView,
         positions: &[[f64; 3]],
         costing: Costing,
     ) -> Result<(), CostingError> {
-        let sections = StageId::Costgraph.row().sections;
-        if !self.made_under.is_empty() && self.made_under != scene.sections_hash(sections) {
+        if !self.made_under.is_empty() && self.made_under != view.sections_hash() {
+            let sections: Vec<&str> = CostgraphView::SECTIONS.iter().map(|s| s.key()).collect();
             return Err(CostingError::OtherScene { sections: sections.join(", ") });
         }
         if positions.len() != self.node_count() {
@@ -227,7 +229,7 @@ impl CostGraph {
         }
         if self.costs.get().is_none() {
             let edges = self.set_edges();
-            let costs = Costs::made(CostModel::from_scene(scene), positions, &edges, self.rows_of(), costing);
+            let costs = Costs::made(CostModel::new(view), positions, &edges, self.rows_of(), costing);
             // Another thread may have costed it meanwhile, under the same scene: either will do.
             let _ = self.costs.set(costs);
         }

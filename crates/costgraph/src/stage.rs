@@ -1,13 +1,14 @@
-//! The cost graph stage's contract: the scene and `samples.bin` in, `costgraph.bin` out.
+//! The cost graph stage's contract: its view of the scene and `samples.bin` in, `costgraph.bin`
+//! out.
 
 use karst_artifact::{Header, StageId};
-use karst_geology::Scene;
 use karst_sampling::Samples;
 use karst_stage::Stage;
 
 use crate::build::build;
 use crate::error::CostGraphError;
 use crate::payload::CostGraph;
+use crate::view::CostgraphView;
 
 /// Stage 2: the k-nearest-neighbour graph of the samples and its edge costs.
 pub struct CostgraphStage;
@@ -17,12 +18,13 @@ impl Stage for CostgraphStage {
     type Inputs = (Samples,);
     type Output = CostGraph;
     type Error = CostGraphError;
+    type View<'s> = CostgraphView<'s>;
 
-    fn build(scene: &Scene, (samples,): &(Samples,)) -> Result<CostGraph, CostGraphError> {
-        build(scene, samples)
+    fn build(view: &CostgraphView, (samples,): &(Samples,)) -> Result<CostGraph, CostGraphError> {
+        build(view, samples)
     }
 
-    fn headline(_: &Scene, graph: &CostGraph) -> String {
+    fn headline(_: &CostgraphView, graph: &CostGraph) -> String {
         format!(
             "{} nodes, {} edges, {} cost set(s)",
             graph.node_count(),

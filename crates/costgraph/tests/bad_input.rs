@@ -1,5 +1,7 @@
 //! Bad input of the cost graph: every case is refused with a message naming what is wrong.
 
+use karst_costgraph::CostgraphView;
+use karst_geology::SceneView;
 use std::path::Path;
 
 use karst_costgraph::{CostGraphError, build};
@@ -56,14 +58,14 @@ fn samples(step: f64, x0: f64, x1: f64) -> Samples {
 #[test]
 fn k_must_be_below_the_sample_count() {
     let scene = scene("[costgraph]\nk = 16").unwrap();
-    let err = build(&scene, &samples(50.0, 0.0, 50.0)).unwrap_err();
+    let err = build(&CostgraphView::of(&scene), &samples(50.0, 0.0, 50.0)).unwrap_err();
     assert!(matches!(err, CostGraphError::TooFewSamples { k: 16, samples: 8 }), "{err}");
 }
 
 #[test]
 fn isolated_key_point_is_named() {
     let scene = scene("[costgraph]\nk = 4\nmax_edge_length = 15.0").unwrap();
-    let err = build(&scene, &samples(10.0, 0.0, 100.0)).unwrap_err().to_string();
+    let err = build(&CostgraphView::of(&scene), &samples(10.0, 0.0, 100.0)).unwrap_err().to_string();
     assert!(err.contains("\"doline\"") && err.contains("max_edge_length = 15"), "{err}");
 }
 
@@ -75,7 +77,7 @@ fn unreachable_spring_names_the_sink_and_the_spring() {
     let far = samples(10.0, 70.0, 100.0);
     s.positions.extend(&far.positions[2..]);
     s.tags.extend(&far.tags[2..]);
-    let err = build(&scene, &s).unwrap_err().to_string();
+    let err = build(&CostgraphView::of(&scene), &s).unwrap_err().to_string();
     assert!(err.contains("sink \"doline\" cannot reach spring \"resurgence\""), "{err}");
 }
 
@@ -98,9 +100,9 @@ fn negative_and_nan_weights_and_k_zero_are_refused() {
 fn the_graph_of_good_input_has_positive_costs() {
     let scene = scene("[costgraph]\nk = 8").unwrap();
     let samples = samples(10.0, 0.0, 100.0);
-    let graph = build(&scene, &samples).unwrap();
+    let graph = build(&CostgraphView::of(&scene), &samples).unwrap();
     assert_eq!(graph.edge_count(), 8 * graph.node_count());
-    graph.cost_from(&scene, &samples.positions, karst_costgraph::Costing::Every).unwrap();
+    graph.cost_from(&CostgraphView::of(&scene), &samples.positions, karst_costgraph::Costing::Every).unwrap();
     assert!((0..graph.node_count()).all(|u| graph.row_costs(0, u).iter().all(|&c| c > 0.0)));
     assert_eq!(graph.cost_set_of_water_table("wt"), Some(0));
 }

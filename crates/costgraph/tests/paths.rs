@@ -1,6 +1,8 @@
 //! The "Done when" of the cost graph: least-cost paths through graphs built on seeded random
 //! point clouds behave as the geology says.
 
+use karst_costgraph::CostgraphView;
+use karst_geology::SceneView;
 use std::collections::BinaryHeap;
 use std::path::Path;
 
@@ -50,8 +52,8 @@ fn cloud(n: usize, size: [f64; 3], first: [[f64; 3]; 2], seed: u64) -> Vec<[f64;
 
 /// The cost graph of `points` under `scene`, every row costed.
 fn costed(scene: &Scene, points: &[[f64; 3]]) -> CostGraph {
-    let graph = build_points(scene, points).unwrap();
-    graph.cost_from(scene, points, Costing::Every).unwrap();
+    let graph = build_points(&CostgraphView::of(scene), points).unwrap();
+    graph.cost_from(&CostgraphView::of(scene), points, Costing::Every).unwrap();
     graph
 }
 
@@ -220,8 +222,8 @@ symmetrise = true
     assert!(one == two, "the graphs differ between 1 and 2 threads");
     // Rows costed on demand, by two threads reading them at once, cost what rows costed all
     // at once do.
-    let lazy = build_points(&scene, &points).unwrap();
-    lazy.cost_from(&scene, &points, Costing::OnDemand).unwrap();
+    let lazy = build_points(&CostgraphView::of(&scene), &points).unwrap();
+    lazy.cost_from(&CostgraphView::of(&scene), &points, Costing::OnDemand).unwrap();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
     pool.install(|| {
         let read = |u: usize| lazy.row_costs(0, u).len();
@@ -235,8 +237,8 @@ symmetrise = true
         assert!(one.row_costs(0, u).iter().all(|&c| c > 0.0));
     }
     // Rows costed ahead (by a thread that never waits) cost the same; a row is costed once.
-    let ahead = build_points(&scene, &points).unwrap();
-    ahead.cost_from(&scene, &points, Costing::OnDemand).unwrap();
+    let ahead = build_points(&CostgraphView::of(&scene), &points).unwrap();
+    ahead.cost_from(&CostgraphView::of(&scene), &points, Costing::OnDemand).unwrap();
     let made = pool.install(|| {
         let read = |u: usize| usize::from(ahead.cost_row_ahead(u));
         rayon::join(

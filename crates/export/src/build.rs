@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use karst_geology::Scene;
+use karst_geology::Geology;
 use karst_geology::params::{ExportFormat, ExportParams};
 use karst_hydro::Hydro;
 use karst_mesher::Mesh;
@@ -31,8 +31,8 @@ pub struct Inputs<'a> {
     pub mesh: Option<&'a Mesh>,
     pub metrics: Option<&'a MetricsReport>,
     pub samples: Option<&'a Samples>,
-    /// The scene, for what the artifacts do not carry (the rock layer of each sample).
-    pub scene: Option<&'a Scene>,
+    /// The scene's geology, for what the artifacts do not carry (the rock layer of each sample).
+    pub geology: Option<&'a Geology>,
     /// The local frame the artifacts are in (the origin exports add back, the CRS).
     pub frame: &'a karst_artifact::Frame,
 }
@@ -117,7 +117,7 @@ pub fn export(inputs: &Inputs, params: &ExportParams, dir: &Path) -> Result<Mani
             ExportFormat::Gocad => {
                 gocad::write_pline(&mut folder, &frame, network())?;
                 let samples = inputs.samples.expect("checked above");
-                gocad::write_vset(&mut folder, &frame, samples, inputs.scene)?;
+                gocad::write_vset(&mut folder, &frame, samples, inputs.geology)?;
             }
             ExportFormat::GocadMeshes => gocad::write_tsurfs(&mut folder, &frame, surfaces())?,
             ExportFormat::Survex => survex::write(&mut folder, &frame, network())?,

@@ -13,7 +13,7 @@
 
 use std::io::{self, Write};
 
-use karst_geology::Scene;
+use karst_geology::Geology;
 use karst_geology::params::ExportFormat;
 use karst_hydro::WaterType;
 use karst_sampling::{Samples, Tag};
@@ -113,25 +113,25 @@ fn region(tag: Tag) -> (u32, u32) {
 }
 
 /// `samples.vs`: every sample with its region (0 volume, 1 horizon, 2 water table, 3 fault,
-/// 4 key point), the 1-based index of its surface or key point, and, when the scene is known,
-/// the 1-based index of the rock layer holding it (0: none).
+/// 4 key point), the 1-based index of its surface or key point, and, when the scene's geology
+/// is known, the 1-based index of the rock layer holding it (0: none).
 pub fn write_vset(
     folder: &mut Folder,
     frame: &Frame,
     samples: &Samples,
-    scene: Option<&Scene>,
+    geology: Option<&Geology>,
 ) -> Result<(), ExportError> {
     folder.write("samples.vs", ExportFormat::Gocad, |w| {
         header(w, "VSet", "samples")?;
         let names: &[&str] =
-            if scene.is_some() { &["region", "surface", "layer"] } else { &["region", "surface"] };
+            if geology.is_some() { &["region", "surface", "layer"] } else { &["region", "surface"] };
         properties(w, names)?;
         for (i, (p, tag)) in samples.positions.iter().zip(&samples.tags).enumerate() {
             let [x, y, z] = frame.world(*p);
             let (region, surface) = region(*tag);
             write!(w, "PVRTX {} {x} {y} {z} {region} {surface}", i + 1)?;
-            match scene {
-                Some(scene) => writeln!(w, " {}", layer(scene, *p))?,
+            match geology {
+                Some(geology) => writeln!(w, " {}", layer(geology, *p))?,
                 None => writeln!(w)?,
             }
         }
@@ -139,9 +139,8 @@ pub fn write_vset(
     })
 }
 
-fn layer(scene: &Scene, p: [f64; 3]) -> usize {
+fn layer(geology: &Geology, p: [f64; 3]) -> usize {
     let p = glam::DVec3::from_array(p);
-    let geology = scene.geology();
     geology.layers.iter().position(|l| l.contains(p, geology)).map_or(0, |i| i + 1)
 }
 

@@ -36,6 +36,7 @@ pub mod stage;
 mod surface;
 mod survex;
 mod swmm;
+mod view;
 mod vtk;
 
 pub use build::{FOLDER, Input, Inputs, export, needs};
@@ -44,3 +45,4 @@ pub use karst_geology::params::{ExportFormat, ExportParams, MeshSurface};
 pub use network::NetworkView;
 pub use payload::{ExportedFile, Manifest};
 pub use stage::ExportStage;
+pub use view::ExportView;

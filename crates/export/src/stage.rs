@@ -18,6 +18,7 @@ use crate::build::{FOLDER, Input, Inputs, export, needs};
 use crate::error::ExportError;
 use crate::network::NetworkView;
 use crate::payload::Manifest;
+use crate::view::ExportView;
 use crate::{ExportFormat, ExportParams};
 
 /// The upstream payloads of the export stage.
@@ -31,14 +32,15 @@ impl Stage for ExportStage {
     type Inputs = Upstream;
     type Output = Manifest;
     type Error = ExportError;
+    type View<'s> = ExportView<'s>;
 
     /// Checks that the artifacts belong together; the files are written with the side files.
-    fn build(_: &Scene, (_, skeleton, hydro, ..): &Upstream) -> Result<Manifest, ExportError> {
+    fn build(_: &ExportView, (_, skeleton, hydro, ..): &Upstream) -> Result<Manifest, ExportError> {
         NetworkView::new(skeleton, hydro)?;
         Ok(Manifest::default())
     }
 
-    fn headline(_: &Scene, manifest: &Manifest) -> String {
+    fn headline(_: &ExportView, manifest: &Manifest) -> String {
         let bytes: u64 = manifest.files.iter().map(|f| f.bytes).sum();
         format!("{} files, {:.1} MB in {FOLDER}/", manifest.files.len(), bytes as f64 / 1e6)
     }
@@ -51,12 +53,11 @@ impl Stage for ExportStage {
     /// export that this one no longer writes are removed.
     fn side_files(
         out: &Path,
-        scene: &Scene,
+        view: &ExportView,
         upstream: &Upstream,
         manifest: &mut Manifest,
     ) -> std::io::Result<()> {
         let (samples, skeleton, hydro, streams, mesh, metrics) = upstream;
-        let frame = scene.frame();
         let inputs = Inputs {
             skeleton: Some(skeleton),
             hydro: Some(hydro),
@@ -64,8 +65,8 @@ impl Stage for ExportStage {
             mesh: Some(mesh),
             metrics: Some(metrics),
             samples: Some(samples),
-            scene: Some(scene),
-            frame: &frame,
+            geology: Some(view.geology),
+            frame: view.frame,
         };
         // The last export's manifest: moved aside by the runner when this export differs.
         let file = out.join(StageId::Export.file_name());
@@ -73,7 +74,7 @@ impl Stage for ExportStage {
             .iter()
             .find_map(|path| read_artifact::<Manifest>(path).ok())
             .map(|(_, m)| m);
-        *manifest = export(&inputs, scene.export(), out).map_err(std::io::Error::other)?;
+        *manifest = export(&inputs, view.export, out).map_err(std::io::Error::other)?;
         for stale in previous
             .iter()
             .flat_map(|p| &p.files)
@@ -124,7 +125,7 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
     }
     let wanted = |input: Input| params.formats.iter().find(|f| needs(**f).contains(&input)).copied();
     // Every artifact read must be in one frame: the scene's when one is known, else the first's.
-    let frame = std::cell::RefCell::new(scene.as_ref().map(Scene::frame));
+    let frame = std::cell::RefCell::new(scene.as_ref().map(|s| s.frame().clone()));
     let read = |input: Input| -> Result<Option<Box<dyn std::any::Any>>, StageError> {
         let Some(format) = wanted(input) else { return Ok(None) };
         let path = args.dir.join(input.file_name());
@@ -162,7 +163,7 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
         mesh: mesh.as_deref().and_then(|a| a.downcast_ref()),
         metrics: metrics.as_deref().and_then(|a| a.downcast_ref()),
         samples: samples.as_deref().and_then(|a| a.downcast_ref()),
-        scene: scene.as_ref(),
+        geology: scene.as_ref().map(Scene::geology),
         frame: &frame,
     };
     // Every failure here is about the user's folder or files, an unwritable path included.

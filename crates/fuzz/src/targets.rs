@@ -240,7 +240,7 @@ fn check_network_out(input: &[u8]) {
         mesh: Some(&o.mesh),
         metrics: Some(&o.metrics),
         samples: Some(&o.samples),
-        scene: Some(&o.scene),
+        geology: Some(o.scene.geology()),
         frame: &o.frame,
     };
     let params = karst_export::ExportParams {

@@ -46,3 +46,8 @@ impl KeyPoint {
         Point::from_array(self.position)
     }
 }
+
+/// The key points of `kind` among `keypoints`, with their index, in scene order.
+pub fn keypoints_of(keypoints: &[KeyPoint], kind: KeyPointKind) -> impl Iterator<Item = (usize, &KeyPoint)> {
+    keypoints.iter().enumerate().filter(move |(_, k)| k.kind == kind)
+}

@@ -39,16 +39,18 @@ pub mod surface;
 pub mod terrain;
 pub mod tin;
 mod validate;
+pub mod view;
 mod vti;
 
 pub use domain::Domain;
 pub use fracture::FractureFamily;
-pub use keypoint::{KeyPoint, KeyPointKind};
+pub use keypoint::{KeyPoint, KeyPointKind, keypoints_of};
 pub use scene::{Connectivity, Geology, Link, Phase, Scene, SceneError};
 pub use sections::Section;
 pub use surface::{Geometry, Surface};
 pub use terrain::Terrain;
 pub use validate::Problem;
+pub use view::SceneView;
 
 /// The ranges every scene is checked against (docs/limits.md).
 pub mod limits {

@@ -10,6 +10,7 @@
 //! When the scene is loaded the table becomes the `matrix` the stages read (one row per sink,
 //! one column per spring, scene order); giving both is an error.
 
+use crate::keypoint::keypoints_of;
 use crate::{KeyPointKind, Scene};
 
 /// Fills `connectivity.matrix` from `connectivity.named`; problems go to `report(field, message)`.
@@ -22,7 +23,7 @@ pub(crate) fn resolve(scene: &mut Scene, report: &mut dyn FnMut(&str, String)) {
     if scene.connectivity.matrix.is_some() {
         return report(FIELD, "give the connectivity as `matrix` or as `named`, not both".into());
     }
-    let names = |kind| scene.keypoints_of(kind).map(|(_, k)| k.name.as_str()).collect::<Vec<_>>();
+    let names = |kind| keypoints_of(&scene.keypoints, kind).map(|(_, k)| k.name.as_str()).collect::<Vec<_>>();
     let (sinks, springs) = (names(KeyPointKind::Sink), names(KeyPointKind::Spring));
     let mut matrix = vec![vec![2u8; springs.len()]; sinks.len()];
     let mut ok = true;

@@ -17,12 +17,13 @@ use std::sync::Arc;
 
 use crate::field::{Bound, FieldNode};
 use crate::surface::Geometry;
+use crate::view::Frame;
 use crate::{Scene, Surface, Terrain};
 
 /// Moves every coordinate of `scene` into its local frame and records the origin.
 pub(crate) fn localize(scene: &mut Scene) {
     let origin = scene.domain.min;
-    scene.origin = origin;
+    scene.frame = Frame { origin, crs: scene.crs.clone() };
     if origin == [0.0; 3] {
         return;
     }

@@ -9,9 +9,10 @@ use crate::params::{
     CalibrateParams, CostgraphParams, ExportParams, HydroParams, MesherParams, SamplingParams, SdfParams,
     SkeletonParams, StreamsParams,
 };
-use crate::sections::{Reads, Section};
+use crate::sections::Section;
 use crate::validate::{self, Problem};
-use crate::{Domain, FractureFamily, KeyPoint, KeyPointKind, Surface, Terrain};
+use crate::view::Frame;
+use crate::{Domain, FractureFamily, KeyPoint, Surface, Terrain};
 
 /// A whole scene, as read from its TOML file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -60,13 +61,11 @@ pub struct Scene {
     /// `[calibrate]`: the box `karstgen calibrate` searches; read by no stage.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub(crate) calibrate: Option<CalibrateParams>,
-    /// The world position of the local frame's origin (the domain's `min` as written in the
-    /// file); every coordinate above is relative to it once loaded ([`crate::localize`]).
+    /// The local frame: the world position of its origin (the domain's `min` as written in the
+    /// file; every coordinate above is relative to it once loaded, [`crate::localize`]) and the
+    /// CRS.
     #[serde(skip)]
-    pub(crate) origin: [f64; 3],
-    /// Which sections were read, when auditing (see [`Scene::audited`]).
-    #[serde(skip)]
-    pub(crate) reads: Reads,
+    pub(crate) frame: Frame,
     /// The memory the stages may plan to use: set by the command line, in no key.
     #[serde(skip)]
     pub(crate) budget: crate::budget::Budget,
@@ -136,6 +135,11 @@ impl Geology {
     pub fn inception_surfaces(&self) -> impl Iterator<Item = &Surface> {
         self.horizons.iter().chain(&self.faults)
     }
+
+    /// The water table named `name`.
+    pub fn water_table(&self, name: &str) -> Option<&Surface> {
+        self.water_tables.iter().find(|w| w.name == name)
+    }
 }
 
 impl field::Surfaces for Geology {
@@ -157,6 +161,20 @@ pub struct Connectivity {
     /// the scene is loaded ([`crate::links`]).
     #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
     pub named: std::collections::BTreeMap<String, std::collections::BTreeMap<String, u8>>,
+}
+
+impl Connectivity {
+    /// How the `sink`-th sink relates to the `spring`-th spring (scene order).
+    pub fn link(&self, sink: usize, spring: usize) -> Link {
+        match &self.matrix {
+            None => Link::Uncertain,
+            Some(rows) => match rows[sink][spring] {
+                0 => Link::None,
+                1 => Link::Connected,
+                _ => Link::Uncertain,
+            },
+        }
+    }
 }
 
 /// One speleogenetic phase (`[[phases]]`, KarstNSim §2.6): the springs active during it (each
@@ -245,7 +263,6 @@ impl Scene {
 
     /// The seed of every random choice.
     pub fn seed(&self) -> u64 {
-        self.reads.note(Section::Seed);
         self.seed
     }
 
@@ -275,95 +292,39 @@ impl Scene {
     /// record the origin and exports add it back. Like the CRS, it is not an input of any
     /// stage's computation: a scene moved by any offset gives the same payloads.
     pub fn origin(&self) -> [f64; 3] {
-        self.origin
+        self.frame.origin
     }
 
     /// The local frame (origin and CRS) every artifact of this scene records.
-    pub fn frame(&self) -> karst_artifact::Frame {
-        karst_artifact::Frame { origin: self.origin, crs: self.crs.clone() }
+    pub fn frame(&self) -> &Frame {
+        &self.frame
     }
 
     /// `[[keypoints_from]]`: the tables key points were read from; their points are already
-    /// in [`Scene::keypoints`], so reading them is reading the key points.
+    /// in [`Scene::keypoints`].
     pub fn keypoints_from(&self) -> &[crate::point_table::PointTable] {
-        self.reads.note(Section::Keypoints);
         &self.keypoints_from
     }
 
-    /// `skeleton.forced_links`, read on its own by the cost graph.
-    pub fn forced_links(&self) -> &[[String; 2]] {
-        self.reads.note(Section::ForcedLinks);
-        &self.skeleton.forced_links
-    }
-
-    /// `hydro.total_discharge`, read on its own by the streams (the springs' discharge in m³/s).
-    pub fn total_discharge(&self) -> f64 {
-        self.reads.note(Section::TotalDischarge);
-        self.hydro.total_discharge
-    }
-
-    /// The key points of `kind`, with their index in `keypoints`, in scene order.
-    pub fn keypoints_of(&self, kind: KeyPointKind) -> impl Iterator<Item = (usize, &KeyPoint)> {
-        self.keypoints().iter().enumerate().filter(move |(_, k)| k.kind == kind)
-    }
-
-    /// True inside the domain and below the ground (no-karst volumes included).
-    pub fn in_bedrock(&self, p: crate::Point) -> bool {
-        self.domain().contains(p) && p.z < self.terrain().height(p.x, p.y)
-    }
-
-    /// The water table named `name`.
-    pub fn water_table(&self, name: &str) -> Option<&Surface> {
-        self.geology().water_tables.iter().find(|w| w.name == name)
-    }
-
-    /// Connectivity between the `sink`-th sink and the `spring`-th spring (scene order).
-    pub fn link(&self, sink: usize, spring: usize) -> Link {
-        match &self.connectivity().matrix {
-            None => Link::Uncertain,
-            Some(rows) => match rows[sink][spring] {
-                0 => Link::None,
-                1 => Link::Connected,
-                _ => Link::Uncertain,
-            },
-        }
-    }
-
-    /// Hash of the named top-level sections (defaults applied), or of one field of a section
-    /// when the name is dotted, for artifact keys.
-    pub fn sections_hash(&self, sections: &[&str]) -> String {
-        let value = serde_json::to_value(self).expect("a scene always serializes");
-        let texts: Vec<String> = sections
-            .iter()
-            .map(|name| {
-                // A dotted name ("skeleton.forced_links") hashes one field of a section.
-                let field = name.split('.').try_fold(&value, |v, key| v.get(key));
-                format!("{name}={}", field.cloned().unwrap_or_default())
-            })
-            .collect();
-        karst_artifact::hash::hex_of_parts(texts.iter().map(|t| t.as_bytes()))
-    }
-
-    /// A copy that records which sections it hands out ([`Scene::sections_read`]).
-    pub fn audited(&self) -> Scene {
-        Scene { reads: Reads::auditing(), ..self.clone() }
-    }
-
-    /// The sections read from an [`audited`](Scene::audited) scene so far.
-    pub fn sections_read(&self) -> Vec<Section> {
-        self.reads.read()
+    /// Hash of `sections` (defaults applied; a field of a section, such as
+    /// [`Section::ForcedLinks`], on its own), for artifact keys: what
+    /// [`SceneView::sections_hash`](crate::view::SceneView::sections_hash) gives for a view of
+    /// those sections.
+    pub fn sections_hash(&self, sections: &[Section]) -> String {
+        let values: Vec<_> = sections.iter().map(|&s| (s, crate::view::part::json(self, s))).collect();
+        crate::view::hash(&values)
     }
 }
 
-/// A read accessor per section, noting the read, and a write accessor without the note.
+/// A read and a write accessor per section (stages read theirs through their view,
+/// [`crate::view`]).
 macro_rules! section_accessors {
-    ($($(#[$doc:meta])* $field:ident, $field_mut:ident: $ty:ty => $section:ident;)*) => {
+    ($($(#[$doc:meta])* $field:ident, $field_mut:ident: $ty:ty;)*) => {
         impl Scene {
             $(
                 $(#[$doc])*
                 #[inline]
                 pub fn $field(&self) -> &$ty {
-                    self.reads.note(Section::$section);
                     &self.$field
                 }
 
@@ -378,33 +339,33 @@ macro_rules! section_accessors {
 
 section_accessors! {
     /// `[domain]`: the box of the model.
-    domain, domain_mut: Domain => Domain;
+    domain, domain_mut: Domain;
     /// `[terrain]`: the ground surface.
-    terrain, terrain_mut: Terrain => Terrain;
+    terrain, terrain_mut: Terrain;
     /// `[geology]`: water tables, horizons, faults, fractures, layers, potential, no-karst.
-    geology, geology_mut: Geology => Geology;
+    geology, geology_mut: Geology;
     /// `[[keypoints]]`: sinks, springs, waypoints, dead ends, in scene order.
-    keypoints, keypoints_mut: Vec<KeyPoint> => Keypoints;
+    keypoints, keypoints_mut: Vec<KeyPoint>;
     /// `[connectivity]`: which sink may drain to which spring.
-    connectivity, connectivity_mut: Connectivity => Connectivity;
+    connectivity, connectivity_mut: Connectivity;
     /// `[[phases]]`: speleogenetic phases, oldest first.
-    phases, phases_mut: Vec<Phase> => Phases;
+    phases, phases_mut: Vec<Phase>;
     /// `[sampling]`.
-    sampling, sampling_mut: SamplingParams => Sampling;
+    sampling, sampling_mut: SamplingParams;
     /// `[costgraph]`.
-    costgraph, costgraph_mut: CostgraphParams => Costgraph;
+    costgraph, costgraph_mut: CostgraphParams;
     /// `[skeleton]`.
-    skeleton, skeleton_mut: SkeletonParams => Skeleton;
+    skeleton, skeleton_mut: SkeletonParams;
     /// `[hydro]`.
-    hydro, hydro_mut: HydroParams => Hydro;
+    hydro, hydro_mut: HydroParams;
     /// `[streams]`: the surface streams and their controller curves.
-    streams, streams_mut: StreamsParams => Streams;
+    streams, streams_mut: StreamsParams;
     /// `[sdf]`.
-    sdf, sdf_mut: SdfParams => Sdf;
+    sdf, sdf_mut: SdfParams;
     /// `[mesher]`.
-    mesher, mesher_mut: MesherParams => Mesher;
+    mesher, mesher_mut: MesherParams;
     /// `[export]`: which formats the export stage writes.
-    export, export_mut: ExportParams => Export;
+    export, export_mut: ExportParams;
     /// `[calibrate]`: the parameter box of `karstgen calibrate`, when the scene has one.
-    calibrate, calibrate_mut: Option<CalibrateParams> => Calibrate;
+    calibrate, calibrate_mut: Option<CalibrateParams>;
 }

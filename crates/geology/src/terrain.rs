@@ -112,6 +112,13 @@ impl Terrain {
         }
     }
 
+    /// Whether `p` is in the bedrock: inside `domain` and below the ground (no-karst volumes
+    /// included).
+    #[inline]
+    pub fn in_bedrock(&self, domain: &crate::Domain, p: crate::Point) -> bool {
+        domain.contains(p) && p.z < self.height(p.x, p.y)
+    }
+
     /// Lipschitz bound λ of the height function: |h(a) − h(b)| ≤ λ |a − b|.
     pub fn lipschitz(&self) -> f64 {
         match self {

@@ -9,6 +9,7 @@ use crate::spans::{line_of, line_of_path, path_at};
 use std::fmt;
 
 use crate::field::{Bound, FieldKind, FieldNode, Surfaces};
+use crate::keypoint::keypoints_of;
 use crate::{Geometry, KeyPointKind, Scene, Surface, Terrain};
 
 /// One problem in a scene.
@@ -530,7 +531,7 @@ impl Checks<'_> {
                 (KeyPointKind::Spring, None) => {
                     self.keypoint(scene, i, "water_table", format!("spring \"{}\" names no water table", k.name))
                 }
-                (KeyPointKind::Spring, Some(w)) if scene.water_table(w).is_none() => self.keypoint(
+                (KeyPointKind::Spring, Some(w)) if scene.geology.water_table(w).is_none() => self.keypoint(
                     scene,
                     i,
                     "water_table",
@@ -549,7 +550,7 @@ impl Checks<'_> {
             );
         }
         for (kind, name) in [(KeyPointKind::Sink, "sink"), (KeyPointKind::Spring, "spring")] {
-            if scene.keypoints_of(kind).next().is_none() {
+            if keypoints_of(&scene.keypoints, kind).next().is_none() {
                 self.report("keypoints", format!("the scene needs at least one {name}"));
             }
         }
@@ -647,8 +648,8 @@ impl Checks<'_> {
 
     fn connectivity(&mut self, scene: &Scene) {
         let Some(rows) = &scene.connectivity.matrix else { return };
-        let sinks: Vec<_> = scene.keypoints_of(KeyPointKind::Sink).collect();
-        let springs = scene.keypoints_of(KeyPointKind::Spring).count();
+        let sinks: Vec<_> = keypoints_of(&scene.keypoints, KeyPointKind::Sink).collect();
+        let springs = keypoints_of(&scene.keypoints, KeyPointKind::Spring).count();
         if rows.len() != sinks.len() {
             let msg = format!("has {} rows, the scene has {} sinks", rows.len(), sinks.len());
             self.report("connectivity.matrix", msg);
@@ -671,7 +672,7 @@ impl Checks<'_> {
 mod tests {
     use std::path::Path;
 
-    use crate::{Scene, SceneError};
+    use crate::{Scene, SceneError, Section};
 
     const GOOD: &str = r#"
 name = "t"
@@ -855,8 +856,11 @@ max = [5, 100, 50]
         let b = Scene::parse(&format!("{GOOD}\n[sdf]\nradius_scale = 2\n"), Path::new("b")).unwrap();
         let c =
             Scene::parse(&format!("# comment\n{GOOD}\n[sdf]\nradius_scale = 1.0\n"), Path::new("c")).unwrap();
-        assert_eq!(a.sections_hash(&["domain", "sampling"]), b.sections_hash(&["domain", "sampling"]));
-        assert_ne!(a.sections_hash(&["sdf"]), b.sections_hash(&["sdf"]));
-        assert_eq!(a.sections_hash(&["sdf"]), c.sections_hash(&["sdf"]));
+        assert_eq!(
+            a.sections_hash(&[Section::Domain, Section::Sampling]),
+            b.sections_hash(&[Section::Domain, Section::Sampling])
+        );
+        assert_ne!(a.sections_hash(&[Section::Sdf]), b.sections_hash(&[Section::Sdf]));
+        assert_eq!(a.sections_hash(&[Section::Sdf]), c.sections_hash(&[Section::Sdf]));
     }
 }

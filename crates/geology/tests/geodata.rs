@@ -121,7 +121,7 @@ fn geotiff_terrain_and_water_table_in_lambert_93() {
     // Pixel centres at 650995 + 10 c: the ground at x = 651100 is halfway between columns 10
     // and 11, 250 − 0.1 · 10.5.
     assert!((scene.terrain().height(100.0, 100.0) - 248.95).abs() < 1e-5);
-    let wt = scene.water_table("wt").unwrap();
+    let wt = scene.geology().water_table("wt").unwrap();
     // Row r's centre is at 6862255 − 10 r: at y = 6862100, r = 15.5.
     assert!((wt.elevation_at(123.0, 100.0) - (120.0 + 0.2 * 15.5)).abs() < 1e-4);
     let names: Vec<&str> = scene.keypoints().iter().map(|k| k.name.as_str()).collect();
@@ -135,7 +135,10 @@ fn geotiff_terrain_and_water_table_in_lambert_93() {
     assert!(!scene.keypoints_from()[0].content.is_empty());
     let named = with(&base, "\n[connectivity.named]\nB = { S1 = 1 }\nA = { S1 = 2 }\n");
     let scene = s.scene(&named).unwrap();
-    assert_eq!((scene.link(0, 0), scene.link(1, 0)), (Link::Uncertain, Link::Connected));
+    assert_eq!(
+        (scene.connectivity().link(0, 0), scene.connectivity().link(1, 0)),
+        (Link::Uncertain, Link::Connected)
+    );
 }
 
 #[test]
@@ -305,8 +308,8 @@ fn connectivity_by_name_becomes_the_matrix() {
     let scene = Scene::parse(&two_by_two("[connectivity.named]\na = { s = 1, s2 = 0 }"), Path::new("s.toml"))
         .unwrap();
     assert_eq!(scene.connectivity().matrix, Some(vec![vec![1, 0], vec![2, 2]]));
-    assert_eq!(scene.link(0, 1), Link::None);
-    assert_eq!(scene.link(1, 0), Link::Uncertain);
+    assert_eq!(scene.connectivity().link(0, 1), Link::None);
+    assert_eq!(scene.connectivity().link(1, 0), Link::Uncertain);
 }
 
 #[test]

@@ -25,6 +25,7 @@ mod recharge;
 mod render;
 mod sizing;
 pub mod stage;
+mod view;
 mod water;
 
 pub use build::build;
@@ -35,4 +36,5 @@ pub use hydraulics::{Inputs, compute};
 pub use payload::{ConduitWater, FlowUnits, Hydro, NodeWater, Role, SegmentWater, Sink, Spring};
 pub use render::{colour, picture};
 pub use stage::HydroStage;
+pub use view::HydroView;
 pub use water::{FlowScale, Look, WaterType, classify};

@@ -8,32 +8,32 @@
 //! Cells with no lower neighbour (flats, closed hollows) keep their water: a sink on a flat
 //! terrain drains its own cell only.
 
-use karst_geology::Scene;
+use crate::view::HydroView;
 use karst_geology::budget::{Cheaper, Estimate, OverBudget};
 use karst_geology::keypoint::KeyPointKind;
+use karst_geology::keypoints_of;
 
 /// Bytes per cell of the D8 grid: its height, its area and its place in the order of heights.
 const BYTES_PER_CELL: f64 = 32.0;
 
 /// Refuses a catchment grid that would not fit in the memory budget.
-pub fn check(scene: &Scene) -> Result<(), OverBudget> {
-    let size = scene.domain().size();
+pub fn check(view: &HydroView) -> Result<(), OverBudget> {
+    let size = view.domain.size();
     let cells = |cell: f64| (size.x / cell).ceil().max(1.0) * (size.y / cell).ceil().max(1.0);
-    let cell = scene.hydro().catchment_cell;
+    let cell = view.hydro.catchment_cell;
     let estimate = Estimate {
         what: format!("{:.2e} catchment cells", cells(cell)),
         bytes: cells(cell) * BYTES_PER_CELL,
         field: "hydro.catchment_cell".into(),
         value: cell,
     };
-    scene.budget().check(estimate, Cheaper::Larger, false, |c| cells(c) * BYTES_PER_CELL)
+    view.budget.check(estimate, Cheaper::Larger, false, |c| cells(c) * BYTES_PER_CELL)
 }
 
 /// Catchment area of each sink of `scene`, m², by name, in key point order.
-pub fn catchments(scene: &Scene) -> Vec<(String, f64)> {
-    let grid = Grid::of(scene);
-    let sinks: Vec<(String, usize)> = scene
-        .keypoints_of(KeyPointKind::Sink)
+pub fn catchments(view: &HydroView) -> Vec<(String, f64)> {
+    let grid = Grid::of(view);
+    let sinks: Vec<(String, usize)> = keypoints_of(view.keypoints, KeyPointKind::Sink)
         .map(|(_, k)| (k.name.clone(), grid.cell_of(k.position[0], k.position[1])))
         .collect();
     let mut area = vec![grid.cell * grid.cell; grid.heights.len()];
@@ -61,16 +61,16 @@ struct Grid {
 }
 
 impl Grid {
-    fn of(scene: &Scene) -> Grid {
-        let d = scene.domain();
-        let cell = scene.hydro().catchment_cell;
+    fn of(view: &HydroView) -> Grid {
+        let d = view.domain;
+        let cell = view.hydro.catchment_cell;
         let nx = (((d.max[0] - d.min[0]) / cell).ceil() as usize).max(1);
         let ny = (((d.max[1] - d.min[1]) / cell).ceil() as usize).max(1);
         let origin = [d.min[0], d.min[1]];
         let heights = (0..nx * ny)
             .map(|i| {
                 let (x, y) = ((i % nx) as f64 + 0.5, (i / nx) as f64 + 0.5);
-                scene.terrain().height(origin[0] + x * cell, origin[1] + y * cell)
+                view.terrain.height(origin[0] + x * cell, origin[1] + y * cell)
             })
             .collect();
         Grid { cell, nx, ny, origin, heights }
@@ -114,6 +114,8 @@ impl Grid {
 mod tests {
     use std::path::Path;
 
+    use karst_geology::{Scene, SceneView};
+
     use super::*;
 
     fn scene(gradient: &str, sinks: &[(&str, f64, f64)]) -> Scene {
@@ -132,19 +134,20 @@ mod tests {
     #[test]
     fn a_sink_on_an_east_slope_drains_its_row_uphill() {
         // 10 m cells, terrain falling east: the sink in column 5 gets columns 0..=5 of its row.
-        let c = catchments(&scene("[-0.1, 0.0]", &[("a", 55.0, 25.0)]));
+        let c = catchments(&HydroView::of(&scene("[-0.1, 0.0]", &[("a", 55.0, 25.0)])));
         assert_eq!(c, vec![("a".to_string(), 600.0)]);
     }
 
     #[test]
     fn an_upstream_sink_swallows_what_would_reach_a_downstream_one() {
-        let c = catchments(&scene("[-0.1, 0.0]", &[("up", 25.0, 25.0), ("down", 75.0, 25.0)]));
+        let c =
+            catchments(&HydroView::of(&scene("[-0.1, 0.0]", &[("up", 25.0, 25.0), ("down", 75.0, 25.0)])));
         assert_eq!(c, vec![("up".to_string(), 300.0), ("down".to_string(), 500.0)]);
     }
 
     #[test]
     fn a_flat_terrain_gives_each_sink_its_own_cell() {
-        let c = catchments(&scene("[0.0, 0.0]", &[("a", 55.0, 25.0)]));
+        let c = catchments(&HydroView::of(&scene("[0.0, 0.0]", &[("a", 55.0, 25.0)])));
         assert_eq!(c, vec![("a".to_string(), 100.0)]);
     }
 }

@@ -4,7 +4,6 @@
 use std::path::{Path, PathBuf};
 
 use karst_artifact::{Header, StageId, read_artifact};
-use karst_geology::Scene;
 use karst_skeleton::Skeleton;
 use karst_stage::human::round;
 use karst_stage::{Stage, StageError};
@@ -12,6 +11,7 @@ use karst_stage::{Stage, StageError};
 use crate::build::build;
 use crate::error::HydroError;
 use crate::payload::Hydro;
+use crate::view::HydroView;
 use crate::water::WaterType;
 use crate::{export, render};
 
@@ -23,12 +23,13 @@ impl Stage for HydroStage {
     type Inputs = (Skeleton,);
     type Output = Hydro;
     type Error = HydroError;
+    type View<'s> = HydroView<'s>;
 
-    fn build(scene: &Scene, (skeleton,): &(Skeleton,)) -> Result<Hydro, HydroError> {
-        build(scene, skeleton)
+    fn build(view: &HydroView, (skeleton,): &(Skeleton,)) -> Result<Hydro, HydroError> {
+        build(view, skeleton)
     }
 
-    fn headline(_: &Scene, hydro: &Hydro) -> String {
+    fn headline(_: &HydroView, hydro: &Hydro) -> String {
         let total: f64 = hydro.springs.iter().map(|s| s.flow).sum();
         let dry = hydro.conduits.iter().filter(|c| c.dry).count();
         let segments = || hydro.conduits.iter().flat_map(|c| &c.segments);
@@ -68,7 +69,7 @@ impl Stage for HydroStage {
     /// `hydro_nodes.csv` and `hydro_links.csv`, for flow models.
     fn side_files(
         out: &Path,
-        _: &Scene,
+        _: &HydroView,
         (skeleton,): &(Skeleton,),
         hydro: &mut Hydro,
     ) -> std::io::Result<()> {

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use karst_geology::{KeyPointKind, Scene};
+use karst_geology::{KeyPoint, KeyPointKind};
 use karst_sdf::{CarvedTerrain, SdfModel};
 
 use std::io::Write;
@@ -18,14 +18,21 @@ use crate::payload::{Mesh, SurfaceCounts};
 use crate::polygonize::{polygonize, polygonize_into};
 use crate::simplify::simplify;
 use crate::spilled::{self, SpilledSurface};
+use crate::view::MesherView;
 use crate::volume::{Cave, Water};
 
 /// The meshes of `model` under the scene's `[mesher]` cells, the sinks and springs kept open.
-pub fn build(scene: &Scene, model: &SdfModel) -> Result<Mesh, MesherError> {
-    let cave_cell = checked_cells(scene, model)?;
-    let params = scene.mesher();
+pub fn build(view: &MesherView, model: &SdfModel) -> Result<Mesh, MesherError> {
+    let cave_cell = checked_cells(view, model)?;
+    let params = view.mesher;
     let field = CarvedTerrain::new(model.clone());
-    let mesh = mesh_simplified(&field, params.cell_size, cave_cell, &anchors(scene), params.target_triangles);
+    let mesh = mesh_simplified(
+        &field,
+        params.cell_size,
+        cave_cell,
+        &anchors(view.keypoints),
+        params.target_triangles,
+    );
     not_empty(
         mesh.cell_size,
         mesh.cave_cell_size,
@@ -35,12 +42,12 @@ pub fn build(scene: &Scene, model: &SdfModel) -> Result<Mesh, MesherError> {
 }
 
 /// The cave cell of the scene's `[mesher]`, once both cells and the work they make are checked.
-fn checked_cells(scene: &Scene, model: &SdfModel) -> Result<f64, MesherError> {
-    let params = scene.mesher();
+fn checked_cells(view: &MesherView, model: &SdfModel) -> Result<f64, MesherError> {
+    let params = view.mesher;
     check_lattice(model, "mesher.cell_size", params.cell_size)?;
     let cave_cell = cave_cell(model, params.cell_size, params.cave_cell_size);
     check_lattice(model, "mesher.cave_cell_size", cave_cell)?;
-    crate::estimate::check(scene, model, params.cell_size, |c| {
+    crate::estimate::check(view.budget, model, params.cell_size, |c| {
         crate::build::cave_cell(model, c, params.cave_cell_size)
     })?;
     Ok(cave_cell)
@@ -65,14 +72,14 @@ fn not_empty(cell_size: f64, cave_cell_size: f64, [terrain, cave]: [usize; 2]) -
 /// (`mesher.target_triangles` = 0: the simplification needs the whole surface). The artifact
 /// is byte-identical to the one [`build`]'s mesh makes.
 pub fn write_streamed(
-    scene: &Scene,
+    view: &MesherView,
     model: &SdfModel,
     artifact: &mut ArtifactOut<'_, Mesh>,
 ) -> Result<[SurfaceCounts; 3], MesherError> {
-    let cave_cell = checked_cells(scene, model)?;
-    let cell = scene.mesher().cell_size;
+    let cave_cell = checked_cells(view, model)?;
+    let cell = view.mesher.cell_size;
     let field = CarvedTerrain::new(model.clone());
-    let anchors = anchors(scene);
+    let anchors = anchors(view.keypoints);
     let failed = |e: std::io::Error| MesherError::Write(e.to_string());
     let dir = artifact.path().parent().map_or_else(|| std::path::PathBuf::from("."), |d| d.to_path_buf());
     let spilled =
@@ -117,11 +124,10 @@ pub fn write_streamed(
     }))
 }
 
-/// The sinks and springs of `scene`: the cleanup keeps the air around them even when it is
-/// sealed in rock.
-pub fn anchors(scene: &Scene) -> Vec<DVec3> {
-    scene
-        .keypoints()
+/// The sinks and springs among `keypoints`: the cleanup keeps the air around them even when
+/// it is sealed in rock.
+pub fn anchors(keypoints: &[KeyPoint]) -> Vec<DVec3> {
+    keypoints
         .iter()
         .filter(|k| matches!(k.kind, KeyPointKind::Sink | KeyPointKind::Spring))
         .map(|k| k.point())

@@ -5,8 +5,7 @@
 //! 48 M triangles peaked at 3 GB). The surfaces: the carved terrain at `cell_size` (the ground, the domain's sides
 //! and bottom, the cave walls) and the cave alone and its water at the cave cell.
 
-use karst_geology::Scene;
-use karst_geology::budget::{Cheaper, Estimate, OverBudget};
+use karst_geology::budget::{Budget, Cheaper, Estimate, OverBudget};
 use karst_sdf::SdfModel;
 
 /// Triangles per cell² of estimated surface.
@@ -71,7 +70,7 @@ impl Areas {
 /// Refuses lattices whose meshes would not fit in the memory budget, naming the cell that
 /// drives the estimate; `cave_of` gives the cave cell of a terrain cell.
 pub fn check(
-    scene: &Scene,
+    budget: Budget,
     model: &SdfModel,
     cell: f64,
     cave_of: impl Fn(f64) -> f64,
@@ -84,10 +83,10 @@ pub fn check(
     let triangles = format!("{:.2e} triangles", (terrain_share + cave_share) * TRIANGLES_PER_CELL);
     if terrain_share >= cave_share {
         let estimate = Estimate { what: triangles, bytes, field: "mesher.cell_size".into(), value: cell };
-        scene.budget().check(estimate, Cheaper::Larger, false, |c| areas.bytes(c, cave_of(c)))
+        budget.check(estimate, Cheaper::Larger, false, |c| areas.bytes(c, cave_of(c)))
     } else {
         let estimate =
             Estimate { what: triangles, bytes, field: "mesher.cave_cell_size".into(), value: cave };
-        scene.budget().check(estimate, Cheaper::Larger, false, |c| areas.bytes(cell, c))
+        budget.check(estimate, Cheaper::Larger, false, |c| areas.bytes(cell, c))
     }
 }

@@ -30,6 +30,7 @@ mod sink;
 mod spill;
 mod spilled;
 pub mod stage;
+mod view;
 mod volume;
 pub mod watertight;
 
@@ -43,4 +44,5 @@ pub use polygonize::{polygonize, polygonize_into};
 pub use simplify::simplify;
 pub use sink::MeshSink;
 pub use stage::MesherStage;
+pub use view::MesherView;
 pub use volume::{Cave, Volume, Water};

@@ -6,13 +6,13 @@ use std::path::PathBuf;
 use clap::Args;
 
 use karst_artifact::{Header, StageId, read_artifact};
-use karst_geology::Scene;
 use karst_sdf::SdfModel;
 use karst_stage::{ArtifactOut, Stage, StageError, Written};
 
 use crate::build::{build, write_streamed};
 use crate::error::MesherError;
 use crate::payload::{Mesh, SurfaceCounts, TriMesh};
+use crate::view::MesherView;
 use crate::{components, render, watertight};
 
 /// Stage 7: watertight meshes of the carved terrain, the cave alone and the water.
@@ -23,26 +23,27 @@ impl Stage for MesherStage {
     type Inputs = (SdfModel,);
     type Output = Mesh;
     type Error = MesherError;
+    type View<'s> = MesherView<'s>;
 
-    fn build(scene: &Scene, (model,): &(SdfModel,)) -> Result<Mesh, MesherError> {
-        build(scene, model)
+    fn build(view: &MesherView, (model,): &(SdfModel,)) -> Result<Mesh, MesherError> {
+        build(view, model)
     }
 
-    fn headline(_: &Scene, mesh: &Mesh) -> String {
+    fn headline(_: &MesherView, mesh: &Mesh) -> String {
         headline([&mesh.terrain, &mesh.cave, &mesh.water].map(SurfaceCounts::from))
     }
 
     /// Streamed unless the scene simplifies its surfaces ([`crate::build::write_streamed`]).
     fn write_streamed(
-        scene: &Scene,
+        view: &MesherView,
         (model,): &(SdfModel,),
         artifact: &mut ArtifactOut<'_, Mesh>,
     ) -> Option<Result<Written, MesherError>> {
-        if scene.mesher().target_triangles > 0 {
+        if view.mesher.target_triangles > 0 {
             return None;
         }
         Some(
-            write_streamed(scene, model, artifact)
+            write_streamed(view, model, artifact)
                 .map(|counts| Written { headline: headline(counts), notes: Vec::new() }),
         )
     }

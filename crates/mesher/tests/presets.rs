@@ -44,7 +44,7 @@ fn defects(name: &str, surface: &TriMesh) -> Option<String> {
 fn check_preset(name: &str) {
     let (scene, model) = preset_model(name);
     let field = CarvedTerrain::new(model);
-    let mesh = mesh_with(&field, scene.mesher().cell_size, CAVE_CELL, &anchors(&scene));
+    let mesh = mesh_with(&field, scene.mesher().cell_size, CAVE_CELL, &anchors(scene.keypoints()));
     let failures: Vec<String> = [("terrain", &mesh.terrain), ("cave", &mesh.cave), ("water", &mesh.water)]
         .into_iter()
         .filter_map(|(surface, s)| defects(&format!("{name} {surface}"), s))

@@ -3,6 +3,8 @@
 //! cells where the cleanup keeps everything, removes islands and pockets, and asks the sinks
 //! and springs; and no spill file may be left behind.
 
+use karst_geology::SceneView;
+use karst_mesher::MesherView;
 use std::fs;
 
 use karst_artifact::{Provenance, read_artifact, read_header, write_artifact};
@@ -25,7 +27,7 @@ fn streamed_equals_in_memory(mesher: &str) -> Mesh {
 
     let scene = Scene::load(&scene_path).unwrap();
     let (_, model) = read_artifact::<SdfModel>(&out.join("sdf.bin")).unwrap();
-    let mesh = MesherStage::build(&scene, &(model,)).unwrap();
+    let mesh = MesherStage::build(&MesherView::of(&scene), &(model,)).unwrap();
     let header = read_header(&streamed).unwrap();
     let provenance = Provenance {
         producer: header.producer.clone(),
@@ -36,7 +38,7 @@ fn streamed_equals_in_memory(mesher: &str) -> Mesh {
     let in_memory = out.join("in-memory.bin");
     write_artifact(&in_memory, &provenance, &mesh).unwrap();
     assert!(fs::read(&streamed).unwrap() == fs::read(&in_memory).unwrap(), "{mesher}: the artifacts differ");
-    assert_eq!(ran.headline, MesherStage::headline(&scene, &mesh));
+    assert_eq!(ran.headline, MesherStage::headline(&MesherView::of(&scene), &mesh));
     let left: Vec<_> = fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(left.len(), 4, "only the scene, sdf.bin and the two artifacts: {left:?}");
     fs::remove_dir_all(&out).unwrap();

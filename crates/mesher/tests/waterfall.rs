@@ -27,7 +27,7 @@ fn the_waterfall_preset_meshes_watertight_with_its_streams_carved() {
     let (_, model): (_, SdfModel) = read_artifact(&out.join("sdf.bin")).unwrap();
     std::fs::remove_dir_all(&out).unwrap();
     let field = CarvedTerrain::new(model);
-    let mesh = mesh_with(&field, 1.0, 0.5, &anchors(&scene));
+    let mesh = mesh_with(&field, 1.0, 0.5, &anchors(scene.keypoints()));
     for (name, surface) in mesh.surfaces() {
         assert!(!surface.triangles.is_empty(), "{name} is empty");
         watertight::check(surface).unwrap_or_else(|e| panic!("{name}: {e:?}"));

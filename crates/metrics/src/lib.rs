@@ -32,6 +32,7 @@ mod reduced;
 mod shortest_paths;
 pub mod stage;
 mod topology;
+mod view;
 
 pub use build::{build, network_of, report, surface_water, water_type_lengths, zone_lengths};
 pub use error::ReportError;
@@ -40,3 +41,4 @@ pub use network::{MetricsError, Network};
 pub use payload::{MetricsReport, SurfaceWater, ZoneLengths};
 pub use readers::ReadError;
 pub use stage::{MetricsStage, write_plots};
+pub use view::MetricsView;

@@ -7,7 +7,6 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use karst_artifact::{Header, StageId};
-use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
@@ -18,6 +17,7 @@ use crate::error::ReportError;
 use crate::payload::MetricsReport;
 use crate::ranges::Compared;
 use crate::readers::{self, ReadError};
+use crate::view::MetricsView;
 use crate::{Metrics, Network, characterize, distributions, plots, ranges};
 
 /// Stage 8: karstnet's statistics of the network against real caves.
@@ -28,15 +28,16 @@ impl Stage for MetricsStage {
     type Inputs = (Skeleton, Hydro, Streams);
     type Output = MetricsReport;
     type Error = ReportError;
+    type View<'s> = MetricsView<'s>;
 
     fn build(
-        _: &Scene,
+        _: &MetricsView,
         (skeleton, hydro, streams): &(Skeleton, Hydro, Streams),
     ) -> Result<MetricsReport, ReportError> {
         build(skeleton, hydro, streams)
     }
 
-    fn headline(_: &Scene, report: &MetricsReport) -> String {
+    fn headline(_: &MetricsView, report: &MetricsReport) -> String {
         let m = &report.network;
         let inside = report.karstnet.values().filter(|c| c.inside).count();
         format!(
@@ -83,7 +84,7 @@ impl Stage for MetricsStage {
     /// The rose diagram, the branch-length histogram and the range chart, in DIR/preview/.
     fn side_files(
         out: &Path,
-        _: &Scene,
+        _: &MetricsView,
         (skeleton, ..): &(Skeleton, Hydro, Streams),
         report: &mut MetricsReport,
     ) -> std::io::Result<()> {

@@ -121,9 +121,9 @@ pub fn expected_key(job: &Job, stage: StageId) -> Option<String> {
             Some(InputRef { name: input.row().kind.into(), payload_blake3: header.payload_blake3 })
         })
         .collect::<Option<Vec<_>>>()?;
-    let params = job.scene.sections_hash(stage.row().sections);
+    let params = job.scene.sections_hash(registry::stage(stage).sections());
     let frame = job.scene.frame();
-    Some(stage_key(stage, &producer(stage), registry::stage(stage).schema(), &params, &frame, &inputs))
+    Some(stage_key(stage, &producer(stage), registry::stage(stage).schema(), &params, frame, &inputs))
 }
 
 /// True when `stage`'s artifact exists and its key is the one it would write now.

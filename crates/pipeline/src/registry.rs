@@ -5,6 +5,7 @@ use std::marker::PhantomData;
 use std::path::Path;
 
 use karst_artifact::{Payload, StageId};
+use karst_geology::Section;
 use karst_stage::{Job, Ran, Stage, StageError, cli, runner};
 
 /// A stage, seen through its id.
@@ -21,6 +22,9 @@ pub trait DynStage: Sync {
     fn payload_value(&self, path: &Path) -> Result<serde_json::Value, StageError>;
     /// The stages whose payloads the implementation reads, in order.
     fn input_stages(&self) -> Vec<StageId>;
+    /// The scene sections the stage reads: its view's ([`karst_stage::sections`]), in the order
+    /// its key hashes them.
+    fn sections(&self) -> &'static [Section];
 }
 
 /// The dynamic face of stage `S` (a `fn` marker, so it is `Sync` whatever `S` is).
@@ -50,6 +54,10 @@ impl<S: Stage> DynStage for Entry<S> {
 
     fn input_stages(&self) -> Vec<StageId> {
         <S::Inputs as karst_stage::Inputs>::stages()
+    }
+
+    fn sections(&self) -> &'static [Section] {
+        karst_stage::sections::<S>()
     }
 }
 

@@ -10,10 +10,12 @@
 
 use glam::DVec3;
 
+use karst_geology::Geometry;
 use karst_geology::budget::{Cheaper, Estimate, OverBudget};
-use karst_geology::{Geometry, Scene};
+use karst_geology::params::SamplingParams;
 
 use crate::spacing::{PACKING, SpacingField, unit_scale};
+use crate::view::SamplingView;
 
 /// Bytes per sample at the peak of the stage.
 const BYTES_PER_SAMPLE: f64 = 100.0;
@@ -26,7 +28,7 @@ const BYTES_PER_OFFSET: f64 = 40.0;
 /// Nodes of the coarse field the samples are counted on.
 const COARSE_NODES: f64 = 32768.0;
 
-/// What sampling `scene` would allocate.
+/// What sampling the scene would allocate.
 #[derive(Debug, Clone, Copy)]
 struct Work {
     volume_samples: f64,
@@ -37,29 +39,29 @@ struct Work {
 }
 
 impl Work {
-    fn of(scene: &Scene) -> Work {
-        let s = scene.sampling();
-        let scale = unit_scale(scene);
+    fn of(view: &SamplingView) -> Work {
+        let s = view.sampling;
+        let scale = unit_scale(view.sampling, view.domain);
         let radius = s.radius * scale;
-        let size = scene.domain().size();
+        let size = view.domain.size();
         let cells = (size / radius).ceil().max(DVec3::ONE).element_product();
         let largest = s
             .surface_radius
             .into_iter()
-            .chain(scene.geology().layers.iter().filter_map(|l| l.radius))
+            .chain(view.geology.layers.iter().filter_map(|l| l.radius))
             .fold(s.radius, f64::max)
             * scale;
         let reach = (largest / radius).ceil();
-        let bedrock = |p: DVec3| p.z < scene.terrain().height(p.x, p.y) && !scene.geology().in_no_karst(p);
+        let bedrock = |p: DVec3| p.z < view.terrain.height(p.x, p.y) && !view.geology.in_no_karst(p);
         let volume_samples = if cells.is_finite() && reach.is_finite() {
-            SpacingField::tabulate(scene, COARSE_NODES).expected_samples(bedrock)
+            SpacingField::tabulate(view, COARSE_NODES).expected_samples(bedrock)
         } else {
             f64::INFINITY
         };
         Work {
             volume_samples,
-            surface_samples: surface_layers(scene),
-            field_nodes: SpacingField::nodes_for(scene),
+            surface_samples: surface_layers(view),
+            field_nodes: SpacingField::nodes_for(view),
             cells,
             offsets: (2.0 * reach + 1.0).powi(3),
         }
@@ -79,9 +81,9 @@ impl Work {
 
 /// The extra samples of the thin layers around the surfaces: per surface, its area in the
 /// domain times ∫ PACKING (1/r(d)³ − 1/r_volume³) dd across the layer.
-fn surface_layers(scene: &Scene) -> f64 {
-    let s = scene.sampling();
-    let scale = unit_scale(scene);
+fn surface_layers(view: &SamplingView) -> f64 {
+    let s = view.sampling;
+    let scale = unit_scale(view.sampling, view.domain);
     let radius = s.radius * scale;
     let Some(surface_radius) = s.surface_radius.map(|r| r * scale).filter(|r| *r < radius) else {
         return 0.0;
@@ -97,20 +99,20 @@ fn surface_layers(scene: &Scene) -> f64 {
         })
         .sum::<f64>()
         * 2.0;
-    let g = scene.geology();
+    let g = view.geology;
     let area: f64 = g
         .water_tables
         .iter()
         .chain(&g.horizons)
         .chain(&g.faults)
-        .map(|s| surface_area(scene, &s.geometry))
+        .map(|s| surface_area(view, &s.geometry))
         .sum();
     per_area * area
 }
 
 /// Area of a surface within the domain (a TIN: its whole area).
-fn surface_area(scene: &Scene, geometry: &Geometry) -> f64 {
-    let size = scene.domain().size();
+fn surface_area(view: &SamplingView, geometry: &Geometry) -> f64 {
+    let size = view.domain.size();
     match geometry {
         Geometry::Plane { dip, .. } if *dip < 89.0 => size.x * size.y / dip.to_radians().cos(),
         Geometry::Plane { .. } => size.x.hypot(size.y) * size.z,
@@ -118,28 +120,38 @@ fn surface_area(scene: &Scene, geometry: &Geometry) -> f64 {
     }
 }
 
-/// The scene field that drives the estimate, its value, and how to set it on a copy.
-type Driver = (String, f64, Box<dyn Fn(&mut Scene, f64)>);
+/// The scene field that drives the estimate, its value, and the estimate's bytes with another
+/// value of it, everything else unchanged.
+type Driver = (String, f64, Estimator);
+
+/// The estimate's bytes with the driving field set to another value.
+type Estimator = Box<dyn Fn(&SamplingView, f64) -> f64>;
 
 /// The field to name: the smallest of `radius`, `surface_radius` and the layers' radii (the
 /// density of samples grows as the inverse cube of the radius).
-fn driver(scene: &Scene) -> Driver {
-    let s = scene.sampling();
-    let mut best: Driver =
-        ("sampling.radius".into(), s.radius, Box::new(|scene, v| scene.sampling_mut().radius = v));
+fn driver(view: &SamplingView) -> Driver {
+    let s = view.sampling;
+    let with_sampling = |set: fn(&mut SamplingParams, f64)| -> Estimator {
+        Box::new(move |view, v| {
+            let mut sampling = view.sampling.clone();
+            set(&mut sampling, v);
+            Work::of(&SamplingView { sampling: &sampling, ..*view }).bytes()
+        })
+    };
+    let mut best: Driver = ("sampling.radius".into(), s.radius, with_sampling(|s, v| s.radius = v));
     if let Some(r) = s.surface_radius.filter(|r| *r < best.1) {
-        best = (
-            "sampling.surface_radius".into(),
-            r,
-            Box::new(|scene, v| scene.sampling_mut().surface_radius = Some(v)),
-        );
+        best = ("sampling.surface_radius".into(), r, with_sampling(|s, v| s.surface_radius = Some(v)));
     }
-    for (i, layer) in scene.geology().layers.iter().enumerate() {
+    for (i, layer) in view.geology.layers.iter().enumerate() {
         if let Some(r) = layer.radius.filter(|r| *r < best.1) {
             best = (
                 format!("geology.layers[{i}].radius"),
                 r,
-                Box::new(move |scene, v| scene.geology_mut().layers[i].radius = Some(v)),
+                Box::new(move |view, v| {
+                    let mut geology = view.geology.clone();
+                    geology.layers[i].radius = Some(v);
+                    Work::of(&SamplingView { geology: &geology, ..*view }).bytes()
+                }),
             );
         }
     }
@@ -147,9 +159,9 @@ fn driver(scene: &Scene) -> Driver {
 }
 
 /// Refuses a scene whose sampling would exceed the memory budget.
-pub fn check(scene: &Scene) -> Result<(), OverBudget> {
-    let work = Work::of(scene);
-    let (field, value, set) = driver(scene);
+pub fn check(view: &SamplingView) -> Result<(), OverBudget> {
+    let work = Work::of(view);
+    let (field, value, bytes_at) = driver(view);
     let estimate = Estimate {
         what: format!(
             "{:.2e} samples and {:.2e} grid cells",
@@ -160,9 +172,5 @@ pub fn check(scene: &Scene) -> Result<(), OverBudget> {
         field,
         value,
     };
-    scene.budget().check(estimate, Cheaper::Larger, false, |v| {
-        let mut other = scene.clone();
-        set(&mut other, v);
-        Work::of(&other).bytes()
-    })
+    view.budget.check(estimate, Cheaper::Larger, false, |v| bytes_at(view, v))
 }

@@ -17,6 +17,7 @@ mod poisson;
 mod spacing;
 mod stage;
 mod surfaces;
+mod view;
 
 pub use build::build;
 pub use error::SamplingError;
@@ -24,3 +25,4 @@ pub use order::morton_permutation;
 pub use payload::{Samples, Tag, TagCounts};
 pub use spacing::SpacingField;
 pub use stage::SamplingStage;
+pub use view::SamplingView;

@@ -12,8 +12,10 @@ use glam::DVec3;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use karst_geology::params::RadiusUnit;
-use karst_geology::{Geometry, Scene, Surface};
+use karst_geology::params::{RadiusUnit, SamplingParams};
+use karst_geology::{Domain, Geometry, Surface};
+
+use crate::view::SamplingView;
 
 /// The field uses at most this many nodes per expected sample at the base radius (and at
 /// least 32³ nodes): it is smooth, so a coarser table loses nothing the sampler needs.
@@ -42,50 +44,50 @@ pub struct SpacingField {
 }
 
 /// Scale of `[sampling]` lengths: 1 for metres, the largest domain extent for "domain".
-pub fn unit_scale(scene: &Scene) -> f64 {
-    match scene.sampling().units {
+pub fn unit_scale(sampling: &SamplingParams, domain: &Domain) -> f64 {
+    match sampling.units {
         RadiusUnit::Metres => 1.0,
-        RadiusUnit::Domain => scene.domain().size().max_element(),
+        RadiusUnit::Domain => domain.size().max_element(),
     }
 }
 
 impl SpacingField {
     /// Tabulates the scene's radius field.
-    pub fn of_scene(scene: &Scene) -> SpacingField {
-        SpacingField::tabulate(scene, SpacingField::nodes_for(scene))
+    pub fn of_view(view: &SamplingView) -> SpacingField {
+        SpacingField::tabulate(view, SpacingField::nodes_for(view))
     }
 
     /// Nodes of the scene's field: [`NODES_PER_SAMPLE`] per expected sample at the base radius,
     /// at least 32³.
-    pub fn nodes_for(scene: &Scene) -> f64 {
-        let radius = scene.sampling().radius * unit_scale(scene);
-        let volume = scene.domain().size().element_product();
+    pub fn nodes_for(view: &SamplingView) -> f64 {
+        let radius = view.sampling.radius * unit_scale(view.sampling, view.domain);
+        let volume = view.domain.size().element_product();
         (NODES_PER_SAMPLE * PACKING * volume / radius.powi(3)).max(MIN_NODES)
     }
 
     /// The scene's radius field on about `nodes` nodes (cells no smaller than the smallest
     /// radius); the work estimate tabulates a coarse one.
-    pub fn tabulate(scene: &Scene, nodes: f64) -> SpacingField {
-        let s = scene.sampling();
-        let scale = unit_scale(scene);
+    pub fn tabulate(view: &SamplingView, nodes: f64) -> SpacingField {
+        let s = view.sampling;
+        let scale = unit_scale(view.sampling, view.domain);
         let radius = s.radius * scale;
         let surface_radius = s.surface_radius.map_or(radius, |r| r * scale);
         let surface_distance = s.surface_distance.map_or(2.0 * radius, |d| d * scale);
-        let layer_min = scene.geology().layer_radii().fold(f64::INFINITY, f64::min) * scale;
+        let layer_min = view.geology.layer_radii().fold(f64::INFINITY, f64::min) * scale;
         let smallest = radius.min(surface_radius).min(layer_min).min(radius * s.potential_factor);
-        let size = scene.domain().size();
+        let size = view.domain.size();
         let volume = size.element_product();
         let cell = smallest.max((volume / nodes).cbrt());
         let n = (size / cell).ceil().as_uvec3() + 1;
-        let origin = scene.domain().min();
+        let origin = view.domain.min();
         // Planes keep their normal (a sin/cos per call of `Surface::normal`) and a point:
         // the same arithmetic as `Surface::distance_within`, once per surface.
-        let surfaces: Vec<Near> = scene
-            .geology()
+        let surfaces: Vec<Near> = view
+            .geology
             .water_tables
             .iter()
-            .chain(&scene.geology().horizons)
-            .chain(&scene.geology().faults)
+            .chain(&view.geology.horizons)
+            .chain(&view.geology.faults)
             .map(|s| match &s.geometry {
                 Geometry::Plane { elevation, origin, .. } => {
                     Near::Plane(s.normal(), DVec3::new(origin[0], origin[1], *elevation))
@@ -94,8 +96,8 @@ impl SpacingField {
             })
             .collect();
         let at = |p: DVec3| -> f32 {
-            let layer = scene.geology().layer_at(p).and_then(|l| l.radius).map_or(radius, |r| r * scale);
-            let volume = layer * (1.0 + (s.potential_factor - 1.0) * scene.geology().potential(p));
+            let layer = view.geology.layer_at(p).and_then(|l| l.radius).map_or(radius, |r| r * scale);
+            let volume = layer * (1.0 + (s.potential_factor - 1.0) * view.geology.potential(p));
             let d = surfaces.iter().fold(surface_distance, |d, w| match w {
                 Near::Plane(n, o) => n.dot(p - *o).abs().min(d),
                 Near::Other(s) => s.distance_within(p, d),

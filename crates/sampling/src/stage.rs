@@ -1,12 +1,12 @@
-//! The sampling stage's contract: the scene in, `samples.bin` out.
+//! The sampling stage's contract: its view of the scene in, `samples.bin` out.
 
 use karst_artifact::{Header, StageId};
-use karst_geology::Scene;
 use karst_stage::Stage;
 
 use crate::build::build;
 use crate::error::SamplingError;
 use crate::payload::Samples;
+use crate::view::SamplingView;
 
 /// Stage 1: Poisson-disk samples of the bedrock.
 pub struct SamplingStage;
@@ -16,12 +16,13 @@ impl Stage for SamplingStage {
     type Inputs = ();
     type Output = Samples;
     type Error = SamplingError;
+    type View<'s> = SamplingView<'s>;
 
-    fn build(scene: &Scene, _: &()) -> Result<Samples, SamplingError> {
-        build(scene)
+    fn build(view: &SamplingView, _: &()) -> Result<Samples, SamplingError> {
+        build(view)
     }
 
-    fn headline(_: &Scene, samples: &Samples) -> String {
+    fn headline(_: &SamplingView, samples: &Samples) -> String {
         let c = samples.tag_counts();
         format!(
             "{} samples ({} key points, {} on water tables, {} on horizons, {} on faults)",

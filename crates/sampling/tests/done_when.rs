@@ -4,6 +4,8 @@
 
 use glam::DVec3;
 use karst_geology::Scene;
+use karst_geology::SceneView;
+use karst_sampling::SamplingView;
 use karst_sampling::build as sample_scene;
 use karst_sampling::{Samples, Tag};
 use karst_testkit::root;
@@ -54,7 +56,7 @@ fn default_scene_horizon_samples_lie_on_the_tsurf_horizon() {
     assert!(matches!(scene.terrain(), karst_geology::Terrain::Heightfield { .. }));
     let horizon = &scene.geology().horizons[0];
     assert!(horizon.mesh().is_some(), "the default horizon is a TSurf");
-    let s = sample_scene(&scene).unwrap();
+    let s = sample_scene(&SamplingView::of(&scene)).unwrap();
     let on: Vec<DVec3> = s
         .positions
         .iter()
@@ -75,7 +77,7 @@ fn default_scene_horizon_samples_lie_on_the_tsurf_horizon() {
 #[test]
 fn spacing_honours_the_variable_radius_field_everywhere() {
     let scene = scene("fixtures/scenes/layered.toml");
-    let s = sample_scene(&scene).unwrap();
+    let s = sample_scene(&SamplingView::of(&scene)).unwrap();
     let f = &s.radius_field;
     assert!(f.max() > 1.5 * f.min(), "the field varies: {} to {}", f.min(), f.max());
     let bad = spacing_violations(&s);
@@ -84,7 +86,7 @@ fn spacing_honours_the_variable_radius_field_everywhere() {
     for (i, k) in scene.keypoints().iter().enumerate() {
         assert_eq!(s.positions[s.keypoint_sample(i).unwrap()], k.position);
     }
-    let again = sample_scene(&scene).unwrap();
+    let again = sample_scene(&SamplingView::of(&scene)).unwrap();
     assert_eq!(s, again, "deterministic");
 }
 
@@ -92,7 +94,7 @@ fn spacing_honours_the_variable_radius_field_everywhere() {
 fn no_sample_in_a_no_karst_volume_or_above_the_terrain() {
     let scene = scene("fixtures/scenes/layered.toml");
     assert!(!scene.geology().no_karst.is_empty());
-    let s = sample_scene(&scene).unwrap();
+    let s = sample_scene(&SamplingView::of(&scene)).unwrap();
     let c = s.tag_counts();
     assert!(c.volume > 1000 && c.horizon > 50 && c.fault > 20, "{c:?}");
     for p in &s.positions {
@@ -114,7 +116,7 @@ fn the_same_samples_whatever_the_thread_count() {
     let scene = scene("fixtures/scenes/layered.toml");
     let with = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| sample_scene(&scene).unwrap())
+        pool.install(|| sample_scene(&SamplingView::of(&scene)).unwrap())
     };
     let one = with(1);
     assert_eq!(one, with(2));
@@ -132,7 +134,7 @@ fn the_volume_is_filled_up_to_small_holes() {
     scene.geology_mut().layers.clear();
     scene.geology_mut().potential.clear();
     scene.keypoints_mut().retain(|k| k.water_table.is_none());
-    let s = sample_scene(&scene).unwrap();
+    let s = sample_scene(&SamplingView::of(&scene)).unwrap();
     let r = s.radius;
     let points: Vec<DVec3> = s.positions.iter().map(|p| DVec3::from_array(*p)).collect();
     let (lo, hi) = (scene.domain().min(), scene.domain().max());
@@ -160,7 +162,7 @@ fn tsurf_horizon_samples_lie_on_it_and_cover_it() {
     let scene = scene("fixtures/scenes/default.toml");
     let horizon = &scene.geology().horizons[0];
     let mesh = horizon.mesh().expect("the default horizon is a TSurf");
-    let s = sample_scene(&scene).unwrap();
+    let s = sample_scene(&SamplingView::of(&scene)).unwrap();
     let f = &s.radius_field;
     let points: Vec<DVec3> = s.positions.iter().map(|p| DVec3::from_array(*p)).collect();
     for (p, t) in points.iter().zip(&s.tags) {

@@ -3,6 +3,7 @@
 //! Times are the process's CPU time (/proc/self/schedstat, nanoseconds); the hash of the
 //! values' bits shows whether a change kept every value.
 use karst_artifact::read_artifact;
+use karst_geology::SceneView;
 use karst_sdf::{CarvedTerrain, SdfModel};
 use karst_skeleton::Skeleton;
 
@@ -16,7 +17,14 @@ fn main() {
     let runs: usize = args.get(2).and_then(|r| r.parse().ok()).unwrap_or(5);
     let (model, skeleton): (SdfModel, Skeleton) = if args[1] == "synthetic" {
         let (skeleton, hydro) = karst_sdf::synthetic::network(5, 100, 12);
-        (karst_sdf::build(&karst_sdf::synthetic::scene(), &skeleton, &hydro).unwrap(), skeleton)
+        {
+            let scene = karst_geology::Scene::parse(
+                karst_sdf::synthetic::SCENE,
+                std::path::Path::new("synthetic.toml"),
+            )
+            .unwrap();
+            (karst_sdf::build(&karst_sdf::SdfView::of(&scene), &skeleton, &hydro).unwrap(), skeleton)
+        }
     } else {
         (read_artifact(&dir.join("sdf.bin")).unwrap().1, read_artifact(&dir.join("skeleton.json")).unwrap().1)
     };

@@ -16,7 +16,7 @@
 
 use glam::{DVec2, DVec3};
 
-use karst_geology::Scene;
+use karst_geology::params::SdfParams;
 use karst_geology::rng::Random;
 use karst_hydro::Hydro;
 use karst_skeleton::{Conduit, ConduitType, Skeleton};
@@ -28,39 +28,40 @@ use crate::payload::{SdfModel, SphereGroup, TypedSweep, WaterSpec};
 use crate::section::{Section, Shape};
 use crate::sweep::{SectionSpec, SweepSpec, frame};
 use crate::terrain::TerrainField;
+use crate::view::SdfView;
 use crate::water::{self, Water};
 
-/// The model of `scene` carved by the conduits of `skeleton`, with the water of `hydro`.
-pub fn build(scene: &Scene, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfModel, SdfError> {
-    crate::estimate::check(scene, skeleton)?;
+/// The model of the scene carved by the conduits of `skeleton`, with the water of `hydro`.
+pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfModel, SdfError> {
+    crate::estimate::check(view, skeleton)?;
     if hydro.conduits.len() != skeleton.conduits.len() {
         return Err(SdfError::ConduitCounts {
             hydro: hydro.conduits.len(),
             skeleton: skeleton.conduits.len(),
         });
     }
-    let terrain = TerrainField::of(scene.terrain());
+    let terrain = TerrainField::of(view.terrain);
     let lambda = terrain.lipschitz();
     if !lambda.is_finite() {
         return Err(SdfError::TerrainNotLipschitz { lambda });
     }
-    let p = scene.sdf();
-    let mut model = SdfModel::new(*scene.domain(), terrain);
+    let p = view.sdf;
+    let mut model = SdfModel::new(*view.domain, terrain);
     model.blend = p.blend;
     model.detail = p.detail;
     model.chamber_bias = p.chamber_bias;
     model.detail_noise =
-        WaveNoise::draw(&mut Random::stream(scene.seed(), "sdf", "detail"), p.detail_wavelength);
+        WaveNoise::draw(&mut Random::stream(view.seed, "sdf", "detail"), p.detail_wavelength);
     let mean_radius = mean_radius(skeleton) * p.radius_scale;
     model.chamber_noise =
-        WaveNoise::draw(&mut Random::stream(scene.seed(), "sdf", "chamber"), mean_radius * p.chamber_scale);
-    let mut lean = Random::stream(scene.seed(), "sdf", "asymmetry");
-    let mut jitter = Random::stream(scene.seed(), "sdf", "spheres");
+        WaveNoise::draw(&mut Random::stream(view.seed, "sdf", "chamber"), mean_radius * p.chamber_scale);
+    let mut lean = Random::stream(view.seed, "sdf", "asymmetry");
+    let mut jitter = Random::stream(view.seed, "sdf", "spheres");
     let progress = karst_stage::progress::bar(skeleton.conduits.len() as u64, "sdf");
     for (c, conduit) in skeleton.conduits.iter().enumerate() {
         let points = conduit_points(skeleton, conduit);
         let asymmetry = if lean.uniform() < 0.5 { -p.asymmetry } else { p.asymmetry };
-        let sections = node_sections(scene, conduit, c, asymmetry)?;
+        let sections = node_sections(p, conduit, c, asymmetry)?;
         let tortuous = tortuosity(&points) > p.tortuosity && points.len() > 2;
         for (i, w) in points.windows(2).enumerate() {
             let kind = conduit.types[i];
@@ -113,7 +114,7 @@ fn conduit_points(skeleton: &Skeleton, conduit: &Conduit) -> Vec<DVec3> {
 
 /// The section of each node of the conduit, checked (radius > 0, no self-intersection).
 fn node_sections(
-    scene: &Scene,
+    p: &SdfParams,
     conduit: &Conduit,
     c: usize,
     asymmetry: f64,
@@ -122,13 +123,12 @@ fn node_sections(
     (0..conduit.nodes.len())
         .map(|i| {
             // Radii within [1e-6, 1e9] (Skeleton::validate) times a scale within [1e-3, 1e3].
-            let radius = conduit.radius[i] * scene.sdf().radius_scale;
+            let radius = conduit.radius[i] * p.radius_scale;
             let kinds = [conduit.types[i.saturating_sub(1).min(last)], conduit.types[i.min(last)]];
-            let shape =
-                Shape { radius: radius as f32, ratio: scene.sdf().ratio as f32, asymmetry: asymmetry as f32 };
+            let shape = Shape { radius: radius as f32, ratio: p.ratio as f32, asymmetry: asymmetry as f32 };
             let spec = SectionSpec { kinds, shape };
             spec.section().check().map_err(|problem| SdfError::BadSection {
-                ratio: scene.sdf().ratio,
+                ratio: p.ratio,
                 asymmetry,
                 conduit: c,
                 node: i,
@@ -317,13 +317,14 @@ fn to_f32(p: DVec3) -> [f32; 3] {
 mod tests {
     use super::*;
     use crate::synthetic;
+    use karst_geology::{Scene, SceneView};
     use karst_stage::{Blame, Failure};
 
     fn build_with(edit: impl FnOnce(&mut Scene, &mut Skeleton)) -> Result<SdfModel, SdfError> {
-        let mut scene = synthetic::scene();
+        let mut scene = Scene::parse(synthetic::SCENE, std::path::Path::new("synthetic.toml")).unwrap();
         let (mut skeleton, hydro) = synthetic::network(2, 6, 5);
         edit(&mut scene, &mut skeleton);
-        build(&scene, &skeleton, &hydro)
+        build(&SdfView::of(&scene), &skeleton, &hydro)
     }
 
     #[test]

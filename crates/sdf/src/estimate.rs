@@ -6,11 +6,12 @@
 
 use glam::DVec3;
 
-use karst_geology::Scene;
 use karst_geology::budget::{Cheaper, Estimate, OverBudget};
+use karst_geology::params::SdfParams;
 use karst_skeleton::{ConduitType, Skeleton};
 
 use crate::build::tortuosity;
+use crate::view::SdfView;
 
 /// Bytes per candidate sphere (centre, radius, station) while a segment is pruned, and per
 /// leaf kept (with its share of the evaluable tree, BENCHMARKS.md: 39 B per primitive).
@@ -19,8 +20,7 @@ const BYTES_PER_PRIMITIVE: f64 = 64.0;
 const EXTENT: f64 = 2.0;
 
 /// Leaves and sphere candidates of `skeleton`'s conduits at radius scale `scale`.
-fn primitives(scene: &Scene, skeleton: &Skeleton, scale: f64) -> f64 {
-    let p = scene.sdf();
+fn primitives(p: &SdfParams, skeleton: &Skeleton, scale: f64) -> f64 {
     let mut total = 0.0;
     for conduit in &skeleton.conduits {
         let points: Vec<DVec3> =
@@ -41,16 +41,15 @@ fn primitives(scene: &Scene, skeleton: &Skeleton, scale: f64) -> f64 {
 }
 
 /// Refuses a model whose leaves would not fit in the memory budget.
-pub fn check(scene: &Scene, skeleton: &Skeleton) -> Result<(), OverBudget> {
-    let scale = scene.sdf().radius_scale;
-    let count = primitives(scene, skeleton, scale);
+pub fn check(view: &SdfView, skeleton: &Skeleton) -> Result<(), OverBudget> {
+    let scale = view.sdf.radius_scale;
+    let count = primitives(view.sdf, skeleton, scale);
     let estimate = Estimate {
         what: format!("{count:.2e} leaves and sphere candidates"),
         bytes: count * BYTES_PER_PRIMITIVE,
         field: "sdf.radius_scale".into(),
         value: scale,
     };
-    scene
-        .budget()
-        .check(estimate, Cheaper::Larger, false, |s| primitives(scene, skeleton, s) * BYTES_PER_PRIMITIVE)
+    view.budget
+        .check(estimate, Cheaper::Larger, false, |s| primitives(view.sdf, skeleton, s) * BYTES_PER_PRIMITIVE)
 }

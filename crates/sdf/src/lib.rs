@@ -34,6 +34,7 @@ mod water;
 
 #[cfg(test)]
 mod testing;
+mod view;
 
 pub use build::build;
 pub use capsule::Capsule;
@@ -45,3 +46,4 @@ pub use stage::SdfStage;
 pub use surface_water::{Bed, PoolWater, Sheet, SurfacePieces, add as add_streams};
 pub use sweep::SectionSpec;
 pub use terrain::TerrainField;
+pub use view::SdfView;

@@ -343,11 +343,13 @@ fn sections_picture(ratio: f64, asymmetry: f64, scale: f64) -> Canvas {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::synthetic;
+    use crate::{SdfView, synthetic};
+    use karst_geology::{Scene, SceneView};
 
     fn field() -> CarvedTerrain {
         let (skeleton, hydro) = synthetic::network(3, 6, 8);
-        CarvedTerrain::new(crate::build::build(&synthetic::scene(), &skeleton, &hydro).unwrap())
+        let scene = Scene::parse(synthetic::SCENE, std::path::Path::new("synthetic.toml")).unwrap();
+        CarvedTerrain::new(crate::build::build(&SdfView::of(&scene), &skeleton, &hydro).unwrap())
     }
 
     #[test]

@@ -4,7 +4,6 @@
 use std::path::PathBuf;
 
 use karst_artifact::{Header, StageId, read_artifact};
-use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
@@ -16,6 +15,7 @@ use crate::field::CarvedTerrain;
 use crate::payload::SdfModel;
 use crate::slice::{self, Plane};
 use crate::surface_water;
+use crate::view::SdfView;
 
 /// Stage 6: the signed-distance model of the carved terrain and of the water.
 pub struct SdfStage;
@@ -25,18 +25,19 @@ impl Stage for SdfStage {
     type Inputs = (Skeleton, Hydro, Streams);
     type Output = SdfModel;
     type Error = SdfError;
+    type View<'s> = SdfView<'s>;
 
     /// The caves and their water, then the surface water carved into the terrain.
     fn build(
-        scene: &Scene,
+        view: &SdfView,
         (skeleton, hydro, streams): &(Skeleton, Hydro, Streams),
     ) -> Result<SdfModel, SdfError> {
-        let mut model = build(scene, skeleton, hydro)?;
-        surface_water::add(&mut model, streams, scene.streams());
+        let mut model = build(view, skeleton, hydro)?;
+        surface_water::add(&mut model, streams, view.streams);
         Ok(model)
     }
 
-    fn headline(_: &Scene, model: &SdfModel) -> String {
+    fn headline(_: &SdfView, model: &SdfModel) -> String {
         let counts: Vec<String> = model
             .primitive_counts()
             .iter()

@@ -4,8 +4,8 @@
 //! all conduit types, radii in [1, 3] m, phreatic below z = 60, one chamber every 16 conduits.
 
 use glam::DVec3;
+use karst_geology::Domain;
 use karst_geology::rng::Random;
-use karst_geology::{Domain, Scene};
 use karst_hydro::FlowUnits;
 use karst_hydro::{ConduitWater, Hydro, SegmentWater, WaterType};
 use karst_skeleton::{Conduit, ConduitType, Node, Skeleton, Zone};
@@ -35,11 +35,6 @@ kind = "spring"
 position = [900.0, 900.0, 60.0]
 water_table = "wt"
 "#;
-
-/// The scene (with `[sdf]` defaults).
-pub fn scene() -> Scene {
-    Scene::parse(SCENE, std::path::Path::new("synthetic.toml")).expect("the synthetic scene is valid")
-}
 
 /// `conduits` random conduits of `nodes` nodes each, with their flows.
 pub fn network(seed: u64, conduits: usize, nodes: usize) -> (Skeleton, Hydro) {

@@ -6,6 +6,8 @@
 //! BVH's pruning changes nothing and the sign agrees with a brute-force inside test over every
 //! leaf.
 
+use karst_geology::SceneView;
+use karst_sdf::SdfView;
 use std::path::Path;
 
 use glam::DVec3;
@@ -24,14 +26,14 @@ fn field_of(scene: &Path, dir: &Path) -> CarvedTerrain {
     let (_, skeleton): (_, Skeleton) = read_artifact(&dir.join("skeleton.json")).unwrap();
     let (_, hydro): (_, Hydro) = read_artifact(&dir.join("hydro.json")).unwrap();
     let (_, streams): (_, Streams) = read_artifact(&dir.join("streams.json")).unwrap();
-    let mut model = build(&scene, &skeleton, &hydro).unwrap();
+    let mut model = build(&SdfView::of(&scene), &skeleton, &hydro).unwrap();
     add_streams(&mut model, &streams, scene.streams());
     CarvedTerrain::new(model)
 }
 
 fn synthetic_field(conduits: usize) -> CarvedTerrain {
     let (skeleton, hydro) = synthetic::network(5, conduits, 12);
-    CarvedTerrain::new(build(&synthetic::scene(), &skeleton, &hydro).unwrap())
+    CarvedTerrain::new(build(&SdfView::of(&synthetic_scene()), &skeleton, &hydro).unwrap())
 }
 
 /// A small deterministic generator.
@@ -205,12 +207,12 @@ fn a_pool_controller_is_dug_into_the_terrain() {
         springs: Vec::new(),
     };
     let skeleton = Skeleton { nodes: Vec::new(), conduits: Vec::new(), routes: Vec::new() };
-    let streams = karst_streams::build(&scene, &hydro).unwrap();
+    let streams = karst_streams::build(&karst_streams::StreamsView::of(&scene), &hydro).unwrap();
     let pool = streams.pools.iter().find(|p| p.kind == karst_streams::PoolKind::Curve).unwrap();
     let floor = pool.level - pool.depth;
     assert!(pool.depth > 2.0 && (pool.level - 39.5).abs() < 1e-9, "{pool:?}");
-    let bare = CarvedTerrain::new(build(&scene, &skeleton, &hydro).unwrap());
-    let mut model = build(&scene, &skeleton, &hydro).unwrap();
+    let bare = CarvedTerrain::new(build(&SdfView::of(&scene), &skeleton, &hydro).unwrap());
+    let mut model = build(&SdfView::of(&scene), &skeleton, &hydro).unwrap();
     add_streams(&mut model, &streams, scene.streams());
     assert_eq!(model.surface.basins.len(), 1);
     let field = CarvedTerrain::new(model);
@@ -290,4 +292,9 @@ fn check_sign(field: &CarvedTerrain, n: usize, name: &str) {
             assert_eq!(f < 0.0, rock < 0.0 && cave > 0.0, "{name} at {p}: f = {f}, rock {rock}, cave {cave}");
         }
     }
+}
+
+/// The scene of the synthetic network.
+fn synthetic_scene() -> karst_geology::Scene {
+    karst_geology::Scene::parse(synthetic::SCENE, std::path::Path::new("synthetic.toml")).unwrap()
 }

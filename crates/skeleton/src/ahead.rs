@@ -119,7 +119,7 @@ mod tests {
 
     use glam::DVec3;
     use karst_costgraph::Costing;
-    use karst_geology::Scene;
+    use karst_geology::{Scene, SceneView};
 
     use super::*;
     use crate::search::{EdgeCosts, astar_to_set, min_cost_per_metre};
@@ -156,9 +156,10 @@ k = 20
     /// bits, the nodes the search reached, and the graph.
     fn search(threads: usize) -> (Vec<usize>, u64, usize, CostGraph) {
         let scene = Scene::parse(SCENE, Path::new("ahead.toml")).unwrap();
-        let samples = karst_sampling::build(&scene).unwrap();
-        let graph = karst_costgraph::build(&scene, &samples).unwrap();
-        graph.cost_from(&scene, &samples.positions, Costing::OnDemand).unwrap();
+        let samples = karst_sampling::build(&karst_sampling::SamplingView::of(&scene)).unwrap();
+        let costs = karst_costgraph::CostgraphView::of(&scene);
+        let graph = karst_costgraph::build(&costs, &samples).unwrap();
+        graph.cost_from(&costs, &samples.positions, Costing::OnDemand).unwrap();
         let (source, target) = (samples.keypoint_sample(0).unwrap(), samples.keypoint_sample(1).unwrap());
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         let (path, cost, reached) = pool.install(|| {

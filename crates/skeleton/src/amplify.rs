@@ -37,9 +37,9 @@
 
 use glam::DVec3;
 use karst_costgraph::CostGraph;
+use karst_geology::KeyPointKind;
 use karst_geology::params::SkeletonMode;
 use karst_geology::rng::Random;
-use karst_geology::{KeyPointKind, Scene};
 use karst_sampling::Samples;
 
 use crate::assemble::NetworkBuilder;
@@ -48,6 +48,7 @@ use crate::error::SkeletonError;
 use crate::nodes::is_keypoint;
 use crate::planes::bedding_normal;
 use crate::search::{Blocked, EdgeCosts, dijkstra_to_set};
+use crate::view::SkeletonView;
 
 /// Tries to draw one point inside the bedrock before giving up on it.
 const TRIES: usize = 64;
@@ -56,13 +57,13 @@ const TRIES: usize = 64;
 /// mode, waypoints twice, like amplification's dead ends and interior points. Errors name a
 /// key point that cannot reach the network.
 pub fn join_keypoints(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     graph: &CostGraph,
     network: &mut NetworkBuilder,
 ) -> Result<(), SkeletonError> {
-    let waypoints_routed = scene.skeleton().mode == SkeletonMode::Gamma;
-    for (index, k) in scene.keypoints().iter().enumerate() {
+    let waypoints_routed = view.skeleton.mode == SkeletonMode::Gamma;
+    for (index, k) in view.keypoints.iter().enumerate() {
         let dead_end = match k.kind {
             KeyPointKind::DeadEnd => true,
             KeyPointKind::Waypoint if !waypoints_routed => false,
@@ -78,9 +79,9 @@ pub fn join_keypoints(
 }
 
 /// Adds the amplification branches to `network`.
-pub fn amplify(scene: &Scene, samples: &Samples, graph: &CostGraph, network: &mut NetworkBuilder) {
-    let p = scene.skeleton();
-    let mut rng = Random::stream(scene.seed(), "skeleton", "amplification");
+pub fn amplify(view: &SkeletonView, samples: &Samples, graph: &CostGraph, network: &mut NetworkBuilder) {
+    let p = view.skeleton;
+    let mut rng = Random::stream(view.seed, "skeleton", "amplification");
     let mut parents: Vec<usize> = (0..network.samples.len()).collect();
     let mut confluences = junctions(network);
     for step in 0..p.amplification_steps {
@@ -98,9 +99,9 @@ pub fn amplify(scene: &Scene, samples: &Samples, graph: &CostGraph, network: &mu
                         parents[rng.index(parents.len())]
                     };
                     let length = power_law(&mut rng, min, (max / scale).max(min), p.amplification_exponent);
-                    draw_tributary(scene, samples, network, &mut rng, anchor, length)
+                    draw_tributary(view, samples, network, &mut rng, anchor, length)
                 }
-                None => draw_in_bedrock(scene, &mut rng, lo, hi),
+                None => draw_in_bedrock(view, &mut rng, lo, hi),
             };
             let Some(point) = point else { continue };
             let start = nearest_sample(samples, point);
@@ -183,10 +184,10 @@ fn bounding_box(samples: &Samples, network: &NetworkBuilder) -> (DVec3, DVec3) {
         })
 }
 
-fn draw_in_bedrock(scene: &Scene, rng: &mut Random, lo: DVec3, hi: DVec3) -> Option<DVec3> {
+fn draw_in_bedrock(view: &SkeletonView, rng: &mut Random, lo: DVec3, hi: DVec3) -> Option<DVec3> {
     (0..TRIES).find_map(|_| {
         let p = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
-        scene.in_bedrock(p).then_some(p)
+        view.in_bedrock(p).then_some(p)
     })
 }
 
@@ -201,7 +202,7 @@ fn power_law(rng: &mut Random, min: f64, max: f64, alpha: f64) -> f64 {
 /// junction angles), to either side and either way along it, in the bedding plane, rising or
 /// falling by at most 30°.
 fn draw_tributary(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     network: &NetworkBuilder,
     rng: &mut Random,
@@ -216,7 +217,7 @@ fn draw_tributary(
         [one] => centre - at(*one),
         [a, b, ..] => at(*b) - at(*a),
     };
-    let up = bedding_normal(scene, centre);
+    let up = bedding_normal(view.geology, centre);
     let along = (tangent - up * tangent.dot(up)).normalize_or(up.any_orthonormal_vector());
     let side = up.cross(along);
     (0..TRIES).find_map(|_| {
@@ -225,7 +226,7 @@ fn draw_tributary(
         let rise = rng.range(-30f64, 30.0).to_radians();
         let flat = (along * (way * turn.cos()) + side * turn.sin()) * rise.cos();
         let p = centre + (flat + up * rise.sin()) * distance;
-        scene.in_bedrock(p).then_some(p)
+        view.in_bedrock(p).then_some(p)
     })
 }
 

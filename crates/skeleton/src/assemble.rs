@@ -4,13 +4,14 @@
 
 use std::collections::{HashMap, HashSet};
 
-use karst_geology::{Point, Scene};
+use karst_geology::Point;
 use karst_sampling::Samples;
 
 use crate::classify::classify;
 use crate::nodes::{is_keypoint, node};
 use crate::payload::{Conduit, Node, Route, Skeleton};
 use crate::radii::ConduitRadii;
+use crate::view::SkeletonView;
 use crate::{meander, tortuosity};
 
 /// The network as it grows: nodes in order of first appearance, undirected links.
@@ -62,28 +63,33 @@ impl NetworkBuilder {
 
     /// The skeleton: nodes, conduits with types and radii, and `routes` (sample paths turned
     /// into node paths).
-    pub fn finish(mut self, scene: &Scene, samples: &Samples, routes: Vec<(Route, Vec<usize>)>) -> Skeleton {
+    pub fn finish(
+        mut self,
+        view: &SkeletonView,
+        samples: &Samples,
+        routes: Vec<(Route, Vec<usize>)>,
+    ) -> Skeleton {
         let mut routes: Vec<Route> =
             routes.into_iter().map(|(r, path)| Route { nodes: self.ids(&path), ..r }).collect();
         let mut chains = self.conduit_chains(samples);
         let phases: Vec<u32> = chains.iter().map(|c| self.phase_of(c[0], c[1])).collect();
-        let mut nodes: Vec<Node> = self.samples.iter().map(|&s| node(scene, samples, s)).collect();
-        if let Some(theta) = scene.skeleton().tortuosity {
-            let inserted = tortuosity::refine(scene, theta, &mut nodes, &mut chains);
+        let mut nodes: Vec<Node> = self.samples.iter().map(|&s| node(view, samples, s)).collect();
+        if let Some(theta) = view.skeleton.tortuosity {
+            let inserted = tortuosity::refine(view, theta, &mut nodes, &mut chains);
             tortuosity::reroute(&mut routes, &inserted);
         }
-        let sinuosity = scene.skeleton().sinuosity;
+        let sinuosity = view.skeleton.sinuosity;
         if sinuosity > 1.0 {
-            let inserted = meander::bend(scene, sinuosity, &mut nodes, &mut chains);
+            let inserted = meander::bend(view, sinuosity, &mut nodes, &mut chains);
             tortuosity::reroute(&mut routes, &inserted);
         }
-        let mut radii = ConduitRadii::new(scene, nodes.len());
+        let mut radii = ConduitRadii::new(view.skeleton, view.seed, nodes.len());
         let at = |i: u32| Point::from_array(nodes[i as usize].position);
         let conduits = chains
             .into_iter()
             .zip(phases)
             .map(|(chain, phase)| {
-                let types: Vec<_> = chain.windows(2).map(|w| classify(scene, at(w[0]), at(w[1]))).collect();
+                let types: Vec<_> = chain.windows(2).map(|w| classify(view, at(w[0]), at(w[1]))).collect();
                 let ends = [chain[0], chain[chain.len() - 1]];
                 let keypoints = ends.iter().filter_map(|&i| nodes[i as usize].keypoint.clone()).collect();
                 Conduit {

@@ -4,7 +4,7 @@
 
 use karst_costgraph::{CostGraph, Costing};
 use karst_geology::params::SkeletonMode;
-use karst_geology::{KeyPointKind, Scene};
+use karst_geology::{KeyPointKind, keypoints_of};
 use karst_sampling::Samples;
 
 use crate::assemble::NetworkBuilder;
@@ -13,55 +13,56 @@ use crate::error::SkeletonError;
 use crate::karstnsim::PhaseSetup;
 use crate::payload::{Route, Skeleton};
 use crate::search::{CostSetOf, EdgeCosts};
+use crate::view::SkeletonView;
 use crate::{amplify, gamma, karstnsim};
 
 /// Builds the network of `scene` on the cost graph; each spring routes on the cost set of its
 /// water table. Dead-end key points are
 /// closed to the mode's paths and to amplification, then joined once.
-pub fn build(scene: &Scene, samples: &Samples, full: &CostGraph) -> Result<Skeleton, SkeletonError> {
+pub fn build(view: &SkeletonView, samples: &Samples, full: &CostGraph) -> Result<Skeleton, SkeletonError> {
     if full.node_count() != samples.len() {
         return Err(SkeletonError::GraphOfOtherSamples { nodes: full.node_count(), samples: samples.len() });
     }
-    full.cost_from(scene, &samples.positions, costing(scene, full))?;
+    full.cost_from(&view.costs(), &samples.positions, costing(view, full))?;
     let mut network = NetworkBuilder::default();
-    let closed = without_dead_ends(scene, samples, full);
+    let closed = without_dead_ends(view, samples, full);
     let graph = closed.as_ref().unwrap_or(full);
-    let routes = mode_routes(scene, samples, graph, &mut network)?;
-    amplify::join_keypoints(scene, samples, full, &mut network)?;
-    amplify::amplify(scene, samples, graph, &mut network);
-    Ok(network.finish(scene, samples, routes))
+    let routes = mode_routes(view, samples, graph, &mut network)?;
+    amplify::join_keypoints(view, samples, full, &mut network)?;
+    amplify::amplify(view, samples, graph, &mut network);
+    Ok(network.finish(view, samples, routes))
 }
 
 /// The least-cost paths of the scene's mode alone (no other key point joined, no amplification,
 /// no conduits): what the skeleton budgets of `cargo xtask bench` time. Returns the number of
 /// routes.
-pub fn mode_paths(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<usize, SkeletonError> {
-    graph.cost_from(scene, &samples.positions, costing(scene, graph))?;
-    mode_routes(scene, samples, graph, &mut NetworkBuilder::default()).map(|routes| routes.len())
+pub fn mode_paths(view: &SkeletonView, samples: &Samples, graph: &CostGraph) -> Result<usize, SkeletonError> {
+    graph.cost_from(&view.costs(), &samples.positions, costing(view, graph))?;
+    mode_routes(view, samples, graph, &mut NetworkBuilder::default()).map(|routes| routes.len())
 }
 
 /// The routes of the scene's mode, their paths added to `network`: KarstNSim's routing of every
 /// sink, phase after phase, or the γ-skeleton of the key points.
 fn mode_routes(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     graph: &CostGraph,
     network: &mut NetworkBuilder,
 ) -> Result<Vec<(Route, Vec<usize>)>, SkeletonError> {
-    match scene.skeleton().mode {
+    match view.skeleton.mode {
         SkeletonMode::Karstnsim => {
             // One cost set per spring's water table (KarstNSim §1.3): C_WT differs between them.
             let sets: Vec<CostSetOf> =
                 (0..graph.cost_sets.len()).map(|set| CostSetOf { graph, set }).collect();
             let cost_set =
                 |table: &str| -> &dyn EdgeCosts { &sets[graph.cost_set_of_water_table(table).unwrap_or(0)] };
-            let sinks = sinks_in_order(scene);
+            let sinks = sinks_in_order(view);
             let mut inherited = vec![false; graph.edge_count()];
             let mut routes = Vec::new();
-            for (index, mut setup) in phase_setups(scene, graph).into_iter().enumerate() {
+            for (index, mut setup) in phase_setups(view, graph).into_iter().enumerate() {
                 network.phase = index as u32;
                 setup.inherited.clone_from(&inherited);
-                let done = karstnsim::route(scene, samples, graph, &cost_set, &sinks, &setup)?;
+                let done = karstnsim::route(view, samples, graph, &cost_set, &sinks, &setup)?;
                 for (_, path) in &done.routes {
                     network.add_path(path);
                 }
@@ -72,15 +73,15 @@ fn mode_routes(
             }
             Ok(routes)
         }
-        SkeletonMode::Gamma => gamma::network(scene, samples, graph, network),
+        SkeletonMode::Gamma => gamma::network(view, samples, graph, network),
     }
 }
 
 /// The cost graph with the edges into or out of dead-end key points closed, so that no path but
 /// their own passes through them; None when the scene has none.
-fn without_dead_ends(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Option<CostGraph> {
+fn without_dead_ends(view: &SkeletonView, samples: &Samples, graph: &CostGraph) -> Option<CostGraph> {
     let mut closed = vec![false; graph.node_count()];
-    for (i, _) in scene.keypoints_of(KeyPointKind::DeadEnd) {
+    for (i, _) in keypoints_of(view.keypoints, KeyPointKind::DeadEnd) {
         if let Some(s) = samples.keypoint_sample(i) {
             closed[s] = true;
         }
@@ -107,21 +108,20 @@ fn without_dead_ends(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Opt
 /// How the cost graph's rows are costed: all at once, in parallel, when some phase computes the
 /// least costs to a spring (which reads every edge of its cost set: `spring_distance.rs`), else
 /// each when a search first reads it.
-fn costing(scene: &Scene, graph: &CostGraph) -> Costing {
-    let whole = scene.skeleton().mode == SkeletonMode::Karstnsim
-        && phase_setups(scene, graph).iter().any(|phase| karstnsim::maps_springs(scene, graph, phase));
+fn costing(view: &SkeletonView, graph: &CostGraph) -> Costing {
+    let whole = view.skeleton.mode == SkeletonMode::Karstnsim
+        && phase_setups(view, graph).iter().any(|phase| karstnsim::maps_springs(view, graph, phase));
     if whole { Costing::Every } else { Costing::OnDemand }
 }
 
 /// The phases of the scene, oldest first (one with every spring when it lists none); their
 /// inherited edges are filled in as the phases run.
-fn phase_setups<'a>(scene: &'a Scene, graph: &CostGraph) -> Vec<PhaseSetup<'a>> {
-    if scene.phases().is_empty() {
-        return vec![PhaseSetup::single(scene, graph)];
+fn phase_setups<'a>(view: &SkeletonView<'a>, graph: &CostGraph) -> Vec<PhaseSetup<'a>> {
+    if view.phases.is_empty() {
+        return vec![PhaseSetup::single(view, graph)];
     }
-    let springs = ends(scene, KeyPointKind::Spring);
-    scene
-        .phases()
+    let springs = ends(view, KeyPointKind::Spring);
+    view.phases
         .iter()
         .map(|phase| PhaseSetup {
             springs: springs.iter().filter(|s| phase.springs.iter().any(|n| n == s.name)).copied().collect(),

@@ -14,24 +14,24 @@
 //! resistance π ≈ 0, KarstNSim's potential ≈ 1). Without that threshold there are no chambers.
 
 use glam::DVec3;
-use karst_geology::Scene;
 
 use crate::payload::ConduitType;
+use crate::view::SkeletonView;
 
-/// The type of the segment a → b in `scene`.
-pub fn classify(scene: &Scene, a: DVec3, b: DVec3) -> ConduitType {
-    let p = scene.skeleton();
+/// The type of the segment a → b.
+pub fn classify(view: &SkeletonView, a: DVec3, b: DVec3) -> ConduitType {
+    let p = view.skeleton;
     let d = b - a;
     let length = d.length();
     let dip = if length > 0.0 { (d.z.abs() / length).asin().to_degrees() } else { 0.0 };
     let top = if a.z >= b.z { a } else { b };
     let mid = (a + b) * 0.5;
-    if p.ghost_rock_potential.is_some_and(|g| scene.geology().potential(mid) >= g) {
+    if p.ghost_rock_potential.is_some_and(|g| view.geology.potential(mid) >= g) {
         return ConduitType::Chamber;
     }
-    let above_water = scene.geology().water_tables.iter().map(|w| w.height_above(mid)).reduce(f64::min);
+    let above_water = view.geology.water_tables.iter().map(|w| w.height_above(mid)).reduce(f64::min);
     if dip >= p.vertical_angle {
-        let depth = scene.terrain().height(top.x, top.y) - top.z;
+        let depth = view.terrain.height(top.x, top.y) - top.z;
         return if depth <= p.epikarst_depth { ConduitType::Epikarst } else { ConduitType::Tube };
     }
     match above_water {
@@ -45,6 +45,7 @@ pub fn classify(scene: &Scene, a: DVec3, b: DVec3) -> ConduitType {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use karst_geology::{Scene, SceneView};
     use std::path::Path;
 
     fn scene() -> Scene {
@@ -76,12 +77,30 @@ water_table = "w"
     fn types_follow_verticality_and_the_water_table() {
         let s = scene();
         let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-        assert_eq!(classify(&s, v(10.0, 10.0, 88.0), v(10.0, 11.0, 70.0)), ConduitType::Epikarst);
-        assert_eq!(classify(&s, v(10.0, 10.0, 60.0), v(10.0, 11.0, 45.0)), ConduitType::Tube);
-        assert_eq!(classify(&s, v(10.0, 10.0, 60.0), v(30.0, 10.0, 58.0)), ConduitType::Canyon);
-        assert_eq!(classify(&s, v(10.0, 10.0, 35.0), v(30.0, 10.0, 34.0)), ConduitType::Keyhole);
-        assert_eq!(classify(&s, v(10.0, 10.0, 60.0), v(20.0, 10.0, 52.0)), ConduitType::Passage);
-        assert_eq!(classify(&s, v(10.0, 10.0, 25.0), v(30.0, 10.0, 24.0)), ConduitType::Bed);
+        assert_eq!(
+            classify(&SkeletonView::of(&s), v(10.0, 10.0, 88.0), v(10.0, 11.0, 70.0)),
+            ConduitType::Epikarst
+        );
+        assert_eq!(
+            classify(&SkeletonView::of(&s), v(10.0, 10.0, 60.0), v(10.0, 11.0, 45.0)),
+            ConduitType::Tube
+        );
+        assert_eq!(
+            classify(&SkeletonView::of(&s), v(10.0, 10.0, 60.0), v(30.0, 10.0, 58.0)),
+            ConduitType::Canyon
+        );
+        assert_eq!(
+            classify(&SkeletonView::of(&s), v(10.0, 10.0, 35.0), v(30.0, 10.0, 34.0)),
+            ConduitType::Keyhole
+        );
+        assert_eq!(
+            classify(&SkeletonView::of(&s), v(10.0, 10.0, 60.0), v(20.0, 10.0, 52.0)),
+            ConduitType::Passage
+        );
+        assert_eq!(
+            classify(&SkeletonView::of(&s), v(10.0, 10.0, 25.0), v(30.0, 10.0, 24.0)),
+            ConduitType::Bed
+        );
     }
 
     #[test]
@@ -89,6 +108,9 @@ water_table = "w"
         let mut s = scene();
         let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
         s.skeleton_mut().ghost_rock_potential = Some(1.0);
-        assert_eq!(classify(&s, v(10.0, 10.0, 60.0), v(30.0, 10.0, 58.0)), ConduitType::Chamber);
+        assert_eq!(
+            classify(&SkeletonView::of(&s), v(10.0, 10.0, 60.0), v(30.0, 10.0, 58.0)),
+            ConduitType::Chamber
+        );
     }
 }

@@ -7,10 +7,11 @@
 //! marked 2 (uncertain connectivity keeps the closest spring in the cost metric).
 
 use karst_geology::rng::Random;
-use karst_geology::{KeyPointKind, Link, Scene};
+use karst_geology::{KeyPointKind, Link, keypoints_of};
 use karst_sampling::Samples;
 
 use crate::error::SkeletonError;
+use crate::view::SkeletonView;
 
 /// A sink or a spring: its row (column) in the connectivity matrix, its scene key point.
 #[derive(Debug, Clone, Copy)]
@@ -21,20 +22,19 @@ pub struct End<'a> {
 }
 
 /// The ends of `kind`, in scene order.
-pub fn ends(scene: &Scene, kind: KeyPointKind) -> Vec<End<'_>> {
-    scene
-        .keypoints_of(kind)
+pub fn ends<'s>(view: &SkeletonView<'s>, kind: KeyPointKind) -> Vec<End<'s>> {
+    keypoints_of(view.keypoints, kind)
         .enumerate()
         .map(|(row, (keypoint, k))| End { row, keypoint, name: &k.name })
         .collect()
 }
 
 /// The sinks by increasing `order`, equal orders shuffled by the seed.
-pub fn sinks_in_order(scene: &Scene) -> Vec<End<'_>> {
-    let mut rng = Random::stream(scene.seed(), "skeleton", "sink order");
-    let mut keyed: Vec<(i64, u64, End)> = ends(scene, KeyPointKind::Sink)
+pub fn sinks_in_order<'s>(view: &SkeletonView<'s>) -> Vec<End<'s>> {
+    let mut rng = Random::stream(view.seed, "skeleton", "sink order");
+    let mut keyed: Vec<(i64, u64, End)> = ends(view, KeyPointKind::Sink)
         .into_iter()
-        .map(|s| (scene.keypoints()[s.keypoint].order, (rng.uniform() * 2f64.powi(53)) as u64, s))
+        .map(|s| (view.keypoints[s.keypoint].order, (rng.uniform() * 2f64.powi(53)) as u64, s))
         .collect();
     keyed.sort_by_key(|(order, key, s)| (*order, *key, s.row));
     keyed.into_iter().map(|(_, _, s)| s).collect()
@@ -44,12 +44,12 @@ pub fn sinks_in_order(scene: &Scene) -> Vec<End<'_>> {
 /// (infinite when unreachable): every spring marked 1, else the cheapest marked 2; none when
 /// no spring of `springs` is allowed. Errors name the sink and the spring it cannot reach.
 pub fn chosen_springs<'a>(
-    scene: &Scene,
+    view: &SkeletonView,
     sink: &End,
     springs: &[End<'a>],
     cost_to: &mut dyn FnMut(&End<'a>) -> Result<f64, SkeletonError>,
 ) -> Result<Vec<End<'a>>, SkeletonError> {
-    let allowed = allowed_springs(scene, sink, springs);
+    let allowed = allowed_springs(view, sink, springs);
     let unreachable =
         |t: &End| SkeletonError::SinkCannotReachSpring { sink: sink.name.into(), spring: t.name.into() };
     if allowed.is_empty() {
@@ -80,16 +80,20 @@ pub fn chosen_springs<'a>(
 
 /// The springs [`chosen_springs`] asks the cost of, in the order it asks: those the sink's
 /// connectivity row marks 1, else those it marks 2.
-pub fn candidate_springs<'a>(scene: &Scene, sink: &End, springs: &[End<'a>]) -> Vec<End<'a>> {
-    let allowed = allowed_springs(scene, sink, springs);
+pub fn candidate_springs<'a>(view: &SkeletonView, sink: &End, springs: &[End<'a>]) -> Vec<End<'a>> {
+    let allowed = allowed_springs(view, sink, springs);
     let connected: Vec<End> =
         allowed.iter().filter(|(_, l)| *l == Link::Connected).map(|(t, _)| *t).collect();
     if connected.is_empty() { allowed.into_iter().map(|(t, _)| t).collect() } else { connected }
 }
 
 /// The springs the sink's connectivity row does not forbid, with their link.
-fn allowed_springs<'a>(scene: &Scene, sink: &End, springs: &[End<'a>]) -> Vec<(End<'a>, Link)> {
-    springs.iter().map(|t| (*t, scene.link(sink.row, t.row))).filter(|(_, l)| *l != Link::None).collect()
+fn allowed_springs<'a>(view: &SkeletonView, sink: &End, springs: &[End<'a>]) -> Vec<(End<'a>, Link)> {
+    springs
+        .iter()
+        .map(|t| (*t, view.connectivity.link(sink.row, t.row)))
+        .filter(|(_, l)| *l != Link::None)
+        .collect()
 }
 
 /// The sample of a key point, or an error naming it.

@@ -26,7 +26,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use karst_costgraph::CostGraph;
-use karst_geology::{KeyPointKind, Scene};
+use karst_geology::KeyPointKind;
 use karst_sampling::Samples;
 
 use crate::Route;
@@ -36,6 +36,7 @@ use crate::error::SkeletonError;
 use crate::karstnsim::mark_used;
 use crate::nodes::is_phreatic;
 use crate::search::{Tree, ZonedCohesive, astar, dijkstra, min_cost_per_metre};
+use crate::view::SkeletonView;
 
 /// The pairs (i, j), i < j, of the γ-skeleton of the distance matrix `d` (symmetric, zero
 /// diagonal); pairs at infinite distance are never kept.
@@ -60,13 +61,13 @@ pub fn gamma_skeleton(d: &[Vec<f64>], gamma: f64) -> Vec<(usize, usize)> {
 
 /// Adds the γ-skeleton's paths to `network`; returns the routes of the sinks along it.
 pub fn network(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     graph: &CostGraph,
     network: &mut NetworkBuilder,
 ) -> Result<Vec<(Route, Vec<usize>)>, SkeletonError> {
-    let keypoints: Vec<End> = scene
-        .keypoints()
+    let keypoints: Vec<End> = view
+        .keypoints
         .iter()
         .enumerate()
         .filter(|(_, k)| k.kind != KeyPointKind::DeadEnd)
@@ -84,16 +85,16 @@ pub fn network(
         }
     }
     check_reachable(&d, &keypoints)?;
-    let mut pairs = gamma_skeleton(&d, scene.skeleton().gamma);
-    for [a, b] in &scene.skeleton().forced_links {
+    let mut pairs = gamma_skeleton(&d, view.skeleton.gamma);
+    for [a, b] in &view.skeleton.forced_links {
         let index = |name: &str| keypoints.iter().position(|k| k.name == name).expect("validated link");
         let (a, b) = (index(a), index(b));
         pairs.push((a.min(b), a.max(b)));
     }
     pairs.sort_unstable();
     pairs.dedup();
-    draw_paths(scene, samples, graph, &d, &sources, &trees, &pairs, network);
-    routes_along(scene, samples, graph, network)
+    draw_paths(view, samples, graph, &d, &sources, &trees, &pairs, network);
+    routes_along(view, samples, graph, network)
 }
 
 /// Adds the least-cost path of every kept pair to `network`. Without cohesion (P_red = 1 in both
@@ -104,7 +105,7 @@ pub fn network(
 /// way, and leaves it at a junction.
 #[allow(clippy::too_many_arguments)]
 fn draw_paths(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     graph: &CostGraph,
     d: &[Vec<f64>],
@@ -113,7 +114,7 @@ fn draw_paths(
     pairs: &[(usize, usize)],
     network: &mut NetworkBuilder,
 ) {
-    let p = scene.skeleton();
+    let p = view.skeleton;
     if p.cohesion_vadose >= 1.0 && p.cohesion_phreatic >= 1.0 {
         for &(a, b) in pairs {
             network.add_path(&trees[a].path(sources[b]).expect("finite distance"));
@@ -123,7 +124,7 @@ fn draw_paths(
     let mut order = pairs.to_vec();
     order.sort_by(|x, y| d[x.0][x.1].total_cmp(&d[y.0][y.1]).then(x.cmp(y)));
     let phreatic: Vec<bool> =
-        samples.positions.iter().map(|&q| is_phreatic(scene, DVec3::from_array(q))).collect();
+        samples.positions.iter().map(|&q| is_phreatic(view.geology, DVec3::from_array(q))).collect();
     let per_metre =
         min_cost_per_metre(graph, &samples.positions) * p.cohesion_vadose.min(p.cohesion_phreatic);
     let mut used = vec![false; graph.edge_count()];
@@ -156,7 +157,7 @@ fn check_reachable(d: &[Vec<f64>], keypoints: &[End]) -> Result<(), SkeletonErro
 /// The route of every sink to its spring(s) along the network's links, each link costing the
 /// cheaper direction of its cost-graph edge.
 fn routes_along(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     graph: &CostGraph,
     network: &NetworkBuilder,
@@ -172,24 +173,24 @@ fn routes_along(
         })
         .collect();
     let links = CostGraph::from_lists(lists);
-    let springs = ends(scene, KeyPointKind::Spring);
+    let springs = ends(view, KeyPointKind::Spring);
     let node = |end: &End| -> Result<usize, SkeletonError> {
         let sample = sample_of(samples, end)?;
         Ok(network.node_of(sample).expect("every key point is on the γ-skeleton") as usize)
     };
     let mut routes = Vec::new();
-    for sink in sinks_in_order(scene) {
+    for sink in sinks_in_order(view) {
         let from = node(&sink)?;
         let targets = springs.iter().map(&node).collect::<Result<Vec<_>, _>>()?;
         let tree = dijkstra(&links, from, &targets);
-        let chosen = chosen_springs(scene, &sink, &springs, &mut |t| Ok(tree.cost(node(t)?)))?;
+        let chosen = chosen_springs(view, &sink, &springs, &mut |t| Ok(tree.cost(node(t)?)))?;
         for spring in chosen {
             let to = node(&spring)?;
             let path = tree.path(to).expect("chosen springs are reachable");
             let route = Route {
                 sink: sink.name.to_string(),
                 spring: spring.name.to_string(),
-                weight: scene.keypoints()[sink.keypoint].weight,
+                weight: view.keypoints[sink.keypoint].weight,
                 nodes: Vec::new(),
                 cost: tree.cost(to),
             };

@@ -26,7 +26,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use glam::DVec3;
 use karst_costgraph::CostGraph;
-use karst_geology::{KeyPointKind, Scene, Surface};
+use karst_geology::{KeyPointKind, Surface};
 use karst_sampling::Samples;
 use rayon::prelude::*;
 
@@ -37,6 +37,7 @@ use crate::ends::{End, candidate_springs, chosen_springs, ends, sample_of, sinks
 use crate::error::SkeletonError;
 use crate::search::{Cohesive, EdgeCosts, Tree, astar_to_set, min_cost_per_metre};
 use crate::spring_distance::{InEdges, LEGS_WORTH_THE_COSTS, costs_to};
+use crate::view::SkeletonView;
 
 /// The cost set of a water table, by name.
 pub type CostSets<'g> = dyn Fn(&str) -> &'g (dyn EdgeCosts + 'g) + 'g;
@@ -55,9 +56,9 @@ pub struct PhaseSetup<'a> {
 
 impl<'a> PhaseSetup<'a> {
     /// The only phase of a scene without `[[phases]]`: every spring, nothing inherited.
-    pub fn single(scene: &'a Scene, graph: &CostGraph) -> Self {
+    pub fn single(view: &SkeletonView<'a>, graph: &CostGraph) -> Self {
         PhaseSetup {
-            springs: ends(scene, KeyPointKind::Spring),
+            springs: ends(view, KeyPointKind::Spring),
             inherited: vec![false; graph.edge_count()],
             inherited_cost: 1.0,
             weights: BTreeMap::new(),
@@ -81,14 +82,14 @@ pub struct PhaseRoutes {
 /// Routes `sinks` (in this order) to their springs in `phase`; returns each route with its
 /// sample path. `graph` gives the edge ids shared by every cost set.
 pub fn route<'g>(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     graph: &CostGraph,
     cost_set: &CostSets<'g>,
     sinks: &[End],
     phase: &PhaseSetup,
 ) -> Result<PhaseRoutes, SkeletonError> {
-    route_mapping(scene, samples, (graph, cost_set), sinks, phase, LEGS_WORTH_THE_COSTS)
+    route_mapping(view, samples, (graph, cost_set), sinks, phase, LEGS_WORTH_THE_COSTS)
 }
 
 /// [`route`], computing the least costs to a spring (`spring_distance.rs`) for the springs with
@@ -96,15 +97,15 @@ pub fn route<'g>(
 /// heuristic only changes which samples the searches settle), unless two paths cost exactly
 /// the same.
 pub(crate) fn route_mapping<'g>(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     (graph, cost_set): (&CostGraph, &CostSets<'g>),
     sinks: &[End],
     phase: &PhaseSetup,
     legs_worth: usize,
 ) -> Result<PhaseRoutes, SkeletonError> {
-    let mut worth = springs_worth_their_costs(scene, samples, cost_set, (sinks, phase), legs_worth)?;
-    if !spring_costs_fit(scene, graph, worth.len()) {
+    let mut worth = springs_worth_their_costs(view, samples, cost_set, (sinks, phase), legs_worth)?;
+    if !spring_costs_fit(view, graph, worth.len()) {
         worth.clear();
     }
     Ahead::run(graph, |ahead| {
@@ -121,7 +122,7 @@ pub(crate) fn route_mapping<'g>(
                 costs_to_springs(graph, phase, worth, &send);
             }
             let mut to_springs = SpringCosts { wanted, ready: BTreeMap::new(), costs_ready };
-            route_sinks(scene, samples, (graph, cost_set), (sinks, phase), (&mut to_springs, ahead))
+            route_sinks(view, samples, (graph, cost_set), (sinks, phase), (&mut to_springs, ahead))
         })
     })
 }
@@ -151,7 +152,7 @@ impl SpringCosts {
 
 /// Routes `sinks` one after the other (the body of [`route_mapping`]).
 fn route_sinks<'g>(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     (graph, cost_set): (&CostGraph, &CostSets<'g>),
     (sinks, phase): (&[End], &PhaseSetup),
@@ -163,14 +164,14 @@ fn route_sinks<'g>(
     let mut routes = Vec::new();
     // The network's samples so far, for the phreatic searches' bound (cohesion_bound.rs).
     let mut network =
-        (scene.skeleton().cohesion_phreatic < 1.0).then(|| NetworkDistance::new(&samples.positions));
+        (view.skeleton.cohesion_phreatic < 1.0).then(|| NetworkDistance::new(&samples.positions));
     for sink in sinks {
         let source = sample_of(samples, sink)?;
         // The legs towards every candidate spring depend only on the network before this sink:
         // they are searched in parallel, then chosen among in the candidates' order.
         let mut searches = Vec::new();
-        for spring in candidate_springs(scene, sink, springs) {
-            let table = water_table_of(scene, &spring);
+        for spring in candidate_springs(view, sink, springs) {
+            let table = water_table_of(view, &spring);
             let base = cost_set(&table.name);
             let m = *per_metre
                 .entry(table.name.clone())
@@ -185,13 +186,13 @@ fn route_sinks<'g>(
             .map(|((row, base, table, m, target), to_spring)| {
                 let costs = &Cohesive { base, used: &phase.inherited, factor: phase.inherited_cost };
                 let known = Known { network: network.as_ref(), to_spring, ahead };
-                (row, leg(scene, samples, costs, &used, known, m, table, source, target))
+                (row, leg(view, samples, costs, &used, known, m, table, source, target))
             })
             .collect();
         let costs: BTreeMap<usize, f64> =
             found.iter().map(|(row, l)| (*row, l.as_ref().map_or(f64::INFINITY, |l| l.cost))).collect();
         let legs: BTreeMap<usize, Leg> = found.into_iter().filter_map(|(row, l)| Some((row, l?))).collect();
-        let chosen = chosen_springs(scene, sink, springs, &mut |spring| Ok(costs[&spring.row]))?;
+        let chosen = chosen_springs(view, sink, springs, &mut |spring| Ok(costs[&spring.row]))?;
         for spring in chosen {
             let leg = &legs[&spring.row];
             mark_used(graph, &leg.edges, &mut used);
@@ -203,11 +204,7 @@ fn route_sinks<'g>(
             let route = Route {
                 sink: sink.name.to_string(),
                 spring: spring.name.to_string(),
-                weight: phase
-                    .weights
-                    .get(sink.name)
-                    .copied()
-                    .unwrap_or(scene.keypoints()[sink.keypoint].weight),
+                weight: phase.weights.get(sink.name).copied().unwrap_or(view.keypoints[sink.keypoint].weight),
                 nodes: Vec::new(),
                 cost: leg.cost,
             };
@@ -227,17 +224,17 @@ struct Mapped<'g> {
 /// The springs of `phase` with at least `legs_worth` candidate legs among `sinks`, in the order
 /// the sinks first need them.
 fn springs_worth_their_costs<'g>(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     cost_set: &CostSets<'g>,
     (sinks, phase): (&[End], &PhaseSetup),
     legs_worth: usize,
 ) -> Result<Vec<Mapped<'g>>, SkeletonError> {
     let mut worth = Vec::new();
-    for row in springs_with_legs(scene, (sinks, phase), legs_worth) {
+    for row in springs_with_legs(view, (sinks, phase), legs_worth) {
         let spring =
             phase.springs.iter().find(|s| s.row == row).expect("a candidate is a spring of the phase");
-        let costs = cost_set(&water_table_of(scene, spring).name);
+        let costs = cost_set(&water_table_of(view, spring).name);
         worth.push(Mapped { row, costs, target: sample_of(samples, spring)? });
     }
     Ok(worth)
@@ -245,10 +242,14 @@ fn springs_worth_their_costs<'g>(
 
 /// The rows of the springs of `phase` with at least `legs_worth` candidate legs among `sinks`,
 /// in the order the sinks first need them.
-fn springs_with_legs(scene: &Scene, (sinks, phase): (&[End], &PhaseSetup), legs_worth: usize) -> Vec<usize> {
+fn springs_with_legs(
+    view: &SkeletonView,
+    (sinks, phase): (&[End], &PhaseSetup),
+    legs_worth: usize,
+) -> Vec<usize> {
     let mut legs: Vec<(usize, usize)> = Vec::new();
     for sink in sinks {
-        for spring in candidate_springs(scene, sink, &phase.springs) {
+        for spring in candidate_springs(view, sink, &phase.springs) {
             match legs.iter_mut().find(|(row, _)| *row == spring.row) {
                 Some((_, n)) => *n += 1,
                 None => legs.push((spring.row, 1)),
@@ -260,22 +261,22 @@ fn springs_with_legs(scene: &Scene, (sinks, phase): (&[End], &PhaseSetup), legs_
 
 /// Whether [`route`] computes the least costs to some spring of `phase` (`spring_distance.rs`),
 /// which reads every edge of the spring's cost set.
-pub fn maps_springs(scene: &Scene, graph: &CostGraph, phase: &PhaseSetup) -> bool {
-    let springs = springs_with_legs(scene, (&sinks_in_order(scene), phase), LEGS_WORTH_THE_COSTS).len();
-    phase.inherited_cost == 1.0 && springs > 0 && spring_costs_fit(scene, graph, springs)
+pub fn maps_springs(view: &SkeletonView, graph: &CostGraph, phase: &PhaseSetup) -> bool {
+    let springs = springs_with_legs(view, (&sinks_in_order(view), phase), LEGS_WORTH_THE_COSTS).len();
+    phase.inherited_cost == 1.0 && springs > 0 && spring_costs_fit(view, graph, springs)
 }
 
 /// Whether the least costs to `springs` springs fit in the memory budget beside the cost graph:
 /// they are a speed-up, so a run near its budget does without them rather than exceed it. They
 /// take 4 bytes per edge for the reversed rows and 4 for one spring's reversed costs, 8 bytes
 /// per sample per spring for T, and a search's 9 bytes per sample.
-fn spring_costs_fit(scene: &Scene, graph: &CostGraph, springs: usize) -> bool {
+fn spring_costs_fit(view: &SkeletonView, graph: &CostGraph, springs: usize) -> bool {
     let nodes = graph.node_count() as f64;
     let extra = 8.0 * graph.edge_count() as f64 + nodes * (8.0 * springs as f64 + 9.0);
     // The cost graph, the samples (about 64 bytes each with their tags) and the searches'
     // per-sample arrays (about 100 bytes) are in memory already.
     let resident = graph.bytes_in_memory() as f64 + 164.0 * nodes;
-    springs == 0 || resident + extra <= scene.budget().bytes as f64
+    springs == 0 || resident + extra <= view.budget.bytes as f64
 }
 
 /// Computes T, the least cost from every sample to each spring of `worth` (`spring_distance.rs`),
@@ -314,15 +315,15 @@ struct Known<'a> {
     ahead: Option<&'a Ahead<'a>>,
 }
 
-fn water_table_of<'s>(scene: &'s Scene, spring: &End) -> &'s Surface {
-    let name = scene.keypoints()[spring.keypoint].water_table.as_deref().unwrap_or_default();
-    scene.water_table(name).expect("validation: every spring names a defined water table")
+fn water_table_of<'s>(view: &SkeletonView<'s>, spring: &End) -> &'s Surface {
+    let name = view.keypoints[spring.keypoint].water_table.as_deref().unwrap_or_default();
+    view.geology.water_table(name).expect("validation: every spring names a defined water table")
 }
 
 /// The vadose then phreatic path from `source` to `target`, or None when unreachable.
 #[allow(clippy::too_many_arguments)]
 fn leg(
-    scene: &Scene,
+    view: &SkeletonView,
     samples: &Samples,
     costs: &dyn EdgeCosts,
     used: &[bool],
@@ -332,7 +333,7 @@ fn leg(
     source: usize,
     target: usize,
 ) -> Option<Leg> {
-    let p = scene.skeleton();
+    let p = view.skeleton;
     let at = |v: usize| DVec3::from_array(samples.positions[v]);
     let phreatic = |v: usize| table.height_above(at(v)) <= 0.0;
     let vadose_costs = Cohesive { base: costs, used, factor: p.cohesion_vadose };

@@ -33,9 +33,11 @@ mod search;
 mod spring_distance;
 pub mod stage;
 mod tortuosity;
+mod view;
 
 pub use build::{build, mode_paths};
 pub use error::SkeletonError;
 pub use payload::{Conduit, ConduitType, Node, Route, Skeleton, Zone};
 pub use radii::ConduitRadii;
 pub use stage::SkeletonStage;
+pub use view::SkeletonView;

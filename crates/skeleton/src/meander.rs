@@ -21,13 +21,13 @@
 use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
-use karst_geology::Scene;
 use karst_geology::rng::Random;
 
 use crate::nodes::node_at;
 use crate::payload::Node;
 use crate::planes::WeaknessPlanes;
 use crate::tortuosity::Insertions;
+use crate::view::SkeletonView;
 
 /// Halvings of an offset that leaves the bedrock before the point stays on the chord.
 const TRIES: usize = 6;
@@ -67,11 +67,16 @@ fn sine_sinuosity(ak: f64) -> f64 {
 }
 
 /// Bends every conduit of `chains` in place; returns the nodes inserted into each link.
-pub fn bend(scene: &Scene, sinuosity: f64, nodes: &mut Vec<Node>, chains: &mut [Vec<u32>]) -> Insertions {
-    let p = scene.skeleton();
+pub fn bend(
+    view: &SkeletonView,
+    sinuosity: f64,
+    nodes: &mut Vec<Node>,
+    chains: &mut [Vec<u32>],
+) -> Insertions {
+    let p = view.skeleton;
     let ak = amplitude_ratio(sinuosity);
-    let mut rng = Random::stream(scene.seed(), "skeleton", "meanders");
-    let planes = WeaknessPlanes::of(scene);
+    let mut rng = Random::stream(view.seed, "skeleton", "meanders");
+    let planes = WeaknessPlanes::of(view.geology);
     let mut inserted = Insertions::new();
     for chain in chains.iter_mut() {
         let wavelength = rng.range(p.meander_wavelength[0], p.meander_wavelength[1]);
@@ -85,8 +90,9 @@ pub fn bend(scene: &Scene, sinuosity: f64, nodes: &mut Vec<Node>, chains: &mut [
         if chain[0] == chain[chain.len() - 1] || dip >= p.vertical_angle {
             continue;
         }
-        let across = planes.across(scene, (originals[0] + originals[originals.len() - 1]) * 0.5, chord);
-        *chain = meander.apply(scene, &across, &originals, chain, nodes, &mut inserted);
+        let across =
+            planes.across(view.geology, (originals[0] + originals[originals.len() - 1]) * 0.5, chord);
+        *chain = meander.apply(view, &across, &originals, chain, nodes, &mut inserted);
     }
     inserted
 }
@@ -122,7 +128,7 @@ impl Meander {
     /// points inserted a twelfth of a wavelength apart; returns the new chain.
     fn apply(
         &self,
-        scene: &Scene,
+        view: &SkeletonView,
         across: &DVec3,
         originals: &[DVec3],
         chain: &[u32],
@@ -140,16 +146,16 @@ impl Meander {
             let ids: Vec<u32> = (1..pieces)
                 .map(|j| {
                     let t = j as f64 / pieces as f64;
-                    let q = displaced(scene, pa.lerp(pb, t), *across, self.offset(s + step * t));
+                    let q = displaced(view, pa.lerp(pb, t), *across, self.offset(s + step * t));
                     let sample = nodes[if t < 0.5 { a } else { b } as usize].sample;
-                    nodes.push(node_at(scene, q.to_array(), sample, None));
+                    nodes.push(node_at(view.geology, q.to_array(), sample, None));
                     (nodes.len() - 1) as u32
                 })
                 .collect();
             s += step;
             if k + 2 < chain.len() {
-                let q = displaced(scene, pb, *across, self.offset(s));
-                nodes[b as usize] = node_at(scene, q.to_array(), nodes[b as usize].sample, None);
+                let q = displaced(view, pb, *across, self.offset(s));
+                nodes[b as usize] = node_at(view.geology, q.to_array(), nodes[b as usize].sample, None);
             }
             refined.extend(&ids);
             refined.push(b);
@@ -161,8 +167,8 @@ impl Meander {
 }
 
 /// `p` moved by `offset` along `across`, halved until it lies in the bedrock.
-fn displaced(scene: &Scene, p: DVec3, across: DVec3, offset: f64) -> DVec3 {
-    (0..TRIES).map(|k| p + across * offset / f64::from(1u32 << k)).find(|q| scene.in_bedrock(*q)).unwrap_or(p)
+fn displaced(view: &SkeletonView, p: DVec3, across: DVec3, offset: f64) -> DVec3 {
+    (0..TRIES).map(|k| p + across * offset / f64::from(1u32 << k)).find(|q| view.in_bedrock(*q)).unwrap_or(p)
 }
 
 #[cfg(test)]

@@ -6,15 +6,17 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use crate::build::build;
-use crate::ends::{End, sinks_in_order};
+use crate::ends::End;
 use crate::error::SkeletonError;
 use crate::karstnsim;
 use crate::payload::Skeleton;
 use crate::search::EdgeCosts;
+use crate::view::SkeletonView;
+use karst_costgraph::CostgraphView;
 use karst_costgraph::{CostGraph, Costing};
-use karst_geology::Scene;
+use karst_geology::{Scene, SceneView};
 use karst_sampling::Samples;
+use karst_sampling::SamplingView;
 
 const SCENE: &str = r#"
 name = "two-springs"
@@ -74,10 +76,19 @@ fn scene(extra: &str) -> Scene {
 
 /// The samples and the cost graph of `scene`, costed on demand (as the skeleton stage does).
 fn inputs(scene: &Scene) -> (Samples, CostGraph) {
-    let samples = karst_sampling::build(scene).unwrap();
-    let graph = karst_costgraph::build(scene, &samples).unwrap();
-    graph.cost_from(scene, &samples.positions, Costing::OnDemand).unwrap();
+    let samples = karst_sampling::build(&SamplingView::of(scene)).unwrap();
+    let graph = karst_costgraph::build(&CostgraphView::of(scene), &samples).unwrap();
+    graph.cost_from(&CostgraphView::of(scene), &samples.positions, Costing::OnDemand).unwrap();
     (samples, graph)
+}
+
+/// The skeleton of `scene` (the stage's build on its view).
+fn build(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Skeleton, SkeletonError> {
+    crate::build::build(&SkeletonView::of(scene), samples, graph)
+}
+
+fn sinks_in_order(scene: &Scene) -> Vec<End<'_>> {
+    crate::ends::sinks_in_order(&SkeletonView::of(scene))
 }
 
 fn route(
@@ -87,8 +98,9 @@ fn route(
     sinks: &[End],
 ) -> BTreeMap<(String, String), Vec<usize>> {
     let cost_set = |_: &str| -> &dyn EdgeCosts { graph };
-    let phase = karstnsim::PhaseSetup::single(scene, graph);
-    karstnsim::route(scene, samples, graph, &cost_set, sinks, &phase)
+    let view = SkeletonView::of(scene);
+    let phase = karstnsim::PhaseSetup::single(&view, graph);
+    karstnsim::route(&view, samples, graph, &cost_set, sinks, &phase)
         .unwrap()
         .routes
         .into_iter()
@@ -137,11 +149,11 @@ fn the_least_costs_to_the_springs_change_no_route() {
         let (samples, graph) = inputs(&scene);
         let order = sinks_in_order(&scene);
         let cost_set = |_: &str| -> &dyn EdgeCosts { &graph };
-        let phase = karstnsim::PhaseSetup::single(&scene, &graph);
+        let view = SkeletonView::of(&scene);
+        let phase = karstnsim::PhaseSetup::single(&view, &graph);
         let routes = |legs_worth: usize| {
-            let run = || {
-                karstnsim::route_mapping(&scene, &samples, (&graph, &cost_set), &order, &phase, legs_worth)
-            };
+            let run =
+                || karstnsim::route_mapping(&view, &samples, (&graph, &cost_set), &order, &phase, legs_worth);
             let paths = |r: karstnsim::PhaseRoutes| -> Vec<(String, String, Vec<usize>)> {
                 r.routes.into_iter().map(|(r, path)| (r.sink, r.spring, path)).collect()
             };
@@ -298,7 +310,7 @@ fn tortuosity_grows_with_theta_and_stays_in_the_bedrock() {
         assert_eq!(s.links().len(), 4 * straight.links().len(), "two levels: four segments per link");
         for n in &s.nodes {
             let p = glam::DVec3::from_array(n.position);
-            assert!(base.in_bedrock(p), "{p}");
+            assert!(base.terrain().in_bedrock(base.domain(), p), "{p}");
         }
         for r in &s.routes {
             assert!(r.nodes.windows(2).all(|w| linked(s, w[0], w[1])), "routes follow the refined links");
@@ -475,7 +487,11 @@ fn meanders_lengthen_conduits_within_the_bedding_plane() {
     for r in &bent.routes {
         assert!(r.nodes.windows(2).all(|w| linked(&bent, w[0], w[1])), "routes follow the bent links");
     }
-    assert!(bent.nodes.iter().all(|n| base.in_bedrock(glam::DVec3::from_array(n.position))));
+    assert!(
+        bent.nodes
+            .iter()
+            .all(|n| base.terrain().in_bedrock(base.domain(), glam::DVec3::from_array(n.position)))
+    );
 }
 
 #[test]

@@ -13,7 +13,7 @@
 //! none.
 
 use glam::DVec3;
-use karst_geology::Scene;
+use karst_geology::Geology;
 
 /// The fracture families' planes of a scene.
 pub struct WeaknessPlanes {
@@ -22,14 +22,14 @@ pub struct WeaknessPlanes {
 }
 
 impl WeaknessPlanes {
-    pub fn of(scene: &Scene) -> Self {
+    pub fn of(geology: &Geology) -> Self {
         let fractures =
-            scene.geology().fractures.iter().map(|f| (f.normal(), f.tolerance.to_radians().sin())).collect();
+            geology.fractures.iter().map(|f| (f.normal(), f.tolerance.to_radians().sin())).collect();
         WeaknessPlanes { fractures }
     }
 
     /// The unit direction across `segment` (at `at`) within the weakness plane it lies in.
-    pub fn across(&self, scene: &Scene, at: DVec3, segment: DVec3) -> DVec3 {
+    pub fn across(&self, geology: &Geology, at: DVec3, segment: DVec3) -> DVec3 {
         let axis = segment.normalize_or_zero();
         if axis == DVec3::ZERO {
             return DVec3::X;
@@ -45,7 +45,7 @@ impl WeaknessPlanes {
             self.fractures
                 .iter()
                 .map(|(n, _)| *n)
-                .chain([bedding_normal(scene, at)])
+                .chain([bedding_normal(geology, at)])
                 .min_by(|a, b| off(a).total_cmp(&off(b)))
                 .expect("the bedding is always a plane")
         });
@@ -56,9 +56,8 @@ impl WeaknessPlanes {
 
 /// The upward normal of the bedding at `p`: the nearest inception horizon's, vertical when the
 /// scene has none.
-pub fn bedding_normal(scene: &Scene, p: DVec3) -> DVec3 {
-    scene
-        .geology()
+pub fn bedding_normal(geology: &Geology, p: DVec3) -> DVec3 {
+    geology
         .horizons
         .iter()
         .min_by(|a, b| a.distance(p).total_cmp(&b.distance(p)))
@@ -105,14 +104,14 @@ water_table = "base"
 
     #[test]
     fn a_passage_along_a_joint_and_a_parting_bends_in_the_joint() {
-        let scene = Scene::parse(JOINTED, std::path::Path::new("jointed.toml")).unwrap();
-        let planes = WeaknessPlanes::of(&scene);
+        let scene = karst_geology::Scene::parse(JOINTED, std::path::Path::new("jointed.toml")).unwrap();
+        let planes = WeaknessPlanes::of(scene.geology());
         let at = DVec3::new(50.0, 50.0, 20.0);
         // North–south and level: in both families; the joint (vertical) carries the bends.
-        let across = planes.across(&scene, at, DVec3::Y);
+        let across = planes.across(scene.geology(), at, DVec3::Y);
         assert!(across.z.abs() > 0.99, "{across}");
         // North-east and level: only in the parting; it bends sideways, level.
-        let across = planes.across(&scene, at, DVec3::new(1.0, 1.0, 0.0));
+        let across = planes.across(scene.geology(), at, DVec3::new(1.0, 1.0, 0.0));
         assert!(across.z.abs() < 1e-9 && across.dot(DVec3::new(1.0, 1.0, 0.0)).abs() < 1e-9, "{across}");
     }
 }

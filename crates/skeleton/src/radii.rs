@@ -11,31 +11,31 @@
 //! junctions the conduits are drawn from.
 
 use glam::DVec3;
-use karst_geology::Scene;
+use karst_geology::params::SkeletonParams;
 use karst_geology::rng::Random;
 
 use crate::payload::{ConduitType, Node};
 
 /// Radii of the conduits' nodes, drawn in conduit order.
 pub struct ConduitRadii<'a> {
-    scene: &'a Scene,
+    params: &'a SkeletonParams,
     rng: Random,
     /// The process value already drawn at each node.
     value: Vec<Option<f64>>,
 }
 
 impl<'a> ConduitRadii<'a> {
-    pub fn new(scene: &'a Scene, node_count: usize) -> Self {
+    pub fn new(params: &'a SkeletonParams, seed: u64, node_count: usize) -> Self {
         ConduitRadii {
-            scene,
-            rng: Random::stream(scene.seed(), "skeleton", "radius"),
+            params,
+            rng: Random::stream(seed, "skeleton", "radius"),
             value: vec![None; node_count],
         }
     }
 
     /// The radius at each node of `chain`, whose segments have `types`.
     pub fn conduit(&mut self, nodes: &[Node], chain: &[u32], types: &[ConduitType]) -> Vec<f64> {
-        let p = &self.scene.skeleton();
+        let p = self.params;
         let [c0, c1] = p.radius_correlation;
         let range = self.rng.range(c0, c1);
         let mut z = match self.value[chain[0] as usize] {
@@ -90,6 +90,7 @@ mod tests {
     use super::*;
 
     use crate::Zone;
+    use karst_geology::Scene;
     use std::path::Path;
 
     fn scene() -> Scene {
@@ -137,7 +138,8 @@ radius_correlation = [100.0, 100.0]
         let scene = scene();
         let (nodes, chain) = straight_conduit(3000, 1.0);
         let types = vec![ConduitType::Canyon; chain.len() - 1];
-        let r = ConduitRadii::new(&scene, nodes.len()).conduit(&nodes, &chain, &types);
+        let r =
+            ConduitRadii::new(scene.skeleton(), scene.seed(), nodes.len()).conduit(&nodes, &chain, &types);
         assert!(r.iter().all(|r| (1.0..=3.0).contains(r)));
         let mean = r.iter().sum::<f64>() / r.len() as f64;
         let correlation = |lag: usize| {
@@ -154,7 +156,8 @@ radius_correlation = [100.0, 100.0]
         let scene = scene();
         let (nodes, chain) = straight_conduit(4, 10.0);
         let types = [ConduitType::Epikarst, ConduitType::Tube, ConduitType::Tube];
-        let r = ConduitRadii::new(&scene, nodes.len()).conduit(&nodes, &chain, &types);
+        let r =
+            ConduitRadii::new(scene.skeleton(), scene.seed(), nodes.len()).conduit(&nodes, &chain, &types);
         assert_eq!(&r[..2], &[0.5, 0.5]);
         assert!(r[2] >= 1.0 && r[3] >= 1.0);
     }

@@ -1,11 +1,10 @@
-//! The skeleton stage's contract: the scene, `samples.bin` and `costgraph.bin` in,
+//! The skeleton stage's contract: its view of the scene, `samples.bin` and `costgraph.bin` in,
 //! `skeleton.json` and karstnet's node/link files out; `render` draws the network.
 
 use std::path::{Path, PathBuf};
 
 use karst_artifact::{Header, StageId, read_artifact};
 use karst_costgraph::CostGraph;
-use karst_geology::Scene;
 use karst_geology::params::SkeletonMode;
 use karst_sampling::Samples;
 use karst_stage::{Stage, StageError};
@@ -14,6 +13,7 @@ use crate::build::build;
 use crate::error::SkeletonError;
 use crate::karstnet;
 use crate::payload::{ConduitType, Skeleton, Zone};
+use crate::view::SkeletonView;
 
 /// The base name of the karstnet export in the output folder.
 pub const KARSTNET_BASE: &str = "network";
@@ -26,15 +26,19 @@ impl Stage for SkeletonStage {
     type Inputs = (Samples, CostGraph);
     type Output = Skeleton;
     type Error = SkeletonError;
+    type View<'s> = SkeletonView<'s>;
 
-    fn build(scene: &Scene, (samples, graph): &(Samples, CostGraph)) -> Result<Skeleton, SkeletonError> {
-        build(scene, samples, graph)
+    fn build(
+        view: &SkeletonView,
+        (samples, graph): &(Samples, CostGraph),
+    ) -> Result<Skeleton, SkeletonError> {
+        build(view, samples, graph)
     }
 
-    fn headline(scene: &Scene, skeleton: &Skeleton) -> String {
+    fn headline(view: &SkeletonView, skeleton: &Skeleton) -> String {
         // Least-cost distances obey the triangle inequality, so γ ≤ 1 prunes nothing
         // (docs/skeleton.md): say so, since Paris et al.'s Table 1 suggests 0.8 for mazes.
-        let p = scene.skeleton();
+        let p = view.skeleton;
         let complete = p.mode == SkeletonMode::Gamma && p.gamma <= 1.0;
         format!(
             "{} nodes, {} conduits, {:.0} m{}",
@@ -75,7 +79,12 @@ impl Stage for SkeletonStage {
     }
 
     /// karstnet's `network_nodes.dat` / `network_links.dat`.
-    fn side_files(out: &Path, _: &Scene, _: &Self::Inputs, skeleton: &mut Skeleton) -> std::io::Result<()> {
+    fn side_files(
+        out: &Path,
+        _: &SkeletonView,
+        _: &Self::Inputs,
+        skeleton: &mut Skeleton,
+    ) -> std::io::Result<()> {
         karstnet::write(skeleton, &out.join(KARSTNET_BASE))
     }
 }

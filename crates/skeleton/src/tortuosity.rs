@@ -16,12 +16,12 @@
 use std::collections::BTreeMap;
 
 use glam::DVec3;
-use karst_geology::Scene;
 use karst_geology::rng::Random;
 
 use crate::nodes::node_at;
 use crate::payload::{Node, Route};
 use crate::planes::WeaknessPlanes;
+use crate::view::SkeletonView;
 
 /// Draws per displaced midpoint before it stays straight.
 const TRIES: usize = 8;
@@ -35,10 +35,10 @@ pub fn amplitude(theta: f64) -> f64 {
 }
 
 /// Refines `chains` in place, appending the new nodes to `nodes`; returns the insertions.
-pub fn refine(scene: &Scene, theta: f64, nodes: &mut Vec<Node>, chains: &mut [Vec<u32>]) -> Insertions {
-    let mut rng = Random::stream(scene.seed(), "skeleton", "tortuosity");
-    let levels = scene.skeleton().tortuosity_levels;
-    let planes = WeaknessPlanes::of(scene);
+pub fn refine(view: &SkeletonView, theta: f64, nodes: &mut Vec<Node>, chains: &mut [Vec<u32>]) -> Insertions {
+    let mut rng = Random::stream(view.seed, "skeleton", "tortuosity");
+    let levels = view.skeleton.tortuosity_levels;
+    let planes = WeaknessPlanes::of(view.geology);
     let mut inserted = Insertions::new();
     for chain in chains.iter_mut() {
         let mut refined = vec![chain[0]];
@@ -49,7 +49,7 @@ pub fn refine(scene: &Scene, theta: f64, nodes: &mut Vec<Node>, chains: &mut [Ve
             let mut points = vec![pa, pb];
             for level in 0..levels {
                 let reach = amplitude(theta) / f64::from(1u32 << level);
-                points = subdivide(scene, &planes, &mut rng, &points, reach);
+                points = subdivide(view, &planes, &mut rng, &points, reach);
             }
             let interior = &points[1..points.len() - 1];
             let half = interior.len() / 2;
@@ -58,7 +58,7 @@ pub fn refine(scene: &Scene, theta: f64, nodes: &mut Vec<Node>, chains: &mut [Ve
                 .enumerate()
                 .map(|(i, p)| {
                     let sample = nodes[if i < half { a } else { b } as usize].sample;
-                    nodes.push(node_at(scene, p.to_array(), sample, None));
+                    nodes.push(node_at(view.geology, p.to_array(), sample, None));
                     (nodes.len() - 1) as u32
                 })
                 .collect();
@@ -93,7 +93,7 @@ pub fn reroute(routes: &mut [Route], inserted: &Insertions) {
 
 /// One level: a displaced midpoint between every two consecutive points.
 fn subdivide(
-    scene: &Scene,
+    view: &SkeletonView,
     planes: &WeaknessPlanes,
     rng: &mut Random,
     points: &[DVec3],
@@ -102,10 +102,10 @@ fn subdivide(
     let mut out = vec![points[0]];
     for w in points.windows(2) {
         let mid = (w[0] + w[1]) * 0.5;
-        let across = planes.across(scene, mid, w[1] - w[0]);
+        let across = planes.across(view.geology, mid, w[1] - w[0]);
         let displaced = (0..TRIES).find_map(|_| {
             let p = mid + across * rng.range(-reach, reach);
-            scene.in_bedrock(p).then_some(p)
+            view.in_bedrock(p).then_some(p)
         });
         out.push(displaced.unwrap_or(mid));
         out.push(w[1]);

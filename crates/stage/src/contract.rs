@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use karst_artifact::{Header, Payload, StageId};
-use karst_geology::Scene;
+use karst_geology::{SceneView, Section};
 
 use crate::inputs::Inputs;
 use crate::streamed::{ArtifactOut, Written};
@@ -11,9 +11,11 @@ use crate::streamed::{ArtifactOut, Written};
 /// One stage of the pipeline. Implemented by a unit type in each stage crate's `stage.rs`;
 /// [`crate::runner::run`] does the rest.
 pub trait Stage: 'static {
-    /// The stage's row of the stage table: name, binary, artifact file, encoding, inputs and
-    /// the scene sections it reads (the key covers exactly those).
+    /// The stage's row of the stage table: name, binary, artifact file, encoding, inputs.
     const ID: StageId;
+    /// What the stage reads of the scene ([`karst_geology::view!`]): its artifact key hashes
+    /// exactly the view's sections ([`sections`]).
+    type View<'s>: SceneView<'s>;
     /// The upstream payloads it reads, in the row's order.
     type Inputs: Inputs;
     /// The payload of its artifact (handed to the next stage of a pipeline run: [`crate::Handoff`]).
@@ -21,11 +23,11 @@ pub trait Stage: 'static {
     /// Its typed error.
     type Error: Failure;
 
-    /// The stage's algorithm: the scene and the inputs in, the payload out.
-    fn build(scene: &Scene, inputs: &Self::Inputs) -> Result<Self::Output, Self::Error>;
+    /// The stage's algorithm: its view of the scene and the inputs in, the payload out.
+    fn build(view: &Self::View<'_>, inputs: &Self::Inputs) -> Result<Self::Output, Self::Error>;
 
     /// The figures printed after a run, one line ("33 nodes, 3 conduits, 376 m").
-    fn headline(scene: &Scene, output: &Self::Output) -> String;
+    fn headline(view: &Self::View<'_>, output: &Self::Output) -> String;
 
     /// What the stage corrected or could not do in this run (a lowered control point, a lake),
     /// printed under the headline: the user's input was usable, but not as given.
@@ -42,7 +44,7 @@ pub trait Stage: 'static {
     /// record in its payload what it wrote (the export stage's manifest of files and hashes).
     fn side_files(
         _out: &Path,
-        _scene: &Scene,
+        _view: &Self::View<'_>,
         _inputs: &Self::Inputs,
         _output: &mut Self::Output,
     ) -> std::io::Result<()> {
@@ -57,12 +59,17 @@ pub trait Stage: 'static {
     /// A streamed stage writes no side files, and checks what [`karst_artifact::Payload::validate`]
     /// would as it writes; its timing covers the build and the write.
     fn write_streamed(
-        _scene: &Scene,
+        _view: &Self::View<'_>,
         _inputs: &Self::Inputs,
         _artifact: &mut ArtifactOut<'_, Self::Output>,
     ) -> Option<Result<Written, Self::Error>> {
         None
     }
+}
+
+/// The scene sections stage `S` reads: its view's, in the order its key hashes them.
+pub fn sections<S: Stage>() -> &'static [Section] {
+    <S::View<'static> as SceneView<'static>>::SECTIONS
 }
 
 /// Whose fault an error is, so that the runner can name the file and give the exit code.

@@ -5,9 +5,9 @@ use std::time::Instant;
 
 use karst_artifact::stages::{producer, stage_key};
 use karst_artifact::{Header, InputRef, Payload, Provenance, read_artifact, read_header, write_artifact};
-use karst_geology::Scene;
+use karst_geology::{Scene, SceneView};
 
-use crate::contract::{Blame, Failure, Stage};
+use crate::contract::{Blame, Failure, Stage, sections};
 use crate::error::StageError;
 use crate::handoff::Handoff;
 use crate::inputs::Inputs;
@@ -56,7 +56,7 @@ pub struct Ran {
 pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     debug_assert_eq!(S::Inputs::stages(), S::ID.inputs(), "{}: inputs differ from its row", S::ID.name());
     let mut headers = Vec::new();
-    let frame = job.scene.frame();
+    let frame = job.scene.frame().clone();
     let inputs = S::Inputs::read(job.out, &frame, job.handoff, &mut headers)?;
     consistent(job, &headers)?;
     let refs = headers
@@ -66,15 +66,17 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     let provenance = Provenance {
         producer: producer(S::ID),
         inputs: refs,
-        params: job.scene.sections_hash(S::ID.row().sections),
+        params: job.scene.sections_hash(sections::<S>()),
         frame,
     };
     let path = job.artifact(S::ID);
+    // The stage sees its view of the scene, nothing else.
+    let view = S::View::of(job.scene);
     let start = Instant::now();
-    if let Some(ran) = run_streamed::<S>(job, &inputs, &path, &provenance, start) {
+    if let Some(ran) = run_streamed::<S>(job, &view, &inputs, &path, &provenance, start) {
         return ran;
     }
-    let mut output = S::build(job.scene, &inputs).map_err(|e| blame(job, &e))?;
+    let mut output = S::build(&view, &inputs).map_err(|e| blame(job, &e))?;
     invalidate_other(
         &path,
         &stage_key(
@@ -86,7 +88,7 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
             &provenance.inputs,
         ),
     )?;
-    S::side_files(job.out, job.scene, &inputs, &mut output).map_err(|e| {
+    S::side_files(job.out, &view, &inputs, &mut output).map_err(|e| {
         StageError::failure(format!(
             "{}: cannot write the {} stage's files: {e}",
             job.out.display(),
@@ -105,7 +107,7 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
     })?;
     let header = write_artifact(&path, &provenance, &output)?;
     let _ = std::fs::remove_file(previous_artifact(&path));
-    let ran = Ran { headline: S::headline(job.scene, &output), seconds, notes: S::notes(&output) };
+    let ran = Ran { headline: S::headline(&view, &output), seconds, notes: S::notes(&output) };
     if let Some(handoff) = job.handoff {
         handoff.keep(header, output);
     }
@@ -116,13 +118,14 @@ pub fn run<S: Stage>(job: &Job) -> Result<Ran, StageError> {
 /// returns its payload instead. No side files: nothing to invalidate before the atomic write.
 fn run_streamed<S: Stage>(
     job: &Job,
+    view: &S::View<'_>,
     inputs: &S::Inputs,
     path: &Path,
     provenance: &Provenance,
     start: Instant,
 ) -> Option<Result<Ran, StageError>> {
     let mut artifact = ArtifactOut::new(path, provenance);
-    let written = S::write_streamed(job.scene, inputs, &mut artifact)?;
+    let written = S::write_streamed(view, inputs, &mut artifact)?;
     Some(written.map_err(|e| blame(job, &e)).and_then(|written| {
         if !artifact.written() {
             return Err(StageError::failure(format!(

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use karst_geology::{KeyPointKind, Scene};
+use karst_geology::{KeyPointKind, keypoints_of};
 use karst_hydro::Hydro;
 
 use crate::error::StreamsError;
@@ -12,18 +12,19 @@ use crate::ground::{Grid, Ground};
 use crate::network::Network;
 use crate::payload::{Node, Outline, Pool, Role, Segment, SpringMouth, Streams};
 use crate::trace::{Tracer, Velocity};
+use crate::view::StreamsView;
 use crate::{catchment, curves, flow, mouth, water};
 
 /// The surface network of `scene`, fed by the springs of `hydro`.
-pub fn build(scene: &Scene, hydro: &Hydro) -> Result<Streams, StreamsError> {
-    let params = scene.streams();
-    let ground = Ground { terrain: scene.terrain(), domain: *scene.domain(), probe: 0.5 * params.step };
+pub fn build(view: &StreamsView, hydro: &Hydro) -> Result<Streams, StreamsError> {
+    let params = view.streams;
+    let ground = Ground { terrain: view.terrain, domain: *view.domain, probe: 0.5 * params.step };
     let grid = Grid::of(&ground, params.catchment_cell);
     if let Some(c) = grid.heights.iter().position(|h| !h.is_finite()) {
         let p = grid.centre(c);
         return Err(StreamsError::Terrain { x: p.x, y: p.y, height: grid.heights[c] });
     }
-    let discharges = discharges(scene, hydro)?;
+    let discharges = discharges(view, hydro)?;
     let mut net = Network::new(params.step);
     let mut springs = Vec::new();
     let mut starts = Vec::new();
@@ -53,7 +54,7 @@ pub fn build(scene: &Scene, hydro: &Hydro) -> Result<Streams, StreamsError> {
             discharge,
         });
     }
-    let laid = curves::lay(scene, &ground, &mut net, &starts);
+    let laid = curves::lay(params, &ground, &mut net, &starts);
     let mut tracer = Tracer::new(&ground, &grid, params, &mut net);
     for (node, direction, name) in &starts {
         if laid.captured.contains(node) {
@@ -93,9 +94,9 @@ pub fn build(scene: &Scene, hydro: &Hydro) -> Result<Streams, StreamsError> {
 
 /// Each scene spring with its key point and its discharge in m³/s: the hydro stage's spring
 /// flow times `hydro.total_discharge` over the total flow of the springs.
-fn discharges(scene: &Scene, hydro: &Hydro) -> Result<Vec<(String, DVec3, f64)>, StreamsError> {
+fn discharges(view: &StreamsView, hydro: &Hydro) -> Result<Vec<(String, DVec3, f64)>, StreamsError> {
     for s in &hydro.springs {
-        if scene.keypoints_of(KeyPointKind::Spring).all(|(_, k)| k.name != s.name) {
+        if keypoints_of(view.keypoints, KeyPointKind::Spring).all(|(_, k)| k.name != s.name) {
             return Err(StreamsError::UnknownSpring(s.name.clone()));
         }
         if !(s.flow.is_finite() && s.flow >= 0.0) {
@@ -103,9 +104,8 @@ fn discharges(scene: &Scene, hydro: &Hydro) -> Result<Vec<(String, DVec3, f64)>,
         }
     }
     let total: f64 = hydro.springs.iter().map(|s| s.flow).sum();
-    let scale = if total > 0.0 { scene.total_discharge() / total } else { 0.0 };
-    Ok(scene
-        .keypoints_of(KeyPointKind::Spring)
+    let scale = if total > 0.0 { view.total_discharge / total } else { 0.0 };
+    Ok(keypoints_of(view.keypoints, KeyPointKind::Spring)
         .map(|(_, k)| {
             let flow = hydro.springs.iter().find(|s| s.name == k.name).map_or(0.0, |s| s.flow);
             (k.name.clone(), k.point(), flow * scale)

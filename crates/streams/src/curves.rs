@@ -17,8 +17,7 @@
 
 use glam::{DVec2, DVec3};
 
-use karst_geology::Scene;
-use karst_geology::params::{Curve, CurveKind};
+use karst_geology::params::{Curve, CurveKind, StreamsParams};
 
 use crate::ground::Ground;
 use crate::heading;
@@ -54,8 +53,12 @@ enum Attach {
 }
 
 /// Lays the scene's curves into `net`; `springs` are the spring source nodes.
-pub fn lay(scene: &Scene, ground: &Ground, net: &mut Network, springs: &[(u32, DVec2, String)]) -> Laid {
-    let params = scene.streams();
+pub fn lay(
+    params: &StreamsParams,
+    ground: &Ground,
+    net: &mut Network,
+    springs: &[(u32, DVec2, String)],
+) -> Laid {
     let curves = &params.curves;
     let mut points: Vec<Vec<DVec3>> =
         curves.iter().map(|c| c.points.iter().map(|p| DVec3::from_array(*p)).collect()).collect();

@@ -28,6 +28,7 @@ mod payload;
 mod render;
 pub mod stage;
 mod trace;
+mod view;
 mod water;
 
 use glam::{DVec2, DVec3};
@@ -38,6 +39,7 @@ pub use error::StreamsError;
 pub use payload::{Fall, Motion, Node, Outline, Pool, PoolKind, Role, Segment, SpringMouth, Streams};
 pub use render::map;
 pub use stage::StreamsStage;
+pub use view::StreamsView;
 
 /// Horizontal unit vector from `a` to `b` (x when they coincide).
 pub fn heading(a: DVec3, b: DVec3) -> DVec2 {

@@ -6,7 +6,7 @@
 
 use glam::{DVec2, DVec3};
 
-use karst_geology::Scene;
+use karst_geology::{Domain, Terrain};
 use karst_hydro::{WaterType, colour};
 use karst_plot::axes::{self, Axes};
 use karst_plot::legend::{self, Entry, Swatch};
@@ -20,9 +20,9 @@ const MAP: f64 = 720.0;
 /// Top of the map frame, under the title and caption, pixels.
 const TOP: f64 = 64.0;
 
-/// The map of `streams` over the terrain of `scene`.
-pub fn map(scene: &Scene, streams: &Streams) -> Canvas {
-    let d = scene.domain();
+/// The map of `streams` over the terrain of the domain.
+pub fn map(domain: &Domain, terrain: &Terrain, streams: &Streams) -> Canvas {
+    let d = domain;
     let (w, h) = (d.max[0] - d.min[0], d.max[1] - d.min[1]);
     let zoom = MAP / w.max(h).max(1e-9);
     let frame = Rect::at(axes::LEFT, TOP, (w * zoom).max(1.0), (h * zoom).max(1.0));
@@ -34,7 +34,7 @@ pub fn map(scene: &Scene, streams: &Streams) -> Canvas {
     let width = side.0 + legend_w.max(panel_w) + 16.0;
     let height = (frame.y1 + axes::BOTTOM + 8.0).max(side.1 + legend_h + 24.0 + panel_h + 8.0);
     let mut c = Canvas::new(width.ceil() as u32, height.ceil() as u32, WHITE);
-    shade(&mut c, scene, &map);
+    shade(&mut c, (domain, terrain), &map);
     draw_pools(&mut c, streams, &map);
     for s in &streams.segments {
         let [a, b] = [s.from, s.to].map(|n| at(&map, streams.nodes[n as usize].position));
@@ -112,8 +112,7 @@ fn draw_pools(c: &mut Canvas, streams: &Streams, map: &Axes) {
 }
 
 /// Grey hill shading of the terrain inside the frame, lighter higher, lit from the north-west.
-fn shade(c: &mut Canvas, scene: &Scene, map: &Axes) {
-    let (terrain, d) = (scene.terrain(), scene.domain());
+fn shade(c: &mut Canvas, (d, terrain): (&Domain, &Terrain), map: &Axes) {
     let height = |p: DVec2| terrain.height(p.x, p.y);
     let (lo, hi) = (d.min[2], d.max[2]);
     let light = DVec3::new(-1.0, 1.0, 1.5).normalize();
@@ -181,7 +180,7 @@ mod tests {
             }],
             reports: Vec::new(),
         };
-        let canvas = map(&scene, &streams);
+        let canvas = map(scene.domain(), scene.terrain(), &streams);
         let mut bytes = Vec::new();
         canvas.encode_png(&mut bytes).unwrap();
         let (w, h, colours) = karst_plot::testing::png_summary(&bytes);

@@ -12,6 +12,7 @@ use crate::build::build;
 use crate::error::StreamsError;
 use crate::payload::{Motion, PoolKind, Role, Streams};
 use crate::render;
+use crate::view::StreamsView;
 
 /// Stage 5: the surface waterfall network fed by the springs.
 pub struct StreamsStage;
@@ -21,12 +22,13 @@ impl Stage for StreamsStage {
     type Inputs = (Hydro,);
     type Output = Streams;
     type Error = StreamsError;
+    type View<'s> = StreamsView<'s>;
 
-    fn build(scene: &Scene, (hydro,): &(Hydro,)) -> Result<Streams, StreamsError> {
-        build(scene, hydro)
+    fn build(view: &StreamsView, (hydro,): &(Hydro,)) -> Result<Streams, StreamsError> {
+        build(view, hydro)
     }
 
-    fn headline(_: &Scene, streams: &Streams) -> String {
+    fn headline(_: &StreamsView, streams: &Streams) -> String {
         let running: f64 =
             streams.segments.iter().filter(|s| s.motion == Motion::Contact).map(|s| streams.length(s)).sum();
         let lakes = streams.pools.iter().filter(|p| p.kind == PoolKind::Lake).count();
@@ -99,7 +101,7 @@ pub fn render(args: &RenderArgs) -> Result<(), StageError> {
     let scene = Scene::load(&args.scene)?;
     let (_, streams) = read_artifact::<Streams>(&args.dir.join(StageId::Streams.file_name()))?;
     let png = args.png.clone().unwrap_or_else(|| args.dir.join("streams.png"));
-    render::map(&scene, &streams)
+    render::map(scene.domain(), scene.terrain(), &streams)
         .write_png(&png)
         .map_err(|e| StageError::failure(format!("cannot write {}: {e}", png.display())))?;
     println!("{}", png.display());

@@ -2,6 +2,8 @@
 //! controller curves, the angle split at a branch, lakes and bad inputs. (The ten Table 1 types
 //! on hand-built segments are a unit test of `water.rs`.)
 
+use karst_geology::SceneView;
+use karst_streams::StreamsView;
 use std::path::Path;
 
 use glam::DVec3;
@@ -79,7 +81,7 @@ fn flows_are_conserved_over_noise_terrain_with_confluences() {
         .collect();
     let s = scene(terrain, &format!("{springs}[streams]\nrunoff = 2000\n"), &dir);
     let flows = [("s0", 1.0), ("s1", 2.0), ("s2", 0.5), ("s3", 3.0)];
-    let streams = build(&s, &hydro(&flows)).unwrap();
+    let streams = build(&StreamsView::of(&s), &hydro(&flows)).unwrap();
     assert!(streams.segments.len() > 50, "{} segments", streams.segments.len());
     assert!(streams.nodes.iter().any(|n| n.lateral > 0.0), "the catchment feeds the streams");
     assert_conserved(&streams);
@@ -89,7 +91,7 @@ fn flows_are_conserved_over_noise_terrain_with_confluences() {
     // Same inputs, same bytes.
     assert_eq!(
         serde_json::to_string(&streams).unwrap(),
-        serde_json::to_string(&build(&s, &hydro(&flows)).unwrap()).unwrap()
+        serde_json::to_string(&build(&StreamsView::of(&s), &hydro(&flows)).unwrap()).unwrap()
     );
 }
 
@@ -100,7 +102,7 @@ fn climbing_curves_are_lowered_and_reported() {
     let curve = "[streams]\nmin_slope = 0.02\n[[streams.curves]]\nname = \"leat\"\nkind = \"contact\"\nflow = 0.5\n\
                  points = [[20, 60, 76], [60, 60, 70], [100, 60, 75], [140, 60, 50]]\n";
     let s = scene(terrain, &format!("{}{curve}", spring("s", [190.0, 60.0, 40.0])), &dir);
-    let streams = build(&s, &hydro(&[("s", 1.0)])).unwrap();
+    let streams = build(&StreamsView::of(&s), &hydro(&[("s", 1.0)])).unwrap();
     let lowered: Vec<&String> = streams.reports.iter().filter(|r| r.contains("lowered")).collect();
     assert_eq!(lowered.len(), 1, "{:?}", streams.reports);
     assert!(
@@ -129,7 +131,7 @@ fn a_branch_off_a_curve_splits_the_water_by_angle() {
                   [[streams.curves]]\nname = \"side\"\nkind = \"contact\"\ntension = 1\n\
                   points = [[60, 60, 68], [90, 90, 62]]\n";
     let s = scene(terrain, &format!("{}{curves}", spring("s", [190.0, 60.0, 40.0])), &dir);
-    let streams = build(&s, &hydro(&[("s", 1.0)])).unwrap();
+    let streams = build(&StreamsView::of(&s), &hydro(&[("s", 1.0)])).unwrap();
     let first = |name: &str| {
         streams.segments.iter().find(|g| {
             g.curve.as_deref() == Some(name) && {
@@ -174,7 +176,7 @@ fn a_spring_in_a_closed_hollow_fills_a_lake_and_leaves_by_its_outlet() {
         &format!("{}[streams]\nlake_area = 500\ncatchment_cell = 2\n", spring("s", [80.0, 60.0, 45.0])),
         &dir,
     );
-    let streams = build(&s, &hydro(&[("s", 1.0)])).unwrap();
+    let streams = build(&StreamsView::of(&s), &hydro(&[("s", 1.0)])).unwrap();
     let lake = streams.pools.iter().find(|p| p.kind == PoolKind::Lake).expect("a lake");
     assert!((lake.level - 52.0).abs() < 0.6, "level {}", lake.level);
     assert!(
@@ -194,8 +196,11 @@ fn a_hydro_json_of_another_scene_is_refused() {
     let dir = scratch("other");
     let s = scene("[terrain]\nkind = \"plane\"\nelevation = 80", &spring("s", [100.0, 60.0, 79.0]), &dir);
     assert_eq!(
-        build(&s, &hydro(&[("elsewhere", 1.0)])),
+        build(&StreamsView::of(&s), &hydro(&[("elsewhere", 1.0)])),
         Err(StreamsError::UnknownSpring("elsewhere".into()))
     );
-    assert!(matches!(build(&s, &hydro(&[("s", f64::NAN)])), Err(StreamsError::BadFlow { .. })));
+    assert!(matches!(
+        build(&StreamsView::of(&s), &hydro(&[("s", f64::NAN)])),
+        Err(StreamsError::BadFlow { .. })
+    ));
 }

@@ -5,6 +5,8 @@
 //! every preset's terrain with extra springs spread over it, and on a hand-built terrain with a
 //! flat and a pit.
 
+use karst_geology::SceneView;
+use karst_streams::StreamsView;
 use std::path::Path;
 
 use glam::DVec3;
@@ -25,8 +27,7 @@ fn hydro_of(scene: &Scene) -> Hydro {
         conduits: Vec::new(),
         nodes: Vec::new(),
         sinks: Vec::new(),
-        springs: scene
-            .keypoints_of(KeyPointKind::Spring)
+        springs: karst_geology::keypoints_of(scene.keypoints(), KeyPointKind::Spring)
             .map(|(_, k)| Spring { name: k.name.clone(), node: 0, flow: 1.0, sinks: Vec::new() })
             .collect(),
     }
@@ -175,7 +176,7 @@ fn every_step_goes_down_on_noise_terrains() {
         let points: Vec<[f64; 2]> =
             (0..12).map(|_| [10.0 + 280.0 * rng.unit(), 10.0 + 180.0 * rng.unit()]).collect();
         add_springs(&mut scene, points, 1.0 + 4.0 * rng.unit());
-        let streams = build(&scene, &hydro_of(&scene)).unwrap();
+        let streams = build(&StreamsView::of(&scene), &hydro_of(&scene)).unwrap();
         assert!(streams.segments.len() > 100, "seed {seed}: {} segments", streams.segments.len());
         assert_downhill(&streams, &scene, &format!("noise seed {seed}"));
     }
@@ -202,7 +203,7 @@ fn every_step_goes_down_on_the_presets_terrains() {
             })
             .collect();
         add_springs(&mut scene, points, 0.5);
-        let streams = build(&scene, &hydro_of(&scene)).unwrap();
+        let streams = build(&StreamsView::of(&scene), &hydro_of(&scene)).unwrap();
         assert_downhill(&streams, &scene, &path.display().to_string());
     }
 }
@@ -227,7 +228,7 @@ fn every_step_goes_down_over_a_flat_and_a_pit() {
     };
     let mut scene = heightfield_scene(&dir, 2.0, [200.0, 120.0], height, "[streams]\ncatchment_cell = 2\n");
     add_springs(&mut scene, (0..5).map(|k| [10.0, 50.0 + 5.0 * k as f64]), 0.5);
-    let streams = build(&scene, &hydro_of(&scene)).unwrap();
+    let streams = build(&StreamsView::of(&scene), &hydro_of(&scene)).unwrap();
     // The streams cross the flat and fill the pit to its lowest rim (46.2 m, downstream)
     // before they leave by the east side.
     assert_eq!(streams.pools.len(), 1, "{:?}", streams.pools);
@@ -260,7 +261,7 @@ fn a_step_over_a_lip_is_refined_onto_the_terrain() {
     };
     let mut scene = heightfield_scene(&dir, 0.5, [200.0, 60.0], height, "");
     add_springs(&mut scene, [[60.0, 30.0]], 0.5);
-    let streams = build(&scene, &hydro_of(&scene)).unwrap();
+    let streams = build(&StreamsView::of(&scene), &hydro_of(&scene)).unwrap();
     assert_downhill(&streams, &scene, "lip");
     assert!(
         streams.segments.iter().all(|g| g.motion == Motion::Contact),

@@ -3,6 +3,8 @@
 use std::path::Path;
 use std::time::Instant;
 
+use karst_costgraph::CostgraphView;
+use karst_geology::SceneView;
 use karst_stage::StageError;
 
 use super::median;
@@ -46,7 +48,8 @@ pub fn time_costgraph(scene: &Path, case: &CostgraphCase, runs: usize) -> Result
     for _ in 0..runs.max(1) {
         drop(last.take());
         let (start, cpu_start) = (Instant::now(), cpu_seconds());
-        let graph = karst_costgraph::build_points(&scene, &points).map_err(StageError::input)?;
+        let graph =
+            karst_costgraph::build_points(&CostgraphView::of(&scene), &points).map_err(StageError::input)?;
         times.push(start.elapsed().as_secs_f64());
         cpu.extend(cpu_seconds().zip(cpu_start).map(|(end, start)| end - start));
         last = Some(graph);

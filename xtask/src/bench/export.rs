@@ -33,7 +33,7 @@ pub fn time_exports(dir: &Path, runs: usize) -> Result<Vec<ExportTime>, StageErr
         mesh: Some(&mesh),
         metrics: Some(&metrics),
         samples: Some(&samples),
-        scene: None,
+        geology: None,
         frame: &frame,
     };
     let scratch = TempFolder::new("bench-export");

@@ -6,9 +6,10 @@ use std::time::Instant;
 
 use glam::DVec3;
 use karst_artifact::{Provenance, StageId, read_artifact};
+use karst_geology::SceneView;
 use karst_pipeline::registry;
 use karst_pipeline::scene::SceneFile;
-use karst_sdf::CarvedTerrain;
+use karst_sdf::{CarvedTerrain, SdfView};
 use karst_stage::{Job, StageError};
 
 use super::probes::cpu_seconds;
@@ -34,7 +35,7 @@ pub struct SdfBench {
 /// Times `karst_sdf::build` and `CarvedTerrain::eval` on `conduits` synthetic conduits of 12
 /// nodes: evaluations at 200k points uniform in the domain and 200k within 6 m of a node.
 pub fn sdf_network(conduits: usize, runs: usize) -> Result<SdfBench, StageError> {
-    let scene = karst_sdf::synthetic::scene();
+    let scene = karst_geology::Scene::parse(karst_sdf::synthetic::SCENE, Path::new("synthetic.toml"))?;
     let (skeleton, hydro) = karst_sdf::synthetic::network(5, conduits, 12);
     sdf_tree(&scene, &skeleton, &hydro, runs)
 }
@@ -63,7 +64,7 @@ fn sdf_tree(
     let mut model = None;
     for _ in 0..runs.max(1) {
         let start = Instant::now();
-        let built = karst_sdf::build(scene, skeleton, hydro).map_err(StageError::input)?;
+        let built = karst_sdf::build(&SdfView::of(scene), skeleton, hydro).map_err(StageError::input)?;
         let field = CarvedTerrain::new(built);
         builds.push(start.elapsed().as_secs_f64());
         model = Some(field);

@@ -3,7 +3,10 @@
 use std::path::Path;
 use std::time::Instant;
 
-use karst_geology::{KeyPointKind, Scene};
+use karst_costgraph::CostgraphView;
+use karst_geology::{KeyPointKind, Scene, SceneView, keypoints_of};
+use karst_sampling::SamplingView;
+use karst_skeleton::SkeletonView;
 use karst_stage::StageError;
 
 use super::median;
@@ -20,15 +23,17 @@ pub fn time_skeleton_budgets(runs: usize) -> Result<Vec<(String, usize, f64)>, S
     let prepare = |path: &str, edit: &dyn Fn(&mut Scene)| -> Result<_, StageError> {
         let mut scene = Scene::load(Path::new(path))?;
         edit(&mut scene);
-        let samples = karst_sampling::build(&scene).map_err(StageError::input)?;
-        let graph = karst_costgraph::build(&scene, &samples).map_err(StageError::input)?;
+        let samples = karst_sampling::build(&SamplingView::of(&scene)).map_err(StageError::input)?;
+        let graph =
+            karst_costgraph::build(&CostgraphView::of(&scene), &samples).map_err(StageError::input)?;
         Ok((scene, samples, graph))
     };
     let time_paths = |scene: &Scene, samples, graph| -> Result<f64, StageError> {
         let mut times = Vec::new();
         for _ in 0..runs.max(1) {
             let start = Instant::now();
-            karst_skeleton::mode_paths(scene, samples, graph).map_err(StageError::input)?;
+            karst_skeleton::mode_paths(&SkeletonView::of(scene), samples, graph)
+                .map_err(StageError::input)?;
             times.push(start.elapsed().as_secs_f64());
         }
         Ok(median(times))
@@ -50,7 +55,7 @@ pub fn time_skeleton_budgets(runs: usize) -> Result<Vec<(String, usize, f64)>, S
         s.costgraph_mut().k = 50;
     };
     let (scene, samples, graph) = prepare("fixtures/scenes/karstnsim.toml", &one_spring)?;
-    debug_assert_eq!(scene.keypoints_of(KeyPointKind::Spring).count(), 1);
+    debug_assert_eq!(keypoints_of(scene.keypoints(), KeyPointKind::Spring).count(), 1);
     let seconds = time_paths(&scene, &samples, &graph)?;
     results.push(("KarstNSim, 5 sinks, 1 spring, k = 50".to_string(), samples.len(), seconds));
     Ok(results)

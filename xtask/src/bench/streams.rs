@@ -13,15 +13,15 @@ use std::path::Path;
 use std::time::Instant;
 
 use karst_artifact::{StageId, read_artifact};
-use karst_geology::Scene;
+use karst_geology::{Scene, SceneView};
 use karst_hydro::Hydro;
-use karst_mesher::{MesherStage, anchors, mesh_with};
+use karst_mesher::{MesherStage, MesherView, anchors, mesh_with};
 use karst_pipeline::registry;
 use karst_pipeline::scene::SceneFile;
-use karst_sdf::{CarvedTerrain, SdfModel, SdfStage};
+use karst_sdf::{CarvedTerrain, SdfModel, SdfStage, SdfView};
 use karst_skeleton::Skeleton;
 use karst_stage::{Job, Stage, StageError};
-use karst_streams::{Streams, StreamsStage};
+use karst_streams::{Streams, StreamsStage, StreamsView};
 
 use super::probes::cpu_seconds;
 use super::{median, scratch_dir};
@@ -91,9 +91,9 @@ pub fn time_network(scene: &Path, runs: usize) -> Result<NetworkTime, StageError
     let cpu_start = cpu_seconds();
     for _ in 0..runs.max(1) {
         let start = Instant::now();
-        let streams = StreamsStage::build(&up.scene, &inputs).map_err(StageError::input)?;
+        let streams = StreamsStage::build(&StreamsView::of(&up.scene), &inputs).map_err(StageError::input)?;
         wall.push(start.elapsed().as_secs_f64());
-        headline = StreamsStage::headline(&up.scene, &streams);
+        headline = StreamsStage::headline(&StreamsView::of(&up.scene), &streams);
     }
     let cpu = cpu_seconds().zip(cpu_start).map(|(e, s)| (e - s) / runs.max(1) as f64);
     Ok(NetworkTime { seconds: median(wall), cpu_seconds: cpu, headline })
@@ -109,7 +109,7 @@ pub fn overhead(scene: &Path, runs: usize) -> Result<Overhead, StageError> {
     let (mut cpu_extra, mut cpu_without) = (Vec::new(), Vec::new());
     for run in 0..runs.max(1) {
         let start = Instant::now();
-        StreamsStage::build(&up.scene, &(up.hydro.clone(),)).map_err(StageError::input)?;
+        StreamsStage::build(&StreamsView::of(&up.scene), &(up.hydro.clone(),)).map_err(StageError::input)?;
         streams.push(start.elapsed().as_secs_f64());
         let mut pair = [0.0; 4];
         let mut cpu_pair = [None; 2];
@@ -117,14 +117,14 @@ pub fn overhead(scene: &Path, runs: usize) -> Result<Overhead, StageError> {
         for with in if run % 2 == 0 { [true, false] } else { [false, true] } {
             let (start, cpu_start) = (Instant::now(), cpu_seconds());
             let model = if with {
-                SdfStage::build(&up.scene, &with_inputs)
+                SdfStage::build(&SdfView::of(&up.scene), &with_inputs)
             } else {
-                karst_sdf::build(&up.scene, &up.skeleton, &up.hydro)
+                karst_sdf::build(&SdfView::of(&up.scene), &up.skeleton, &up.hydro)
             }
             .map_err(StageError::input)?;
             let built = start.elapsed().as_secs_f64();
             let start = Instant::now();
-            MesherStage::build(&up.scene, &(model,)).map_err(StageError::input)?;
+            MesherStage::build(&MesherView::of(&up.scene), &(model,)).map_err(StageError::input)?;
             let meshed = start.elapsed().as_secs_f64();
             let at = if with { 0 } else { 2 };
             pair[at] = built;
@@ -155,10 +155,14 @@ pub fn overhead(scene: &Path, runs: usize) -> Result<Overhead, StageError> {
 /// carved and without them: the carving's cost in field evaluations per vertex.
 pub fn carving(scene: &Path, cell: f64) -> Result<Carving, StageError> {
     let up = upstream(scene)?;
-    let bare = karst_sdf::build(&up.scene, &up.skeleton, &up.hydro).map_err(StageError::input)?;
-    let carved = SdfStage::build(&up.scene, &(up.skeleton.clone(), up.hydro.clone(), up.streams.clone()))
-        .map_err(StageError::input)?;
-    let anchors = anchors(&up.scene);
+    let bare =
+        karst_sdf::build(&SdfView::of(&up.scene), &up.skeleton, &up.hydro).map_err(StageError::input)?;
+    let carved = SdfStage::build(
+        &SdfView::of(&up.scene),
+        &(up.skeleton.clone(), up.hydro.clone(), up.streams.clone()),
+    )
+    .map_err(StageError::input)?;
+    let anchors = anchors(up.scene.keypoints());
     let terrain = |model: SdfModel| mesh_with(&CarvedTerrain::new(model), cell, 0.5 * cell, &anchors).terrain;
     let (with, without) = (terrain(carved), terrain(bare));
     Ok(Carving {

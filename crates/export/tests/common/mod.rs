@@ -90,7 +90,7 @@ impl Run {
             mesh: self.mesh.as_ref(),
             metrics: Some(&self.metrics),
             samples: Some(&self.samples),
-            scene: None,
+            geology: None,
             frame: &self.frame,
         }
     }

@@ -12,10 +12,11 @@ use std::sync::Arc;
 
 use rayon::prelude::*;
 
-use karst_costgraph::CostGraph;
-use karst_geology::{Scene, Section};
+use karst_costgraph::{CostGraph, CostgraphView};
+use karst_geology::{Scene, SceneView, Section};
 use karst_metrics::ranges::CHARACTERIZE_KEYS;
-use karst_sampling::Samples;
+use karst_sampling::{Samples, SamplingView};
+use karst_skeleton::SkeletonView;
 
 /// The ten `characterize_graph()` metrics of a network, in karstnet's order.
 pub type MetricVector = [f64; CHARACTERIZE_KEYS.len()];
@@ -35,19 +36,24 @@ struct Upstream {
 
 impl Runner {
     /// Prepares the `seeds` of `scene`, sharing the stages none of the `sections` (those the
-    /// box changes) feeds.
+    /// box changes) feeds: a stage is shared when its view holds none of them, nor does any
+    /// stage's before it.
     pub fn new(scene: &Scene, seeds: Vec<u64>, sections: &[Section]) -> Result<Runner, String> {
-        let shares_samples = !sections.contains(&Section::Sampling);
-        let shares_graph = shares_samples && !sections.contains(&Section::Costgraph);
+        let reads = |view: &[Section]| sections.iter().any(|s| view.contains(s));
+        let shares_samples = !reads(SamplingView::SECTIONS);
+        let shares_graph = shares_samples && !reads(CostgraphView::SECTIONS);
         let shared = seeds
             .par_iter()
             .map(|&seed| {
                 let scene = with_seed(scene, seed);
                 let mut upstream = Upstream::default();
                 if shares_samples {
-                    let samples = Arc::new(karst_sampling::build(&scene).map_err(|e| e.to_string())?);
+                    let samples = Arc::new(
+                        karst_sampling::build(&SamplingView::of(&scene)).map_err(|e| e.to_string())?,
+                    );
                     if shares_graph {
-                        let graph = karst_costgraph::build(&scene, &samples).map_err(|e| e.to_string())?;
+                        let graph = karst_costgraph::build(&CostgraphView::of(&scene), &samples)
+                            .map_err(|e| e.to_string())?;
                         upstream.graph = Some(Arc::new(graph));
                     }
                     upstream.samples = Some(samples);
@@ -87,14 +93,19 @@ impl Runner {
     fn network_metrics(&self, scene: &Scene, upstream: &Upstream) -> Result<MetricVector, String> {
         let samples = match &upstream.samples {
             Some(samples) => Arc::clone(samples),
-            None => Arc::new(karst_sampling::build(scene).map_err(|e| format!("sampling: {e}"))?),
+            None => Arc::new(
+                karst_sampling::build(&SamplingView::of(scene)).map_err(|e| format!("sampling: {e}"))?,
+            ),
         };
         let graph = match &upstream.graph {
             Some(graph) => Arc::clone(graph),
-            None => Arc::new(karst_costgraph::build(scene, &samples).map_err(|e| format!("costgraph: {e}"))?),
+            None => Arc::new(
+                karst_costgraph::build(&CostgraphView::of(scene), &samples)
+                    .map_err(|e| format!("costgraph: {e}"))?,
+            ),
         };
-        let skeleton =
-            karst_skeleton::build(scene, &samples, &graph).map_err(|e| format!("skeleton: {e}"))?;
+        let skeleton = karst_skeleton::build(&SkeletonView::of(scene), &samples, &graph)
+            .map_err(|e| format!("skeleton: {e}"))?;
         let metrics = karst_metrics::characterize(&karst_metrics::network_of(&skeleton))
             .map_err(|e| format!("metrics: {e}"))?;
         Ok(metric_vector(&metrics))
