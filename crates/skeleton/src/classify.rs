@@ -76,31 +76,14 @@ water_table = "w"
     #[test]
     fn types_follow_verticality_and_the_water_table() {
         let s = scene();
+        let view = SkeletonView::of(&s);
         let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-        assert_eq!(
-            classify(&SkeletonView::of(&s), v(10.0, 10.0, 88.0), v(10.0, 11.0, 70.0)),
-            ConduitType::Epikarst
-        );
-        assert_eq!(
-            classify(&SkeletonView::of(&s), v(10.0, 10.0, 60.0), v(10.0, 11.0, 45.0)),
-            ConduitType::Tube
-        );
-        assert_eq!(
-            classify(&SkeletonView::of(&s), v(10.0, 10.0, 60.0), v(30.0, 10.0, 58.0)),
-            ConduitType::Canyon
-        );
-        assert_eq!(
-            classify(&SkeletonView::of(&s), v(10.0, 10.0, 35.0), v(30.0, 10.0, 34.0)),
-            ConduitType::Keyhole
-        );
-        assert_eq!(
-            classify(&SkeletonView::of(&s), v(10.0, 10.0, 60.0), v(20.0, 10.0, 52.0)),
-            ConduitType::Passage
-        );
-        assert_eq!(
-            classify(&SkeletonView::of(&s), v(10.0, 10.0, 25.0), v(30.0, 10.0, 24.0)),
-            ConduitType::Bed
-        );
+        assert_eq!(classify(&view, v(10.0, 10.0, 88.0), v(10.0, 11.0, 70.0)), ConduitType::Epikarst);
+        assert_eq!(classify(&view, v(10.0, 10.0, 60.0), v(10.0, 11.0, 45.0)), ConduitType::Tube);
+        assert_eq!(classify(&view, v(10.0, 10.0, 60.0), v(30.0, 10.0, 58.0)), ConduitType::Canyon);
+        assert_eq!(classify(&view, v(10.0, 10.0, 35.0), v(30.0, 10.0, 34.0)), ConduitType::Keyhole);
+        assert_eq!(classify(&view, v(10.0, 10.0, 60.0), v(20.0, 10.0, 52.0)), ConduitType::Passage);
+        assert_eq!(classify(&view, v(10.0, 10.0, 25.0), v(30.0, 10.0, 24.0)), ConduitType::Bed);
     }
 
     #[test]
