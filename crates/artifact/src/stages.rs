@@ -26,6 +26,8 @@ pub enum StageId {
     Sdf,
     #[serde(rename = "mesh")]
     Mesher,
+    #[serde(rename = "survey")]
+    Survey,
     #[serde(rename = "metrics")]
     Metrics,
     #[serde(rename = "export")]
@@ -64,7 +66,7 @@ use Encoding::{Json, Postcard};
 use StageId::*;
 
 /// The table, in run order; `TABLE[id as usize]` is `id`'s row.
-const TABLE: [StageRow; 9] = [
+const TABLE: [StageRow; 10] = [
     StageRow {
         name: "sampling",
         kind: "samples",
@@ -122,12 +124,20 @@ const TABLE: [StageRow; 9] = [
         inputs: &[Sdf],
     },
     StageRow {
+        name: "survey",
+        kind: "survey",
+        binary: "karst-survey",
+        file: "survey.json",
+        encoding: Json,
+        inputs: &[Skeleton, Sdf],
+    },
+    StageRow {
         name: "metrics",
         kind: "metrics",
         binary: "karst-metrics",
         file: "metrics.json",
         encoding: Json,
-        inputs: &[Skeleton, Hydro, Streams],
+        inputs: &[Skeleton, Hydro, Streams, Survey],
     },
     StageRow {
         name: "export",
@@ -141,8 +151,8 @@ const TABLE: [StageRow; 9] = [
 
 impl StageId {
     /// Every stage, in run order.
-    pub const ALL: [StageId; 9] =
-        [Sampling, Costgraph, Skeleton, Hydro, Streams, Sdf, Mesher, Metrics, Export];
+    pub const ALL: [StageId; 10] =
+        [Sampling, Costgraph, Skeleton, Hydro, Streams, Sdf, Mesher, Survey, Metrics, Export];
 
     /// The stage's row of the table.
     pub fn row(self) -> &'static StageRow {

@@ -400,6 +400,7 @@ mod tests {
             nodes,
             phase: 0,
             keypoints: Vec::new(),
+            profile: Vec::new(),
         };
         let skeleton = Skeleton {
             nodes,

@@ -2,7 +2,7 @@
 //! stage's view holds ([`crate::view`]) and its artifact key hashes.
 
 /// A top-level section of the scene file (or one field of one: `skeleton.forced_links`,
-/// `hydro.total_discharge`).
+/// `hydro.total_discharge`, `sdf.passage_detail`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Section {
     Seed,
@@ -20,6 +20,7 @@ pub enum Section {
     TotalDischarge,
     Streams,
     Sdf,
+    PassageDetail,
     Mesher,
     Export,
     Calibrate,
@@ -27,7 +28,7 @@ pub enum Section {
 
 impl Section {
     /// Every section.
-    pub const ALL: [Section; 18] = [
+    pub const ALL: [Section; 19] = [
         Section::Seed,
         Section::Domain,
         Section::Terrain,
@@ -43,6 +44,7 @@ impl Section {
         Section::TotalDischarge,
         Section::Streams,
         Section::Sdf,
+        Section::PassageDetail,
         Section::Mesher,
         Section::Export,
         Section::Calibrate,
@@ -66,6 +68,7 @@ impl Section {
             Section::TotalDischarge => "hydro.total_discharge",
             Section::Streams => "streams",
             Section::Sdf => "sdf",
+            Section::PassageDetail => "sdf.passage_detail",
             Section::Mesher => "mesher",
             Section::Export => "export",
             Section::Calibrate => "calibrate",

@@ -56,10 +56,15 @@ fn to_json(value: &impl Serialize) -> serde_json::Value {
     serde_json::to_value(value).expect("a scene always serializes")
 }
 
-/// The hash of sections given with their values ([`Part::json`]), for artifact keys.
+/// The hash of sections given with their values ([`Part::json`]), for artifact keys. A part
+/// added after keys were first written hashes as absent (null) at the value that reproduces the
+/// artifacts written before it existed (`sdf.passage_detail = "off"`), so that their keys stay.
 pub fn hash(values: &[(Section, serde_json::Value)]) -> String {
-    let texts: Vec<String> =
-        values.iter().map(|(section, value)| format!("{}={value}", section.key())).collect();
+    let texts: Vec<String> = values
+        .iter()
+        .filter(|(section, value)| !(*section == Section::PassageDetail && value.is_null()))
+        .map(|(section, value)| format!("{}={value}", section.key()))
+        .collect();
     karst_artifact::hash::hex_of_parts(texts.iter().map(|t| t.as_bytes()))
 }
 
@@ -134,8 +139,21 @@ pub mod part {
         TotalDischarge: f64 = |scene| scene.hydro.total_discharge;
         /// `[streams]`: the surface streams and their controller curves.
         Streams: &'s StreamsParams = |scene| &scene.streams;
-        /// `[sdf]`.
-        Sdf: &'s SdfParams = |scene| &scene.sdf;
+        /// `[sdf]`; `passage_detail = "off"` hashes as absent (see [`hash`](super::hash)).
+        Sdf: &'s SdfParams = |scene| &scene.sdf, json |sdf| {
+            let mut value = super::to_json(sdf);
+            if !sdf.passage_detail.varies()
+                && let Some(fields) = value.as_object_mut()
+            {
+                fields.remove("passage_detail");
+            }
+            value
+        };
+        /// `sdf.passage_detail`, read on its own by the skeleton (the passages' size and shape
+        /// along the conduits); `off` hashes as absent (see [`hash`](super::hash)).
+        PassageDetail: crate::params::PassageDetail = |scene| scene.sdf.passage_detail, json |detail| {
+            if detail.varies() { super::to_json(detail) } else { serde_json::Value::Null }
+        };
         /// `[mesher]`.
         Mesher: &'s MesherParams = |scene| &scene.mesher;
         /// `[export]`: which formats the export stage writes.

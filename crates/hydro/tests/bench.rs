@@ -30,6 +30,7 @@ fn maze(n: usize, sinks: usize) -> Skeleton {
                 types: vec![ConduitType::Canyon],
                 phase: 0,
                 keypoints: vec![],
+                profile: Vec::new(),
             });
         }
     }

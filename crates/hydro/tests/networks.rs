@@ -22,6 +22,7 @@ fn conduit(nodes: Vec<u32>) -> Conduit {
         types: vec![ConduitType::Canyon; n - 1],
         phase: 0,
         keypoints: vec![],
+        profile: Vec::new(),
     }
 }
 

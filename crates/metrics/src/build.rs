@@ -8,6 +8,8 @@
 //! different zones crosses the water table somewhere between them: half of its length counts in
 //! each zone.
 //!
+//! The passages' statistics and the void volume are the survey stage's (survey.json), copied.
+//!
 //! The length per water type (`water_types`: stream, rapid, plunge, sump, pool, dry... of the
 //! hydro stage, Emilien et al. 2015 Table 1) sums each segment under the type hydro gave it;
 //! `surface` does the same for the streams on the terrain (streams.json) and counts their free
@@ -18,17 +20,26 @@ use std::collections::BTreeMap;
 use karst_hydro::{Hydro, WaterType};
 use karst_skeleton::{ConduitType, Skeleton, Zone};
 use karst_streams::Streams;
+use karst_survey::Survey;
 
 use crate::error::ReportError;
 use crate::payload::{MetricsReport, SurfaceWater, ZoneLengths};
 use crate::ranges;
 use crate::{Network, characterize};
 
-/// The report of `skeleton`, of its water in `hydro` and of the surface water in `streams`.
-pub fn build(skeleton: &Skeleton, hydro: &Hydro, streams: &Streams) -> Result<MetricsReport, ReportError> {
+/// The report of `skeleton`, of its water in `hydro`, of the surface water in `streams` and of
+/// the passages in `survey`.
+pub fn build(
+    skeleton: &Skeleton,
+    hydro: &Hydro,
+    streams: &Streams,
+    survey: &Survey,
+) -> Result<MetricsReport, ReportError> {
     let mut report = report(skeleton).map_err(ReportError::Network)?;
     report.water_types = water_type_lengths(skeleton, hydro)?;
     report.surface = surface_water(streams);
+    report.passages = survey.statistics.clone();
+    report.void_volume = Some(survey.void_volume.clone());
     Ok(report)
 }
 
@@ -63,6 +74,8 @@ pub fn report(skeleton: &Skeleton) -> Result<MetricsReport, crate::MetricsError>
             .collect(),
         water_types: BTreeMap::new(),
         surface: SurfaceWater::default(),
+        passages: BTreeMap::new(),
+        void_volume: None,
     })
 }
 
@@ -131,6 +144,7 @@ mod tests {
                 types: vec![ConduitType::Tube, ConduitType::Keyhole, ConduitType::Bed],
                 phase: 0,
                 keypoints: vec![],
+                profile: Vec::new(),
             }],
             routes: vec![],
         };

@@ -9,6 +9,8 @@ use serde::{Deserialize, Serialize};
 use karst_artifact::check;
 use karst_artifact::{Invalid, Payload, StageId};
 
+use karst_survey::{PassageStatistic, VoidVolume};
+
 use crate::Metrics;
 use crate::ranges::Compared;
 
@@ -31,6 +33,14 @@ pub struct MetricsReport {
     /// alone (ensembles).
     #[serde(default)]
     pub surface: SurfaceWater,
+    /// The passages as surveyed (survey.json): issue 39's nine statistics of the widths and
+    /// heights beside the range of 17 surveyed caves; empty when the report is made from a
+    /// skeleton alone (ensembles).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub passages: BTreeMap<String, PassageStatistic>,
+    /// The cave's void volume per zone and conduit type (survey.json), m³.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub void_volume: Option<VoidVolume>,
 }
 
 /// The surface streams fed by the springs (streams.json).
@@ -51,7 +61,7 @@ pub struct ZoneLengths {
 
 impl Payload for MetricsReport {
     const STAGE: StageId = StageId::Metrics;
-    const SCHEMA: u32 = 4;
+    const SCHEMA: u32 = 5;
 
     /// Lengths finite and ≥ 0 (the statistics themselves may be undefined, written `null`).
     fn validate(&self) -> Result<(), Invalid> {

@@ -1,4 +1,4 @@
-//! The metrics stage's contract: `skeleton.json`, `hydro.json` and `streams.json` in,
+//! The metrics stage's contract: `skeleton.json`, `hydro.json`, `streams.json` and `survey.json` in,
 //! `metrics.json` and three pictures (DIR/preview/) out; and the statistics of any network file.
 
 use std::collections::BTreeMap;
@@ -11,6 +11,7 @@ use karst_hydro::Hydro;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
 use karst_streams::Streams;
+use karst_survey::Survey;
 
 use crate::build::{build, network_of};
 use crate::error::ReportError;
@@ -25,16 +26,16 @@ pub struct MetricsStage;
 
 impl Stage for MetricsStage {
     const ID: StageId = StageId::Metrics;
-    type Inputs = (Skeleton, Hydro, Streams);
+    type Inputs = (Skeleton, Hydro, Streams, Survey);
     type Output = MetricsReport;
     type Error = ReportError;
     type View<'s> = MetricsView<'s>;
 
     fn build(
         _: &MetricsView,
-        (skeleton, hydro, streams): &(Skeleton, Hydro, Streams),
+        (skeleton, hydro, streams, survey): &(Skeleton, Hydro, Streams, Survey),
     ) -> Result<MetricsReport, ReportError> {
-        build(skeleton, hydro, streams)
+        build(skeleton, hydro, streams, survey)
     }
 
     fn headline(_: &MetricsView, report: &MetricsReport) -> String {
@@ -75,6 +76,11 @@ impl Stage for MetricsStage {
             .filter(|(_, l)| **l > 0.0)
             .map(|(kind, length)| format!("{kind} {length:.1} m"))
             .collect();
+        for (name, s) in &report.passages {
+            let verdict = if s.inside { "inside" } else { "OUTSIDE" };
+            let value = s.value.map_or("undefined".to_string(), |v| format!("{v:.4}"));
+            lines.push(format!("passages {name:<19} {value:>12}  {verdict:<7} [{}, {}]", s.min, s.max));
+        }
         if !surface.is_empty() {
             lines.push(format!("surface: {}, {} falls", surface.join(", "), report.surface.falls));
         }
@@ -85,7 +91,7 @@ impl Stage for MetricsStage {
     fn side_files(
         out: &Path,
         _: &MetricsView,
-        (skeleton, ..): &(Skeleton, Hydro, Streams),
+        (skeleton, ..): &(Skeleton, Hydro, Streams, Survey),
         report: &mut MetricsReport,
     ) -> std::io::Result<()> {
         write_plots(&out.join("preview"), &network_of(skeleton), &report.network)

@@ -71,6 +71,7 @@ pub fn stage(id: StageId) -> &'static dyn DynStage {
         StageId::Streams => &Entry::<karst_streams::StreamsStage>(PhantomData),
         StageId::Sdf => &Entry::<karst_sdf::SdfStage>(PhantomData),
         StageId::Mesher => &Entry::<karst_mesher::MesherStage>(PhantomData),
+        StageId::Survey => &Entry::<karst_survey::SurveyStage>(PhantomData),
         StageId::Metrics => &Entry::<karst_metrics::MetricsStage>(PhantomData),
         StageId::Export => &Entry::<karst_export::ExportStage>(PhantomData),
     }

@@ -2,7 +2,9 @@
 //!
 //! - each node gets a cross-section: the shapes of the types of the segments meeting there,
 //!   half and half, at the node's radius; along a segment the section moves linearly from one
-//!   node's to the next;
+//!   node's to the next, or, when the conduit has a passage profile (`[sdf] passage_detail`),
+//!   through the section of each profile point between them (the segment's type at the
+//!   profile's radius and ratio), one sweep from each to the next;
 //! - a conduit whose tortuosity (1 − chord/length) is at most `sdf.tortuosity` becomes one sweep
 //!   per segment, plus a sphere inscribed at each inner node to close the bends;
 //! - a more tortuous conduit becomes a union of spheres: cross-sections are placed along it
@@ -61,32 +63,36 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
     for (c, conduit) in skeleton.conduits.iter().enumerate() {
         let points = conduit_points(skeleton, conduit);
         let asymmetry = if lean.uniform() < 0.5 { -p.asymmetry } else { p.asymmetry };
-        let sections = node_sections(p, conduit, c, asymmetry)?;
+        let at_nodes = conduit.node_profile_points(&arc_lengths(&points));
+        let sections = node_sections(p, conduit, c, &at_nodes, asymmetry)?;
+        let pieces = passage_pieces(p, conduit, c, &points, &sections, &at_nodes, asymmetry)?;
         let tortuous = tortuosity(&points) > p.tortuosity && points.len() > 2;
-        for (i, w) in points.windows(2).enumerate() {
+        for (i, segment) in pieces.iter().enumerate() {
             let kind = conduit.types[i];
-            let sweep =
-                SweepSpec { a: to_f32(w[0]), b: to_f32(w[1]), start: sections[i], end: sections[i + 1] };
-            let radius = sections[i].shape.radius.max(sections[i + 1].shape.radius);
+            let zones = [conduit.nodes[i], conduit.nodes[i + 1]].map(|n| skeleton.nodes[n as usize].zone);
+            let wet = hydro.conduits[c].segments.get(i).ok_or_else(|| segments_mismatch(c))?;
             if kind == ConduitType::Chamber {
+                let radius = segment.iter().map(|(_, _, s)| s.shape.radius).fold(0.0, f32::max);
                 model.chambers.push(ChamberSpec {
-                    a: sweep.a,
-                    b: sweep.b,
+                    a: to_f32(points[i]),
+                    b: to_f32(points[i + 1]),
                     radius: radius * p.chamber_scale as f32,
                 });
-            } else if !tortuous {
-                model.sweeps.push(TypedSweep { kind, sweep });
             }
-            let zones = [conduit.nodes[i], conduit.nodes[i + 1]].map(|n| skeleton.nodes[n as usize].zone);
-            let height = sweep.floor().abs() * 2.0;
-            let wet = hydro.conduits[c].segments.get(i).ok_or_else(|| segments_mismatch(c))?;
-            let segment = water::Segment { kind, zones, water: wet.water, depth: wet.depth, height };
-            if let Some(spec) = water_piece(&sweep, water::level(&segment)) {
-                model.water.push(spec);
+            for w in segment.windows(2) {
+                let sweep = SweepSpec { a: to_f32(w[0].1), b: to_f32(w[1].1), start: w[0].2, end: w[1].2 };
+                if kind != ConduitType::Chamber && !tortuous {
+                    model.sweeps.push(TypedSweep { kind, sweep });
+                }
+                let height = sweep.floor().abs() * 2.0;
+                let segment = water::Segment { kind, zones, water: wet.water, depth: wet.depth, height };
+                if let Some(spec) = water_piece(&sweep, water::level(&segment)) {
+                    model.water.push(spec);
+                }
             }
         }
         if tortuous {
-            model.spheres.extend(sphere_groups(conduit, &points, &sections, p.sphere_spacing, &mut jitter));
+            model.spheres.extend(sphere_groups(conduit, &points, &pieces, p.sphere_spacing, &mut jitter));
         } else {
             model.spheres.extend(joint_spheres(conduit, &points, &sections));
         }
@@ -117,25 +123,85 @@ fn node_sections(
     p: &SdfParams,
     conduit: &Conduit,
     c: usize,
+    at_nodes: &[usize],
     asymmetry: f64,
 ) -> Result<Vec<SectionSpec>, SdfError> {
     let last = conduit.types.len().saturating_sub(1);
+    let ratio = |i: usize| at_nodes.get(i).map_or(1.0, |&k| conduit.profile[k].ratio);
     (0..conduit.nodes.len())
         .map(|i| {
-            // Radii within [1e-6, 1e9] (Skeleton::validate) times a scale within [1e-3, 1e3].
-            let radius = conduit.radius[i] * p.radius_scale;
             let kinds = [conduit.types[i.saturating_sub(1).min(last)], conduit.types[i.min(last)]];
-            let shape = Shape { radius: radius as f32, ratio: p.ratio as f32, asymmetry: asymmetry as f32 };
-            let spec = SectionSpec { kinds, shape };
-            spec.section().check().map_err(|problem| SdfError::BadSection {
-                ratio: p.ratio,
-                asymmetry,
-                conduit: c,
-                node: i,
-                types: kinds.map(|k| k.name()),
-                problem: problem.to_string(),
-            })?;
-            Ok(spec)
+            checked_section(p, c, i, kinds, conduit.radius[i], ratio(i), asymmetry)
+        })
+        .collect()
+}
+
+/// The arc length of each point from the first, metres.
+fn arc_lengths(points: &[DVec3]) -> Vec<f64> {
+    let mut at = vec![0.0];
+    for w in points.windows(2) {
+        at.push(at[at.len() - 1] + w[0].distance(w[1]));
+    }
+    at
+}
+
+/// The section of types `kinds` at radius `radius` and profile ratio `ratio` (times the
+/// scene's `sdf.radius_scale` and `sdf.ratio`), checked.
+fn checked_section(
+    p: &SdfParams,
+    c: usize,
+    node: usize,
+    kinds: [ConduitType; 2],
+    radius: f64,
+    ratio: f64,
+    asymmetry: f64,
+) -> Result<SectionSpec, SdfError> {
+    // Radii within [1e-6, 1e9] (Skeleton::validate) times a scale within [1e-3, 1e3].
+    let radius = radius * p.radius_scale;
+    let ratio = p.ratio * ratio;
+    let shape = Shape { radius: radius as f32, ratio: ratio as f32, asymmetry: asymmetry as f32 };
+    let spec = SectionSpec { kinds, shape };
+    spec.section().check().map_err(|problem| SdfError::BadSection {
+        ratio,
+        asymmetry,
+        conduit: c,
+        node,
+        types: kinds.map(|k| k.name()),
+        problem: problem.to_string(),
+    })?;
+    Ok(spec)
+}
+
+/// A point of a segment's passage: its fraction of the segment, its position and its section.
+type Piece = (f64, DVec3, SectionSpec);
+
+/// The passage along each segment of the conduit, from its start node to its end node: the two
+/// node sections, and with a profile the section at each profile point in between (the
+/// segment's own type, the profile's size and shape).
+fn passage_pieces(
+    p: &SdfParams,
+    conduit: &Conduit,
+    c: usize,
+    points: &[DVec3],
+    sections: &[SectionSpec],
+    at_nodes: &[usize],
+    asymmetry: f64,
+) -> Result<Vec<Vec<Piece>>, SdfError> {
+    (0..points.len() - 1)
+        .map(|i| {
+            let (a, b) = (points[i], points[i + 1]);
+            let mut pieces = vec![(0.0, a, sections[i])];
+            if let (Some(&start), Some(&end)) = (at_nodes.get(i), at_nodes.get(i + 1)) {
+                let (s0, s1) = (conduit.profile[start].at, conduit.profile[end].at);
+                for point in conduit.profile.get(start + 1..end).unwrap_or_default() {
+                    let t = (point.at - s0) / (s1 - s0);
+                    let kind = conduit.types[i];
+                    let spec = checked_section(p, c, i, [kind, kind], point.radius, point.ratio, asymmetry)?;
+                    pieces.push((t, a.lerp(b, t), spec));
+                }
+            }
+            pieces.push((1.0, b, sections[i + 1]));
+            Ok(pieces)
         })
         .collect()
 }
@@ -198,7 +264,7 @@ struct Candidate {
 fn sphere_groups(
     conduit: &Conduit,
     points: &[DVec3],
-    sections: &[SectionSpec],
+    pieces: &[Vec<Piece>],
     spacing: f64,
     jitter: &mut Random,
 ) -> Vec<SphereGroup> {
@@ -209,8 +275,8 @@ fn sphere_groups(
         if kind == ConduitType::Chamber {
             continue;
         }
-        let (s0, s1) = (sections[i].section(), sections[i + 1].section());
-        let step = spacing * sections[i].shape.radius.min(sections[i + 1].shape.radius) as f64;
+        let smallest = pieces[i].iter().map(|(_, _, s)| s.shape.radius).fold(f32::INFINITY, f32::min);
+        let step = spacing * smallest as f64;
         let stations = (w[0].distance(w[1]) / step).ceil().max(1.0) as usize;
         let mut candidates = Vec::new();
         // The end station belongs to the next segment, except for the last one.
@@ -219,7 +285,7 @@ fn sphere_groups(
             let t = j as f64 / stations as f64;
             let origin = w[0].lerp(w[1], t);
             let tangent = tangents[i].lerp(tangents[i + 1], t).normalize();
-            let section = s0.lerp(&s1, t);
+            let section = section_at(&pieces[i], t);
             station_spheres(&section, origin, tangent, step, j, jitter, &mut candidates);
         }
         let spheres = prune(candidates, step);
@@ -229,6 +295,14 @@ fn sphere_groups(
         }
     }
     groups
+}
+
+/// The section at fraction `t` of a segment: linear between the pieces around it.
+fn section_at(pieces: &[Piece], t: f64) -> Section {
+    let k = pieces.partition_point(|(u, _, _)| *u <= t).clamp(1, pieces.len() - 1);
+    let ((t0, _, s0), (t1, _, s1)) = (pieces[k - 1], pieces[k]);
+    let f = if t1 > t0 { ((t - t0) / (t1 - t0)).clamp(0.0, 1.0) } else { 0.0 };
+    s0.section().lerp(&s1.section(), f)
 }
 
 /// Unit tangents at the nodes: the segment direction at the ends, the mean of the two

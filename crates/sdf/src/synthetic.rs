@@ -63,6 +63,7 @@ pub fn network(seed: u64, conduits: usize, nodes: usize) -> (Skeleton, Hydro) {
             types: Vec::new(),
             phase: 0,
             keypoints: Vec::new(),
+            profile: Vec::new(),
         };
         for i in 0..nodes {
             let zone = if p.z < 60.0 { Zone::Phreatic } else { Zone::Vadose };

@@ -10,6 +10,7 @@ use karst_sampling::Samples;
 use crate::classify::classify;
 use crate::nodes::{is_keypoint, node};
 use crate::payload::{Conduit, Node, Route, Skeleton};
+use crate::passages::{self, ConduitPassage, PassageProfiles};
 use crate::radii::ConduitRadii;
 use crate::view::SkeletonView;
 use crate::{meander, tortuosity};
@@ -84,21 +85,37 @@ impl NetworkBuilder {
             tortuosity::reroute(&mut routes, &inserted);
         }
         let mut radii = ConduitRadii::new(view.skeleton, view.seed, nodes.len());
+        let mut passages = view.passage_detail.varies().then(|| PassageProfiles::new(view.seed, nodes.len()));
+        let junction = passages::junctions(&chains, nodes.len());
+        let flow = passages::flow_shares(&chains, &routes);
         let at = |i: u32| Point::from_array(nodes[i as usize].position);
         let conduits = chains
             .into_iter()
             .zip(phases)
-            .map(|(chain, phase)| {
+            .zip(flow)
+            .map(|((chain, phase), flow_share)| {
                 let types: Vec<_> = chain.windows(2).map(|w| classify(view, at(w[0]), at(w[1]))).collect();
                 let ends = [chain[0], chain[chain.len() - 1]];
                 let keypoints = ends.iter().filter_map(|&i| nodes[i as usize].keypoint.clone()).collect();
-                Conduit {
-                    radius: radii.conduit(&nodes, &chain, &types),
-                    nodes: chain,
-                    types,
-                    phase,
-                    keypoints,
-                }
+                let mut radius = radii.conduit(&nodes, &chain, &types);
+                let profile = match passages.as_mut() {
+                    Some(passages) => {
+                        let junction = chain.iter().map(|&n| junction[n as usize]).collect();
+                        let passage = ConduitPassage {
+                            nodes: &nodes,
+                            chain: &chain,
+                            types: &types,
+                            radius: &radius,
+                            junction,
+                            flow_share,
+                        };
+                        let (profile, at_nodes) = passages.conduit(&passage);
+                        radius = at_nodes;
+                        profile
+                    }
+                    None => Vec::new(),
+                };
+                Conduit { radius, nodes: chain, types, phase, keypoints, profile }
             })
             .collect();
         Skeleton { nodes, conduits, routes }
@@ -152,3 +169,4 @@ impl NetworkBuilder {
         }
     }
 }
+

@@ -98,6 +98,7 @@ mod tests {
             nodes,
             phase,
             keypoints: Vec::new(),
+            profile: Vec::new(),
         };
         let skeleton = Skeleton {
             nodes: vec![node(0.0, Some("a, b")), node(1.0, None), node(2.0, None)],

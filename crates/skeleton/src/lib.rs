@@ -6,7 +6,8 @@
 //! both on the least-cost paths of the cost graph (`search.rs`) between the
 //! route ends (`ends.rs`). The paths are
 //! merged into one network and cut into conduits (`assemble.rs`); every segment gets a tunnel
-//! type (`classify.rs`) and a radius ([`ConduitRadii`]). [`build`] is the algorithm's entry
+//! type (`classify.rs`), a radius ([`ConduitRadii`]) and, with passage detail, a profile of
+//! the passage's size and shape along it (`passages.rs`). [`build`] is the algorithm's entry
 //! (`build.rs`), [`SkeletonStage`] the stage. Output: `skeleton.json` ([`Skeleton`],
 //! `payload.rs`), plus karstnet's `network_nodes.dat` / `network_links.dat`.
 
@@ -25,6 +26,7 @@ mod meander;
 #[cfg(test)]
 mod modes_tests;
 mod nodes;
+mod passages;
 mod payload;
 mod planes;
 mod radii;
@@ -37,7 +39,7 @@ mod view;
 
 pub use build::{build, mode_paths};
 pub use error::SkeletonError;
-pub use payload::{Conduit, ConduitType, Node, Route, Skeleton, Zone};
+pub use payload::{Conduit, ConduitType, Node, ProfilePoint, RATIO_RANGE, Route, Skeleton, Zone};
 pub use radii::ConduitRadii;
 pub use stage::SkeletonStage;
 pub use view::SkeletonView;

@@ -66,7 +66,9 @@ pub struct Node {
 
 /// A conduit: a chain of nodes between two ends (junctions, dead ends or key points), with the
 /// radius of the passage at each node and the type of each segment. A conduit whose ends
-/// coincide is a loop.
+/// coincide is a loop. With passage detail (`[sdf] passage_detail`), `profile` gives the
+/// passage's size and shape every few metres along it, and `radius` at each node is the
+/// profile's there.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Conduit {
     pub nodes: Vec<u32>,
@@ -81,7 +83,61 @@ pub struct Conduit {
     /// The key points at the conduit's ends, in end order.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub keypoints: Vec<String>,
+    /// The passage along the conduit, by increasing arc length from its first node to its
+    /// last, with a point at every node (empty without passage detail: the radius at the nodes,
+    /// linear in between, and each type's own proportions).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub profile: Vec<ProfilePoint>,
 }
+
+impl Conduit {
+    /// The index of the profile point at each node, the nodes being at arc lengths `arc`
+    /// (empty without a profile): the point nearest each.
+    pub fn node_profile_points(&self, arc: &[f64]) -> Vec<usize> {
+        if self.profile.is_empty() {
+            return Vec::new();
+        }
+        arc.iter()
+            .map(|&a| {
+                let k = self.profile.partition_point(|p| p.at < a).min(self.profile.len() - 1);
+                if k > 0 && a - self.profile[k - 1].at < self.profile[k].at - a { k - 1 } else { k }
+            })
+            .collect()
+    }
+
+    /// The passage's half-width and ratio (on the type's proportions) at arc length `at`: the
+    /// profile's, linear between its points, or without a profile the radius linear between the
+    /// nodes at arc lengths `arc`, ratio 1.
+    pub fn passage_at(&self, arc: &[f64], at: f64) -> (f64, f64) {
+        let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
+        if self.profile.is_empty() {
+            let k = arc.partition_point(|s| *s <= at).clamp(1, arc.len() - 1);
+            let t = ((at - arc[k - 1]) / (arc[k] - arc[k - 1])).clamp(0.0, 1.0);
+            return (lerp(self.radius[k - 1], self.radius[k], t), 1.0);
+        }
+        let p = &self.profile;
+        let k = p.partition_point(|q| q.at <= at).clamp(1, p.len().max(2) - 1).min(p.len() - 1);
+        if k == 0 {
+            return (p[0].radius, p[0].ratio);
+        }
+        let t = ((at - p[k - 1].at) / (p[k].at - p[k - 1].at)).clamp(0.0, 1.0);
+        (lerp(p[k - 1].radius, p[k].radius, t), lerp(p[k - 1].ratio, p[k].ratio, t))
+    }
+}
+
+/// The passage at one point of a conduit's profile.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ProfilePoint {
+    /// Arc length from the conduit's first node, metres.
+    pub at: f64,
+    /// Half-width of the passage, metres (the conduit radius there).
+    pub radius: f64,
+    /// Height over width, as a factor on the conduit type's own proportions.
+    pub ratio: f64,
+}
+
+/// Smallest and largest profile ratio a skeleton may hold.
+pub const RATIO_RANGE: [f64; 2] = [1e-3, 1e3];
 
 /// The route water takes from one sink to one spring.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -161,6 +217,29 @@ impl Skeleton {
                 || format!("node {} lies where node {} does: a segment of length 0", w[1], w[0]),
             )?;
         }
+        self.validate_profile(c, conduit)
+    }
+
+    /// An empty profile, or one that starts at 0, increases strictly and ends at the conduit's
+    /// length (to a millimetre), with sizes and ratios in range.
+    fn validate_profile(&self, c: usize, conduit: &Conduit) -> Result<(), Invalid> {
+        let Some(last) = conduit.profile.last() else { return Ok(()) };
+        let length = self.conduit_length(conduit);
+        let field = |i: usize, name: &str| format!("conduits[{c}].profile[{i}].{name}");
+        for (i, point) in conduit.profile.iter().enumerate() {
+            check::within(|| field(i, "radius"), point.radius, MIN_RADIUS, MAX_COORDINATE)?;
+            check::within(|| field(i, "ratio"), point.ratio, RATIO_RANGE[0], RATIO_RANGE[1])?;
+            check::within(|| field(i, "at"), point.at, 0.0, length + 1e-3)?;
+        }
+        ensure(conduit.profile[0].at == 0.0, || field(0, "at"), || "must be 0: the conduit's first node".into())?;
+        ensure(
+            (last.at - length).abs() <= 1e-3,
+            || field(conduit.profile.len() - 1, "at"),
+            || format!("is {}, the conduit is {length} m long", last.at),
+        )?;
+        for (i, w) in conduit.profile.windows(2).enumerate() {
+            ensure(w[1].at > w[0].at, || field(i + 1, "at"), || "does not increase".into())?;
+        }
         Ok(())
     }
 
@@ -180,6 +259,15 @@ impl Skeleton {
     /// Length of one conduit, metres.
     pub fn conduit_length(&self, conduit: &Conduit) -> f64 {
         conduit.nodes.windows(2).map(|w| self.segment_length(w[0], w[1])).sum()
+    }
+
+    /// The arc length of each node of `conduit` from its first, metres.
+    pub fn arc_lengths(&self, conduit: &Conduit) -> Vec<f64> {
+        let mut at = vec![0.0];
+        for w in conduit.nodes.windows(2) {
+            at.push(at[at.len() - 1] + self.segment_length(w[0], w[1]));
+        }
+        at
     }
 
     /// Total length of the segments of type `kind`, metres.

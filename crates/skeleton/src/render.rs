@@ -94,6 +94,7 @@ mod tests {
                 types: vec![ConduitType::Bed, ConduitType::Canyon],
                 phase: 0,
                 keypoints: vec!["a".into(), "b".into()],
+                profile: Vec::new(),
             }],
             routes: vec![],
         }

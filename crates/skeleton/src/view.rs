@@ -6,7 +6,8 @@ use karst_geology::Point;
 karst_geology::view! {
     /// The skeleton stage's view of the scene: the bedrock its branches stay in, the geology
     /// that classifies and orients its conduits, the key points and connectivity it routes,
-    /// the phases, its parameters, the seed, and `[costgraph]`: the skeleton costs the edges
+    /// the phases, its parameters, the seed, `sdf.passage_detail` (whether conduits get passage
+    /// profiles), and `[costgraph]`: the skeleton costs the edges
     /// its searches read under the cost graph's model ([`SkeletonView::costs`]).
     pub struct SkeletonView<'s> {
         seed: Seed,
@@ -18,6 +19,7 @@ karst_geology::view! {
         phases: Phases,
         costgraph: Costgraph,
         skeleton: Skeleton,
+        passage_detail: PassageDetail,
     }
 }
 

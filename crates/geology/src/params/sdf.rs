@@ -28,6 +28,41 @@ pub struct SdfParams {
     pub chamber_scale: f64,
     /// Cui et al.'s bias b of the chamber walls, in (0, 0.5]: small hugs the foundation.
     pub chamber_bias: f64,
+    /// How much passage detail the cave gets (docs/sdf.md): `off` keeps every conduit's size
+    /// and shape as the radius process gives them; `passages` and `full` (the default) vary
+    /// the cross-sections along each conduit as surveyed passages do.
+    pub passage_detail: PassageDetail,
+}
+
+/// The level of passage detail, `[sdf] passage_detail`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PassageDetail {
+    /// The sizes of the radius process alone, constant shapes: the artifacts karstgen wrote
+    /// before passage detail existed, byte for byte.
+    Off,
+    /// Cross-sections whose size and shape vary along each conduit (docs/skeleton.md).
+    Passages,
+    /// Everything karstgen knows of passages; today the same as `passages` (rough walls,
+    /// breakdown and speleothems will add to it).
+    #[default]
+    Full,
+}
+
+impl PassageDetail {
+    /// Whether the cross-sections vary along the conduits.
+    pub fn varies(self) -> bool {
+        self != PassageDetail::Off
+    }
+
+    /// The scene file's name of the level.
+    pub fn name(self) -> &'static str {
+        match self {
+            PassageDetail::Off => "off",
+            PassageDetail::Passages => "passages",
+            PassageDetail::Full => "full",
+        }
+    }
 }
 
 impl Default for SdfParams {
@@ -43,6 +78,7 @@ impl Default for SdfParams {
             detail_wavelength: 3.0,
             chamber_scale: 2.0,
             chamber_bias: 0.2,
+            passage_detail: PassageDetail::Full,
         }
     }
 }

@@ -118,6 +118,7 @@ mod tests {
                 types: vec![ConduitType::Tube; 2],
                 phase: 0,
                 keypoints: vec![],
+                profile: Vec::new(),
             }],
             routes: vec![],
         };

@@ -1,0 +1,7 @@
+//! What the survey stage reads of the scene.
+
+karst_geology::view! {
+    /// The survey stage's view of the scene: no section (the stations, their spacing and the
+    /// measurement come from the artifacts alone).
+    pub struct SurveyView<'s> {}
+}
