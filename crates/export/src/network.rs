@@ -112,6 +112,9 @@ pub struct SegmentRecord {
     pub level: Option<[f64; 2]>,
     /// Radius at `nodes[0]` and `nodes[1]`, metres (hydro's flow sizing when present).
     pub radius: [f64; 2],
+    /// Half-height of the passage at `nodes[0]` and `nodes[1]`, metres: the radius times the
+    /// passage profile's height-over-width factor there (the radius without a profile).
+    pub half_height: [f64; 2],
     pub length: f64,
     pub strahler: u32,
     pub branch: u32,
@@ -159,6 +162,8 @@ impl NetworkView {
         let mut conduits = Vec::new();
         for (c, (conduit, water)) in skeleton.conduits.iter().zip(&hydro.conduits).enumerate() {
             let radii = water.radius.as_ref().unwrap_or(&conduit.radius);
+            let at_nodes = conduit.node_profile_points(&skeleton.arc_lengths(conduit));
+            let ratio = |i: usize| at_nodes.get(i).map_or(1.0, |&k| conduit.profile[k].ratio);
             let start = segments.len();
             for (i, (pair, s)) in conduit.nodes.windows(2).zip(&water.segments).enumerate() {
                 let [a, b] = [pair[0], pair[1]];
@@ -182,6 +187,7 @@ impl NetworkView {
                     depth: s.depth,
                     level: s.level,
                     radius: [radii[i], radii[i + 1]],
+                    half_height: [radii[i] * ratio(i), radii[i + 1] * ratio(i + 1)],
                     length: position(a).distance(position(b)),
                     strahler: 0,
                     branch: 0,

@@ -4,7 +4,8 @@
 //! `*fix`ed at their world coordinates and marked `*entrance`; a part of the network reached
 //! by neither is fixed at its lowest-numbered station, so that every station has a position.
 //! Passage dimensions: one `*data passage` block per conduit, left = right = the half-width
-//! (the radius) and up = down = the radius at each station. Segments from a node to itself
+//! (the radius) and up = down = the half-height (the radius times the passage profile's
+//! height-over-width factor, `[sdf] passage_detail`; the radius without one) at each station. Segments from a node to itself
 //! are left out: cavern would warn about a leg with the same station at both ends.
 
 use karst_geology::params::ExportFormat;
@@ -45,10 +46,13 @@ pub fn write(folder: &mut Folder, frame: &Frame, net: &NetworkView) -> Result<()
                 net.segments[range.clone()].iter().filter(|s| !s.is_loop()).collect();
             let Some(last) = segments.last() else { continue };
             writeln!(w, "*data passage station left right up down")?;
-            let stations =
-                segments.iter().map(|s| (s.nodes[0], s.radius[0])).chain([(last.nodes[1], last.radius[1])]);
-            for (node, r) in stations {
-                writeln!(w, "{} {r:.2} {r:.2} {r:.2} {r:.2}", node + 1)?;
+            let stations = segments.iter().map(|s| (s.nodes[0], s.radius[0], s.half_height[0])).chain([(
+                last.nodes[1],
+                last.radius[1],
+                last.half_height[1],
+            )]);
+            for (node, r, h) in stations {
+                writeln!(w, "{} {r:.2} {r:.2} {h:.2} {h:.2}", node + 1)?;
             }
         }
         writeln!(w, "*end karst")

@@ -9,8 +9,8 @@ use karst_sampling::Samples;
 
 use crate::classify::classify;
 use crate::nodes::{is_keypoint, node};
-use crate::payload::{Conduit, Node, Route, Skeleton};
 use crate::passages::{self, ConduitPassage, PassageProfiles};
+use crate::payload::{Conduit, Node, Route, Skeleton};
 use crate::radii::ConduitRadii;
 use crate::view::SkeletonView;
 use crate::{meander, tortuosity};
@@ -169,4 +169,3 @@ impl NetworkBuilder {
         }
     }
 }
-

@@ -29,7 +29,7 @@
 //!
 //! - flow: conduits grow with the discharge they carry (hydraulic geometry: a channel's width
 //!   grows as a power of its discharge); the share s of the routes' total weight through the
-//!   conduit gives the factor 0.75 + 0.5·√s, from dry tributaries (0.75) to the trunk (1.25);
+//!   conduit gives the factor 0.6 + 0.5·√s, from dry tributaries (0.6) to the trunk (1.1);
 //! - junctions: where passages meet, mixing corrosion and the breakdown of the roof over the
 //!   wider span enlarge them: 1 + [`JUNCTION_WIDENING`]·exp(−d / r) within a few radii r of a
 //!   junction, d the distance along the conduit.
@@ -56,12 +56,16 @@ pub const SIZE_SPREAD: f64 = 0.65;
 /// Standard deviation of ln(height / width), before the bias of the conduit type.
 pub const SHAPE_SPREAD: f64 = 0.9;
 /// Tukey's h of the heavy-tailed transform.
-pub const TAIL: f64 = 0.12;
+pub const TAIL: f64 = 0.1;
+/// The normal values are clamped to ±this before the transform: the largest rooms and the
+/// tightest pinches are those of one point in several thousand, not unbounded.
+pub const Z_MAX: f64 = 3.5;
 /// How much wider a passage is at a junction (a fraction of its size).
 pub const JUNCTION_WIDENING: f64 = 0.6;
-/// Smallest half-width, metres: a crawl a caver still passes, and a passage the mesher keeps
-/// open.
-pub const MIN_HALF_WIDTH: f64 = 0.25;
+/// Smallest half-width and half-height, metres: a crawl a caver still passes, and a passage
+/// the mesher's automatic cave cell (the thinnest section's half-size) keeps open without
+/// refining the whole cave.
+pub const MIN_HALF_WIDTH: f64 = 0.5;
 /// Range of the shape factor height / width on the type's own proportions.
 pub const RATIO_LIMITS: [f64; 2] = [0.08, 12.0];
 
@@ -115,15 +119,19 @@ impl PassageProfiles {
         let at = |i: usize| DVec3::from_array(c.nodes[c.chain[i] as usize].position);
         let lengths: Vec<f64> = (1..c.chain.len()).map(|i| at(i - 1).distance(at(i))).collect();
         let total: f64 = lengths.iter().sum();
-        let node_at: Vec<f64> =
-            std::iter::once(0.0).chain(lengths.iter().scan(0.0, |s, l| Some(*s + l))).collect();
+        let node_at: Vec<f64> = std::iter::once(0.0)
+            .chain(lengths.iter().scan(0.0, |s, l| {
+                *s += l;
+                Some(*s)
+            }))
+            .collect();
         let junctions: Vec<f64> =
             c.junction.iter().zip(&node_at).filter(|(j, _)| **j).map(|(_, s)| *s).collect();
         let mut state = match self.state[c.chain[0] as usize] {
             Some(s) => s,
             None => State { size: self.normal(), shape: self.normal() },
         };
-        let flow = 0.75 + 0.5 * c.flow_share.clamp(0.0, 1.0).sqrt();
+        let flow = 0.6 + 0.5 * c.flow_share.clamp(0.0, 1.0).sqrt();
         let mut profile = Vec::new();
         let mut at_nodes = Vec::with_capacity(c.chain.len());
         let mut last = 0.0;
@@ -153,7 +161,8 @@ impl PassageProfiles {
         state = self.advance(state, total - last);
         self.state[c.chain[end] as usize].get_or_insert(state);
         let bias = shape_bias(c.types[end - 1]);
-        let last_point = point(total, c.radius[end], state, bias, flow * widening(total, &junctions, c.radius[end]));
+        let last_point =
+            point(total, c.radius[end], state, bias, flow * widening(total, &junctions, c.radius[end]));
         at_nodes.push(last_point.radius);
         profile.push(last_point);
         (profile, at_nodes)
@@ -182,6 +191,7 @@ fn point(at: f64, base: f64, state: State, bias: f64, factor: f64) -> ProfilePoi
     let size = (SIZE_SPREAD * heavy(state.size)).exp() / mean_size_factor();
     let ratio = (SHAPE_SPREAD * heavy(state.shape) + bias).exp().clamp(RATIO_LIMITS[0], RATIO_LIMITS[1]);
     let radius = (base * size * factor / ratio.sqrt()).max(MIN_HALF_WIDTH);
+    let ratio = ratio.max(MIN_HALF_WIDTH / radius);
     ProfilePoint { at, radius, ratio }
 }
 
@@ -192,13 +202,16 @@ fn widening(at: f64, junctions: &[f64], radius: f64) -> f64 {
     1.0 + JUNCTION_WIDENING * (-d / radius.max(MIN_HALF_WIDTH)).exp()
 }
 
-/// Tukey's h transform of a standard normal, scaled back to unit variance: the variance of
-/// z·exp(τz²/2) is (1 − 2τ)^(−3/2).
+/// Tukey's h transform of a standard normal clamped to ±[`Z_MAX`], scaled back to unit
+/// variance: the variance of z·exp(τz²/2) is (1 − 2τ)^(−3/2) (the clamp changes it by less than
+/// a percent).
 fn heavy(z: f64) -> f64 {
+    let z = z.clamp(-Z_MAX, Z_MAX);
     z * (TAIL * z * z / 2.0).exp() * (1.0 - 2.0 * TAIL).powf(0.75)
 }
 
-/// E[exp(σ h(z))] for z standard normal, σ = [`SIZE_SPREAD`] (midpoint rule over ±8).
+/// E[exp(σ h(z))] for z standard normal, σ = [`SIZE_SPREAD`] (midpoint rule over ±8; finite
+/// because of the clamp).
 fn mean_size_factor() -> f64 {
     const STEPS: usize = 1600;
     let dz = 16.0 / STEPS as f64;
@@ -247,7 +260,12 @@ mod tests {
 
     fn straight(n: usize, step: f64) -> (Vec<Node>, Vec<u32>) {
         let nodes = (0..n)
-            .map(|i| Node { position: [i as f64 * step, 0.0, 0.0], sample: 0, keypoint: None, zone: Zone::Vadose })
+            .map(|i| Node {
+                position: [i as f64 * step, 0.0, 0.0],
+                sample: 0,
+                keypoint: None,
+                zone: Zone::Vadose,
+            })
             .collect();
         (nodes, (0..n as u32).collect())
     }
@@ -275,7 +293,8 @@ mod tests {
     fn lag_correlation(values: &[f64], lag: usize) -> f64 {
         let mean = values.iter().sum::<f64>() / values.len() as f64;
         let pairs = values.len() - lag;
-        let c: f64 = (0..pairs).map(|i| (values[i] - mean) * (values[i + lag] - mean)).sum::<f64>() / pairs as f64;
+        let c: f64 =
+            (0..pairs).map(|i| (values[i] - mean) * (values[i + lag] - mean)).sum::<f64>() / pairs as f64;
         c / sd(values).powi(2)
     }
 
@@ -293,7 +312,7 @@ mod tests {
         assert!(lag_correlation(&ln_width, 25).abs() < 0.15);
         // The mean size factor keeps the mean linear size that of the radius process.
         let mean_size: f64 = p.iter().map(|q| q.radius * q.ratio.sqrt()).sum::<f64>() / p.len() as f64;
-        let expected = 2.0 * 1.25;
+        let expected = 2.0 * 1.1;
         assert!((mean_size / expected - 1.0).abs() < 0.15, "{mean_size}");
     }
 
@@ -305,7 +324,9 @@ mod tests {
         };
         let bed = profile(ConduitType::Bed, 401, 10.0, 3);
         let canyon = profile(ConduitType::Canyon, 401, 10.0, 3);
-        assert!(median(bed.iter().map(|p| p.ratio).collect()) < median(canyon.iter().map(|p| p.ratio).collect()));
+        assert!(
+            median(bed.iter().map(|p| p.ratio).collect()) < median(canyon.iter().map(|p| p.ratio).collect())
+        );
         assert_eq!(bed, profile(ConduitType::Bed, 401, 10.0, 3));
         assert_ne!(bed, profile(ConduitType::Bed, 401, 10.0, 4));
     }
@@ -317,15 +338,25 @@ mod tests {
         let radius = vec![2.0; 41];
         let mut junction = vec![false; 41];
         let draw = |junction: Vec<bool>| {
-            let passage =
-                ConduitPassage { nodes: &nodes, chain: &chain, types: &types, radius: &radius, junction, flow_share: 0.0 };
+            let passage = ConduitPassage {
+                nodes: &nodes,
+                chain: &chain,
+                types: &types,
+                radius: &radius,
+                junction,
+                flow_share: 0.0,
+            };
             PassageProfiles::new(1, 41).conduit(&passage).0
         };
         let plain = draw(junction.clone());
         junction[20] = true;
         let widened = draw(junction);
         let at = |p: &[ProfilePoint], s: f64| p.iter().find(|q| q.at == s).map(|q| q.radius).unwrap();
-        assert!((at(&widened, 200.0) / at(&plain, 200.0) - 1.6).abs() < 1e-9);
+        let (wide, narrow) = (at(&widened, 200.0), at(&plain, 200.0));
+        assert!(
+            wide > narrow && (wide / narrow - 1.6).abs() < 1e-9 || narrow == MIN_HALF_WIDTH,
+            "{wide} {narrow}"
+        );
         assert_eq!(at(&widened, 0.0), at(&plain, 0.0));
     }
 
@@ -355,7 +386,7 @@ mod tests {
             })
             .sum::<f64>()
             / std::f64::consts::TAU.sqrt();
-        assert!((var - 1.0).abs() < 1e-3, "{var}");
+        assert!((var - 1.0).abs() < 1e-2, "{var}");
         assert!(mean_size_factor() > (SIZE_SPREAD * SIZE_SPREAD / 2.0).exp());
     }
 }

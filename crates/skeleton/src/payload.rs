@@ -231,7 +231,11 @@ impl Skeleton {
             check::within(|| field(i, "ratio"), point.ratio, RATIO_RANGE[0], RATIO_RANGE[1])?;
             check::within(|| field(i, "at"), point.at, 0.0, length + 1e-3)?;
         }
-        ensure(conduit.profile[0].at == 0.0, || field(0, "at"), || "must be 0: the conduit's first node".into())?;
+        ensure(
+            conduit.profile[0].at == 0.0,
+            || field(0, "at"),
+            || "must be 0: the conduit's first node".into(),
+        )?;
         ensure(
             (last.at - length).abs() <= 1e-3,
             || field(conduit.profile.len() - 1, "at"),

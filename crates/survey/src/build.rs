@@ -82,7 +82,10 @@ fn void_volume(stations: &[Station], placed: &[Placed], lengths: &[f64]) -> Void
     let mut volume = VoidVolume {
         total: 0.0,
         zones: [Zone::Vadose, Zone::Phreatic].iter().map(|z| (zone_name(*z).to_string(), 0.0)).collect(),
-        conduit_types: ConduitType::ALL.iter().map(|t| (t.name().to_string(), 0.0)).collect::<BTreeMap<_, _>>(),
+        conduit_types: ConduitType::ALL
+            .iter()
+            .map(|t| (t.name().to_string(), 0.0))
+            .collect::<BTreeMap<_, _>>(),
     };
     for (s, p) in stations.iter().zip(placed) {
         let length = lengths[p.conduit];

@@ -66,17 +66,19 @@ pub fn measure(cave: &impl Fn(DVec3) -> f64, position: DVec3, tangent: DVec3, se
 /// Two unit vectors spanning the plane perpendicular to `tangent`.
 pub fn plane(tangent: DVec3) -> [DVec3; 2] {
     let flat = DVec3::new(tangent.x, tangent.y, 0.0);
-    let across = if flat.length_squared() > 1e-12 {
-        DVec3::new(flat.y, -flat.x, 0.0).normalize()
-    } else {
-        DVec3::X
-    };
+    let across =
+        if flat.length_squared() > 1e-12 { DVec3::new(flat.y, -flat.x, 0.0).normalize() } else { DVec3::X };
     [across, tangent.cross(across).normalize()]
 }
 
 /// The point itself when open, else the nearest open point on rings around it in the plane
 /// (the deepest one of the first ring that has any).
-fn open_point(cave: &impl Fn(DVec3) -> f64, position: DVec3, [u, v]: [DVec3; 2], search: f64) -> Option<DVec3> {
+fn open_point(
+    cave: &impl Fn(DVec3) -> f64,
+    position: DVec3,
+    [u, v]: [DVec3; 2],
+    search: f64,
+) -> Option<DVec3> {
     if cave(position) < 0.0 {
         return Some(position);
     }

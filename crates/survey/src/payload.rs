@@ -78,7 +78,11 @@ impl Payload for Survey {
         check::within(|| "spacing".into(), self.spacing, 1e-3, MAX_COORDINATE)?;
         for (i, s) in self.stations.iter().enumerate() {
             check::position(|| format!("stations[{i}].position"), &s.position)?;
-            ensure(s.conduit >= 1 && s.station >= 1, || format!("stations[{i}]"), || "numbers start at 1".into())?;
+            ensure(
+                s.conduit >= 1 && s.station >= 1,
+                || format!("stations[{i}]"),
+                || "numbers start at 1".into(),
+            )?;
             for (name, v) in [("width", s.width), ("height", s.height), ("area", s.area)] {
                 check::within(|| format!("stations[{i}].{name}"), v, 0.0, f64::MAX)?;
             }

@@ -52,8 +52,13 @@ impl Stage for SurveyStage {
             lines.push(format!("{name:<16} {value:>10}  {verdict:<7} [{}, {}]", s.min, s.max));
         }
         let v = &survey.void_volume;
-        let parts: Vec<String> =
-            v.zones.iter().chain(&v.conduit_types).filter(|(_, m)| **m > 0.0).map(|(k, m)| format!("{k} {m:.0}")).collect();
+        let parts: Vec<String> = v
+            .zones
+            .iter()
+            .chain(&v.conduit_types)
+            .filter(|(_, m)| **m > 0.0)
+            .map(|(k, m)| format!("{k} {m:.0}"))
+            .collect();
         lines.push(format!("void volume {:.0} m³: {}", v.total, parts.join(", ")));
         lines
     }
