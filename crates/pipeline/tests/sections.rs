@@ -54,6 +54,10 @@ fn edited(scene: &Scene, section: Section) -> (Scene, Vec<Section>) {
         }
         Section::Streams => s.streams_mut().step *= 2.0,
         Section::Sdf => s.sdf_mut().radius_scale *= 1.25,
+        Section::PassageDetail => {
+            s.sdf_mut().passage_detail = karst_geology::params::PassageDetail::Passages;
+            changed.push(Section::Sdf);
+        }
         Section::Mesher => s.mesher_mut().cell_size *= 2.0,
         Section::Export => {
             let formats = &mut s.export_mut().formats;
