@@ -69,7 +69,7 @@ pub struct RunArgs {
     /// Memory the stages may plan to use (e.g. 16G, 512M; default 16G); a stage whose work
     /// estimate is above it refuses, naming the scene field to change (docs/limits.md).
     #[arg(long, value_name = "SIZE")]
-    pub max_memory: Option<karst_geology::budget::Budget>,
+    pub max_memory: Option<karst_scene::budget::Budget>,
 }
 
 /// `karstgen diff`.

@@ -10,9 +10,9 @@ use std::path::{Path, PathBuf};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 
-use karst_geology::Scene;
 use karst_pipeline::ensemble::{self, Keep, Outcome, Plan, Record};
 use karst_pipeline::scene::SceneFile;
+use karst_scene::Scene;
 use karst_stage::StageError;
 
 use crate::errors::{argument, to_py};

@@ -6,9 +6,9 @@ use std::fs;
 use std::path::Path;
 
 use karst_artifact::StageId;
-use karst_geology::Scene;
-use karst_geology::budget::Budget;
 use karst_pipeline::make::Selection;
+use karst_scene::Scene;
+use karst_scene::budget::Budget;
 use karst_stage::runner::{self, Job};
 use karst_stage::{Stage, StageError};
 use karstgen_tests::{root, run, scratch};

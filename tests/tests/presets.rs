@@ -6,8 +6,8 @@
 //! matrix, last phase's springs) along the network's links, through no node twice.
 
 use karst_artifact::{StageId, read_artifact};
-use karst_geology::{KeyPointKind, Link, Scene, keypoints_of};
 use karst_pipeline::make::Selection;
+use karst_scene::{KeyPointKind, Link, Scene, keypoints_of};
 use karst_skeleton::{ConduitType, Skeleton};
 use karstgen_tests::{root, run, scratch};
 

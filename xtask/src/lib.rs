@@ -4,6 +4,7 @@
 //! - [`peer`]: time the network half beside KarstNSim;
 //! - [`regional`]: every stage on the regional scene, at two sizes;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
+//! - [`modules`]: the module-graph check, no import circle inside any crate;
 //! - [`ensemble_table`]: the presets' metrics over many seeds against the real caves;
 //! - [`python`]: build and install the Python package's wheel and run its pytest suite;
 //! - [`tools`]: install the outside programs the tests check outputs with;
@@ -14,6 +15,7 @@
 pub mod bench;
 pub mod ensemble_table;
 pub mod metrics_table;
+pub mod modules;
 pub mod peer;
 pub mod python;
 pub mod regional;

@@ -1,7 +1,7 @@
 //! `cargo xtask`: the developers' tasks. `run`, `diff` and `inspect` are `karstgen`'s own (the
 //! same code); `bless` regenerates the golden artifacts, `bench` times every stage, `test`
 //! installs the test tools and runs the suite, `metrics-table` tables every scene's metrics,
-//! `fuzz` runs the fuzz targets for a while.
+//! `fuzz` runs the fuzz targets for a while, `modules` checks that no crate has an import circle.
 //! `ensemble` the presets' metrics over many seeds.
 
 use std::path::{Path, PathBuf};
@@ -107,6 +107,9 @@ enum Task {
         #[arg(long)]
         write: bool,
     },
+    /// Check that no crate of the workspace has an import circle (modules reaching each other
+    /// through `crate::` paths); exit 1 when one has.
+    Modules,
     /// Run the test suite (`cargo test --release --workspace`, then the Python package's
     /// pytest suite), after installing the outside tools the tests check outputs with
     /// (tools/: Python packages, Debian packages, npm).
@@ -175,6 +178,7 @@ fn main() -> ExitCode {
             },
         ),
         Task::Test { python, args } => return test(python, &args),
+        Task::Modules => return modules(&root),
         Task::Fuzz { minutes, seed } => fuzz(minutes, seed),
         Task::MetricsTable { write } => metrics_table_command(write),
         Task::Ensemble { n, write } => ensemble_table_command(n, write),
@@ -357,6 +361,27 @@ fn test(python_only: bool, args: &[String]) -> ExitCode {
         Err(e) => {
             eprintln!("error: the Python package: {e}");
             ExitCode::from(1)
+        }
+    }
+}
+
+/// `cargo xtask modules`: prints every circle; exit 1 when any, 2 when a source cannot be read.
+fn modules(root: &Path) -> ExitCode {
+    match xtask::modules::check_workspace(root) {
+        Ok(circles) if circles.is_empty() => {
+            println!("no import circle in any crate");
+            ExitCode::SUCCESS
+        }
+        Ok(circles) => {
+            for circle in &circles {
+                print!("{circle}");
+            }
+            println!("{} import circles", circles.len());
+            ExitCode::from(1)
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
         }
     }
 }

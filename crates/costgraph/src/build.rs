@@ -11,13 +11,14 @@
 
 use rayon::prelude::*;
 
-use karst_geology::SceneView;
-use karst_geology::params::CostgraphParams;
 use karst_sampling::Samples;
+use karst_scene::SceneView;
+use karst_scene::params::CostgraphParams;
 
 use crate::cost::{CostModel, EdgeTerms, NodeFields};
+use crate::costs::SHARED_ROW;
 use crate::knn::{self, CHUNK, Rows, chunk_nodes};
-use crate::payload::{CostGraph, CostSet, SHARED_ROW};
+use crate::payload::{CostGraph, CostSet};
 use crate::stats::{Histogram, SetStats, Summary, TermStats};
 use crate::view::CostgraphView;
 use crate::{CostGraphError, checks};

@@ -17,9 +17,9 @@ use std::collections::BinaryHeap;
 
 use rayon::prelude::*;
 
-use karst_geology::params::CostgraphParams;
-use karst_geology::{KeyPointKind, Link, keypoints_of};
 use karst_sampling::Samples;
+use karst_scene::params::CostgraphParams;
+use karst_scene::{KeyPointKind, Link, keypoints_of};
 
 use crate::CostGraphError;
 use crate::knn::Rows;

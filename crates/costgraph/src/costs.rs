@@ -23,7 +23,9 @@ use std::sync::atomic::{AtomicU8, AtomicU32, Ordering};
 use rayon::prelude::*;
 
 use crate::cost::{CostModel, NodeFields};
-use crate::payload::SHARED_ROW;
+
+/// In `own_rows`: the row costs the same in every set and is held in set 0 only.
+pub const SHARED_ROW: u32 = u32::MAX;
 
 /// A row whose costs are not made yet.
 const EMPTY: u8 = 0;

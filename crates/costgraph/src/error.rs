@@ -23,7 +23,7 @@ pub enum CostGraphError {
     )]
     CostOutOfRange { cost: f64, length: f64 },
     #[error(transparent)]
-    OverBudget(#[from] karst_geology::budget::OverBudget),
+    OverBudget(#[from] karst_scene::budget::OverBudget),
 }
 
 impl Failure for CostGraphError {

@@ -22,15 +22,12 @@ use serde::{Deserialize, Serialize};
 
 use karst_artifact::check::{self, ensure};
 use karst_artifact::{Invalid, Payload, PayloadReader, StageId};
-use karst_geology::SceneView;
+use karst_scene::SceneView;
 
 use crate::cost::CostModel;
-use crate::costs::{Costing, Costs, RowsOf};
+use crate::costs::{Costing, Costs, RowsOf, SHARED_ROW};
 use crate::stats::Summary;
 use crate::view::CostgraphView;
-
-/// In `own_rows`: the row costs the same in every set and is held in set 0 only.
-pub const SHARED_ROW: u32 = u32::MAX;
 
 /// Directed graph over the samples: the out-edges of sample `i` are
 /// `targets[offsets[i]..offsets[i + 1]]`, with their costs in every cost set at

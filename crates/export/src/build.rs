@@ -4,11 +4,11 @@
 use std::path::Path;
 
 use karst_geology::Geology;
-use karst_geology::params::{ExportFormat, ExportParams};
 use karst_hydro::Hydro;
 use karst_mesher::Mesh;
 use karst_metrics::MetricsReport;
 use karst_sampling::Samples;
+use karst_scene::params::{ExportFormat, ExportParams};
 use karst_skeleton::Skeleton;
 use karst_streams::Streams;
 

@@ -6,8 +6,8 @@ use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use karst_artifact::atomic;
-use karst_geology::params::{ExportFormat, MeshSurface};
 use karst_mesher::{Mesh, TriMesh, vertex_normals};
+use karst_scene::params::{ExportFormat, MeshSurface};
 
 use crate::error::ExportError;
 use crate::payload::{ExportedFile, Manifest};

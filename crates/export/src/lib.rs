@@ -41,7 +41,7 @@ mod vtk;
 
 pub use build::{FOLDER, Input, Inputs, export, needs};
 pub use error::ExportError;
-pub use karst_geology::params::{ExportFormat, ExportParams, MeshSurface};
+pub use karst_scene::params::{ExportFormat, ExportParams, MeshSurface};
 pub use network::NetworkView;
 pub use payload::{ExportedFile, Manifest};
 pub use stage::ExportStage;

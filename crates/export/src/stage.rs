@@ -5,11 +5,11 @@
 use std::path::{Path, PathBuf};
 
 use karst_artifact::{Header, Payload, StageId, check_frame, read_artifact};
-use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_mesher::Mesh;
 use karst_metrics::MetricsReport;
 use karst_sampling::Samples;
+use karst_scene::Scene;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
 use karst_streams::Streams;

@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use karst_artifact::stages::producer;
 use karst_artifact::{Encoding, Header, Payload, StageId, decode_payload, read_artifact};
-use karst_geology::Scene;
 use karst_geology::heightfield::{Georeference, HeightGrid};
 use karst_geology::tin::Tin;
+use karst_scene::Scene;
 use karst_stage::Stage;
 use karst_testkit::root;
 
@@ -363,7 +363,7 @@ fn tsurf_seeds() -> Vec<Vec<u8>> {
 }
 
 /// A surface that reads is queried as the geology and the sampling query it.
-fn use_tin(tin: Result<Tin, karst_geology::tin::TinError>) {
+fn use_tin(tin: Result<Tin, karst_geodata::tin::TinError>) {
     if let Ok(tin) = tin {
         let _ = tin.elevation_at(0.0, 0.0);
         let _ = tin.elevation_at(1e5, -1e5);

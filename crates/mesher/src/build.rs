@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use karst_geology::{KeyPoint, KeyPointKind};
+use karst_scene::{KeyPoint, KeyPointKind};
 use karst_sdf::{CarvedTerrain, SdfModel};
 
 use std::io::Write;

@@ -5,7 +5,7 @@
 //! 48 M triangles peaked at 3 GB). The surfaces: the carved terrain at `cell_size` (the ground, the domain's sides
 //! and bottom, the cave walls) and the cave alone and its water at the cave cell.
 
-use karst_geology::budget::{Budget, Cheaper, Estimate, OverBudget};
+use karst_scene::budget::{Budget, Cheaper, Estimate, OverBudget};
 use karst_sdf::SdfModel;
 
 /// Triangles per cell² of estimated surface.

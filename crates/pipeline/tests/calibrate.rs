@@ -76,7 +76,7 @@ fn same_scene_same_report_with_one_or_two_threads() {
     assert_eq!(log.lines().count(), 8, "a header and one row per candidate");
     // The calibrated scene runs: it parses, and carries the best candidate's values.
     let calibrated = String::from_utf8(one[0].1.clone()).unwrap();
-    let parsed = karst_geology::Scene::parse(&calibrated, &dir.join("calibrated.toml")).unwrap();
+    let parsed = karst_scene::Scene::parse(&calibrated, &dir.join("calibrated.toml")).unwrap();
     assert_eq!(parsed.name(), "tiny-calibrated");
     let best = report["parameters"][0]["after"].as_f64().unwrap();
     assert_eq!(parsed.skeleton().amplification_points as f64, best);

@@ -162,7 +162,7 @@ mod tests {
 
     #[test]
     fn coincident_samples_are_the_first_repeat_in_file_order() {
-        let mut rng = karst_geology::rng::Random::stream(7, "test", "coincident");
+        let mut rng = karst_scene::rng::Random::stream(7, "test", "coincident");
         let mut next = || rng.index(8) as f64 - 4.0;
         // Coarse coordinates repeat often; the sets grow until repeats appear and beyond.
         for n in [1, 2, 50, 120, 300, 600] {

@@ -574,7 +574,7 @@ fn cover27(q: DVec3, r: f64, lo: DVec3, s: f64) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use karst_geology::rng::Random;
+    use karst_scene::rng::Random;
 
     fn field(values: impl Fn(DVec3) -> f32) -> SpacingField {
         let size = [13u32, 9, 5];

@@ -119,7 +119,7 @@ mod tests {
 
     use glam::DVec3;
     use karst_costgraph::Costing;
-    use karst_geology::{Scene, SceneView};
+    use karst_scene::{Scene, SceneView};
 
     use super::*;
     use crate::search::{EdgeCosts, astar_to_set, min_cost_per_metre};

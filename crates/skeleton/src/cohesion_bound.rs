@@ -296,7 +296,7 @@ mod tests {
     use crate::search::{Cohesive, EdgeCosts, astar_to_set, dijkstra, min_cost_per_metre};
     use crate::spring_distance::{InEdges, costs_to};
     use karst_costgraph::CostGraph;
-    use karst_geology::rng::Random;
+    use karst_scene::rng::Random;
 
     fn points(rng: &mut Random, n: usize) -> Vec<[f64; 3]> {
         (0..n).map(|_| [rng.range(0.0, 100.0), rng.range(0.0, 80.0), rng.range(0.0, 20.0)]).collect()

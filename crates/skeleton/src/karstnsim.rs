@@ -26,8 +26,9 @@ use std::collections::{BTreeMap, HashMap};
 
 use glam::DVec3;
 use karst_costgraph::CostGraph;
-use karst_geology::{KeyPointKind, Surface};
+use karst_geology::Surface;
 use karst_sampling::Samples;
+use karst_scene::KeyPointKind;
 use rayon::prelude::*;
 
 use crate::Route;

@@ -99,7 +99,7 @@ pub fn costs_to(
 mod tests {
     use super::*;
     use crate::search::{Cohesive, EdgeCosts, dijkstra};
-    use karst_geology::rng::Random;
+    use karst_scene::rng::Random;
 
     /// A random directed graph: each node joined to 6 others at random costs.
     fn random_graph(rng: &mut Random, n: usize) -> CostGraph {

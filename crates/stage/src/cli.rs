@@ -7,8 +7,8 @@ use std::process::ExitCode;
 use serde::Serialize;
 
 use karst_artifact::{Header, Payload, read_artifact};
-use karst_geology::Scene;
-use karst_geology::budget::Budget;
+use karst_scene::Scene;
+use karst_scene::budget::Budget;
 
 use crate::contract::Stage;
 use crate::error::StageError;

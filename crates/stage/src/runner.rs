@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use karst_artifact::stages::{producer, stage_key};
 use karst_artifact::{Header, InputRef, Payload, Provenance, read_artifact, read_header, write_artifact};
-use karst_geology::{Scene, SceneView};
+use karst_scene::{Scene, SceneView};
 
 use crate::contract::{Blame, Failure, Stage, sections};
 use crate::error::StageError;

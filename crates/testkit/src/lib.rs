@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use karst_geology::Scene;
+use karst_scene::Scene;
 use karst_stage::{Job, Ran, Stage, StageError};
 
 mod scene_text;

@@ -14,7 +14,7 @@
 //! diagonalised by cyclic Jacobi rotations in a fixed order: the same seed gives the same
 //! candidates on every machine, whatever the number of threads.
 
-use karst_geology::rng::Random;
+use karst_scene::rng::Random;
 
 /// The state of the search.
 pub struct Cmaes {

@@ -28,9 +28,9 @@ mod target;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use karst_geology::Scene;
-use karst_geology::params::CalibrateParams;
-use karst_geology::rng::Random;
+use karst_scene::Scene;
+use karst_scene::params::CalibrateParams;
+use karst_scene::rng::Random;
 use karst_stage::StageError;
 
 use crate::scene::SceneFile;

@@ -162,7 +162,7 @@ impl Curve {
             if !c.finite(&field, p) {
                 continue;
             }
-            if !scene.domain.contains(crate::Point::from_array(*p)) {
+            if !scene.domain.contains(karst_geology::Point::from_array(*p)) {
                 c.report(
                     &field,
                     format!("curve \"{name}\": [{}, {}, {}] is outside the domain", p[0], p[1], p[2]),

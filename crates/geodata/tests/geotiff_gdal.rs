@@ -9,9 +9,9 @@ use std::path::{Path, PathBuf};
 use karst_testkit::scratch;
 use std::process::Command;
 
-use karst_geology::crs::Epsg;
-use karst_geology::geotiff::testing::{Encoding, write};
-use karst_geology::geotiff::{GeoRaster, GeoTiffError};
+use karst_geodata::crs::Epsg;
+use karst_geodata::geotiff::testing::{Encoding, write};
+use karst_geodata::geotiff::{GeoRaster, GeoTiffError};
 use tiff::encoder::Compression;
 
 fn gdal(program: &str, args: &[&str], stdin: Option<&str>) -> String {

@@ -15,10 +15,12 @@
 
 use std::sync::Arc;
 
-use crate::field::{Bound, FieldNode};
-use crate::surface::Geometry;
 use crate::view::Frame;
-use crate::{Scene, Surface, Terrain};
+use karst_geology::field::{Bound, FieldNode};
+use karst_geology::surface::Geometry;
+use karst_geology::{Surface, Terrain};
+
+use crate::Scene;
 
 /// Moves every coordinate of `scene` into its local frame and records the origin.
 pub(crate) fn localize(scene: &mut Scene) {

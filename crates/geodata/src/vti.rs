@@ -16,7 +16,7 @@
 
 use std::io::Read;
 
-use crate::lithology::{Lattice, Voxels};
+use crate::voxels::{Lattice, Voxels};
 
 /// Reads the array `name` (or the only array, or the `Scalars` one) of a `.vti` file's bytes.
 pub fn parse(bytes: &[u8], name: Option<&str>) -> Result<Voxels, String> {

@@ -9,12 +9,12 @@
 //! - `lithology.vti`: a 40 × 40 × 10 m voxel model (VTK ImageData, cell data, appended raw
 //!   binary as VTK writes it): limestone over marl, and a granite intrusion.
 //!
-//! `cargo run --release -p karst-geology --example geotiff_fixtures`. The scene's domain is
+//! `cargo run --release -p karst-geodata --example geotiff_fixtures`. The scene's domain is
 //! x 651000–651800, y 6862000–6862600, z 250–500 m.
 
 use std::path::Path;
 
-use karst_geology::geotiff::testing::{Encoding, write};
+use karst_geodata::geotiff::testing::{Encoding, write};
 use tiff::encoder::Compression;
 
 /// The plateau: 480 m in the west falling 9 % to the east, rolling hills and a valley running

@@ -7,7 +7,8 @@
 
 use std::process::Command;
 
-use karst_geology::{Point, Scene, SceneError};
+use karst_geology::Point;
+use karst_scene::{Scene, SceneError};
 use karst_testkit::scratch;
 
 /// Writes the grids: code(i, j, k) = 1 + (i + 2j + k) mod 3 on 4 × 3 × 2 voxels of 25 × 25 ×

@@ -23,10 +23,9 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::crs::Epsg;
-use crate::csv::Table;
-use crate::load::Loader;
 use crate::{KeyPoint, KeyPointKind, Scene};
+use karst_geodata::crs::Epsg;
+use karst_geodata::csv::Table;
 
 /// One `[[keypoints_from]]` entry.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -61,17 +60,17 @@ enum Cell {
 
 /// One point read from a table, before it joins the scene.
 #[derive(Debug, Clone, PartialEq)]
-struct Row {
+pub(crate) struct Row {
     /// `file:line` or `file: feature n`.
-    label: String,
-    point: KeyPoint,
+    pub(crate) label: String,
+    pub(crate) point: KeyPoint,
     /// None: take the terrain's elevation.
-    z: Option<f64>,
-    phases: Vec<String>,
+    pub(crate) z: Option<f64>,
+    pub(crate) phases: Vec<String>,
 }
 
 /// The CRS a file declares and its rows; or the problems that stop it being read.
-type Read = Result<(Option<Epsg>, Vec<Row>), Vec<String>>;
+pub(crate) type Read = Result<(Option<Epsg>, Vec<Row>), Vec<String>>;
 
 impl PointTable {
     /// The file's name for karstgen's `field` (the renamed column, or the field's own name).
@@ -80,7 +79,7 @@ impl PointTable {
     }
 
     /// Reads the rows of the file; problems are `file:line: message` texts.
-    fn read(&self, path: &Path) -> Read {
+    pub(crate) fn read(&self, path: &Path) -> Read {
         let file = path.display().to_string();
         if let Some(bad) = self.columns.keys().find(|k| !FIELDS.contains(&k.as_str())) {
             return Err(vec![format!("columns: \"{bad}\" is not one of {}", FIELDS.join(", "))]);
@@ -298,74 +297,6 @@ fn optional(
 fn required(table: &PointTable, cell: &dyn Fn(&str) -> Option<Cell>, field: &str) -> Result<f64, String> {
     optional(table, cell, field)?
         .ok_or_else(|| format!("column {}: the value is empty", table.column_of(field)))
-}
-
-/// Reads every table of the scene, appends its points to `scene.keypoints` (z from the terrain
-/// where absent) and its springs to their phases; problems and each file's CRS go to `loader`.
-pub(crate) fn attach(scene: &mut Scene, loader: &mut Loader) {
-    for t in 0..scene.keypoints_from.len() {
-        let field = format!("keypoints_from[{t}].file");
-        let path = loader.folder.join(&scene.keypoints_from[t].file);
-        let rows = match scene.keypoints_from[t].read(&path) {
-            Ok((code, rows)) => {
-                loader.file_crs(&field, &path, code);
-                rows
-            }
-            Err(problems) => {
-                for p in problems.iter().take(10) {
-                    loader.report(&field, p.clone());
-                }
-                if problems.len() > 10 {
-                    loader.report(
-                        &field,
-                        format!("... and {} more problems in {}", problems.len() - 10, path.display()),
-                    );
-                }
-                continue;
-            }
-        };
-        let mut labels = Vec::new();
-        for mut row in rows {
-            if row.z.is_none() {
-                let ground = scene.terrain.height(row.point.position[0], row.point.position[1]);
-                if !ground.is_finite() {
-                    loader.report(
-                        &field,
-                        format!("{}: z is empty and the terrain has no elevation there", row.label),
-                    );
-                    continue;
-                }
-                row.point.position[2] = ground;
-            }
-            for phase in &row.phases {
-                join_phase(scene, &field, &row, phase, loader);
-            }
-            labels.push(row.label);
-            scene.keypoints.push(row.point);
-        }
-        scene.keypoints_from[t].content = crate::load::hash_file(&path);
-        scene.keypoints_from[t].rows = labels;
-    }
-}
-
-/// Adds a spring read from a table to the springs of `phase`.
-fn join_phase(scene: &mut Scene, field: &str, row: &Row, phase: &str, loader: &mut Loader) {
-    if row.point.kind != KeyPointKind::Spring {
-        return loader.report(
-            field,
-            format!(
-                "{}: phase: only springs have phases (\"{}\" is not a spring)",
-                row.label, row.point.name
-            ),
-        );
-    }
-    match scene.phases.iter_mut().find(|p| p.name == phase) {
-        Some(p) if p.springs.contains(&row.point.name) => {}
-        Some(p) => p.springs.push(row.point.name.clone()),
-        None => {
-            loader.report(field, format!("{}: phase: \"{phase}\" is not a phase of [[phases]]", row.label))
-        }
-    }
 }
 
 /// Where key point `i` came from: None for the scene's own `[[keypoints]]`, else the index of

@@ -8,9 +8,13 @@
 use crate::spans::{line_of, line_of_path, path_at};
 use std::fmt;
 
-use crate::field::{Bound, FieldKind, FieldNode, Surfaces};
 use crate::keypoint::keypoints_of;
-use crate::{Geometry, KeyPointKind, Scene, Surface, Terrain};
+use karst_geodata::MAX_COORDINATE;
+use karst_geology::field::{Bound, FieldKind, FieldNode, Surfaces};
+use karst_geology::lithology::Lithology;
+use karst_geology::{Geometry, Surface, Terrain};
+
+use crate::{KeyPointKind, Scene};
 
 /// One problem in a scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -123,7 +127,7 @@ pub(crate) fn check(scene: &Scene, text: &str) -> Vec<Problem> {
     found.field_nodes(scene, "geology.potential", &scene.geology.potential, false);
     found.field_nodes(scene, "geology.no_karst", &scene.geology.no_karst, true);
     if let Some(lithology) = &scene.geology.lithology {
-        lithology.check(&mut found);
+        found.lithology(lithology);
     }
     found.keypoints(scene, terrain);
     found.connectivity(scene);
@@ -149,8 +153,6 @@ fn number(v: f64) -> String {
     if v != 0.0 && !(1e-4..1e6).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
 }
 
-/// Largest coordinate of a scene, metres (projected coordinates are a few million).
-pub const MAX_COORDINATE: f64 = 1e8;
 /// Largest extent of the domain along an axis, metres.
 pub const MAX_EXTENT: f64 = 1e6;
 /// Largest length, distance, weight or factor without a range of its own.
@@ -305,7 +307,7 @@ impl Checks<'_> {
                         "terrain.octaves",
                         *octaves as f64,
                         0.0,
-                        crate::terrain::MAX_OCTAVES as f64,
+                        karst_geology::terrain::MAX_OCTAVES as f64,
                     );
                 self.positive("terrain.wavelength", *wavelength);
                 ok && *wavelength > 0.0
@@ -342,7 +344,7 @@ impl Checks<'_> {
         ok
     }
 
-    fn heightfield_covers(&mut self, scene: &Scene, grid: &crate::heightfield::HeightGrid) -> bool {
+    fn heightfield_covers(&mut self, scene: &Scene, grid: &karst_geology::heightfield::HeightGrid) -> bool {
         let d = &scene.domain;
         let [ex, ey] = grid.extent();
         if ex[0] > d.min[0] || ex[1] < d.max[0] || ey[0] > d.min[1] || ey[1] < d.max[1] {
@@ -474,6 +476,34 @@ impl Checks<'_> {
                     self.report(&at("weights"), format!("{:?} must be ≥ 0 and not all 0", n.weights));
                 }
             }
+        }
+    }
+
+    /// `[geology.lithology]`: the units' own fields.
+    fn lithology(&mut self, lithology: &Lithology) {
+        for (i, u) in lithology.units.iter().enumerate() {
+            let at = |f: &str| format!("geology.lithology.units[{i}].{f}");
+            if self.finite(&at("potential"), &[u.potential]) && !(0.0..=1.0).contains(&u.potential) {
+                self.report(&at("potential"), format!("must be in [0, 1], got {}", u.potential));
+            }
+            if let Some(r) = u.radius {
+                self.positive(&at("radius"), r);
+            }
+            if lithology.units[..i].iter().any(|o| o.code == u.code) {
+                self.report(&at("code"), format!("code {} is mapped twice", u.code));
+            }
+            if lithology.units[..i].iter().any(|o| o.name == u.name) {
+                self.report(&at("name"), format!("\"{}\" is used twice", u.name));
+            }
+        }
+        if let Some(s) = lithology.spacing
+            && self.finite("geology.lithology.spacing", &s)
+            && s.iter().any(|v| *v <= 0.0)
+        {
+            self.report("geology.lithology.spacing", format!("must be > 0, got {s:?}"));
+        }
+        if let Some(o) = lithology.origin {
+            self.finite("geology.lithology.origin", &o);
         }
     }
 
@@ -828,11 +858,11 @@ max = [5, 100, 50]
         let text = format!("{}\n[[geology.horizons]]\nname = \"bed\"\nelevation = 20\n{model}", GOOD);
         let scene = Scene::parse(&text, Path::new("s.toml")).unwrap();
         let g = &scene.geology;
-        assert_eq!(g.potential(crate::Point::new(50.0, 50.0, 30.0)), 1.0);
-        assert_eq!(g.potential(crate::Point::new(80.0, 50.0, 30.0)), 0.5);
-        assert_eq!(g.potential(crate::Point::new(80.0, 50.0, 10.0)), 0.25 * 0.5);
-        assert!(g.in_no_karst(crate::Point::new(2.0, 50.0, 10.0)));
-        assert!(!g.in_no_karst(crate::Point::new(6.0, 50.0, 10.0)));
+        assert_eq!(g.potential(karst_geology::Point::new(50.0, 50.0, 30.0)), 1.0);
+        assert_eq!(g.potential(karst_geology::Point::new(80.0, 50.0, 30.0)), 0.5);
+        assert_eq!(g.potential(karst_geology::Point::new(80.0, 50.0, 10.0)), 0.25 * 0.5);
+        assert!(g.in_no_karst(karst_geology::Point::new(2.0, 50.0, 10.0)));
+        assert!(!g.in_no_karst(karst_geology::Point::new(6.0, 50.0, 10.0)));
         let bad = text
             .replace("top = \"bed\"", "top = \"nope\"")
             .replace("radius = 5", "radius = -5")

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 
 use karst_testkit::{SceneText, scratch};
 
-use karst_geology::geotiff::testing::{Encoding, write};
-use karst_geology::{KeyPointKind, Link, Scene, SceneError};
+use karst_geodata::geotiff::testing::{Encoding, write};
+use karst_scene::{KeyPointKind, Link, Scene, SceneError};
 
 /// The scene's folder: the rasters of every test, and the files a test writes.
 struct Folder(PathBuf);

@@ -104,11 +104,11 @@ pub mod part {
         /// `seed`: the seed of every random choice.
         Seed: u64 = |scene| scene.seed;
         /// `[domain]`: the box of the model.
-        Domain: &'s crate::Domain = |scene| &scene.domain;
+        Domain: &'s karst_geology::Domain = |scene| &scene.domain;
         /// `[terrain]`: the ground surface.
-        Terrain: &'s crate::Terrain = |scene| &scene.terrain;
+        Terrain: &'s karst_geology::Terrain = |scene| &scene.terrain;
         /// `[geology]`: water tables, horizons, faults, fractures, layers, potential, no-karst.
-        Geology: &'s crate::Geology = |scene| &scene.geology;
+        Geology: &'s karst_geology::Geology = |scene| &scene.geology;
         /// `[[keypoints]]` (and `[[keypoints_from]]`'s points): sinks, springs, waypoints, dead
         /// ends, in scene order.
         Keypoints: &'s [KeyPoint] = |scene| &scene.keypoints;
@@ -151,11 +151,11 @@ pub mod part {
 /// sections in the order written.
 ///
 /// ```
-/// karst_geology::view! {
+/// karst_scene::view! {
 ///     /// What the hydro stage reads.
 ///     pub struct HydroView<'s> { domain: Domain, terrain: Terrain, keypoints: Keypoints, hydro: Hydro }
 /// }
-/// # use karst_geology::{Section, view::SceneView};
+/// # use karst_scene::{Section, view::SceneView};
 /// assert_eq!(HydroView::SECTIONS, [Section::Domain, Section::Terrain, Section::Keypoints, Section::Hydro]);
 /// ```
 #[macro_export]

@@ -7,16 +7,19 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use crate::crs::{self, Epsg, FileCrs};
-use crate::field::ValueGrid;
-use crate::geotiff::{Footprint, GeoRaster};
-use crate::grids;
-use crate::heightfield::{Georeference, HeightGrid};
 use crate::spans::line_of_path;
-use crate::surface::Geometry;
-use crate::tin::Tin;
 use crate::validate::Problem;
-use crate::{Domain, Scene, Terrain};
+use karst_geodata::crs::{self, Epsg, FileCrs};
+use karst_geodata::geotiff::{Footprint, GeoRaster};
+use karst_geology::field::ValueGrid;
+use karst_geology::grids;
+use karst_geology::heightfield::{Georeference, HeightGrid};
+use karst_geology::surface::Geometry;
+use karst_geology::tin::Tin;
+use karst_geology::{Domain, Terrain};
+
+use crate::point_table::Row;
+use crate::{KeyPointKind, Scene};
 
 /// Reads every data file of `scene`; returns the problems (unreadable or invalid files).
 pub(crate) fn attach_files(scene: &mut Scene, folder: &Path, text: &str) -> Vec<Problem> {
@@ -29,7 +32,7 @@ pub(crate) fn attach_files(scene: &mut Scene, folder: &Path, text: &str) -> Vec<
     loader.surfaces(scene);
     loader.potential_grid(scene);
     loader.lithology(scene);
-    crate::point_table::attach(scene, &mut loader);
+    attach_tables(scene, &mut loader);
     crate::links::resolve(scene, &mut |field, message| loader.report(field, message));
     loader.check_crs(scene.crs.as_deref());
     loader.problems
@@ -202,5 +205,73 @@ pub(crate) fn hash_file(path: &Path) -> String {
     match std::fs::File::open(path).and_then(|mut f| std::io::copy(&mut f, &mut hasher)) {
         Ok(_) => hasher.finalize().to_hex().to_string(),
         Err(_) => String::new(),
+    }
+}
+
+/// Reads every table of the scene, appends its points to `scene.keypoints` (z from the terrain
+/// where absent) and its springs to their phases; problems and each file's CRS go to `loader`.
+fn attach_tables(scene: &mut Scene, loader: &mut Loader) {
+    for t in 0..scene.keypoints_from.len() {
+        let field = format!("keypoints_from[{t}].file");
+        let path = loader.folder.join(&scene.keypoints_from[t].file);
+        let rows = match scene.keypoints_from[t].read(&path) {
+            Ok((code, rows)) => {
+                loader.file_crs(&field, &path, code);
+                rows
+            }
+            Err(problems) => {
+                for p in problems.iter().take(10) {
+                    loader.report(&field, p.clone());
+                }
+                if problems.len() > 10 {
+                    loader.report(
+                        &field,
+                        format!("... and {} more problems in {}", problems.len() - 10, path.display()),
+                    );
+                }
+                continue;
+            }
+        };
+        let mut labels = Vec::new();
+        for mut row in rows {
+            if row.z.is_none() {
+                let ground = scene.terrain.height(row.point.position[0], row.point.position[1]);
+                if !ground.is_finite() {
+                    loader.report(
+                        &field,
+                        format!("{}: z is empty and the terrain has no elevation there", row.label),
+                    );
+                    continue;
+                }
+                row.point.position[2] = ground;
+            }
+            for phase in &row.phases {
+                join_phase(scene, &field, &row, phase, loader);
+            }
+            labels.push(row.label);
+            scene.keypoints.push(row.point);
+        }
+        scene.keypoints_from[t].content = hash_file(&path);
+        scene.keypoints_from[t].rows = labels;
+    }
+}
+
+/// Adds a spring read from a table to the springs of `phase`.
+fn join_phase(scene: &mut Scene, field: &str, row: &Row, phase: &str, loader: &mut Loader) {
+    if row.point.kind != KeyPointKind::Spring {
+        return loader.report(
+            field,
+            format!(
+                "{}: phase: only springs have phases (\"{}\" is not a spring)",
+                row.label, row.point.name
+            ),
+        );
+    }
+    match scene.phases.iter_mut().find(|p| p.name == phase) {
+        Some(p) if p.springs.contains(&row.point.name) => {}
+        Some(p) => p.springs.push(row.point.name.clone()),
+        None => {
+            loader.report(field, format!("{}: phase: \"{phase}\" is not a phase of [[phases]]", row.label))
+        }
     }
 }
