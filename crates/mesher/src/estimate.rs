@@ -90,7 +90,7 @@ const PROBES: usize = 24;
 /// as wide as the mean diameter, each sphere listed in every cell its bounding box meets.
 fn union_area(spheres: &[[f32; 4]]) -> f64 {
     let mean = spheres.iter().map(|s| s[3] as f64).sum::<f64>() / spheres.len().max(1) as f64;
-    if !(mean > 0.0) {
+    if spheres.is_empty() || mean.is_nan() || mean <= 0.0 {
         return 0.0;
     }
     let cell = 2.0 * mean;
