@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use karst_artifact::StageId;
+use karst_pipeline::budget::OutputBudget;
 use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::{self, SceneFile};
 use karst_pipeline::{calibrate, diff, ensemble, registry};
@@ -70,6 +71,10 @@ pub struct RunArgs {
     /// estimate is above it refuses, naming the scene field to change (docs/limits.md).
     #[arg(long, value_name = "SIZE")]
     pub max_memory: Option<karst_scene::budget::Budget>,
+    /// MB the meshes may take (default 300): the mesher's work is estimated before it runs,
+    /// and a run above this stops, naming the fields that lower it.
+    #[arg(long, value_name = "MB", value_parser = parse_budget)]
+    pub budget: Option<OutputBudget>,
 }
 
 /// `karstgen diff`.
@@ -189,6 +194,12 @@ fn parse_stage(name: &str) -> Result<StageId, String> {
     })
 }
 
+fn parse_budget(megabytes: &str) -> Result<OutputBudget, String> {
+    let value =
+        megabytes.trim().parse::<f64>().map_err(|_| format!("\"{megabytes}\" is not a number of MB"))?;
+    OutputBudget::megabytes(value)
+}
+
 /// The `karstgen` process: parses the command line, runs the command, returns the exit code.
 pub fn main() -> ExitCode {
     default_sigpipe();
@@ -244,7 +255,13 @@ pub fn run(args: &RunArgs) -> Result<PathBuf, StageError> {
         scene.scene.set_budget(budget);
     }
     println!("scene {} → {}", scene.path.display(), out.display());
-    let selection = Selection { from: args.from, only: args.only, to: args.to, force: args.force };
+    let selection = Selection {
+        from: args.from,
+        only: args.only,
+        to: args.to,
+        force: args.force,
+        budget: args.budget.unwrap_or_default(),
+    };
     make::run(&scene, &out, &selection, &mut |report| println!("{}", report.line()))?;
     Ok(out)
 }

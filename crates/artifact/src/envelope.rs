@@ -408,6 +408,7 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
     if header.encoding == Encoding::Postcard {
         let mut bytes = PayloadReader::new(&mut reader, header.payload_len);
         if let Some(decoded) = P::read_streamed(&mut bytes) {
+            let position = bytes.position();
             // The envelope's checks come first, as for a payload read whole: a corrupted file is a
             // length or checksum error whatever its decoding made of it.
             let (read, digest) =
@@ -418,6 +419,7 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
             if digest != header.payload_blake3 {
                 return Err(Error::Checksum { path: path.into(), stage });
             }
+            let decoded = decoded.and_then(|value| read_to_the_end(value, position, header.payload_len));
             return Ok((header, validated(path, decoded.map_err(|e| decode_error::<P>(path, e))?)?));
         }
     }
@@ -446,12 +448,33 @@ pub fn decode_payload<P: Payload>(path: &Path, encoding: Encoding, bytes: &[u8])
     let decoded = match encoding {
         Encoding::Postcard => {
             let mut source = bytes;
-            P::read_streamed(&mut PayloadReader::new(&mut source, bytes.len() as u64))
-                .unwrap_or_else(|| postcard::from_bytes(bytes).map_err(|e| e.to_string()))
+            let len = bytes.len() as u64;
+            let mut reader = PayloadReader::new(&mut source, len);
+            match P::read_streamed(&mut reader) {
+                Some(decoded) => decoded.and_then(|value| read_to_the_end(value, reader.position(), len)),
+                None => postcard_whole(bytes),
+            }
         }
         Encoding::Json => serde_json::from_slice(bytes).map_err(|e| e.to_string()),
     };
     validated(path, decoded.map_err(|e| decode_error::<P>(path, e))?)
+}
+
+/// Decodes postcard `bytes` to their last byte: bytes left over mean that a length inside
+/// the payload, or the header's, is wrong (postcard alone stops at the last field).
+pub(crate) fn postcard_whole<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, String> {
+    let (value, rest) = postcard::take_from_bytes(bytes).map_err(|e| e.to_string())?;
+    read_to_the_end(value, (bytes.len() - rest.len()) as u64, bytes.len() as u64)
+}
+
+/// `value` when its fields ended at byte `end` of a payload of `len` bytes: its last byte.
+fn read_to_the_end<T>(value: T, end: u64, len: u64) -> Result<T, String> {
+    if end != len {
+        return Err(format!(
+            "the payload's fields end at byte {end} of its {len}: a length inside it or the header's payload_len is wrong"
+        ));
+    }
+    Ok(value)
 }
 
 fn decode_error<P: Payload>(path: &Path, detail: String) -> Error {

@@ -145,10 +145,15 @@ impl<'r> PayloadReader<'r> {
         Ok(values)
     }
 
-    /// The rest of the payload, a small tail, decoded with postcard.
+    /// The rest of the payload, a small tail, decoded with postcard to its last byte.
     pub fn tail<T: serde::de::DeserializeOwned>(&mut self) -> Result<T, String> {
         let rest = self.bytes(self.left() as usize)?;
-        postcard::from_bytes(&rest).map_err(|e| e.to_string())
+        crate::envelope::postcard_whole(&rest)
+    }
+
+    /// Bytes of the payload decoded so far.
+    pub(crate) fn position(&self) -> u64 {
+        self.read
     }
 
     /// Reads whatever the source still holds (past the payload too: a longer file is a length

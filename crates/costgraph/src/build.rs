@@ -29,6 +29,7 @@ pub fn build(view: &CostgraphView, samples: &Samples) -> Result<CostGraph, CostG
     if k >= samples.len() {
         return Err(CostGraphError::TooFewSamples { k, samples: samples.len() });
     }
+    checks::tags_of_the_scene(view, samples)?;
     let model = CostModel::new(view);
     crate::estimate::check(view, samples.len(), model.set_count())?;
     let chunks = samples.len().div_ceil(CHUNK) as u64;

@@ -37,6 +37,7 @@ pub mod watertight;
 pub use build::{CAVE_REFINE, anchors, build, cave_cell, mesh, mesh_simplified, mesh_with};
 pub use cleanup::{Solid, clean};
 pub use error::MesherError;
+pub use estimate::Work;
 pub use normals::vertex_normals;
 pub use octree::BRICK;
 pub use payload::{Mesh, Removed, TriMesh};
