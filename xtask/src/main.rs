@@ -1,7 +1,7 @@
 //! `cargo xtask`: the developers' tasks. `run`, `diff` and `inspect` are `karstgen`'s own (the
-//! same code); `bless` diffs the tiny scene against the golden artifacts (replacing them with `--accept --why`), `bench` times every stage, `test`
-//! installs the test tools and runs the suite, `metrics-table` tables every scene's metrics,
-//! `fuzz` runs the fuzz targets for a while.
+//! same code); `bless` diffs the tiny scene against the golden artifacts (and replaces them with
+//! `--accept --why`), `bench` times every stage, `test` installs the test tools and runs the
+//! suite, `metrics-table` tables every scene's metrics, `fuzz` runs the fuzz targets for a while,
 //! `ensemble` the presets' metrics over many seeds.
 
 use std::path::{Path, PathBuf};
