@@ -1,5 +1,6 @@
 //! What karstgen's tests share: where the workspace and its fixtures are, fresh scratch
-//! folders, a small scene to start from ([`SceneText`]), and running one stage in process.
+//! folders, a small scene to start from ([`SceneText`]), running one stage in process, and the
+//! command-line contract of the stage binaries ([`cli`]).
 //!
 //! A dev-dependency of the stage crates; it depends on none of them, so any crate's tests can
 //! use it.
@@ -10,6 +11,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use karst_geology::Scene;
 use karst_stage::{Job, Ran, Stage, StageError};
 
+pub mod cli;
 mod scene_text;
 
 pub use scene_text::SceneText;
