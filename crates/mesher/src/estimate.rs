@@ -1,8 +1,8 @@
 //! The mesher's work estimate, made before any cell is evaluated: about 2 triangles per cell²
 //! of the surface areas estimated here (measured: 1.9 for the tiny scene's terrain and 1.7 for
 //! its cave, 2.0 and 1.9 for the default scene's), counted at 2.5, and a triangle costs about
-//! 64 bytes at the peak (its share of the vertices, the bricks and the cleanup; BENCHMARKS.md:
-//! 48 M triangles peaked at 3 GB). The surfaces: the carved terrain at `cell_size` (the ground, the domain's sides
+//! 64 bytes at the peak (its share of the vertices, the bricks and the cleanup; measured in
+//! BENCHMARKS.md, "mesher"). The surfaces: the carved terrain at `cell_size` (the ground, the domain's sides
 //! and bottom, the cave walls) and the cave alone and its water at the cave cell.
 
 use karst_geology::budget::{Budget, Cheaper, Estimate, OverBudget};

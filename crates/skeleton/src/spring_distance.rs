@@ -1,8 +1,8 @@
 //! The least cost from every sample to a spring: the phreatic A*'s heuristic when many legs
 //! go to the same spring (`karstnsim.rs`, `cohesion_bound.rs`).
 //!
-//! The phreatic legs are most of the skeleton's time on a large scene (on the regional scene at
-//! 1 M samples, 100 legs reached 9.7 M samples: 6.2 s of 7 s). Their heuristic bounds the cost
+//! The phreatic legs are most of the skeleton's time on a large scene (on the regional scene,
+//! its legs together reach many times the samples there are: BENCHMARKS.md). Their heuristic bounds the cost
 //! still to pay by the least cost per metre of any edge times the straight-line distance; the
 //! cheapest edges of a set are rare (straight down through the vadose zone, along the water
 //! table), so the bound is loose and each search explores a wide ellipsoid between its entry

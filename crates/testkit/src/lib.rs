@@ -43,8 +43,8 @@ pub fn scratch(name: &str) -> Scratch {
 }
 
 /// A test's scratch folder ([`scratch`]): a path, removed with everything in it when dropped
-/// while the thread is not panicking. The suite used to leave every run's folders behind
-/// (57 folders, 255 MB a run).
+/// while the thread is not panicking. The suite used to leave every run's folders behind, a
+/// run's worth of scratch space each time.
 #[derive(Debug)]
 pub struct Scratch(PathBuf);
 
