@@ -306,6 +306,23 @@ fn ensemble_table_command(n: usize, write: bool) -> Result<(), StageError> {
     Ok(())
 }
 
+/// The tests run again in the `checked` profile (release with integer overflow checks and debug
+/// assertions, which cost too much to keep in release: BENCHMARKS.md, "Overflow checks"): the
+/// tiny scene through every stage against its goldens, and the presets' networks.
+const CHECKED_SUBSET: [&str; 6] = ["-p", "karstgen-tests", "--test", "golden", "--test", "presets"];
+
+/// `cargo test --profile checked` of [`CHECKED_SUBSET`].
+fn checked_subset(tools: &Tools) -> Result<(), String> {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let status = Command::new(cargo)
+        .args(["test", "--profile", "checked"])
+        .args(CHECKED_SUBSET)
+        .envs(tools.env())
+        .status()
+        .map_err(|e| format!("cannot run cargo test: {e}"))?;
+    if status.success() { Ok(()) } else { Err("the checked subset failed".into()) }
+}
+
 fn test(python_only: bool, args: &[String]) -> ExitCode {
     let root = workspace_root();
     let tools = match Tools::ensure(&root) {
@@ -333,6 +350,10 @@ fn test(python_only: bool, args: &[String]) -> ExitCode {
         }
         if !args.is_empty() {
             return ExitCode::SUCCESS;
+        }
+        if let Err(e) = checked_subset(&tools) {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
         }
     }
     match xtask::python::test(&root, &tools) {
