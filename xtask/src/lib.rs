@@ -1,5 +1,6 @@
 //! karstgen's developer tasks, as a library so that tests drive exactly what `cargo xtask` does.
 //!
+//! - [`bless`]: review the tiny scene's artifacts against the goldens, replace them with a reason;
 //! - [`bench`]: time every stage on the benchmark scenes and each stage's budget cases;
 //! - [`peer`]: time the network half beside KarstNSim;
 //! - [`regional`]: every stage on the regional scene, at two sizes;
@@ -13,6 +14,7 @@
 //! Running the pipeline, diffs and ensembles are `karstgen`'s (crates/pipeline).
 
 pub mod bench;
+pub mod bless;
 pub mod ensemble_table;
 pub mod metrics_table;
 pub mod modules;

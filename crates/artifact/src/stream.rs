@@ -1,6 +1,6 @@
 //! A bulk payload decoded from the file as it is read, so that its bytes and the decoded arrays
 //! are never in memory together: reading costgraph.bin whole and then decoding it held the
-//! payload twice (7.4 GB for the regional scene's 3.7 GB payload).
+//! payload twice, twice the memory of the regional scene's payload of gigabytes.
 //!
 //! A payload type that opts in ([`crate::Payload::read_streamed`]) reads its fields in
 //! postcard's order through a [`PayloadReader`]: numbers and small fields one by one, bulk

@@ -9,8 +9,8 @@
 //! samples, whatever the graph's size; around an obstacle (a no-karst volume, a valley) it
 //! fills the pocket and goes on, and it visits everything the sink reaches only when the
 //! spring is out of reach, the case it reports. The earlier check, one traversal per spring
-//! of the reversed graph, needed that reversed graph: 8 bytes per edge (1.2 GB on the regional
-//! scene) and 2 % of the network half's instructions at 100k samples.
+//! of the reversed graph, needed that reversed graph: 8 bytes per edge, and a share of the
+//! network half's instructions (BENCHMARKS.md).
 
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;

@@ -3,9 +3,9 @@
 //!
 //! A cost is a function of the graph's two ends, the samples' positions and the scene's
 //! geology ([`CostModel::edge`]). The skeleton's searches read the costs of the rows of the
-//! samples they settle: 27–32 % of them on KarstNSim's case (issue 21). Costing every edge in
-//! the cost graph stage, writing the costs to `costgraph.bin` and reading them back took two
-//! thirds of the network half's time there. So the artifact holds the graph, and each row is
+//! samples they settle: a minority of them on KarstNSim's case (issue 21). Costing every edge in
+//! the cost graph stage, writing the costs to `costgraph.bin` and reading them back took most of
+//! the network half's time there (BENCHMARKS.md). So the artifact holds the graph, and each row is
 //! costed once, in every cost set at once, the first time any search reads it
 //! ([`CostGraph::row_costs`]); a search of a whole graph (the least costs to a spring) has every
 //! row costed first, in parallel ([`Costing::Every`]).

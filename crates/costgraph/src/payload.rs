@@ -11,9 +11,9 @@
 //! cost set per water table named by a spring; paris2021 has one set. Set 0 is the default set
 //! and holds every edge's cost. The later sets differ from it only near the water tables: above
 //! every water table an edge's term depends on its direction alone, far below every one it is
-//! the same constant, so most rows cost the same in every set (85 % of them on the regional
+//! the same constant, so most rows cost the same in every set (most of them on the regional
 //! scene). A later set therefore holds only the rows that may differ (`own_rows`), and the
-//! others are read from set 0: on the regional scene 5 sets take 1.0 GB instead of 3.05 GB.
+//! others are read from set 0: a fraction of the memory of full sets (BENCHMARKS.md).
 
 use std::sync::OnceLock;
 

@@ -130,7 +130,7 @@ fn encode<P: Payload>(payload: &P) -> Vec<u8> {
 }
 
 /// The tiny mesh cut to its first 300 triangles per surface: a small seed, so that a case
-/// costs a millisecond, not the golden's 25 MB of work.
+/// is quick, not the whole golden mesh's work.
 fn mesh_seeds() -> Vec<Vec<u8>> {
     let (_, mut mesh) = read_artifact::<karst_mesher::Mesh>(&root().join("fixtures/golden/tiny/mesh.bin"))
         .expect("the golden reads");

@@ -1,12 +1,12 @@
 //! The mesher's work estimate, made before any cell is evaluated: [`Work`] (surface cells,
 //! triangles and the bytes of mesh.bin, held against the output budget of a run) and
-//! [`check`] (the memory peak, held against the memory budget). About 2 to 3 triangles come
-//! per cell² of the surface areas estimated here, counted at 2.5, and a triangle costs about
-//! 64 bytes at the peak (its share of the vertices, the bricks and the cleanup; BENCHMARKS.md:
-//! 48 M triangles peaked at 3 GB). The surfaces: the carved terrain at `cell_size` (the
-//! ground, the domain's sides and bottom, the cave walls), the cave alone and its water at the
-//! cave cell. The cave's tortuous conduits are overlapping spheres: their union's area is
-//! probed, not summed ([`union_area`]).
+//! [`check`] (the memory peak, held against the memory budget). About 2 triangles come per
+//! cell² of the surface areas estimated here, counted at 2.5, and a triangle costs about 64
+//! bytes at the peak (its share of the vertices, the bricks and the cleanup; measured in
+//! BENCHMARKS.md, "mesher"). The surfaces: the carved terrain at `cell_size` (the ground, the
+//! domain's sides and bottom, the cave walls), the cave alone and its water at the cave cell.
+//! The cave's tortuous conduits are overlapping spheres: their union's area is probed, not
+//! summed ([`union_area`]).
 
 use karst_scene::budget::{Budget, Cheaper, Estimate, OverBudget};
 use karst_sdf::SdfModel;

@@ -283,7 +283,7 @@ fn spring_costs_fit(view: &SkeletonView, graph: &CostGraph, springs: usize) -> b
 /// Computes T, the least cost from every sample to each spring of `worth` (`spring_distance.rs`),
 /// on the phase's costs before cohesion, one spring after the other, and sends it by spring row
 /// (None when those costs are not the stored ones). One spring at a time: side by side, each
-/// held its reversed costs (600 MB on the regional scene, whose skeleton then went over 4 GB).
+/// held its reversed costs, which took the regional scene's skeleton over its memory budget.
 fn costs_to_springs(
     graph: &CostGraph,
     phase: &PhaseSetup,

@@ -42,7 +42,7 @@ pub trait EdgeCosts: Sync {
     fn for_each_out(&self, node: usize, f: &mut dyn FnMut(usize, usize, f64));
     /// The cost graph's rows, one of its cost sets and the cohesion layers on it, when the
     /// costs are these: searches then read them directly instead of through a callback per
-    /// edge (about three times faster).
+    /// edge (several times faster: BENCHMARKS.md).
     fn direct(&self) -> Option<Direct<'_>> {
         None
     }
@@ -258,8 +258,8 @@ struct Reached {
 const UNREACHED: Reached = Reached { cost: f64::INFINITY, predecessor: NONE, via: NONE };
 
 /// Per-node arrays of finished searches, reset, kept for the next search on the same thread:
-/// allocating and filling them for every search (17 bytes per sample: 85 MB at 5 M samples,
-/// about 200 searches on the regional scene) was most of the skeleton's system time.
+/// allocating and filling them for every search (17 bytes per sample, for each of the regional
+/// scene's searches) was most of the skeleton's system time (BENCHMARKS.md).
 struct Spare {
     trees: Vec<Vec<Reached>>,
     settled: Vec<Vec<bool>>,
