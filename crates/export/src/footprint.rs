@@ -1,0 +1,174 @@
+//! A conduit segment seen from above: its footprint on the map and its roof.
+//!
+//! A segment is a tube whose radius varies linearly from one end to the other (the union of the
+//! spheres centred on its axis), so its footprint is the set of map points within the
+//! interpolated radius of the axis's projection: the convex hull of the two end discs. The
+//! GeoPackage's `passages` layer draws that hull ([`SegmentFootprint::outline`]) and the
+//! rasters test pixels against the same set ([`SegmentFootprint::over_pixel`]), so that a map
+//! and a raster of one run agree.
+
+use crate::network::NetworkView;
+
+/// One segment's tube: its axis ends (local coordinates, metres) and their radii.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SegmentFootprint {
+    pub ends: [[f64; 3]; 2],
+    pub radius: [f64; 2],
+}
+
+/// What a tube holds above one map point: the top of its roof and the bottom of its floor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Column {
+    pub roof: f64,
+    pub floor: f64,
+}
+
+impl SegmentFootprint {
+    /// Every segment of the network, in segment order (self-loops included: they are a disc).
+    pub fn all(net: &NetworkView) -> Vec<SegmentFootprint> {
+        net.segments
+            .iter()
+            .map(|s| SegmentFootprint {
+                ends: s.nodes.map(|n| net.nodes[n as usize].position),
+                radius: s.radius,
+            })
+            .collect()
+    }
+
+    /// The map box `[[min x, min y], [max x, max y]]` holding the footprint.
+    pub fn bounds(&self) -> [[f64; 2]; 2] {
+        let [a, b] = self.ends;
+        let [ra, rb] = self.radius;
+        [
+            [(a[0] - ra).min(b[0] - rb), (a[1] - ra).min(b[1] - rb)],
+            [(a[0] + ra).max(b[0] + rb), (a[1] + ra).max(b[1] + rb)],
+        ]
+    }
+
+    /// The vertical extent of the tube above the map point `(x, y)`, None when the point is
+    /// outside the footprint. Sections of the tube are discs around the axis point at
+    /// parameter t; the extent is taken over the axis points nearest to (x, y) on the map and
+    /// the two ends, which bound it for the gentle slopes and short segments of a skeleton.
+    pub fn column(&self, x: f64, y: f64) -> Option<Column> {
+        let [a, b] = self.ends;
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let nearest = self.nearest_parameter([x, y]);
+        let mut column: Option<Column> = None;
+        for t in [nearest, 0.0, 1.0] {
+            let centre = [a[0] + dx * t, a[1] + dy * t, a[2] + (b[2] - a[2]) * t];
+            let r = self.radius[0] + (self.radius[1] - self.radius[0]) * t;
+            let d2 = (x - centre[0]).powi(2) + (y - centre[1]).powi(2);
+            if d2 > r * r {
+                continue;
+            }
+            let half = (r * r - d2).sqrt();
+            let (roof, floor) = (centre[2] + half, centre[2] - half);
+            column = Some(match column {
+                Some(c) => Column { roof: c.roof.max(roof), floor: c.floor.min(floor) },
+                None => Column { roof, floor },
+            });
+        }
+        column
+    }
+
+    /// The vertical extent of the tube over the square pixel of centre `(x, y)` and edge `2
+    /// half`, None when the footprint misses the pixel. The pixel's point nearest to the
+    /// axis (found by alternating projections between the axis and the square, which converge
+    /// for these two convex sets), its centre and its points nearest to the axis ends are
+    /// tested.
+    pub fn over_pixel(&self, x: f64, y: f64, half: f64) -> Option<Column> {
+        let [a, b] = self.ends;
+        let clamp = |p: [f64; 2]| [p[0].clamp(x - half, x + half), p[1].clamp(y - half, y + half)];
+        let mut nearest = [x, y];
+        for _ in 0..4 {
+            let t = self.nearest_parameter(nearest);
+            nearest = clamp([a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t]);
+        }
+        let ends = self.ends.map(|p| clamp([p[0], p[1]]));
+        [nearest, [x, y]]
+            .into_iter()
+            .chain(ends)
+            .filter_map(|[px, py]| self.column(px, py))
+            .reduce(|c, d| Column { roof: c.roof.max(d.roof), floor: c.floor.min(d.floor) })
+    }
+
+    /// The axis parameter of the point nearest to `p` on the map, in [0, 1].
+    fn nearest_parameter(&self, p: [f64; 2]) -> f64 {
+        let [a, b] = self.ends;
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let along = dx * dx + dy * dy;
+        if along > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / along).clamp(0.0, 1.0) } else { 0.0 }
+    }
+
+    /// The footprint's outline, counter-clockwise and closed (first point repeated): the convex
+    /// hull of the two end discs, each drawn with `sides` points.
+    pub fn outline(&self, sides: usize) -> Vec<[f64; 2]> {
+        let mut points: Vec<[f64; 2]> = Vec::with_capacity(2 * sides);
+        for (end, r) in self.ends.iter().zip(self.radius) {
+            for k in 0..sides {
+                let angle = std::f64::consts::TAU * k as f64 / sides as f64;
+                points.push([end[0] + r * angle.cos(), end[1] + r * angle.sin()]);
+            }
+        }
+        let mut hull = convex_hull(points);
+        hull.push(hull[0]);
+        hull
+    }
+}
+
+/// The convex hull of `points`, counter-clockwise from the lowest-leftmost (Andrew's monotone
+/// chain).
+fn convex_hull(mut points: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
+    points.sort_by(|p, q| p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1])));
+    points.dedup();
+    if points.len() < 3 {
+        return points;
+    }
+    let cross =
+        |o: [f64; 2], a: [f64; 2], b: [f64; 2]| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    let mut hull: Vec<[f64; 2]> = Vec::with_capacity(points.len() + 1);
+    for pass in [&points[..], &points.iter().rev().copied().collect::<Vec<_>>()[..]] {
+        let start = hull.len();
+        for &p in pass {
+            while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tube_covers_what_lies_within_its_radius() {
+        let tube = SegmentFootprint { ends: [[0.0, 0.0, 10.0], [10.0, 0.0, 20.0]], radius: [1.0, 3.0] };
+        let mid = tube.column(5.0, 0.0).expect("on the axis");
+        assert!((mid.roof - (15.0 + 2.0)).abs() < 1e-9 && (mid.floor - 13.0).abs() < 1e-9, "{mid:?}");
+        assert!(tube.column(5.0, 1.9).is_some() && tube.column(5.0, 2.1).is_none());
+        assert!(tube.column(-0.9, 0.0).is_some() && tube.column(-1.1, 0.0).is_none());
+        assert!(tube.column(12.9, 0.0).is_some() && tube.column(13.1, 0.0).is_none());
+        let pixel = tube.over_pixel(5.0, 6.0, 5.0).expect("the pixel's south edge crosses the tube");
+        assert!((pixel.roof - (20.0 + 8f64.sqrt())).abs() < 1e-9, "at the wide end, {pixel:?}");
+        assert!(tube.over_pixel(5.0, 8.5, 5.0).is_none(), "3.5 m from the axis, the largest radius is 3");
+        let shaft = SegmentFootprint { ends: [[0.0, 0.0, 0.0], [0.0, 0.0, 50.0]], radius: [2.0, 2.0] };
+        let c = shaft.column(1.0, 0.0).unwrap();
+        assert!((c.roof - (50.0 + 3f64.sqrt())).abs() < 1e-9 && (c.floor + 3f64.sqrt()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn the_outline_is_the_hull_of_the_end_discs() {
+        let tube = SegmentFootprint { ends: [[0.0, 0.0, 0.0], [10.0, 0.0, 0.0]], radius: [1.0, 1.0] };
+        let ring = tube.outline(16);
+        assert_eq!(ring.first(), ring.last());
+        let area: f64 = ring.windows(2).map(|w| w[0][0] * w[1][1] - w[1][0] * w[0][1]).sum::<f64>() / 2.0;
+        let expected = 20.0 + std::f64::consts::PI;
+        assert!(area > 0.0 && (area - expected).abs() < 0.05 * expected, "counter-clockwise, {area}");
+        let [min, max] = tube.bounds();
+        assert_eq!([min, max], [[-1.0, -1.0], [11.0, 1.0]]);
+    }
+}
