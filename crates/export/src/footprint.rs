@@ -7,6 +7,8 @@
 //! rasters test pixels against the same set ([`SegmentFootprint::over_pixel`]), so that a map
 //! and a raster of one run agree.
 
+use karst_skeleton::Skeleton;
+
 use crate::network::NetworkView;
 
 /// One segment's tube: its axis ends (local coordinates, metres) and their radii.
@@ -31,6 +33,21 @@ impl SegmentFootprint {
             .map(|s| SegmentFootprint {
                 ends: s.nodes.map(|n| net.nodes[n as usize].position),
                 radius: s.radius,
+            })
+            .collect()
+    }
+
+    /// Every segment of a skeleton with the skeleton's radii (a run without hydro's sizing).
+    pub fn of_skeleton(skeleton: &Skeleton) -> Vec<SegmentFootprint> {
+        let position = |n: u32| skeleton.nodes[n as usize].position;
+        skeleton
+            .conduits
+            .iter()
+            .flat_map(|c| {
+                c.nodes.windows(2).zip(c.radius.windows(2)).map(move |(n, r)| SegmentFootprint {
+                    ends: [position(n[0]), position(n[1])],
+                    radius: [r[0], r[1]],
+                })
             })
             .collect()
     }

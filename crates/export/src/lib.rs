@@ -28,7 +28,7 @@ mod csv;
 mod error;
 mod folder;
 pub mod footprint;
-mod frame;
+pub mod frame;
 pub mod geotiff;
 mod gltf;
 mod gocad;

@@ -155,7 +155,7 @@ impl ConduitMaps {
     /// Depth and density of the network's conduits on `grid`.
     pub fn of(grid: &RasterGrid, terrain: &Terrain, net: &NetworkView) -> ConduitMaps {
         let ground = grid.ground(terrain);
-        let columns = Columns::of(grid, &ground, net);
+        let columns = Columns::of(grid, &ground, &SegmentFootprint::all(net));
         let mut depth = vec![f32::NAN; grid.len()];
         for (pixel, spans) in &columns.pixels {
             depth[*pixel as usize] = spans[0][0];
@@ -210,11 +210,11 @@ pub struct Columns {
 }
 
 impl Columns {
-    /// The columns of `net` on `grid`, `ground` being the ground elevation at each pixel
-    /// centre (pixels without ground are left out).
-    pub fn of(grid: &RasterGrid, ground: &[f64], net: &NetworkView) -> Columns {
+    /// The columns of the `footprints` on `grid`, `ground` being the ground elevation at each
+    /// pixel centre (pixels without ground are left out).
+    pub fn of(grid: &RasterGrid, ground: &[f64], footprints: &[SegmentFootprint]) -> Columns {
         let mut spans: std::collections::BTreeMap<u32, Vec<[f64; 2]>> = std::collections::BTreeMap::new();
-        for footprint in SegmentFootprint::all(net) {
+        for footprint in footprints {
             let [min, max] = footprint.bounds();
             let half = grid.cell / 2.0;
             let (columns, rows) = grid.centres_in([min.map(|v| v - half), max.map(|v| v + half)]);
