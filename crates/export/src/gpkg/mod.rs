@@ -22,7 +22,7 @@
 
 mod geometry;
 pub mod layers;
-mod style;
+pub mod style;
 
 use std::path::Path;
 

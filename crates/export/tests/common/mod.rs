@@ -91,6 +91,9 @@ impl Run {
             metrics: Some(&self.metrics),
             samples: Some(&self.samples),
             geology: None,
+            keypoints: None,
+            terrain: None,
+            domain: None,
             frame: &self.frame,
         }
     }
