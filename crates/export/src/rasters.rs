@@ -155,20 +155,22 @@ impl ConduitMaps {
     /// Depth and density of the network's conduits on `grid`.
     pub fn of(grid: &RasterGrid, terrain: &Terrain, net: &NetworkView) -> ConduitMaps {
         let ground = grid.ground(terrain);
-        let columns = Columns::of(grid, &ground, &SegmentFootprint::all(net));
+        let footprints = SegmentFootprint::all(net);
+        let columns = Columns::of(grid, &ground, &footprints);
         let mut depth = vec![f32::NAN; grid.len()];
         for (pixel, spans) in &columns.pixels {
             depth[*pixel as usize] = spans[0][0];
         }
-        ConduitMaps { depth, density: density(grid, net) }
+        ConduitMaps { depth, density: density(grid, &footprints) }
     }
 }
 
-/// Conduit length in each pixel, m per km².
-fn density(grid: &RasterGrid, net: &NetworkView) -> Vec<f32> {
+/// Conduit centreline length in each pixel, m per km².
+fn density(grid: &RasterGrid, segments: &[SegmentFootprint]) -> Vec<f32> {
     let mut metres = vec![0.0f64; grid.len()];
-    for s in &net.segments {
-        let [a, b] = s.nodes.map(|n| net.nodes[n as usize].position);
+    for s in segments {
+        let [a, b] = s.ends;
+        let length = (0..3).map(|i| (b[i] - a[i]).powi(2)).sum::<f64>().sqrt();
         // The parameters where the projection crosses a pixel edge split the segment into
         // pieces that each lie in one pixel.
         let mut cuts = vec![0.0, 1.0];
@@ -177,8 +179,10 @@ fn density(grid: &RasterGrid, net: &NetworkView) -> Vec<f32> {
             if from == to {
                 continue;
             }
+            // Pixel edges k (between pixels k − 1 and k) crossed, within the grid's.
             let edge = |v: f64| (v - grid.origin[axis]) / grid.cell + 0.5;
-            let (lo, hi) = (edge(from.min(to)).ceil(), edge(from.max(to)).floor());
+            let last = [grid.nx, grid.ny][axis] as f64;
+            let (lo, hi) = (edge(from.min(to)).ceil().max(0.0), edge(from.max(to)).floor().min(last));
             let mut k = lo;
             while k <= hi {
                 let v = grid.origin[axis] + (k - 0.5) * grid.cell;
@@ -192,7 +196,7 @@ fn density(grid: &RasterGrid, net: &NetworkView) -> Vec<f32> {
             let x = a[0] + (b[0] - a[0]) * t;
             let y = a[1] + (b[1] - a[1]) * t;
             if let Some(pixel) = grid.pixel_of(x, y) {
-                metres[pixel] += s.length * (w[1] - w[0]);
+                metres[pixel] += length * (w[1] - w[0]);
             }
         }
     }
@@ -271,6 +275,21 @@ mod tests {
         assert!(Columns::within(&spans, Some([4.5, 5.5])));
         assert!(!Columns::within(&spans, Some([4.2, 4.8])));
         assert!(!Columns::within(&[], None));
+    }
+
+    #[test]
+    fn density_shares_a_segment_between_the_pixels_it_crosses() {
+        let grid = RasterGrid { origin: [5.0, 5.0], cell: 10.0, nx: 3, ny: 2 };
+        // From x 5 to 25 at y 5 (the centres of pixels 0 and 2), rising 20 m: its 3D length
+        // √2 · 20 splits 1/4, 1/2, 1/4 over pixels 0, 1, 2; the shaft's 30 m go to pixel 4.
+        let rising = SegmentFootprint { ends: [[5.0, 5.0, 0.0], [25.0, 5.0, 20.0]], radius: [1.0, 1.0] };
+        let shaft = SegmentFootprint { ends: [[15.0, 15.0, 0.0], [15.0, 15.0, 30.0]], radius: [1.0, 1.0] };
+        let outside = SegmentFootprint { ends: [[-1e9, 5.0, 0.0], [-1e8, 5.0, 0.0]], radius: [1.0, 1.0] };
+        let per_km2 = density(&grid, &[rising, shaft, outside]);
+        let metres: Vec<f32> = per_km2.iter().map(|d| d * 1e-4).collect();
+        let full = 20.0 * std::f32::consts::SQRT_2;
+        let expected = [full / 4.0, full / 2.0, full / 4.0, 0.0, 30.0, 0.0];
+        assert!(metres.iter().zip(expected).all(|(m, e)| (m - e).abs() < 1e-3), "{metres:?}");
     }
 
     #[test]
