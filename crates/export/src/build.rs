@@ -64,7 +64,7 @@ impl Input {
             Input::Mesh => "mesh.bin",
             Input::Metrics => "metrics.json",
             Input::Samples => "samples.bin",
-            Input::Scene => "the scene (--scene)",
+            Input::Scene => "the scene file",
         }
     }
 
@@ -114,8 +114,17 @@ pub fn formats(params: &ExportParams, frame: &karst_artifact::Frame) -> Vec<Expo
 pub fn export(inputs: &Inputs, params: &ExportParams, dir: &Path) -> Result<Manifest, ExportError> {
     let formats = formats(params, inputs.frame);
     for &format in &formats {
-        if let Some(missing) = needs(format).iter().find(|i| !i.present(inputs)) {
-            return Err(ExportError::MissingInput { format: format.name(), input: missing.file_name() });
+        match needs(format).iter().find(|i| !i.present(inputs)) {
+            Some(Input::Scene) => {
+                return Err(ExportError::Unsupported(format!(
+                    "format `{}` needs the scene (its key points, terrain and domain): give --scene SCENE",
+                    format.name()
+                )));
+            }
+            Some(missing) => {
+                return Err(ExportError::MissingInput { format: format.name(), input: missing.file_name() });
+            }
+            None => {}
         }
     }
     let frame = Frame::of(inputs);
