@@ -118,6 +118,10 @@ enum EnsembleMerge {
         /// The merged folder (may be one of DIRS).
         #[arg(long)]
         out: PathBuf,
+        /// probability.tif counts conduits within this depth band only: MIN..MAX metres below
+        /// ground [default: any depth].
+        #[arg(long, value_parser = ensemble::parse_depth_band)]
+        depth_band: Option<[f64; 2]>,
     },
 }
 
@@ -143,6 +147,10 @@ struct EnsembleRunArgs {
     /// `all` (the whole folder) or `none`.
     #[arg(long, default_value = "none", value_parser = ensemble::Keep::parse)]
     keep: ensemble::Keep,
+    /// probability.tif counts conduits within this depth band only: MIN..MAX metres below
+    /// ground [default: any depth].
+    #[arg(long, value_parser = ensemble::parse_depth_band)]
+    depth_band: Option<[f64; 2]>,
     /// Output folder (default out/ensemble-<scene name>). A rerun into it skips the complete
     /// realizations.
     #[arg(long)]
@@ -286,8 +294,8 @@ pub fn diff_command(args: &DiffArgs) -> ExitCode {
 }
 
 fn ensemble_command(args: EnsembleArgs) -> Result<(), StageError> {
-    if let Some(EnsembleMerge::Merge { dirs, out }) = args.merge {
-        println!("{}", ensemble::merge(&dirs, &out)?.line(&out));
+    if let Some(EnsembleMerge::Merge { dirs, out, depth_band }) = args.merge {
+        println!("{}", ensemble::merge(&dirs, &out, depth_band)?.line(&out));
         return Ok(());
     }
     let run = args.run;
@@ -301,7 +309,7 @@ fn ensemble_command(args: EnsembleArgs) -> Result<(), StageError> {
         run.out.unwrap_or_else(|| PathBuf::from("out").join(format!("ensemble-{}", scene.scene.name())));
     let to = run.to.map_or(Some(ensemble::DEFAULT_TO), |t| t.0);
     let plan = ensemble::Plan::new(scene, to, run.cell, run.keep)?;
-    println!("{}", ensemble::run(&plan, &out, &seeds)?.line(&out));
+    println!("{}", ensemble::run(&plan, &out, &seeds, run.depth_band)?.line(&out));
     Ok(())
 }
 

@@ -7,8 +7,8 @@ use std::path::Path;
 
 use karst_artifact::StageId;
 use karst_pipeline::make::Selection;
-use karst_scene::{Scene, SceneView};
 use karst_scene::budget::Budget;
+use karst_scene::{Scene, SceneView};
 use karst_stage::runner::{self, Job};
 use karst_stage::{Stage, StageError};
 use karstgen_tests::{root, run, scratch};

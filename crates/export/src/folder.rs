@@ -60,6 +60,12 @@ impl Folder {
         Ok(())
     }
 
+    /// A scratch file for a format built by a library that writes its own file (the
+    /// GeoPackage's SQLite): beside the export folder's files, hidden, never recorded.
+    pub fn scratch_path(&self, name: &str) -> PathBuf {
+        self.dir.join(format!(".{name}.building"))
+    }
+
     /// The manifest of everything written.
     pub fn finish(self) -> Manifest {
         self.manifest

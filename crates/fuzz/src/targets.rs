@@ -241,6 +241,9 @@ fn check_network_out(input: &[u8]) {
         metrics: Some(&o.metrics),
         samples: Some(&o.samples),
         geology: Some(o.scene.geology()),
+        keypoints: Some(o.scene.keypoints()),
+        terrain: Some(o.scene.terrain()),
+        domain: Some(o.scene.domain()),
         frame: &o.frame,
     };
     let params = karst_export::ExportParams {

@@ -6,9 +6,9 @@
 //! machine's speed. (The memory budget, `--max-memory`, is checked by each stage itself.)
 
 use karst_artifact::{StageId, read_artifact};
+use karst_mesher::{MesherView, Work};
 use karst_scene::SceneView;
 use karst_scene::budget::bytes;
-use karst_mesher::{MesherView, Work};
 use karst_sdf::SdfModel;
 use karst_stage::{Job, StageError};
 

@@ -33,11 +33,17 @@ pub enum ExportFormat {
     Ply,
     /// The network's node and segment tables and the metrics as CSV.
     Csv,
+    /// The network, key points, surface streams and routes as an OGC GeoPackage
+    /// (`karst.gpkg`, QGIS and ArcGIS); written whenever the scene has a `crs`.
+    Gpkg,
+    /// Rasters of the conduits' depth and density as GeoTIFFs (`conduit-depth.tif`,
+    /// `conduit-density.tif`); written whenever the scene has a `crs`.
+    Geotiff,
 }
 
 impl ExportFormat {
     /// Every format, in the order they are written.
-    pub const ALL: [ExportFormat; 10] = [
+    pub const ALL: [ExportFormat; 12] = [
         ExportFormat::Vtk,
         ExportFormat::VtkMeshes,
         ExportFormat::Gocad,
@@ -48,6 +54,8 @@ impl ExportFormat {
         ExportFormat::Obj,
         ExportFormat::Ply,
         ExportFormat::Csv,
+        ExportFormat::Gpkg,
+        ExportFormat::Geotiff,
     ];
 
     /// The name used in the scene and on the command line.
@@ -63,6 +71,8 @@ impl ExportFormat {
             ExportFormat::Obj => "obj",
             ExportFormat::Ply => "ply",
             ExportFormat::Csv => "csv",
+            ExportFormat::Gpkg => "gpkg",
+            ExportFormat::Geotiff => "geotiff",
         }
     }
 
@@ -105,6 +115,11 @@ pub struct ExportParams {
     /// least this long (a whole chain when it is shorter), as modellers skeletonize a network
     /// for the dynamic-wave solver's time step.
     pub swmm_conduit_length: f64,
+    /// Pixel size of the GeoTIFF rasters, metres, when the terrain is no raster (a plane or
+    /// noise); a GeoTIFF or heightfield terrain gives its own grid. Default: the domain's
+    /// longer horizontal side / 500, about a metre for a 500 m cave system.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub raster_cell: Option<f64>,
 }
 
 impl Default for ExportParams {
@@ -123,6 +138,7 @@ impl Default for ExportParams {
             swmm_hours: 6.0,
             swmm_max_slope: 0.1,
             swmm_conduit_length: 20.0,
+            raster_cell: None,
         }
     }
 }
@@ -133,6 +149,9 @@ impl ExportParams {
         c.positive("export.swmm_hours", self.swmm_hours);
         c.positive("export.swmm_max_slope", self.swmm_max_slope);
         c.positive("export.swmm_conduit_length", self.swmm_conduit_length);
+        if let Some(cell) = self.raster_cell {
+            c.positive("export.raster_cell", cell);
+        }
         if self.swmm_hours.is_finite() && self.swmm_hours > 24.0 * 365.0 {
             c.report("export.swmm_hours", format!("{} hours is more than a year", self.swmm_hours));
         }
