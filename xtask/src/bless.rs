@@ -65,11 +65,13 @@ pub fn bless(accept: Option<&str>) -> Result<(), StageError> {
     }
     let changes = Path::new(CHANGES);
     let previous = std::fs::read_to_string(changes).unwrap_or_else(|_| CHANGES_HEADER.to_string());
-    if !changed && previous.contains("\n## ") {
-        println!("the goldens are unchanged: {CHANGES} not extended");
+    let now = hashes(golden)?;
+    let recorded = previous.rsplit("\n## ").next().is_some_and(|last| last.ends_with(&hash_rows(&now)));
+    if !changed && previous.contains("\n## ") && recorded {
+        println!("the goldens are unchanged and recorded: {CHANGES} not extended");
         return Ok(());
     }
-    let text = previous + &entry(&utc_now(), why, &report, &hashes(golden)?);
+    let text = previous + &entry(&utc_now(), why, &report, &now);
     std::fs::write(changes, text).map_err(|e| fail(changes, e))?;
     println!("goldens replaced; {CHANGES} records why");
     Ok(())
@@ -91,12 +93,17 @@ pub fn hashes(golden: &Path) -> Result<Vec<(String, String)>, StageError> {
 
 /// One entry of [`CHANGES`]: a heading with the date and the reason, the diff, the hashes.
 pub fn entry(date: &str, why: &str, report: &str, hashes: &[(String, String)]) -> String {
-    let mut out =
-        format!("\n## {date}: {}\n\n```text\n{report}```\n\n| golden | BLAKE3 |\n|---|---|\n", why.trim());
+    format!("\n## {date}: {}\n\n```text\n{report}```\n\n| golden | BLAKE3 |\n|---|---|\n", why.trim())
+        + &hash_rows(hashes)
+}
+
+/// The hash table's rows of an entry, one per golden file.
+fn hash_rows(hashes: &[(String, String)]) -> String {
+    let mut rows = String::new();
     for (name, hash) in hashes {
-        let _ = writeln!(out, "| `tiny/{name}` | `{hash}` |");
+        let _ = writeln!(rows, "| `tiny/{name}` | `{hash}` |");
     }
-    out
+    rows
 }
 
 /// The current time in UTC, to the minute ("2026-12-06 02:50 UTC").
