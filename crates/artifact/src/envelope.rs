@@ -28,6 +28,7 @@ use crate::error::Error;
 use crate::frame::Frame;
 use crate::stages::{Encoding, StageId, stage_key};
 use crate::stream::PayloadReader;
+use crate::whole::{postcard_whole, read_to_the_end};
 use crate::{atomic, hash};
 
 /// The value of the header's `format` field.
@@ -458,23 +459,6 @@ pub fn decode_payload<P: Payload>(path: &Path, encoding: Encoding, bytes: &[u8])
         Encoding::Json => serde_json::from_slice(bytes).map_err(|e| e.to_string()),
     };
     validated(path, decoded.map_err(|e| decode_error::<P>(path, e))?)
-}
-
-/// Decodes postcard `bytes` to their last byte: bytes left over mean that a length inside
-/// the payload, or the header's, is wrong (postcard alone stops at the last field).
-pub(crate) fn postcard_whole<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, String> {
-    let (value, rest) = postcard::take_from_bytes(bytes).map_err(|e| e.to_string())?;
-    read_to_the_end(value, (bytes.len() - rest.len()) as u64, bytes.len() as u64)
-}
-
-/// `value` when its fields ended at byte `end` of a payload of `len` bytes: its last byte.
-fn read_to_the_end<T>(value: T, end: u64, len: u64) -> Result<T, String> {
-    if end != len {
-        return Err(format!(
-            "the payload's fields end at byte {end} of its {len}: a length inside it or the header's payload_len is wrong"
-        ));
-    }
-    Ok(value)
 }
 
 fn decode_error<P: Payload>(path: &Path, detail: String) -> Error {

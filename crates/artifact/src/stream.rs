@@ -148,7 +148,7 @@ impl<'r> PayloadReader<'r> {
     /// The rest of the payload, a small tail, decoded with postcard to its last byte.
     pub fn tail<T: serde::de::DeserializeOwned>(&mut self) -> Result<T, String> {
         let rest = self.bytes(self.left() as usize)?;
-        crate::envelope::postcard_whole(&rest)
+        crate::whole::postcard_whole(&rest)
     }
 
     /// Bytes of the payload decoded so far.

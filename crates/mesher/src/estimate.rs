@@ -152,7 +152,7 @@ impl Work {
     /// the conduits when not set, as the mesher does).
     pub fn of(view: &MesherView, model: &SdfModel) -> Work {
         let cell = view.mesher.cell_size;
-        Work::at(model, cell, crate::build::cave_cell(model, cell, view.mesher.cave_cell_size))
+        Work::at(model, cell, crate::cell::cave_cell(model, cell, view.mesher.cave_cell_size))
     }
 
     /// The work of meshing `model` at terrain cell `cell` and cave cell `cave`.
