@@ -11,6 +11,8 @@ mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+
+use karst_testkit::gdal::gdal;
 use std::sync::OnceLock;
 
 use common::{read, root, scratch};
@@ -42,24 +44,6 @@ fn run() -> &'static Path {
 
 fn export_file(name: &str) -> String {
     run().join("export").join(name).to_str().unwrap().to_string()
-}
-
-/// Runs a GDAL program; a missing one fails with how to install it.
-fn gdal(program: &str, args: &[&str], stdin: Option<&str>) -> String {
-    use std::io::Write;
-    let mut child = Command::new(program)
-        .args(args)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap_or_else(|e| {
-            panic!("{program}: {e}: install gdal-bin (tools/apt-packages.txt) with `cargo xtask test`")
-        });
-    child.stdin.take().unwrap().write_all(stdin.unwrap_or("").as_bytes()).unwrap();
-    let out = child.wait_with_output().unwrap();
-    assert!(out.status.success(), "{program} {args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8(out.stdout).unwrap()
 }
 
 /// `gdalinfo -json` of a raster (no statistics file left behind).

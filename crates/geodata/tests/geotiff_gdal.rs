@@ -7,29 +7,13 @@
 use std::path::{Path, PathBuf};
 
 use karst_testkit::scratch;
-use std::process::Command;
+
+use karst_testkit::gdal::gdal;
 
 use karst_geodata::crs::Epsg;
 use karst_geodata::geotiff::testing::{Encoding, write};
 use karst_geodata::geotiff::{GeoRaster, GeoTiffError};
 use tiff::encoder::Compression;
-
-fn gdal(program: &str, args: &[&str], stdin: Option<&str>) -> String {
-    use std::io::Write;
-    let mut child = Command::new(program)
-        .args(args)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap_or_else(|e| {
-            panic!("{program}: {e}: install gdal-bin (tools/apt-packages.txt) with `cargo xtask test`")
-        });
-    child.stdin.take().unwrap().write_all(stdin.unwrap_or("").as_bytes()).unwrap();
-    let out = child.wait_with_output().unwrap();
-    assert!(out.status.success(), "{program} {args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8(out.stdout).unwrap()
-}
 
 /// 37 × 23 pixels of 5 m in Lambert-93, a smooth surface with one no-data pixel.
 fn source(scratch: &Path) -> PathBuf {

@@ -12,6 +12,7 @@ use karst_scene::Scene;
 use karst_stage::{Job, Ran, Stage, StageError};
 
 pub mod cli;
+pub mod gdal;
 mod scene_text;
 
 pub use scene_text::SceneText;
