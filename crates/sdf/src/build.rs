@@ -8,7 +8,7 @@
 //! - a conduit whose tortuosity (1 − chord/length) is at most `sdf.tortuosity` becomes one sweep
 //!   per segment, plus a sphere inscribed at each inner node to close the bends;
 //! - a more tortuous conduit becomes a union of spheres: cross-sections are placed along it
-//!   every `sdf.sphere_spacing` radii, oriented by the curve's tangent (averaged at the nodes);
+//!   every `sdf.sphere_spacing` radii (along a passage profile, the local half-thickness), oriented by the curve's tangent (averaged at the nodes);
 //!   sphere centres are drawn on a jittered lattice of the same spacing in each section plane
 //!   and kept when at least half a spacing (the paper's R/2 selection) and `MIN_DEPTH` times
 //!   the section's deepest candidate inside it; each sphere is inscribed (its radius is the centre's depth in the
@@ -270,16 +270,14 @@ fn sphere_groups(
         }
         let smallest = pieces[i].iter().map(|(_, _, s)| s.shape.radius).fold(f32::INFINITY, f32::min);
         let step = spacing * smallest as f64;
-        let stations = (w[0].distance(w[1]) / step).ceil().max(1.0) as usize;
         let mut candidates = Vec::new();
         // The end station belongs to the next segment, except for the last one.
-        let end = if i + 2 == points.len() { stations } else { stations - 1 };
-        for j in 0..=end {
-            let t = j as f64 / stations as f64;
+        let last = i + 2 == points.len();
+        for (j, (t, local)) in stations(&pieces[i], w[0].distance(w[1]), spacing, last).into_iter().enumerate() {
             let origin = w[0].lerp(w[1], t);
             let tangent = tangents[i].lerp(tangents[i + 1], t).normalize();
             let section = section_at(&pieces[i], t);
-            station_spheres(&section, origin, tangent, step, j, jitter, &mut candidates);
+            station_spheres(&section, origin, tangent, local, j, jitter, &mut candidates);
         }
         let spheres = prune(candidates, step);
         match groups.last_mut() {
@@ -288,6 +286,40 @@ fn sphere_groups(
         }
     }
     groups
+}
+
+/// The stations of a segment of `length` metres: each fraction along it with its step, metres.
+/// Between two node sections alone (no passage profile) the stations are evenly spaced at
+/// `spacing` times the smaller radius. Along a passage profile each station is `spacing` times
+/// the local half-thickness (the depth of the section's axis point, the radius of the largest
+/// sphere there) past the one before: a pinch or a low bedding-plane passage is sampled finely
+/// without sampling the rooms around it as finely, so the spheres' count follows the passage's
+/// length over its local size, not over its least size.
+fn stations(pieces: &[Piece], length: f64, spacing: f64, last: bool) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    if pieces.len() == 2 {
+        let smallest = pieces.iter().map(|(_, _, s)| s.shape.radius).fold(f32::INFINITY, f32::min);
+        let step = spacing * smallest as f64;
+        let count = (length / step).ceil().max(1.0) as usize;
+        let end = if last { count } else { count - 1 };
+        out.extend((0..=end).map(|j| (j as f64 / count as f64, step)));
+        return out;
+    }
+    let step_at = |t: f64| {
+        let section = section_at(pieces, t);
+        let depth = -section.distance(DVec2::ZERO);
+        spacing * if depth > 0.0 { depth } else { section.extent() }
+    };
+    let mut t = 0.0;
+    while t < 1.0 {
+        let step = step_at(t);
+        out.push((t, step));
+        t += step / length;
+    }
+    if last {
+        out.push((1.0, step_at(1.0)));
+    }
+    out
 }
 
 /// The section at fraction `t` of a segment: linear between the pieces around it.

@@ -34,14 +34,15 @@
 //!   wider span enlarge them: 1 + [`JUNCTION_WIDENING`]·exp(−d / r) within a few radii r of a
 //!   junction, d the distance along the conduit.
 //!
-//! The size factor is divided by the mean of exp(σ h(z)) so that the mean size, and with it the
-//! void volume and the flow capacity the radius process stands for, stays that of the radius
-//! process. The profile is deterministic from the seed: one random stream, conduits in order.
+//! The size factor is divided by the root mean square of exp(σ h(z)) so that the mean
+//! cross-section area, and with it the void volume and the flow capacity the radius process
+//! stands for, stays that of the radius process (keeping the mean linear size instead would
+//! inflate the mean area by E[exp(2σh)] / E[exp(σh)]², about half as much again). The profile is deterministic from the seed: one random stream, conduits in order.
 
 use std::collections::HashMap;
 
 use glam::DVec3;
-use karst_geology::rng::Random;
+use karst_scene::rng::Random;
 
 use crate::payload::{ConduitType, Node, ProfilePoint, Route};
 
@@ -188,7 +189,7 @@ impl PassageProfiles {
 
 /// The profile point at arc length `at` with the radius process's value `base`.
 fn point(at: f64, base: f64, state: State, bias: f64, factor: f64) -> ProfilePoint {
-    let size = (SIZE_SPREAD * heavy(state.size)).exp() / mean_size_factor();
+    let size = (SIZE_SPREAD * heavy(state.size)).exp() / rms_size_factor();
     let ratio = (SHAPE_SPREAD * heavy(state.shape) + bias).exp().clamp(RATIO_LIMITS[0], RATIO_LIMITS[1]);
     let radius = (base * size * factor / ratio.sqrt()).max(MIN_HALF_WIDTH);
     let ratio = ratio.max(MIN_HALF_WIDTH / radius);
@@ -210,18 +211,19 @@ fn heavy(z: f64) -> f64 {
     z * (TAIL * z * z / 2.0).exp() * (1.0 - 2.0 * TAIL).powf(0.75)
 }
 
-/// E[exp(σ h(z))] for z standard normal, σ = [`SIZE_SPREAD`] (midpoint rule over ±8; finite
-/// because of the clamp).
-fn mean_size_factor() -> f64 {
+/// √E[exp(2σ h(z))] for z standard normal, σ = [`SIZE_SPREAD`] (midpoint rule over ±8; finite
+/// because of the clamp): dividing the size by it keeps the mean of its square, the area.
+fn rms_size_factor() -> f64 {
     const STEPS: usize = 1600;
     let dz = 16.0 / STEPS as f64;
     (0..STEPS)
         .map(|i| {
             let z = -8.0 + (i as f64 + 0.5) * dz;
-            (SIZE_SPREAD * heavy(z)).exp() * (-z * z / 2.0).exp() * dz
+            (2.0 * SIZE_SPREAD * heavy(z)).exp() * (-z * z / 2.0).exp() * dz
         })
         .sum::<f64>()
-        / std::f64::consts::TAU.sqrt()
+        .sqrt()
+        / std::f64::consts::TAU.sqrt().sqrt()
 }
 
 /// Each conduit's share of the routes' total weight: the weight of the routes through its
@@ -310,10 +312,11 @@ mod tests {
         let near = lag_correlation(&ln_width, 2);
         assert!((0.3..0.75).contains(&near), "correlation at 4 m {near}");
         assert!(lag_correlation(&ln_width, 25).abs() < 0.15);
-        // The mean size factor keeps the mean linear size that of the radius process.
-        let mean_size: f64 = p.iter().map(|q| q.radius * q.ratio.sqrt()).sum::<f64>() / p.len() as f64;
-        let expected = 2.0 * 1.1;
-        assert!((mean_size / expected - 1.0).abs() < 0.15, "{mean_size}");
+        // The size factor keeps the mean area (half-width times half-height) that of the radius
+        // process.
+        let mean_area: f64 = p.iter().map(|q| q.radius * q.radius * q.ratio).sum::<f64>() / p.len() as f64;
+        let expected = (2.0 * 1.1f64).powi(2);
+        assert!((mean_area / expected - 1.0).abs() < 0.15, "{mean_area}");
     }
 
     #[test]
@@ -387,6 +390,6 @@ mod tests {
             .sum::<f64>()
             / std::f64::consts::TAU.sqrt();
         assert!((var - 1.0).abs() < 1e-2, "{var}");
-        assert!(mean_size_factor() > (SIZE_SPREAD * SIZE_SPREAD / 2.0).exp());
+        assert!(rms_size_factor() > (SIZE_SPREAD * SIZE_SPREAD).exp());
     }
 }
