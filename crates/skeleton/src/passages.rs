@@ -53,7 +53,7 @@ pub const SPACING: f64 = 2.0;
 /// stations 4 m apart, the middle of the surveyed caves' 0.24–0.79.
 pub const CORRELATION: f64 = 5.5;
 /// Standard deviation of the ln of the passage's linear size.
-pub const SIZE_SPREAD: f64 = 0.65;
+pub const SIZE_SPREAD: f64 = 0.75;
 /// Standard deviation of ln(height / width), before the bias of the conduit type.
 pub const SHAPE_SPREAD: f64 = 0.9;
 /// Tukey's h of the heavy-tailed transform.
