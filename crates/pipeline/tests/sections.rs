@@ -56,7 +56,7 @@ fn edited(scene: &Scene, section: Section) -> (Scene, Vec<Section>) {
         Section::Streams => s.streams_mut().step *= 2.0,
         Section::Sdf => s.sdf_mut().radius_scale *= 1.25,
         Section::PassageDetail => {
-            s.sdf_mut().passage_detail = karst_geology::params::PassageDetail::Passages;
+            s.sdf_mut().passage_detail = karst_scene::params::PassageDetail::Passages;
             changed.push(Section::Sdf);
         }
         Section::Mesher => s.mesher_mut().cell_size *= 2.0,

@@ -273,7 +273,9 @@ fn sphere_groups(
         let mut candidates = Vec::new();
         // The end station belongs to the next segment, except for the last one.
         let last = i + 2 == points.len();
-        for (j, (t, local)) in stations(&pieces[i], w[0].distance(w[1]), spacing, last).into_iter().enumerate() {
+        for (j, (t, local)) in
+            stations(&pieces[i], w[0].distance(w[1]), spacing, last).into_iter().enumerate()
+        {
             let origin = w[0].lerp(w[1], t);
             let tangent = tangents[i].lerp(tangents[i + 1], t).normalize();
             let section = section_at(&pieces[i], t);
