@@ -6,7 +6,7 @@ use karst_testkit::cli::StageBinary;
 
 const BINARY: StageBinary = StageBinary {
     path: env!("CARGO_BIN_EXE_karst-metrics"),
-    inputs: &["skeleton.json", "hydro.json", "streams.json"],
+    inputs: &["skeleton.json", "hydro.json", "streams.json", "survey.json"],
     artifact: "metrics.json",
 };
 

@@ -376,7 +376,7 @@ mod tests {
     #[test]
     fn a_stage_needs_its_upstream_stages_only() {
         use StageId::*;
-        assert_eq!(needed(Metrics), [Sampling, Costgraph, Skeleton, Hydro, Streams, Metrics]);
+        assert_eq!(needed(Metrics), [Sampling, Costgraph, Skeleton, Hydro, Streams, Sdf, Survey, Metrics]);
         assert_eq!(needed(Skeleton), [Sampling, Costgraph, Skeleton]);
         assert_eq!(needed(Mesher), [Sampling, Costgraph, Skeleton, Hydro, Streams, Sdf, Mesher]);
     }
