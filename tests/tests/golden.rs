@@ -64,7 +64,7 @@ fn the_goldens_are_those_changes_md_records_last() {
         })
         .collect();
     files.sort();
-    assert_eq!(files.len(), 9, "one golden per stage");
+    assert_eq!(files.len(), 10, "one golden per stage");
     assert_eq!(
         last_recorded_hashes(&changes),
         files,

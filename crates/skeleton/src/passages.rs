@@ -307,7 +307,9 @@ mod tests {
         assert!(p.windows(2).all(|w| (w[1].at - w[0].at - 2.0).abs() < 1e-9));
         let ln_width: Vec<f64> = p.iter().map(|q| q.radius.ln()).collect();
         let spread = sd(&ln_width);
-        assert!((0.7..1.1).contains(&spread), "sd ln width {spread}");
+        // The 0.5 m floor clamps the low tail of this 2 m conduit (the survey of the default
+        // scene measures 0.91).
+        assert!((0.65..1.1).contains(&spread), "sd ln width {spread}");
         // Points are 2 m apart: lag 2 is a survey's 4 m, lag 25 is 50 m.
         let near = lag_correlation(&ln_width, 2);
         assert!((0.3..0.75).contains(&near), "correlation at 4 m {near}");
