@@ -5,6 +5,7 @@
 //! - [`regional`]: every stage on the regional scene, at two sizes;
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
 //! - [`ensemble_table`]: the presets' metrics over many seeds against the real caves;
+//! - [`realism`]: the network defaults on a generated population of scenes (issue 38);
 //! - [`python`]: build and install the Python package's wheel and run its pytest suite;
 //! - [`tools`]: install the outside programs the tests check outputs with;
 //! - [`temp_folder`]: the tasks' scratch folders, removed however the task ends.
@@ -16,6 +17,7 @@ pub mod ensemble_table;
 pub mod metrics_table;
 pub mod peer;
 pub mod python;
+pub mod realism;
 pub mod regional;
 pub mod temp_folder;
 pub mod tools;

@@ -15,6 +15,7 @@
 
 pub mod budget;
 pub mod crs;
+pub mod defaults;
 mod csv;
 pub mod domain;
 pub mod field;
