@@ -66,7 +66,7 @@ fn seeds_of(scene_seed: u64) -> impl Iterator<Item = u64> {
 
 /// Memory a realization may plan to use: scenes whose defaults ask for more fail (and count
 /// as outside every range) rather than swap.
-const BUDGET_BYTES: u64 = 1 << 30;
+const BUDGET_BYTES: u64 = 64 << 20;
 
 /// One realization's result: which metrics are inside, or why it failed.
 #[derive(Debug, Clone)]

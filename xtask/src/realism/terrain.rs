@@ -30,12 +30,12 @@ impl Relief {
 
 /// Pixels along each side of every heightfield.
 pub const PIXELS: u32 = 129;
-/// Metres per pixel unit of the written PNG: heights are stored to the centimetre.
-pub const VERTICAL_SCALE: f64 = 0.01;
+/// Metres per pixel unit of the written PNG: heights are stored to 2.5 cm, up to 1,638 m above the lowest.
+pub const VERTICAL_SCALE: f64 = 0.025;
 
-/// A terrain of `relief` over a square of `side` metres whose lowest point is at `base` and
-/// highest at `base + height`, heights rounded to what the PNG stores.
-pub fn heightfield(relief: Relief, side: f64, base: f64, height: f64, rng: &mut Random) -> HeightGrid {
+/// A terrain of `relief` over a square of [`PIXELS`] pixels `cell` metres apart whose lowest point
+/// is at `base` and highest at `base + height`, heights rounded to what the PNG stores.
+pub fn heightfield(relief: Relief, cell: f64, base: f64, height: f64, rng: &mut Random) -> HeightGrid {
     let n = PIXELS as usize;
     let noise = Noise::new(rng);
     let course = rng.range(0.0, std::f64::consts::TAU);
@@ -53,11 +53,11 @@ pub fn heightfield(relief: Relief, side: f64, base: f64, height: f64, rng: &mut 
     let heights = shape
         .iter()
         .map(|h| {
-            let z = base + height * (h - lo) / (hi - lo).max(1e-12);
-            (z / VERTICAL_SCALE).round() * VERTICAL_SCALE
+            let z = height * (h - lo) / (hi - lo).max(1e-12);
+            base + (z / VERTICAL_SCALE).round() * VERTICAL_SCALE
         })
         .collect();
-    HeightGrid::new([0.0, 0.0], side / (n - 1) as f64, PIXELS, PIXELS, heights)
+    HeightGrid::new([0.0, 0.0], cell, PIXELS, PIXELS, heights)
 }
 
 /// A plateau on one side of a line across the square (direction `course`), a cliff a tenth of
