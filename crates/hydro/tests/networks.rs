@@ -77,7 +77,7 @@ fn random_network(seed: u64) -> Skeleton {
             )
         })
         .collect();
-    Skeleton { nodes, conduits, routes }
+    Skeleton { nodes, conduits, routes, derived: Default::default() }
 }
 
 /// Water in minus water out at every node, recharge and discharge included, and the water in.

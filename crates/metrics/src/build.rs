@@ -63,6 +63,7 @@ pub fn report(skeleton: &Skeleton) -> Result<MetricsReport, crate::MetricsError>
             .collect(),
         water_types: BTreeMap::new(),
         surface: SurfaceWater::default(),
+        hints: Vec::new(),
     })
 }
 

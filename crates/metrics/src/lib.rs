@@ -21,6 +21,7 @@ mod build;
 mod error;
 mod geometry;
 mod graph;
+pub mod hints;
 mod metrics;
 mod network;
 mod nullable;

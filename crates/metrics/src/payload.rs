@@ -31,6 +31,11 @@ pub struct MetricsReport {
     /// alone (ensembles).
     #[serde(default)]
     pub surface: SurfaceWater,
+    /// For each karstnet metric outside its real-cave range, a hint in plain words with the
+    /// parameter that moves it and its value in the run (`hints.rs`); empty for reports made
+    /// from a skeleton alone.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hints: Vec<String>,
 }
 
 /// The surface streams fed by the springs (streams.json).

@@ -101,7 +101,7 @@ impl NetworkBuilder {
                 }
             })
             .collect();
-        Skeleton { nodes, conduits, routes }
+        Skeleton { nodes, conduits, routes, derived: Default::default() }
     }
 
     fn phase_of(&self, a: u32, b: u32) -> u32 {

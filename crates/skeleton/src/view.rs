@@ -4,7 +4,8 @@ use karst_costgraph::CostgraphView;
 use karst_geology::Point;
 
 karst_geology::view! {
-    /// The skeleton stage's view of the scene: the bedrock its branches stay in, the geology
+    /// The skeleton stage's view of the scene: the bedrock its branches stay in, `[sampling]`
+    /// (the radius its derived defaults scale with, docs/skeleton.md), the geology
     /// that classifies and orients its conduits, the key points and connectivity it routes,
     /// the phases, its parameters, the seed, and `[costgraph]`: the skeleton costs the edges
     /// its searches read under the cost graph's model ([`SkeletonView::costs`]).
@@ -17,6 +18,7 @@ karst_geology::view! {
         connectivity: Connectivity,
         phases: Phases,
         costgraph: Costgraph,
+        sampling: Sampling,
         skeleton: Skeleton,
     }
 }

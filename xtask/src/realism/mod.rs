@@ -3,7 +3,7 @@
 //! 0.3–10 km, three kinds of terrain, 2–30 sinks, 1–3 springs, no `[skeleton]` section) is drawn
 //! twice, from a tuning set of scene seeds (on which the defaults were chosen) and from a
 //! held-out set (on which they are reported); every scene runs the network half (sampling, cost
-//! graph, skeleton, karstnet's statistics) in process for three seeds, scenes in parallel.
+//! graph, skeleton, karstnet's statistics) in process for three seeds, one realization per core.
 //!
 //! The table gives, per set, the share of realizations inside all ten real-cave ranges, inside
 //! at least eight, and inside each metric's range; a realization that fails counts as outside
@@ -16,7 +16,7 @@ pub mod terrain;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use karst_artifact::{StageId, read_artifact};
 use karst_geology::budget::Budget;
@@ -97,16 +97,32 @@ pub fn run_set(set: Set, out: &Path) -> Result<Vec<Outcome>, StageError> {
         .map_err(|e| StageError::failure(format!("{}: {e}", dir.display())))?;
     let jobs: Vec<(&population::Generated, u64)> =
         scenes.iter().flat_map(|g| seeds_of(g.scene_seed).map(move |s| (g, s))).collect();
-    let outcomes = jobs
-        .par_iter()
-        .map(|(g, seed)| {
-            let result = realize(&g.path, *seed, &dir).map_err(|e| e.to_string());
-            let outcome = Outcome { scene: g.label.clone(), seed: *seed, result };
-            eprintln!("{} {}: {}", set.name(), describe(&outcome), g.path.display());
-            outcome
-        })
-        .collect();
-    Ok(outcomes)
+    // One worker per core takes the next realization; the stages inside use rayon's pool
+    // themselves (the skeleton's helper threads wait on it, so the workers must not be its
+    // threads).
+    let next = AtomicUsize::new(0);
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut outcomes: Vec<(usize, Outcome)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut done = Vec::new();
+                    loop {
+                        let i = next.fetch_add(1, Ordering::Relaxed);
+                        let Some(&(g, seed)) = jobs.get(i) else { break };
+                        let result = realize(&g.path, seed, &dir).map_err(|e| e.to_string());
+                        let outcome = Outcome { scene: g.label.clone(), seed, result };
+                        eprintln!("{} {}", set.name(), describe(&outcome));
+                        done.push((i, outcome));
+                    }
+                    done
+                })
+            })
+            .collect();
+        handles.into_iter().flat_map(|h| h.join().unwrap_or_default()).collect()
+    });
+    outcomes.sort_by_key(|(i, _)| *i);
+    Ok(outcomes.into_iter().map(|(_, o)| o).collect())
 }
 
 /// One line for a realization: the inside count and the metrics outside.
