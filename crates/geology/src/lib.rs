@@ -15,8 +15,8 @@
 
 pub mod budget;
 pub mod crs;
-pub mod defaults;
 mod csv;
+pub mod defaults;
 pub mod domain;
 pub mod field;
 pub mod fracture;

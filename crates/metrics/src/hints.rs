@@ -79,9 +79,15 @@ fn advice(key: &str, high: bool) -> (&'static str, &'static str, bool) {
         ("cv length", false) => {
             ("branch lengths too even (few long, few short)", "skeleton.amplification_exponent", false)
         }
-        ("cv length", true) => ("a few branches much longer than all others", "skeleton.amplification_exponent", true),
-        ("length entropy", true) => ("branch lengths spread too evenly", "skeleton.confluence_attraction", true),
-        ("length entropy", false) => ("nearly every branch of one length", "skeleton.confluence_attraction", false),
+        ("cv length", true) => {
+            ("a few branches much longer than all others", "skeleton.amplification_exponent", true)
+        }
+        ("length entropy", true) => {
+            ("branch lengths spread too evenly", "skeleton.confluence_attraction", true)
+        }
+        ("length entropy", false) => {
+            ("nearly every branch of one length", "skeleton.confluence_attraction", false)
+        }
         ("tortuosity", false) => ("passages too straight", "skeleton.sinuosity", true),
         ("tortuosity", true) => ("passages wind too much", "skeleton.sinuosity", false),
         ("orientation entropy", true) => ("azimuths spread too evenly", "skeleton.sinuosity", false),
@@ -94,9 +100,11 @@ fn advice(key: &str, high: bool) -> (&'static str, &'static str, bool) {
         ("mean degree", true) => ("too many loops", "skeleton.dead_end_fraction", true),
         ("cv degree", true) => ("degrees too unequal (a few hubs)", "skeleton.amplification_points", true),
         ("cv degree", false) => ("degrees too alike", "skeleton.dead_end_fraction", true),
-        ("correlation vertex degree", true) => {
-            ("junctions join junctions (real side passages hang off passages)", "skeleton.amplification_points", true)
-        }
+        ("correlation vertex degree", true) => (
+            "junctions join junctions (real side passages hang off passages)",
+            "skeleton.amplification_points",
+            true,
+        ),
         (_, _) => ("dead ends hang off hubs", "skeleton.amplification_points", false),
     }
 }
@@ -131,7 +139,11 @@ mod tests {
         let hints = hints(&karstnet, &p);
         assert_eq!(hints.len(), 1);
         assert!(hints[0].starts_with("mean length 2832 m > 332 m: branches too long"), "{}", hints[0]);
-        assert!(hints[0].contains("skeleton.amplification_points is 12 (derived from the scene), raise it"), "{}", hints[0]);
+        assert!(
+            hints[0].contains("skeleton.amplification_points is 12 (derived from the scene), raise it"),
+            "{}",
+            hints[0]
+        );
     }
 
     #[test]
@@ -142,7 +154,10 @@ mod tests {
         let p = Parameters { skeleton: &skeleton, sampling: &sampling, derived: &derived };
         let karstnet = compared("tortuosity", 1.03);
         let hints = hints(&karstnet, &p);
-        assert_eq!(hints, ["tortuosity 1.030 < 1.121: passages too straight — skeleton.sinuosity is 1.05, raise it"]);
+        assert_eq!(
+            hints,
+            ["tortuosity 1.030 < 1.121: passages too straight — skeleton.sinuosity is 1.05, raise it"]
+        );
     }
 
     #[test]

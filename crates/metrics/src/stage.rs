@@ -35,8 +35,11 @@ impl Stage for MetricsStage {
         (skeleton, hydro, streams): &(Skeleton, Hydro, Streams),
     ) -> Result<MetricsReport, ReportError> {
         let mut report = build(skeleton, hydro, streams)?;
-        let parameters =
-            hints::Parameters { skeleton: view.skeleton, sampling: view.sampling, derived: &skeleton.derived };
+        let parameters = hints::Parameters {
+            skeleton: view.skeleton,
+            sampling: view.sampling,
+            derived: &skeleton.derived,
+        };
         report.hints = hints::hints(&report.karstnet, &parameters);
         Ok(report)
     }

@@ -59,7 +59,10 @@ pub fn build(view: &SamplingView) -> Result<Samples, SamplingError> {
     let volume = sampler.count() - runs.iter().map(|r| r.1).sum::<usize>();
     runs.push((Tag::Volume, volume));
     if sampler.count() == view.keypoints.len() {
-        return Err(SamplingError::NothingToSample { smallest: field.min(), radius: view.sampling.radius_in_units(view.domain, view.terrain) });
+        return Err(SamplingError::NothingToSample {
+            smallest: field.min(),
+            radius: view.sampling.radius_in_units(view.domain, view.terrain),
+        });
     }
     // Free the background grid first: the positions are copied out of its records (32 bytes a
     // sample, so not in place), then converted in place.

@@ -53,7 +53,7 @@ pub fn resolve(view: &SkeletonView) -> Resolved {
         derived.insert("sampling.radius".into(), round(r).into());
     }
     if params.amplification_length.is_none() {
-        let longest = (sink_spacing(view) / 2.0).clamp(6.0 * r, 20.0 * r);
+        let longest = (sink_spacing(view) / 2.0).clamp(10.0 * r, 40.0 * r);
         let range = [round(2.0 * r), round(longest)];
         params.amplification_length = Some(range);
         derived.insert("skeleton.amplification_length".into(), range.to_vec().into());

@@ -66,7 +66,7 @@ fn seeds_of(scene_seed: u64) -> impl Iterator<Item = u64> {
 
 /// Memory a realization may plan to use: scenes whose defaults ask for more fail (and count
 /// as outside every range) rather than swap.
-const BUDGET_BYTES: u64 = 64 << 20;
+const BUDGET_BYTES: u64 = 512 << 20;
 
 /// One realization's result: which metrics are inside, or why it failed.
 #[derive(Debug, Clone)]
@@ -129,9 +129,11 @@ pub fn run_set(set: Set, out: &Path) -> Result<Vec<Outcome>, StageError> {
 pub fn describe(o: &Outcome) -> String {
     match &o.result {
         Ok(metrics) => {
-            let outside: Vec<String> =
-                metrics.iter().filter(|m| !m.2).map(|(k, v, _)| format!("{k} {v:.3}")).collect();
-            format!("{} seed {}: {}/10 {}", o.scene, o.seed, o.inside_count(), outside.join(", "))
+            let values: Vec<String> = metrics
+                .iter()
+                .map(|(k, v, inside)| format!("{}{k} {v:.3}", if *inside { "" } else { "OUT " }))
+                .collect();
+            format!("{} seed {}: {}/10: {}", o.scene, o.seed, o.inside_count(), values.join(", "))
         }
         Err(e) => format!("{} seed {}: failed: {e}", o.scene, o.seed),
     }
@@ -155,7 +157,10 @@ fn realize(scene: &Path, seed: u64, dir: &Path) -> Result<Vec<(String, f64, bool
     let (_, skeleton) = read_artifact::<Skeleton>(&job.artifact(StageId::Skeleton))?;
     let report = karst_metrics::report(&skeleton).map_err(|e| StageError::failure(e.to_string()))?;
     let _ = std::fs::remove_dir_all(&out);
-    Ok(CHARACTERIZE_KEYS.iter().map(|k| (k.to_string(), report.karstnet[*k].value, report.karstnet[*k].inside)).collect())
+    Ok(CHARACTERIZE_KEYS
+        .iter()
+        .map(|k| (k.to_string(), report.karstnet[*k].value, report.karstnet[*k].inside))
+        .collect())
 }
 
 /// The Markdown table of both sets: one row per figure, one column per set.

@@ -195,7 +195,10 @@ impl<'a> Cells<'a> {
     /// Interior pixels (two pixels from every edge) meeting `keep`.
     fn interior(&self, keep: impl Fn(usize, usize) -> bool) -> Vec<(usize, usize)> {
         let n = PIXELS as usize;
-        (2..self.rows.saturating_sub(2)).flat_map(|j| (2..n - 2).map(move |i| (i, j))).filter(|&(i, j)| keep(i, j)).collect()
+        (2..self.rows.saturating_sub(2))
+            .flat_map(|j| (2..n - 2).map(move |i| (i, j)))
+            .filter(|&(i, j)| keep(i, j))
+            .collect()
     }
 
     /// `count` sinks: in closed depressions (pixels lower than their 5 × 5 neighbourhood) above
@@ -228,7 +231,13 @@ impl<'a> Cells<'a> {
     }
 
     /// Up to `count` of `candidates` drawn at random, each at least `gap` pixels from the others.
-    fn pick(&self, mut candidates: Vec<(usize, usize)>, count: usize, gap: usize, rng: &mut Random) -> Vec<[f64; 3]> {
+    fn pick(
+        &self,
+        mut candidates: Vec<(usize, usize)>,
+        count: usize,
+        gap: usize,
+        rng: &mut Random,
+    ) -> Vec<[f64; 3]> {
         let mut chosen: Vec<(usize, usize)> = Vec::new();
         while chosen.len() < count && !candidates.is_empty() {
             let c = candidates.swap_remove(rng.index(candidates.len()));
