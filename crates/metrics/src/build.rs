@@ -134,6 +134,7 @@ mod tests {
                 keypoints: vec![],
             }],
             routes: vec![],
+            derived: Default::default(),
         };
         let r = report(&skeleton).expect("valid");
         assert_eq!(r.zones, ZoneLengths { vadose: 12.0, phreatic: 8.0 });

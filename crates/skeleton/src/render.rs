@@ -96,6 +96,7 @@ mod tests {
                 keypoints: vec!["a".into(), "b".into()],
             }],
             routes: vec![],
+            derived: Default::default(),
         }
     }
 
