@@ -5,7 +5,7 @@
 //!
 //! - the tributaries' lengths (`amplification_length`) from the sampling radius r (the shortest,
 //!   2r, is the shortest branch the samples can draw) and the spacing of the sinks (the longest
-//!   drains half the ground between two neighbouring sinks, within 6r–20r);
+//!   drains half the ground between two neighbouring sinks, within 10r–40r);
 //! - their count (`amplification_points`) from the length of the routed network: one
 //!   first-step tributary per [`JUNCTION_SPACING`] × r of conduit, so that passages are cut into
 //!   branches a few radii long at every scale;
