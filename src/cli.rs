@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use karst_artifact::StageId;
+use karst_pipeline::budget::OutputBudget;
 use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::{self, SceneFile};
 use karst_pipeline::{calibrate, diff, ensemble, registry};
@@ -69,7 +70,11 @@ pub struct RunArgs {
     /// Memory the stages may plan to use (e.g. 16G, 512M; default 16G); a stage whose work
     /// estimate is above it refuses, naming the scene field to change (docs/limits.md).
     #[arg(long, value_name = "SIZE")]
-    pub max_memory: Option<karst_geology::budget::Budget>,
+    pub max_memory: Option<karst_scene::budget::Budget>,
+    /// MB the meshes may take (default 300): the mesher's work is estimated before it runs,
+    /// and a run above this stops, naming the fields that lower it.
+    #[arg(long, value_name = "MB", value_parser = parse_budget)]
+    pub budget: Option<OutputBudget>,
 }
 
 /// `karstgen diff`.
@@ -113,6 +118,10 @@ enum EnsembleMerge {
         /// The merged folder (may be one of DIRS).
         #[arg(long)]
         out: PathBuf,
+        /// probability.tif counts conduits within this depth band only: MIN..MAX metres below
+        /// ground [default: any depth].
+        #[arg(long, value_parser = ensemble::parse_depth_band)]
+        depth_band: Option<[f64; 2]>,
     },
 }
 
@@ -138,6 +147,10 @@ struct EnsembleRunArgs {
     /// `all` (the whole folder) or `none`.
     #[arg(long, default_value = "none", value_parser = ensemble::Keep::parse)]
     keep: ensemble::Keep,
+    /// probability.tif counts conduits within this depth band only: MIN..MAX metres below
+    /// ground [default: any depth].
+    #[arg(long, value_parser = ensemble::parse_depth_band)]
+    depth_band: Option<[f64; 2]>,
     /// Output folder (default out/ensemble-<scene name>). A rerun into it skips the complete
     /// realizations.
     #[arg(long)]
@@ -187,6 +200,12 @@ fn parse_stage(name: &str) -> Result<StageId, String> {
         let names: Vec<&str> = StageId::ALL.iter().map(|s| s.name()).collect();
         format!("unknown stage \"{name}\"; stages: {}", names.join(", "))
     })
+}
+
+fn parse_budget(megabytes: &str) -> Result<OutputBudget, String> {
+    let value =
+        megabytes.trim().parse::<f64>().map_err(|_| format!("\"{megabytes}\" is not a number of MB"))?;
+    OutputBudget::megabytes(value)
 }
 
 /// The `karstgen` process: parses the command line, runs the command, returns the exit code.
@@ -244,7 +263,13 @@ pub fn run(args: &RunArgs) -> Result<PathBuf, StageError> {
         scene.scene.set_budget(budget);
     }
     println!("scene {} → {}", scene.path.display(), out.display());
-    let selection = Selection { from: args.from, only: args.only, to: args.to, force: args.force };
+    let selection = Selection {
+        from: args.from,
+        only: args.only,
+        to: args.to,
+        force: args.force,
+        budget: args.budget.unwrap_or_default(),
+    };
     make::run(&scene, &out, &selection, &mut |report| println!("{}", report.line()))?;
     Ok(out)
 }
@@ -269,8 +294,8 @@ pub fn diff_command(args: &DiffArgs) -> ExitCode {
 }
 
 fn ensemble_command(args: EnsembleArgs) -> Result<(), StageError> {
-    if let Some(EnsembleMerge::Merge { dirs, out }) = args.merge {
-        println!("{}", ensemble::merge(&dirs, &out)?.line(&out));
+    if let Some(EnsembleMerge::Merge { dirs, out, depth_band }) = args.merge {
+        println!("{}", ensemble::merge(&dirs, &out, depth_band)?.line(&out));
         return Ok(());
     }
     let run = args.run;
@@ -284,7 +309,7 @@ fn ensemble_command(args: EnsembleArgs) -> Result<(), StageError> {
         run.out.unwrap_or_else(|| PathBuf::from("out").join(format!("ensemble-{}", scene.scene.name())));
     let to = run.to.map_or(Some(ensemble::DEFAULT_TO), |t| t.0);
     let plan = ensemble::Plan::new(scene, to, run.cell, run.keep)?;
-    println!("{}", ensemble::run(&plan, &out, &seeds)?.line(&out));
+    println!("{}", ensemble::run(&plan, &out, &seeds, run.depth_band)?.line(&out));
     Ok(())
 }
 

@@ -61,6 +61,7 @@ def ensemble(
     keep: Iterable[str] = DEFAULT_KEEP,
     *,
     cell: float = 10.0,
+    depth_band: Optional[tuple[float, float]] = None,
     threads: int = 1,
     progress: Optional[bool] = None,
     on_result: Optional[Callable[[int, Optional[str]], None]] = None,
@@ -91,6 +92,9 @@ def ensemble(
         the record always holds the metrics, hydro figures and probability cells.
     cell
         Edge of a probability-grid cell, metres.
+    depth_band
+        ``(min, max)`` metres below ground: ``probability.tif`` counts the conduits within
+        that band only; None: at any depth.
     threads
         Threads per task for the Rust work (1: Dask's workers make the parallelism).
     progress
@@ -114,7 +118,7 @@ def ensemble(
     pending = _native.ensemble_pending(*plan, seed_list)
     if pending:
         _compute(plan, key, pending, client, threads, progress, on_result)
-    return _summary(folder, len(pending))
+    return _summary(folder, len(pending), depth_band)
 
 
 def _seeds(seeds: Union[int, str, Iterable[int]], first: int) -> list[int]:
@@ -202,11 +206,11 @@ def _bar(total: int, progress: Optional[bool]) -> Any:
     return tqdm(total=total, desc="ensemble", unit="realization")
 
 
-def _summary(folder: Path, ran: int) -> EnsembleResult:
+def _summary(folder: Path, ran: int, depth_band: Optional[tuple[float, float]] = None) -> EnsembleResult:
     import pandas as pd  # imported on use: Dask workers start faster without it
     import xarray as xr
 
-    summary = _native.ensemble_summarize(str(folder.resolve()))
+    summary = _native.ensemble_summarize(str(folder.resolve()), depth_band)
     columns = summary["columns"]
     values = np.frombuffer(summary["rows"], dtype="<f8").reshape(-1, len(columns))
     table = pd.DataFrame(values.copy(), columns=columns)

@@ -251,7 +251,7 @@ pub fn figures(py: Python<'_>, out: PathBuf, seed: u64) -> PyResult<(Vec<String>
         let header = read_header(&out.join(StageId::Skeleton.file_name()))?;
         let hydro = current_hydro(&out, &header.payload_blake3)?.is_some();
         let (report, springs, _) = network_figures(&out, hydro)?;
-        let figures = Figures { report, springs, cells: Vec::new() };
+        let figures = Figures { report, springs, cells: Vec::new(), columns: Default::default() };
         let t = table::table(&[(seed, &figures)]);
         Ok((t.columns, t.rows.into_iter().next().unwrap_or_default()))
     })

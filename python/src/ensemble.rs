@@ -10,9 +10,9 @@ use std::path::{Path, PathBuf};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 
-use karst_geology::Scene;
 use karst_pipeline::ensemble::{self, Keep, Outcome, Plan, Record};
 use karst_pipeline::scene::SceneFile;
+use karst_scene::Scene;
 use karst_stage::StageError;
 
 use crate::errors::{argument, to_py};
@@ -112,9 +112,20 @@ pub fn record_failure(py: Python<'_>, out: PathBuf, key: String, seed: u64, erro
 /// Writes the summary outputs of the folder `out` and returns them: `complete`, `failures`
 /// (seed, error), `columns`, `rows` (float64 bytes, row-major), `grid` (min, cell, dims) and
 /// `counts` (uint32 bytes, x fastest).
+/// `depth_band` (min, max), metres below ground, limits `probability.tif` to the conduits in
+/// that band.
 #[pyfunction]
-pub fn ensemble_summarize<'py>(py: Python<'py>, out: PathBuf) -> PyResult<Bound<'py, PyDict>> {
-    let summary = py.detach(|| ensemble::summarize(&out)).map_err(to_py)?;
+#[pyo3(signature = (out, depth_band=None))]
+pub fn ensemble_summarize<'py>(
+    py: Python<'py>,
+    out: PathBuf,
+    depth_band: Option<(f64, f64)>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let band = match depth_band {
+        Some((min, max)) => Some(ensemble::parse_depth_band(&format!("{min}..{max}")).map_err(argument)?),
+        None => None,
+    };
+    let summary = py.detach(|| ensemble::summarize(&out, band)).map_err(to_py)?;
     let dict = PyDict::new(py);
     let rows: Vec<u8> = summary.table.rows.iter().flatten().flat_map(|v| v.to_le_bytes()).collect();
     let counts: Vec<u8> = summary.counts.iter().flat_map(|c| c.to_le_bytes()).collect();

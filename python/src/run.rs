@@ -13,9 +13,9 @@ use std::time::Duration;
 use pyo3::prelude::*;
 
 use karst_artifact::StageId;
-use karst_geology::Scene;
 use karst_pipeline::make::{self, Outcome, Selection, StageReport};
 use karst_pipeline::scene::SceneFile;
+use karst_scene::Scene;
 use karst_stage::StageError;
 
 use crate::errors::{KarstgenError, argument, to_py};

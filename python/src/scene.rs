@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use pyo3::prelude::*;
 
-use karst_geology::Scene;
+use karst_scene::Scene;
 use karst_stage::StageError;
 
 use crate::errors::{SceneError, to_py};

@@ -1,4 +1,7 @@
-//! Helpers shared by the cross-stage tests: running the pipeline in process.
+//! Helpers shared by the cross-stage tests: running the pipeline in process, and the docs'
+//! references to the repository ([`docs`]).
+
+pub mod docs;
 
 use std::path::{Path, PathBuf};
 

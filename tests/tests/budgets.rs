@@ -6,9 +6,9 @@ use std::fs;
 use std::path::Path;
 
 use karst_artifact::StageId;
-use karst_geology::Scene;
-use karst_geology::budget::Budget;
 use karst_pipeline::make::Selection;
+use karst_scene::budget::Budget;
+use karst_scene::{Scene, SceneView};
 use karst_stage::runner::{self, Job};
 use karst_stage::{Stage, StageError};
 use karstgen_tests::{root, run, scratch};
@@ -58,5 +58,43 @@ fn every_estimating_stage_refuses_with_its_field_and_a_value_that_fits() {
 
     let after: Vec<_> = fs::read_dir(&out).unwrap().flatten().map(|e| e.file_name()).collect();
     assert_eq!(after.len(), before.len() + 1, "only the edited scene is new: {after:?}");
+    fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
+fn the_mesher_s_work_estimate_is_within_a_factor_two_of_its_meshes() {
+    let out = scratch("mesh-estimate");
+    let scene_path = out.join("scene.toml");
+    fs::copy(root().join("fixtures/scenes/tiny.toml"), &scene_path).unwrap();
+    run(&scene_path, &out, &Selection { to: Some(StageId::Mesher), ..Selection::default() }).unwrap();
+    let scene = Scene::load(&scene_path).unwrap();
+    let (_, model) = karst_artifact::read_artifact::<karst_sdf::SdfModel>(&out.join("sdf.bin")).unwrap();
+    let work = karst_mesher::Work::of(&karst_mesher::MesherView::of(&scene), &model);
+    let (_, mesh) = karst_artifact::read_artifact::<karst_mesher::Mesh>(&out.join("mesh.bin")).unwrap();
+    let triangles: usize = mesh.surfaces().iter().map(|(_, m)| m.triangles.len()).sum();
+    let bytes = fs::metadata(out.join("mesh.bin")).unwrap().len() as f64;
+    let within_two = |estimate: f64, real: f64| estimate <= 2.0 * real && real <= 2.0 * estimate;
+    assert!(within_two(work.triangles, triangles as f64), "{work:?} for {triangles} triangles");
+    assert!(within_two(work.bytes, bytes), "{work:?} for {bytes} bytes of mesh.bin");
+    assert!(within_two(work.cells * 2.0, triangles as f64), "{work:?} for {triangles} triangles");
+    fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
+fn a_mesher_cell_of_five_centimetres_is_refused_before_the_mesher_runs() {
+    let out = scratch("mesh-budget");
+    let scene = out.join("scene.toml");
+    fs::copy(root().join("fixtures/bad/mesher_cell_tiny.toml"), &scene).unwrap();
+    let err = run(&scene, &out, &Selection::default()).unwrap_err();
+    assert_eq!(err.exit_code(), 2, "{err}");
+    let message = err.to_string();
+    for part in ["scene.toml: the mesher would make about", "mesher.cell_size = 0.05 m", "budget of 300 MiB"]
+    {
+        assert!(message.contains(part), "{part}: {message}");
+    }
+    for advice in ["raise mesher.cell_size", "mesher.cave_cell_size", "--budget MB"] {
+        assert!(message.contains(advice), "{advice}: {message}");
+    }
+    assert!(out.join("sdf.bin").is_file() && !out.join("mesh.bin").exists());
     fs::remove_dir_all(&out).unwrap();
 }

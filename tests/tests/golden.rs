@@ -29,3 +29,48 @@ fn one_or_two_threads_give_byte_identical_artifacts() {
         assert!(std::fs::read(a).unwrap() == std::fs::read(b).unwrap(), "{} differs", stage.file_name());
     }
 }
+
+/// The `| `tiny/NAME` | `HASH` |` rows of the last entry of fixtures/golden/CHANGES.md.
+fn last_recorded_hashes(changes: &str) -> Vec<(String, String)> {
+    let last = changes.rsplit("\n## ").next().unwrap_or_default();
+    let mut rows: Vec<(String, String)> = last
+        .lines()
+        .filter_map(|line| {
+            let cells: Vec<&str> = line.split('|').map(|c| c.trim().trim_matches('`')).collect();
+            match cells.as_slice() {
+                ["", name, hash, ""] if name.starts_with("tiny/") => {
+                    Some((name.to_string(), hash.to_string()))
+                }
+                _ => None,
+            }
+        })
+        .collect();
+    rows.sort();
+    rows
+}
+
+/// Every golden of fixtures/golden/tiny as recorded by the last `cargo xtask bless --accept`:
+/// a golden replaced without the review and its reason fails here.
+#[test]
+fn the_goldens_are_those_changes_md_records_last() {
+    let golden = root().join("fixtures/golden");
+    let changes = std::fs::read_to_string(golden.join("CHANGES.md")).unwrap();
+    let mut files: Vec<(String, String)> = std::fs::read_dir(golden.join("tiny"))
+        .unwrap()
+        .map(|e| {
+            let path = e.unwrap().path();
+            let name = format!("tiny/{}", path.file_name().unwrap().to_string_lossy());
+            (name, blake3::hash(&std::fs::read(&path).unwrap()).to_hex().to_string())
+        })
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), 9, "one golden per stage");
+    assert_eq!(
+        last_recorded_hashes(&changes),
+        files,
+        "fixtures/golden/tiny differs from the last entry of fixtures/golden/CHANGES.md: bless with \
+         `cargo xtask bless --accept --why REASON`"
+    );
+    let tampered = changes.replace(&files[0].1, &"0".repeat(64));
+    assert_ne!(last_recorded_hashes(&tampered), files, "the check sees a changed hash");
+}

@@ -4,15 +4,49 @@
 //! `KARSTGEN_BLESS_PRESETS=1` to rewrite the summaries, and say why in the commit.
 //! Every preset's routes are also checked: each sink reaches a spring it may reach (connectivity
 //! matrix, last phase's springs) along the network's links, through no node twice.
+//! Every network preset (these and the default scene) must stay inside the ten real-cave ranges
+//! of karstnet's metrics (Collon et al. 2017), and agree with fixtures/metrics/<preset>.json,
+//! the values the README's table shows (`cargo xtask metrics-table --write` rewrites both).
+
+use std::sync::OnceLock;
 
 use karst_artifact::{StageId, read_artifact};
-use karst_geology::{KeyPointKind, Link, Scene, keypoints_of};
+use karst_metrics::ranges::{CHARACTERIZE_KEYS, real_cave_ranges};
+use karst_metrics::{characterize, network_of};
 use karst_pipeline::make::Selection;
+use karst_scene::{KeyPointKind, Link, Scene, keypoints_of};
 use karst_skeleton::{ConduitType, Skeleton};
 use karstgen_tests::{root, run, scratch};
 
 const PRESETS: [&str; 6] =
     ["branchwork", "looping", "rectilinear", "superimposed", "karstnsim", "karstnsim-2phase"];
+
+/// The presets whose networks the README compares with real caves: the pinned ones and the
+/// default scene.
+const NETWORK_PRESETS: [&str; 7] =
+    ["branchwork", "default", "karstnsim", "karstnsim-2phase", "looping", "rectilinear", "superimposed"];
+
+/// The skeleton of a preset, run once (sampling, cost graph, skeleton) for all the tests here.
+fn preset_skeleton(preset: &str) -> &'static Skeleton {
+    static SKELETONS: OnceLock<Vec<(&str, Skeleton)>> = OnceLock::new();
+    let skeletons = SKELETONS.get_or_init(|| {
+        NETWORK_PRESETS
+            .iter()
+            .map(|&preset| {
+                let out = scratch(&format!("preset-{preset}"));
+                let scene = root().join(format!("fixtures/scenes/{preset}.toml"));
+                for stage in [StageId::Sampling, StageId::Costgraph, StageId::Skeleton] {
+                    run(&scene, &out, &Selection { only: Some(stage), ..Selection::default() }).unwrap();
+                }
+                let (_, skeleton) =
+                    read_artifact::<Skeleton>(&out.join(StageId::Skeleton.file_name())).unwrap();
+                std::fs::remove_dir_all(&out).unwrap();
+                (preset, skeleton)
+            })
+            .collect()
+    });
+    &skeletons.iter().find(|(name, _)| *name == preset).expect("a network preset").1
+}
 
 fn summary(s: &Skeleton) -> serde_json::Value {
     let round = |v: f64| (v * 1000.0).round() / 1000.0;
@@ -107,14 +141,10 @@ fn preset_skeletons_match_their_golden_summaries() {
     let bless = std::env::var_os("KARSTGEN_BLESS_PRESETS").is_some();
     let mut failures = Vec::new();
     for preset in PRESETS {
-        let out = scratch(&format!("preset-{preset}"));
         let scene = root().join(format!("fixtures/scenes/{preset}.toml"));
-        for stage in [StageId::Sampling, StageId::Costgraph, StageId::Skeleton] {
-            run(&scene, &out, &Selection { only: Some(stage), ..Selection::default() }).unwrap();
-        }
-        let (_, skeleton) = read_artifact::<Skeleton>(&out.join(StageId::Skeleton.file_name())).unwrap();
-        failures.extend(route_failures(&Scene::load(&scene).unwrap(), &skeleton, preset));
-        let got = summary(&skeleton);
+        let skeleton = preset_skeleton(preset);
+        failures.extend(route_failures(&Scene::load(&scene).unwrap(), skeleton, preset));
+        let got = summary(skeleton);
         let golden = root().join(format!("fixtures/golden/{preset}/skeleton-summary.json"));
         if bless {
             std::fs::create_dir_all(golden.parent().unwrap()).unwrap();
@@ -128,4 +158,60 @@ fn preset_skeletons_match_their_golden_summaries() {
         }
     }
     assert!(failures.is_empty(), "preset skeletons changed:\n{}", failures.join("\n"));
+}
+
+/// Why a preset's karstnet metrics break the rules: a metric outside its real-cave range, or a
+/// value other than the committed fixtures/metrics/<preset>.json's (the README's table).
+fn range_failures(preset: &str, skeleton: &Skeleton) -> Vec<String> {
+    let metrics = match characterize(&network_of(skeleton)) {
+        Ok(metrics) => metrics,
+        Err(e) => return vec![format!("{preset}: no karstnet metrics: {e}")],
+    };
+    let values: std::collections::BTreeMap<&str, f64> = metrics.to_pairs().into_iter().collect();
+    let path = root().join(format!("fixtures/metrics/{preset}.json"));
+    let committed: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let ranges = real_cave_ranges();
+    let mut failures = Vec::new();
+    for key in CHARACTERIZE_KEYS {
+        let (value, range) = (values[key], &ranges[key]);
+        if !range.contains(value) {
+            failures.push(format!(
+                "{preset}: {key} = {value} outside the real caves' [{}, {}]",
+                range.min, range.max
+            ));
+        }
+        let table = committed["payload"]["karstnet"][key]["value"].as_f64().unwrap_or(f64::NAN);
+        if (table - value).abs() > 1e-9 * value.abs().max(1.0) {
+            failures.push(format!(
+                "{preset}: {key} = {value}, {} says {table}: run `cargo xtask metrics-table --write`",
+                path.display()
+            ));
+        }
+    }
+    failures
+}
+
+#[test]
+fn network_presets_stay_inside_the_real_cave_ranges() {
+    let failures: Vec<String> =
+        NETWORK_PRESETS.iter().flat_map(|&preset| range_failures(preset, preset_skeleton(preset))).collect();
+    assert!(failures.is_empty(), "presets outside the real caves:\n{}", failures.join("\n"));
+}
+
+/// The check itself fails on a network that is no cave: a preset's first conduit alone, pulled
+/// straight (one orientation, degrees 1 and 2).
+#[test]
+fn a_straight_conduit_is_outside_the_ranges() {
+    let mut skeleton = preset_skeleton("branchwork").clone();
+    let mut conduit = skeleton.conduits[0].clone();
+    let n = conduit.nodes.len();
+    skeleton.nodes.truncate(n);
+    for (i, node) in skeleton.nodes.iter_mut().enumerate() {
+        node.position = [10.0 * i as f64, 0.0, 0.0];
+    }
+    conduit.nodes = (0..n as u32).collect();
+    skeleton.conduits = vec![conduit];
+    let failures = range_failures("branchwork", &skeleton);
+    assert!(failures.iter().any(|f| f.contains("outside the real caves")), "{failures:?}");
 }

@@ -101,6 +101,33 @@ fn leftovers_of_killed_runs_are_swept_and_live_writers_kept() {
 }
 
 #[test]
+fn previous_artifacts_left_by_a_killed_run_are_removed_by_the_next() {
+    let out = scratch("previous");
+    let scene = tiny_in(&out);
+    let to_costgraph = Selection { to: Some(StageId::Costgraph), ..Selection::default() };
+    run(&scene, &out, &to_costgraph).unwrap();
+    // Killed after the new costgraph.bin replaced the old one, before the old one was deleted;
+    // a temporary file of the killed writer too, and files of the user's that look alike.
+    let previous = out.join(".costgraph.bin.previous");
+    fs::copy(out.join("costgraph.bin"), &previous).unwrap();
+    let temporary = out.join(format!(".costgraph.bin.tmp-{}", dead_pid()));
+    fs::write(&temporary, b"torn").unwrap();
+    let users = [out.join(".notes.txt.previous"), out.join("costgraph.bin.previous")];
+    for file in &users {
+        fs::write(file, b"mine").unwrap();
+    }
+    let reports = run(&scene, &out, &to_costgraph).unwrap();
+    let costgraph = reports.iter().find(|r| r.stage == StageId::Costgraph).unwrap();
+    assert!(matches!(costgraph.outcome, Outcome::UpToDate), "{:?}", costgraph.outcome);
+    assert!(!previous.exists(), "the stale .previous was left behind");
+    assert!(!temporary.exists(), "the stale temporary file was left behind");
+    for file in &users {
+        assert!(file.exists(), "{} is not karstgen's to delete", file.display());
+    }
+    fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
 fn inputs_made_from_another_upstream_artifact_are_refused() {
     let out = scratch("mixed");
     let scene = tiny_in(&out);
@@ -199,6 +226,14 @@ fn wrong_payloads_with_right_checksums_are_refused_by_every_reader() {
     assert!(message.contains("positions[7]: [NaN, 0.0, 0.0] is not a finite position"), "{message}");
     forge(&|s| s.tags.truncate(5));
     bad_input(karst_pipeline::registry::inspect(&samples));
+    // Two samples, the key points only: nothing for a conduit to run through.
+    forge(&|s| {
+        s.positions.truncate(2);
+        s.tags.truncate(2);
+        assert!(s.tags.iter().all(|t| matches!(t, karst_sampling::Tag::KeyPoint(_))));
+    });
+    let message = bad_input(karst_pipeline::registry::inspect(&samples));
+    assert!(message.contains("samples.bin: tags: all 2 samples are key points"), "{message}");
 
     let sdf = out.join("sdf.bin");
     let forge = forger::<karst_sdf::SdfModel>(&sdf);
@@ -213,6 +248,52 @@ fn wrong_payloads_with_right_checksums_are_refused_by_every_reader() {
     forger::<karst_hydro::Hydro>(&hydro)(&|h| h.conduits[0].segments[0].depth = -1.0);
     let message = bad_input(karst_pipeline::registry::inspect(&hydro));
     assert!(message.contains("conduits[0].segments[0].depth: -1 is not a finite number"), "{message}");
+    fs::remove_dir_all(&out).unwrap();
+}
+
+/// Rewrites the postcard artifact at `path` with `extra` bytes after its payload and a header
+/// whose `payload_len` and digest cover them: a length one too large, checksum and all right.
+fn lengthen_payload(path: &Path, extra: &[u8]) {
+    let bytes = fs::read(path).unwrap();
+    let end = bytes.iter().position(|&b| b == b'\n').unwrap();
+    let mut header: serde_json::Value = serde_json::from_slice(&bytes[..end]).unwrap();
+    let mut payload = bytes[end + 1..].to_vec();
+    payload.extend_from_slice(extra);
+    header["payload_len"] = payload.len().into();
+    header["payload_blake3"] = karst_artifact::hash::hex(&payload).into();
+    let mut forged = serde_json::to_vec(&header).unwrap();
+    forged.push(b'\n');
+    forged.extend_from_slice(&payload);
+    fs::write(path, forged).unwrap();
+}
+
+#[test]
+fn samples_of_another_scene_and_an_sdf_longer_than_its_fields_are_refused_naming_the_file() {
+    let out = scratch("foreign");
+    let scene = tiny_in(&out);
+    run(&scene, &out, &Selection { to: Some(StageId::Sdf), ..Selection::default() }).unwrap();
+    // A surface tag naming a fault the scene does not have (tag 99), checksums right.
+    let samples = out.join("samples.bin");
+    forger::<karst_sampling::Samples>(&samples)(&|s| {
+        let volume = s.tags.iter().position(|t| *t == karst_sampling::Tag::Volume).unwrap();
+        s.tags[volume] = karst_sampling::Tag::Fault(99);
+    });
+    let (_, forged) = read_artifact::<karst_sampling::Samples>(&samples).unwrap();
+    let foreign = forged.tags.iter().position(|t| *t == karst_sampling::Tag::Fault(99)).unwrap();
+    let only = |stage| Selection { only: Some(stage), ..Selection::default() };
+    let err = run(&scene, &out, &only(StageId::Costgraph)).unwrap_err();
+    assert_eq!(err.exit_code(), 2, "{err}");
+    let message = err.to_string();
+    let expected = format!("samples.bin: tags[{foreign}] is fault 99, which the scene does not have");
+    assert!(message.contains(&expected), "{message}");
+
+    // An sdf.bin whose payload is one byte longer than its fields.
+    let sdf = out.join("sdf.bin");
+    lengthen_payload(&sdf, &[0]);
+    let err = run(&scene, &out, &only(StageId::Mesher)).unwrap_err();
+    assert_eq!(err.exit_code(), 2, "{err}");
+    let message = err.to_string();
+    assert!(message.contains("sdf.bin") && message.contains("the payload's fields end at byte"), "{message}");
     fs::remove_dir_all(&out).unwrap();
 }
 

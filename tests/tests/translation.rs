@@ -4,7 +4,7 @@
 //! triangles, vertices within 1 mm), and its artifacts record the moved origin.
 //!
 //! What makes it hold: a scene is localized when loaded (every coordinate relative to the
-//! domain's `min` corner, `karst_geology::Scene::origin`), so every stage computes on the same
+//! domain's `min` corner, `karst_scene::Scene::origin`), so every stage computes on the same
 //! small numbers whatever the offset; what is left of the offset is the rounding of the moved
 //! file's decimals (1e-10 m), which cannot move a sample off a water table
 //! (`karst_geology::surface::ON_SURFACE`).

@@ -59,7 +59,7 @@ pub fn realize(preset: &str, n: usize) -> Result<Realizations, StageError> {
     let seeds =
         ensemble::first_n(scene.scene.seed(), n).map_err(|e| StageError::input(format!("ensemble: {e}")))?;
     let plan = Plan::new(scene, Some(StageId::Skeleton), ensemble::DEFAULT_CELL, Keep::Stages(Vec::new()))?;
-    let summary = ensemble::run(&plan, &out, &seeds)?;
+    let summary = ensemble::run(&plan, &out, &seeds, None)?;
     if let Some((seed, error)) = summary.failures.first() {
         return Err(StageError::failure(format!("{preset}: seed {seed}: {error}")));
     }

@@ -1,7 +1,8 @@
 //! `cargo xtask`: the developers' tasks. `run`, `diff` and `inspect` are `karstgen`'s own (the
-//! same code); `bless` regenerates the golden artifacts, `bench` times every stage, `test`
-//! installs the test tools and runs the suite, `metrics-table` tables every scene's metrics,
-//! `fuzz` runs the fuzz targets for a while.
+//! same code); `bless` diffs the tiny scene against the golden artifacts (and replaces them with
+//! `--accept --why`), `bench` times every stage, `test` installs the test tools and runs the
+//! suite, `metrics-table` tables every scene's metrics, `fuzz` runs the fuzz targets for a while,
+//! `modules` checks that no crate has an import circle,
 //! `ensemble` the presets' metrics over many seeds.
 
 use std::path::{Path, PathBuf};
@@ -9,19 +10,13 @@ use std::process::{Command, ExitCode};
 
 use clap::{Parser, Subcommand};
 
-use karst_artifact::StageId;
-use karst_pipeline::diff;
-use karst_pipeline::make::{self, Selection};
-use karst_pipeline::scene::{self, SceneFile};
+use karst_pipeline::scene;
 use karst_stage::StageError;
 use karst_stage::cli::finish;
-use xtask::temp_folder::TempFolder;
 use xtask::tools::Tools;
 use xtask::{bench, metrics_table};
 
 /// The scene whose artifacts are pinned in `fixtures/golden/tiny`.
-const GOLDEN_SCENE: &str = "fixtures/scenes/tiny.toml";
-const GOLDEN_DIR: &str = "fixtures/golden/tiny";
 
 #[derive(Parser)]
 #[command(name = "cargo xtask", about = "karstgen's developer tasks")]
@@ -38,8 +33,16 @@ enum Task {
     Diff(karstgen::cli::DiffArgs),
     /// `karstgen view`: write (and serve) the web viewer of a run.
     View(karst_view::cli::ViewArgs),
-    /// Regenerate the golden artifacts of the tiny scene and print what changed.
-    Bless,
+    /// The tiny scene's artifacts diffed against the goldens; with --accept --why, replace them
+    /// and record why in fixtures/golden/CHANGES.md.
+    Bless {
+        /// Replace the goldens (nothing is written without it).
+        #[arg(long, requires = "why")]
+        accept: bool,
+        /// Why the new artifacts are right, recorded in fixtures/golden/CHANGES.md.
+        #[arg(long, value_name = "REASON", value_parser = clap::builder::NonEmptyStringValueParser::new())]
+        why: Option<String>,
+    },
     /// Time every stage of the benchmark scenes (median of RUNS runs).
     Bench {
         #[arg(long, default_value_t = 5)]
@@ -117,6 +120,9 @@ enum Task {
         #[arg(long)]
         write: bool,
     },
+    /// Check that no crate of the workspace has an import circle (modules reaching each other
+    /// through `crate::` paths); exit 1 when one has.
+    Modules,
     /// Run the test suite (`cargo test --release --workspace`, then the Python package's
     /// pytest suite), after installing the outside tools the tests check outputs with
     /// (tools/: Python packages, Debian packages, npm).
@@ -155,7 +161,7 @@ fn main() -> ExitCode {
             args.scene = args.scene.map(|p| karstgen::cli::resolve(&here, &p));
             karst_view::cli::view(&args)
         }
-        Task::Bless => bless(),
+        Task::Bless { accept, why } => xtask::bless::bless(why.as_deref().filter(|_| accept)),
         Task::Bench { runs, peer: true, .. } => peer_bench(runs),
         Task::Bench { regional: true, network, .. } => regional_bench(!network),
         Task::Bench {
@@ -185,6 +191,7 @@ fn main() -> ExitCode {
             },
         ),
         Task::Test { python, args } => return test(python, &args),
+        Task::Modules => return modules(&root),
         Task::Fuzz { minutes, seed } => fuzz(minutes, seed),
         Task::MetricsTable { write } => metrics_table_command(write),
         Task::Ensemble { n, write } => ensemble_table_command(n, write),
@@ -267,24 +274,6 @@ fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace").to_path_buf()
 }
 
-fn bless() -> Result<(), StageError> {
-    let scratch = TempFolder::new("bless");
-    let selection = Selection { force: true, ..Selection::default() };
-    make::run(&SceneFile::load(Path::new(GOLDEN_SCENE))?, &scratch, &selection, &mut |_| {})?;
-    let golden = Path::new(GOLDEN_DIR);
-    std::fs::create_dir_all(golden).map_err(|e| StageError::failure(format!("{}: {e}", golden.display())))?;
-    for stage in StageId::ALL {
-        let (new, old) = (scratch.join(stage.file_name()), golden.join(stage.file_name()));
-        match diff::diff(&old, &new, 1e-9) {
-            Ok(report) if !report.differs() => println!("{}: unchanged", stage.file_name()),
-            Ok(report) => println!("{}: changed\n{}", stage.file_name(), report.summary()),
-            Err(e) => println!("{}: replaced ({e})", stage.file_name()),
-        }
-        std::fs::copy(&new, &old).map_err(|e| StageError::failure(format!("{}: {e}", old.display())))?;
-    }
-    Ok(())
-}
-
 fn metrics_table_command(write: bool) -> Result<(), StageError> {
     let mut reports = Vec::new();
     let scenes = metrics_table::scenes(Path::new("fixtures/scenes"))?;
@@ -354,6 +343,23 @@ fn realism_command(write: bool, tuning_only: bool) -> Result<(), StageError> {
     Ok(())
 }
 
+/// The tests run again in the `checked` profile (release with integer overflow checks and debug
+/// assertions, which cost too much to keep in release: BENCHMARKS.md, "Overflow checks"): the
+/// tiny scene through every stage against its goldens, and the presets' networks.
+const CHECKED_SUBSET: [&str; 6] = ["-p", "karstgen-tests", "--test", "golden", "--test", "presets"];
+
+/// `cargo test --profile checked` of [`CHECKED_SUBSET`].
+fn checked_subset(tools: &Tools) -> Result<(), String> {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let status = Command::new(cargo)
+        .args(["test", "--profile", "checked"])
+        .args(CHECKED_SUBSET)
+        .envs(tools.env())
+        .status()
+        .map_err(|e| format!("cannot run cargo test: {e}"))?;
+    if status.success() { Ok(()) } else { Err("the checked subset failed".into()) }
+}
+
 fn test(python_only: bool, args: &[String]) -> ExitCode {
     let root = workspace_root();
     let tools = match Tools::ensure(&root) {
@@ -382,6 +388,10 @@ fn test(python_only: bool, args: &[String]) -> ExitCode {
         if !args.is_empty() {
             return ExitCode::SUCCESS;
         }
+        if let Err(e) = checked_subset(&tools) {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
     }
     match xtask::python::test(&root, &tools) {
         Ok(true) => ExitCode::SUCCESS,
@@ -389,6 +399,27 @@ fn test(python_only: bool, args: &[String]) -> ExitCode {
         Err(e) => {
             eprintln!("error: the Python package: {e}");
             ExitCode::from(1)
+        }
+    }
+}
+
+/// `cargo xtask modules`: prints every circle; exit 1 when any, 2 when a source cannot be read.
+fn modules(root: &Path) -> ExitCode {
+    match xtask::modules::check_workspace(root) {
+        Ok(circles) if circles.is_empty() => {
+            println!("no import circle in any crate");
+            ExitCode::SUCCESS
+        }
+        Ok(circles) => {
+            for circle in &circles {
+                print!("{circle}");
+            }
+            println!("{} import circles", circles.len());
+            ExitCode::from(1)
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
         }
     }
 }

@@ -28,6 +28,7 @@ use crate::error::Error;
 use crate::frame::Frame;
 use crate::stages::{Encoding, StageId, stage_key};
 use crate::stream::PayloadReader;
+use crate::whole::{postcard_whole, read_to_the_end};
 use crate::{atomic, hash};
 
 /// The value of the header's `format` field.
@@ -408,6 +409,7 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
     if header.encoding == Encoding::Postcard {
         let mut bytes = PayloadReader::new(&mut reader, header.payload_len);
         if let Some(decoded) = P::read_streamed(&mut bytes) {
+            let position = bytes.position();
             // The envelope's checks come first, as for a payload read whole: a corrupted file is a
             // length or checksum error whatever its decoding made of it.
             let (read, digest) =
@@ -418,6 +420,7 @@ pub fn read_artifact<P: Payload>(path: &Path) -> Result<(Header, P), Error> {
             if digest != header.payload_blake3 {
                 return Err(Error::Checksum { path: path.into(), stage });
             }
+            let decoded = decoded.and_then(|value| read_to_the_end(value, position, header.payload_len));
             return Ok((header, validated(path, decoded.map_err(|e| decode_error::<P>(path, e))?)?));
         }
     }
@@ -446,8 +449,12 @@ pub fn decode_payload<P: Payload>(path: &Path, encoding: Encoding, bytes: &[u8])
     let decoded = match encoding {
         Encoding::Postcard => {
             let mut source = bytes;
-            P::read_streamed(&mut PayloadReader::new(&mut source, bytes.len() as u64))
-                .unwrap_or_else(|| postcard::from_bytes(bytes).map_err(|e| e.to_string()))
+            let len = bytes.len() as u64;
+            let mut reader = PayloadReader::new(&mut source, len);
+            match P::read_streamed(&mut reader) {
+                Some(decoded) => decoded.and_then(|value| read_to_the_end(value, reader.position(), len)),
+                None => postcard_whole(bytes),
+            }
         }
         Encoding::Json => serde_json::from_slice(bytes).map_err(|e| e.to_string()),
     };

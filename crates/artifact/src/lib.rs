@@ -24,6 +24,7 @@ pub mod hash;
 pub mod lock;
 pub mod stages;
 pub mod stream;
+mod whole;
 
 pub use envelope::{
     Header, InputRef, Invalid, Payload, Provenance, check_frame, decode_payload, read_artifact, read_header,

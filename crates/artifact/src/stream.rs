@@ -1,6 +1,6 @@
 //! A bulk payload decoded from the file as it is read, so that its bytes and the decoded arrays
 //! are never in memory together: reading costgraph.bin whole and then decoding it held the
-//! payload twice (7.4 GB for the regional scene's 3.7 GB payload).
+//! payload twice, twice the memory of the regional scene's payload of gigabytes.
 //!
 //! A payload type that opts in ([`crate::Payload::read_streamed`]) reads its fields in
 //! postcard's order through a [`PayloadReader`]: numbers and small fields one by one, bulk
@@ -145,10 +145,15 @@ impl<'r> PayloadReader<'r> {
         Ok(values)
     }
 
-    /// The rest of the payload, a small tail, decoded with postcard.
+    /// The rest of the payload, a small tail, decoded with postcard to its last byte.
     pub fn tail<T: serde::de::DeserializeOwned>(&mut self) -> Result<T, String> {
         let rest = self.bytes(self.left() as usize)?;
-        postcard::from_bytes(&rest).map_err(|e| e.to_string())
+        crate::whole::postcard_whole(&rest)
+    }
+
+    /// Bytes of the payload decoded so far.
+    pub(crate) fn position(&self) -> u64 {
+        self.read
     }
 
     /// Reads whatever the source still holds (past the payload too: a longer file is a length

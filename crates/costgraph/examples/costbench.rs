@@ -5,7 +5,7 @@
 //! `cargo run --release -p karst-costgraph --example costbench -- SCENE SAMPLES K [RUNS]`
 
 use karst_costgraph::CostgraphView;
-use karst_geology::SceneView;
+use karst_scene::SceneView;
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::Path;
 use std::time::Instant;
@@ -16,9 +16,9 @@ fn main() {
     let samples: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(100_000);
     let k: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(50);
     let runs: usize = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(1);
-    let mut scene = karst_geology::Scene::load(Path::new(scene_path)).expect("scene");
+    let mut scene = karst_scene::Scene::load(Path::new(scene_path)).expect("scene");
     scene.costgraph_mut().k = k;
-    let mut rng = karst_geology::rng::Random::stream(scene.seed(), "bench", "costgraph-points");
+    let mut rng = karst_scene::rng::Random::stream(scene.seed(), "bench", "costgraph-points");
     let (min, max) = (scene.domain().min, scene.domain().max);
     let points: Vec<[f64; 3]> =
         (0..samples).map(|_| std::array::from_fn(|axis| rng.range(min[axis], max[axis]))).collect();

@@ -11,13 +11,14 @@
 
 use rayon::prelude::*;
 
-use karst_geology::SceneView;
-use karst_geology::params::CostgraphParams;
 use karst_sampling::Samples;
+use karst_scene::SceneView;
+use karst_scene::params::CostgraphParams;
 
 use crate::cost::{CostModel, EdgeTerms, NodeFields};
+use crate::costs::SHARED_ROW;
 use crate::knn::{self, CHUNK, Rows, chunk_nodes};
-use crate::payload::{CostGraph, CostSet, SHARED_ROW};
+use crate::payload::{CostGraph, CostSet};
 use crate::stats::{Histogram, SetStats, Summary, TermStats};
 use crate::view::CostgraphView;
 use crate::{CostGraphError, checks};
@@ -28,6 +29,7 @@ pub fn build(view: &CostgraphView, samples: &Samples) -> Result<CostGraph, CostG
     if k >= samples.len() {
         return Err(CostGraphError::TooFewSamples { k, samples: samples.len() });
     }
+    checks::tags_of_the_scene(view, samples)?;
     let model = CostModel::new(view);
     crate::estimate::check(view, samples.len(), model.set_count())?;
     let chunks = samples.len().div_ceil(CHUNK) as u64;

@@ -1,6 +1,6 @@
-//! What can be wrong with a cost graph before any path is searched: a key point with no
-//! neighbour within the maximum edge length, and a sink that cannot reach a spring it must
-//! connect to.
+//! What can be wrong with a cost graph before any path is searched: a sample tagged with a
+//! surface or key point the scene does not have, a key point with no neighbour within the
+//! maximum edge length, and a sink that cannot reach a spring it must connect to.
 //!
 //! Reachability does not depend on the costs (all are finite and > 0), so it is checked on the
 //! bare graph, forwards from each sink, by a best-first traversal that always extends the
@@ -9,21 +9,41 @@
 //! samples, whatever the graph's size; around an obstacle (a no-karst volume, a valley) it
 //! fills the pocket and goes on, and it visits everything the sink reaches only when the
 //! spring is out of reach, the case it reports. The earlier check, one traversal per spring
-//! of the reversed graph, needed that reversed graph: 8 bytes per edge (1.2 GB on the regional
-//! scene) and 2 % of the network half's instructions at 100k samples.
+//! of the reversed graph, needed that reversed graph: 8 bytes per edge, and a share of the
+//! network half's instructions (BENCHMARKS.md).
 
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use rayon::prelude::*;
 
-use karst_geology::params::CostgraphParams;
-use karst_geology::{KeyPointKind, Link, keypoints_of};
-use karst_sampling::Samples;
+use karst_sampling::{Samples, Tag};
+use karst_scene::params::CostgraphParams;
+use karst_scene::{KeyPointKind, Link, keypoints_of};
 
 use crate::CostGraphError;
 use crate::knn::Rows;
 use crate::view::CostgraphView;
+
+/// The first sample whose tag names a horizon, water table, fault or key point beyond the
+/// scene's: samples.bin was made from another scene (or damaged), and the searches would
+/// read a surface that is not there.
+pub fn tags_of_the_scene(view: &CostgraphView, samples: &Samples) -> Result<(), CostGraphError> {
+    let geology = view.geology;
+    for (index, tag) in samples.tags.iter().enumerate() {
+        let (kind, i, count) = match *tag {
+            Tag::Volume => continue,
+            Tag::Horizon(i) => ("horizon", i, geology.horizons.len()),
+            Tag::WaterTable(i) => ("water table", i, geology.water_tables.len()),
+            Tag::Fault(i) => ("fault", i, geology.faults.len()),
+            Tag::KeyPoint(i) => ("key point", i, view.keypoints.len()),
+        };
+        if i as usize >= count {
+            return Err(CostGraphError::ForeignTag { index, tag: format!("{kind} {i}"), count });
+        }
+    }
+    Ok(())
+}
 
 /// A key point with no out-edge (no neighbour within `max_edge_length`).
 pub fn isolated_keypoints(

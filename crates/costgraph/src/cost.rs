@@ -39,8 +39,9 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use karst_geology::params::{CostModelKind, CostgraphParams};
-use karst_geology::{Geology, KeyPoint, KeyPointKind, Surface, keypoints_of};
+use karst_geology::{Geology, Surface};
+use karst_scene::params::{CostModelKind, CostgraphParams};
+use karst_scene::{KeyPoint, KeyPointKind, keypoints_of};
 
 use crate::view::CostgraphView;
 
@@ -548,7 +549,7 @@ mod tests {
     use super::*;
     use std::path::Path;
 
-    use karst_geology::{Scene, SceneView};
+    use karst_scene::{Scene, SceneView};
 
     fn model(extra: &str) -> CostModel {
         let text = format!(

@@ -3,9 +3,9 @@
 //!
 //! A cost is a function of the graph's two ends, the samples' positions and the scene's
 //! geology ([`CostModel::edge`]). The skeleton's searches read the costs of the rows of the
-//! samples they settle: 27–32 % of them on KarstNSim's case (issue 21). Costing every edge in
-//! the cost graph stage, writing the costs to `costgraph.bin` and reading them back took two
-//! thirds of the network half's time there. So the artifact holds the graph, and each row is
+//! samples they settle: a minority of them on KarstNSim's case (issue 21). Costing every edge in
+//! the cost graph stage, writing the costs to `costgraph.bin` and reading them back took most of
+//! the network half's time there (BENCHMARKS.md). So the artifact holds the graph, and each row is
 //! costed once, in every cost set at once, the first time any search reads it
 //! ([`CostGraph::row_costs`]); a search of a whole graph (the least costs to a spring) has every
 //! row costed first, in parallel ([`Costing::Every`]).
@@ -23,7 +23,9 @@ use std::sync::atomic::{AtomicU8, AtomicU32, Ordering};
 use rayon::prelude::*;
 
 use crate::cost::{CostModel, NodeFields};
-use crate::payload::SHARED_ROW;
+
+/// In `own_rows`: the row costs the same in every set and is held in set 0 only.
+pub const SHARED_ROW: u32 = u32::MAX;
 
 /// A row whose costs are not made yet.
 const EMPTY: u8 = 0;

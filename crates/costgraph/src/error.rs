@@ -22,13 +22,19 @@ pub enum CostGraphError {
          {cost:e}, which a cost (32-bit float, finite and > 0) cannot hold: bring them within docs/limits.md's ranges"
     )]
     CostOutOfRange { cost: f64, length: f64 },
+    #[error("tags[{index}] is {tag}, which the scene does not have ({count} in the scene)")]
+    ForeignTag { index: usize, tag: String, count: usize },
     #[error(transparent)]
-    OverBudget(#[from] karst_geology::budget::OverBudget),
+    OverBudget(#[from] karst_scene::budget::OverBudget),
 }
 
 impl Failure for CostGraphError {
-    /// Every case comes from the scene's parameters.
+    /// A tag the scene does not have comes from samples.bin (made from another scene, or
+    /// damaged); every other case from the scene's parameters.
     fn blame(&self) -> Blame {
-        Blame::Scene
+        match self {
+            Self::ForeignTag { .. } => Blame::Artifact(karst_artifact::StageId::Sampling),
+            _ => Blame::Scene,
+        }
     }
 }

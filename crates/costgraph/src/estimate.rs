@@ -5,7 +5,7 @@
 //! counted as if every row were stored apart in every later set (the upper bound: which rows
 //! share set 0's costs is known only once they are costed).
 
-use karst_geology::budget::{Cheaper, Estimate, OverBudget};
+use karst_scene::budget::{Cheaper, Estimate, OverBudget};
 
 use crate::view::CostgraphView;
 

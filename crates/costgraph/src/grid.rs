@@ -12,7 +12,7 @@
 //! index, so the result is the exact k nearest (no tolerance), independent of the query order,
 //! of the radius guesses and of the thread count. kiddo's `ImmutableKdTree` (used before) ran
 //! on f32 coordinates and picked a wrong k-th neighbour in about 2 rows in 100,000 near-ties
-//! (the bench's uniform points); it also took about 2.5× the instructions per query at k = 50.
+//! (the bench's uniform points); it also took more instructions per query (BENCHMARKS.md).
 
 /// Wanted points per cell: small cells fit the searched ball closely, larger ones cost fewer
 /// cell visits.

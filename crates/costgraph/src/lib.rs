@@ -24,10 +24,10 @@ mod view;
 
 pub use build::{build, build_points};
 pub use cost::CostModel;
-pub use costs::Costing;
+pub use costs::{Costing, SHARED_ROW};
 pub use error::CostGraphError;
 pub use knn::{transpose, transpose_values};
-pub use payload::{CostGraph, CostSet, CostingError, SHARED_ROW};
+pub use payload::{CostGraph, CostSet, CostingError};
 pub use stage::CostgraphStage;
 pub use stats::{Histogram, SetStats, Summary, TermStats};
 pub use view::CostgraphView;

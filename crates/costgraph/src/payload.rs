@@ -11,9 +11,9 @@
 //! cost set per water table named by a spring; paris2021 has one set. Set 0 is the default set
 //! and holds every edge's cost. The later sets differ from it only near the water tables: above
 //! every water table an edge's term depends on its direction alone, far below every one it is
-//! the same constant, so most rows cost the same in every set (85 % of them on the regional
+//! the same constant, so most rows cost the same in every set (most of them on the regional
 //! scene). A later set therefore holds only the rows that may differ (`own_rows`), and the
-//! others are read from set 0: on the regional scene 5 sets take 1.0 GB instead of 3.05 GB.
+//! others are read from set 0: a fraction of the memory of full sets (BENCHMARKS.md).
 
 use std::sync::OnceLock;
 
@@ -22,15 +22,12 @@ use serde::{Deserialize, Serialize};
 
 use karst_artifact::check::{self, ensure};
 use karst_artifact::{Invalid, Payload, PayloadReader, StageId};
-use karst_geology::SceneView;
+use karst_scene::SceneView;
 
 use crate::cost::CostModel;
-use crate::costs::{Costing, Costs, RowsOf};
+use crate::costs::{Costing, Costs, RowsOf, SHARED_ROW};
 use crate::stats::Summary;
 use crate::view::CostgraphView;
-
-/// In `own_rows`: the row costs the same in every set and is held in set 0 only.
-pub const SHARED_ROW: u32 = u32::MAX;
 
 /// Directed graph over the samples: the out-edges of sample `i` are
 /// `targets[offsets[i]..offsets[i + 1]]`, with their costs in every cost set at

@@ -1,6 +1,6 @@
 //! What the cost graph stage reads of the scene, and what the cost model is made of.
 
-karst_geology::view! {
+karst_scene::view! {
     /// The cost graph stage's view of the scene: the geology and key points the cost model
     /// reads ([`crate::CostModel::new`]), the connectivity the graph is checked against, the
     /// stage's parameters and the forced links (whose corridors paris2021 makes cheap).

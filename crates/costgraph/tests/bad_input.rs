@@ -1,13 +1,13 @@
 //! Bad input of the cost graph: every case is refused with a message naming what is wrong.
 
 use karst_costgraph::CostgraphView;
-use karst_geology::SceneView;
+use karst_scene::SceneView;
 use std::path::Path;
 
 use karst_costgraph::{CostGraphError, build};
-use karst_geology::{Scene, SceneError};
 use karst_sampling::SpacingField;
 use karst_sampling::{Samples, Tag};
+use karst_scene::{Scene, SceneError};
 
 const SCENE: &str = r#"
 name = "t"

@@ -2,14 +2,14 @@
 //! point clouds behave as the geology says.
 
 use karst_costgraph::CostgraphView;
-use karst_geology::SceneView;
+use karst_scene::SceneView;
 use std::collections::BinaryHeap;
 use std::path::Path;
 
 use glam::DVec3;
 use karst_costgraph::{CostGraph, Costing, build_points};
-use karst_geology::Scene;
-use karst_geology::rng::Random;
+use karst_scene::Scene;
+use karst_scene::rng::Random;
 
 /// A scene over `[0, size]` with `extra` appended (geology, [costgraph]).
 fn scene(size: [f64; 3], extra: &str) -> Scene {

@@ -3,12 +3,13 @@
 
 use std::path::Path;
 
-use karst_geology::Geology;
-use karst_geology::params::{ExportFormat, ExportParams};
+use karst_geology::{Domain, Geology, Terrain};
 use karst_hydro::Hydro;
 use karst_mesher::Mesh;
 use karst_metrics::MetricsReport;
 use karst_sampling::Samples;
+use karst_scene::KeyPoint;
+use karst_scene::params::{ExportFormat, ExportParams};
 use karst_skeleton::Skeleton;
 use karst_streams::Streams;
 
@@ -17,7 +18,7 @@ use crate::folder::{self, Folder};
 use crate::frame::Frame;
 use crate::network::NetworkView;
 use crate::payload::Manifest;
-use crate::{csv, gltf, gocad, obj, ply, survex, swmm, vtk};
+use crate::{csv, geotiff, gltf, gocad, gpkg, obj, ply, rasters, survex, swmm, vtk};
 
 /// Name of the export folder inside the output folder.
 pub const FOLDER: &str = "export";
@@ -33,6 +34,10 @@ pub struct Inputs<'a> {
     pub samples: Option<&'a Samples>,
     /// The scene's geology, for what the artifacts do not carry (the rock layer of each sample).
     pub geology: Option<&'a Geology>,
+    /// The scene's key points, terrain and domain (local coordinates), for the GIS formats.
+    pub keypoints: Option<&'a [KeyPoint]>,
+    pub terrain: Option<&'a Terrain>,
+    pub domain: Option<&'a Domain>,
     /// The local frame the artifacts are in (the origin exports add back, the CRS).
     pub frame: &'a karst_artifact::Frame,
 }
@@ -46,6 +51,8 @@ pub enum Input {
     Mesh,
     Metrics,
     Samples,
+    /// The scene itself (its key points, terrain and domain).
+    Scene,
 }
 
 impl Input {
@@ -58,6 +65,7 @@ impl Input {
             Input::Mesh => "mesh.bin",
             Input::Metrics => "metrics.json",
             Input::Samples => "samples.bin",
+            Input::Scene => "the scene file",
         }
     }
 
@@ -69,6 +77,7 @@ impl Input {
             Input::Mesh => inputs.mesh.is_some(),
             Input::Metrics => inputs.metrics.is_some(),
             Input::Samples => inputs.samples.is_some(),
+            Input::Scene => inputs.keypoints.is_some() && inputs.terrain.is_some() && inputs.domain.is_some(),
         }
     }
 }
@@ -85,14 +94,38 @@ pub fn needs(format: ExportFormat) -> &'static [Input] {
         }
         ExportFormat::Gltf => &[Input::Skeleton, Input::Hydro, Input::Mesh],
         ExportFormat::Csv => &[Input::Skeleton, Input::Hydro, Input::Streams, Input::Metrics],
+        ExportFormat::Gpkg => &[Input::Skeleton, Input::Hydro, Input::Streams, Input::Scene],
+        ExportFormat::Geotiff => &[Input::Skeleton, Input::Hydro, Input::Scene],
     }
+}
+
+/// The formats written: those of `params`, and the GIS formats (GeoPackage and GeoTIFF
+/// rasters) whenever the run has a CRS; sorted, each once.
+pub fn formats(params: &ExportParams, frame: &karst_artifact::Frame) -> Vec<ExportFormat> {
+    let mut formats = params.formats.clone();
+    if frame.crs.is_some() {
+        formats.extend([ExportFormat::Gpkg, ExportFormat::Geotiff]);
+    }
+    formats.sort();
+    formats.dedup();
+    formats
 }
 
 /// Writes the formats of `params` into `dir/export/` and returns what was written.
 pub fn export(inputs: &Inputs, params: &ExportParams, dir: &Path) -> Result<Manifest, ExportError> {
-    for &format in &params.formats {
-        if let Some(missing) = needs(format).iter().find(|i| !i.present(inputs)) {
-            return Err(ExportError::MissingInput { format: format.name(), input: missing.file_name() });
+    let formats = formats(params, inputs.frame);
+    for &format in &formats {
+        match needs(format).iter().find(|i| !i.present(inputs)) {
+            Some(Input::Scene) => {
+                return Err(ExportError::Unsupported(format!(
+                    "format `{}` needs the scene (its key points, terrain and domain): give --scene SCENE",
+                    format.name()
+                )));
+            }
+            Some(missing) => {
+                return Err(ExportError::MissingInput { format: format.name(), input: missing.file_name() });
+            }
+            None => {}
         }
     }
     let frame = Frame::of(inputs);
@@ -102,9 +135,6 @@ pub fn export(inputs: &Inputs, params: &ExportParams, dir: &Path) -> Result<Mani
     };
     let surfaces = inputs.mesh.map(|mesh| folder::Surfaces::new(mesh, &params.surfaces, &params.formats));
     let mut folder = Folder::create(&dir.join(FOLDER))?;
-    let mut formats = params.formats.clone();
-    formats.sort();
-    formats.dedup();
     for format in formats {
         let network = || network.as_ref().expect("network formats need skeleton and hydro");
         let surfaces = || surfaces.as_ref().expect("mesh formats need the mesh");
@@ -128,6 +158,30 @@ pub fn export(inputs: &Inputs, params: &ExportParams, dir: &Path) -> Result<Mani
             ExportFormat::Csv => {
                 csv::write(&mut folder, &frame, network(), inputs.metrics.expect("checked above"))?;
                 csv::write_streams(&mut folder, &frame, inputs.streams.expect("checked above"))?;
+            }
+            ExportFormat::Gpkg => {
+                let sources = gpkg::layers::Sources {
+                    frame: &frame,
+                    net: network(),
+                    skeleton: inputs.skeleton.expect("checked above"),
+                    streams: inputs.streams.expect("checked above"),
+                    keypoints: inputs.keypoints.expect("checked above"),
+                };
+                let srs = gpkg::Srs::of(inputs.frame.crs.as_deref())?;
+                gpkg::write(&mut folder, &srs, &gpkg::layers::all(&sources))?;
+            }
+            ExportFormat::Geotiff => {
+                let terrain = inputs.terrain.expect("checked above");
+                let grid = rasters::RasterGrid::of(
+                    terrain,
+                    inputs.domain.expect("checked above"),
+                    params.raster_cell,
+                )?;
+                let maps = rasters::ConduitMaps::of(&grid, terrain, network());
+                let crs = geotiff::Crs::of(inputs.frame.crs.as_deref())?;
+                let place = geotiff::Placement::of(&grid, &frame, crs);
+                geotiff::write(&mut folder, "conduit-depth.tif", &place, &maps.depth)?;
+                geotiff::write(&mut folder, "conduit-density.tif", &place, &maps.density)?;
             }
         }
     }

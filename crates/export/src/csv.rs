@@ -5,8 +5,8 @@
 //! rendering attributes empty where the type has none), comma-delimited, world coordinates in
 //! metres. Segment `from,to` follow the water (conduit order when dry).
 
-use karst_geology::params::ExportFormat;
 use karst_metrics::MetricsReport;
+use karst_scene::params::ExportFormat;
 use karst_skeleton::Zone;
 use karst_streams::Streams;
 

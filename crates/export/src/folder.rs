@@ -6,8 +6,8 @@ use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use karst_artifact::atomic;
-use karst_geology::params::{ExportFormat, MeshSurface};
 use karst_mesher::{Mesh, TriMesh, vertex_normals};
+use karst_scene::params::{ExportFormat, MeshSurface};
 
 use crate::error::ExportError;
 use crate::payload::{ExportedFile, Manifest};
@@ -58,6 +58,12 @@ impl Folder {
             blake3,
         });
         Ok(())
+    }
+
+    /// A scratch file for a format built by a library that writes its own file (the
+    /// GeoPackage's SQLite): beside the export folder's files, hidden, never recorded.
+    pub fn scratch_path(&self, name: &str) -> PathBuf {
+        self.dir.join(format!(".{name}.building"))
     }
 
     /// The manifest of everything written.

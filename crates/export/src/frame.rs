@@ -19,6 +19,11 @@ impl Frame {
         Frame { origin: inputs.frame.origin }
     }
 
+    /// The frame whose local origin lies at `origin` in the world.
+    pub fn new(origin: [f64; 3]) -> Frame {
+        Frame { origin }
+    }
+
     /// The world position of a local point.
     pub fn world(&self, local: [f64; 3]) -> [f64; 3] {
         std::array::from_fn(|a| local[a] + self.origin[a])

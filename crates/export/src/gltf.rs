@@ -17,7 +17,7 @@ use std::io::{self, Write};
 
 use serde_json::{Value, json};
 
-use karst_geology::params::ExportFormat;
+use karst_scene::params::ExportFormat;
 use karst_skeleton::ConduitType;
 
 use crate::ExportError;

@@ -14,9 +14,9 @@
 use std::io::{self, Write};
 
 use karst_geology::Geology;
-use karst_geology::params::ExportFormat;
 use karst_hydro::WaterType;
 use karst_sampling::{Samples, Tag};
+use karst_scene::params::ExportFormat;
 use karst_skeleton::{ConduitType, Zone};
 
 use crate::ExportError;

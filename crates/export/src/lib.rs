@@ -18,20 +18,26 @@
 //! shares, `surface.rs` the codes and names of the surface streams' categories (streams.json,
 //! written by VTK as `streams.vtp` and by CSV as `stream_nodes.csv`, `stream_segments.csv`);
 //! one module per format (`vtk.rs`, `gocad.rs`, `survex.rs`, `swmm.rs`, `gltf.rs`,
-//! `obj.rs`, `ply.rs`, `csv.rs`); `folder.rs` writes and records the files; `frame.rs` places
-//! every coordinate.
+//! `obj.rs`, `ply.rs`, `csv.rs`, `gpkg/` for the GeoPackage, `geotiff.rs` for the rasters
+//! that `rasters.rs` computes from the conduits' footprints, `footprint.rs`); `folder.rs` writes
+//! and records the files; `frame.rs` places every coordinate. A scene with a `crs` always gets
+//! the GIS formats (`karst.gpkg` and the GeoTIFF rasters, [`formats`]).
 
 mod build;
 mod csv;
 mod error;
 mod folder;
-mod frame;
+pub mod footprint;
+pub mod frame;
+pub mod geotiff;
 mod gltf;
 mod gocad;
+pub mod gpkg;
 mod network;
 mod obj;
 mod payload;
 mod ply;
+pub mod rasters;
 pub mod stage;
 mod surface;
 mod survex;
@@ -39,9 +45,9 @@ mod swmm;
 mod view;
 mod vtk;
 
-pub use build::{FOLDER, Input, Inputs, export, needs};
+pub use build::{FOLDER, Input, Inputs, export, formats, needs};
 pub use error::ExportError;
-pub use karst_geology::params::{ExportFormat, ExportParams, MeshSurface};
+pub use karst_scene::params::{ExportFormat, ExportParams, MeshSurface};
 pub use network::NetworkView;
 pub use payload::{ExportedFile, Manifest};
 pub use stage::ExportStage;

@@ -1,7 +1,7 @@
 //! Wavefront OBJ (`terrain.obj`, `cave.obj`, `water.obj`): `v` lines in world coordinates,
 //! `vn` unit normals and `f a//a b//b c//c` triangles, 1-based; streamed to the file.
 
-use karst_geology::params::ExportFormat;
+use karst_scene::params::ExportFormat;
 
 use crate::ExportError;
 use crate::folder::{Folder, Surfaces};

@@ -3,7 +3,7 @@
 //! micrometre at any projected coordinate) with float unit normals, the origin also in a
 //! `comment origin X Y Z` header line, faces as uchar-counted uint lists; streamed.
 
-use karst_geology::params::ExportFormat;
+use karst_scene::params::ExportFormat;
 
 use crate::ExportError;
 use crate::folder::{Folder, Surfaces};

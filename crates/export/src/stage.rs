@@ -5,11 +5,11 @@
 use std::path::{Path, PathBuf};
 
 use karst_artifact::{Header, Payload, StageId, check_frame, read_artifact};
-use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_mesher::Mesh;
 use karst_metrics::MetricsReport;
 use karst_sampling::Samples;
+use karst_scene::Scene;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
 use karst_streams::Streams;
@@ -66,6 +66,9 @@ impl Stage for ExportStage {
             metrics: Some(metrics),
             samples: Some(samples),
             geology: Some(view.geology),
+            keypoints: Some(view.keypoints),
+            terrain: Some(view.terrain),
+            domain: Some(view.domain),
             frame: view.frame,
         };
         // The last export's manifest: moved aside by the runner when this export differs.
@@ -92,7 +95,8 @@ pub struct ExportArgs {
     /// The run's output folder (holding skeleton.json, hydro.json, streams.json, mesh.bin, ...).
     pub dir: PathBuf,
     /// Comma-separated formats: vtk, vtk-meshes, gocad, gocad-meshes, survex, swmm, gltf, obj,
-    /// ply, csv (default: the scene's [export] formats, or the cheap ones).
+    /// ply, csv, gpkg, geotiff (default: the scene's [export] formats, or the cheap ones; gpkg
+    /// and geotiff are always added for a scene with a crs).
     #[arg(long, value_delimiter = ',')]
     pub format: Vec<String>,
     /// The scene: its [export] section, and the rock layers of the samples (default: the scene
@@ -123,11 +127,15 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
     if !args.format.is_empty() {
         params.formats = args.format.iter().map(|f| parse_format(f)).collect::<Result<_, _>>()?;
     }
-    let wanted = |input: Input| params.formats.iter().find(|f| needs(**f).contains(&input)).copied();
+    // The scene's frame decides whether the GIS formats are added; without a scene they
+    // cannot be written (they need its key points and terrain).
+    let chosen =
+        crate::build::formats(&params, scene.as_ref().map(|s| s.frame()).unwrap_or(&Default::default()));
+    let wanted = |input: Input| chosen.iter().find(|f| needs(**f).contains(&input)).copied();
     // Every artifact read must be in one frame: the scene's when one is known, else the first's.
     let frame = std::cell::RefCell::new(scene.as_ref().map(|s| s.frame().clone()));
     let read = |input: Input| -> Result<Option<Box<dyn std::any::Any>>, StageError> {
-        let Some(format) = wanted(input) else { return Ok(None) };
+        let Some(format) = wanted(input).filter(|_| input != Input::Scene) else { return Ok(None) };
         let path = args.dir.join(input.file_name());
         if !path.exists() {
             return Err(StageError::input(format!(
@@ -144,6 +152,7 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
             Input::Mesh => load::<Mesh>(&path)?,
             Input::Metrics => load::<MetricsReport>(&path)?,
             Input::Samples => load::<Samples>(&path)?,
+            Input::Scene => unreachable!("the scene is no artifact"),
         };
         let mut frame = frame.borrow_mut();
         match frame.as_ref() {
@@ -164,6 +173,9 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
         metrics: metrics.as_deref().and_then(|a| a.downcast_ref()),
         samples: samples.as_deref().and_then(|a| a.downcast_ref()),
         geology: scene.as_ref().map(Scene::geology),
+        keypoints: scene.as_ref().map(|s| &s.keypoints()[..]),
+        terrain: scene.as_ref().map(Scene::terrain),
+        domain: scene.as_ref().map(Scene::domain),
         frame: &frame,
     };
     // Every failure here is about the user's folder or files, an unwritable path included.

@@ -7,7 +7,7 @@
 //! (the radius) and up = down = the radius at each station. Segments from a node to itself
 //! are left out: cavern would warn about a leg with the same station at both ends.
 
-use karst_geology::params::ExportFormat;
+use karst_scene::params::ExportFormat;
 
 use crate::ExportError;
 use crate::folder::Folder;

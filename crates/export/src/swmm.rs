@@ -19,7 +19,7 @@ mod steady;
 
 use std::io::{self, Write};
 
-use karst_geology::params::{ExportFormat, ExportParams};
+use karst_scene::params::{ExportFormat, ExportParams};
 
 use crate::ExportError;
 use crate::folder::Folder;

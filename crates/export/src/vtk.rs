@@ -8,8 +8,8 @@
 
 use std::io::{self, Write};
 
-use karst_geology::params::ExportFormat;
 use karst_hydro::WaterType;
+use karst_scene::params::ExportFormat;
 use karst_skeleton::{ConduitType, Zone};
 use karst_streams::{Segment, Streams};
 

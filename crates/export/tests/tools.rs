@@ -370,7 +370,7 @@ fn csv_tables_read_back_with_karst_metrics() {
 
 #[test]
 fn manifest_names_every_file_with_its_size_and_digest_and_repeats_exactly() {
-    let run = Run::load(&tiny());
+    let run = Run::load(&tiny()).with_scene("tiny");
     let all = karst_export::ExportFormat::ALL;
     let (_scratch, dir, first) = export_run(&run, &all, "manifest-a");
     let (_second_scratch, _, second) = export_run(&run, &all, "manifest-b");

@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use karst_artifact::stages::producer;
 use karst_artifact::{Encoding, Header, Payload, StageId, decode_payload, read_artifact};
-use karst_geology::Scene;
 use karst_geology::heightfield::{Georeference, HeightGrid};
 use karst_geology::tin::Tin;
+use karst_scene::Scene;
 use karst_stage::Stage;
 use karst_testkit::root;
 
@@ -130,7 +130,7 @@ fn encode<P: Payload>(payload: &P) -> Vec<u8> {
 }
 
 /// The tiny mesh cut to its first 300 triangles per surface: a small seed, so that a case
-/// costs a millisecond, not the golden's 25 MB of work.
+/// is quick, not the whole golden mesh's work.
 fn mesh_seeds() -> Vec<Vec<u8>> {
     let (_, mut mesh) = read_artifact::<karst_mesher::Mesh>(&root().join("fixtures/golden/tiny/mesh.bin"))
         .expect("the golden reads");
@@ -241,6 +241,9 @@ fn check_network_out(input: &[u8]) {
         metrics: Some(&o.metrics),
         samples: Some(&o.samples),
         geology: Some(o.scene.geology()),
+        keypoints: Some(o.scene.keypoints()),
+        terrain: Some(o.scene.terrain()),
+        domain: Some(o.scene.domain()),
         frame: &o.frame,
     };
     let params = karst_export::ExportParams {
@@ -363,7 +366,7 @@ fn tsurf_seeds() -> Vec<Vec<u8>> {
 }
 
 /// A surface that reads is queried as the geology and the sampling query it.
-fn use_tin(tin: Result<Tin, karst_geology::tin::TinError>) {
+fn use_tin(tin: Result<Tin, karst_geodata::tin::TinError>) {
     if let Ok(tin) = tin {
         let _ = tin.elevation_at(0.0, 0.0);
         let _ = tin.elevation_at(1e5, -1e5);

@@ -5,8 +5,9 @@
 
 use std::path::Path;
 
+use karst_geodata::tin::write_tsurf;
 use karst_geology::heightfield::{HeightGrid, write_png};
-use karst_geology::tin::{Tin, write_tsurf};
+use karst_geology::tin::Tin;
 
 /// The plateau: 280 m on the west edge falling 12 % to the east, low rolling hills (never below
 /// the plain slope, so the scene's key points stay underground) and a shallow valley that
@@ -43,5 +44,5 @@ fn main() -> std::io::Result<()> {
         }
     }
     let tin = Tin::new(vertices, triangles, "horizon").map_err(std::io::Error::other)?;
-    write_tsurf(&folder.join("marl-parting.ts"), "marl-parting", &tin)
+    write_tsurf(&folder.join("marl-parting.ts"), "marl-parting", &tin.vertices, &tin.triangles)
 }

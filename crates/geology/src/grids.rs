@@ -1,16 +1,18 @@
 //! GeoTIFF rasters in the scene: the terrain as a bilinear [`HeightGrid`], and water tables,
 //! horizons and faults given as elevation rasters as triangulated surfaces ([`Tin`]).
 //!
-//! The terrain is interpolated bilinearly between pixel centres (see [`crate::geotiff`] for
+//! The terrain is interpolated bilinearly between pixel centres (see [`karst_geodata::geotiff`] for
 //! where a pixel's value stands). A surface needs exact distances and points exactly on it
 //! (sampling, inception costs), which a bilinear patch does not give in closed form, so a
 //! surface raster becomes a TIN through the same pixel centres: each cell between four centres
 //! is split along its south-west–north-east diagonal. Both interpolants agree at the pixels and
 //! differ inside a cell by at most a quarter of the cell's twist |h00 + h11 − h10 − h01|.
 
-use crate::geotiff::GeoRaster;
 use crate::heightfield::HeightGrid;
-use crate::tin::{Tin, TinError};
+use karst_geodata::geotiff::GeoRaster;
+use karst_geodata::tin::TinError;
+
+use crate::tin::Tin;
 
 /// Does `file` name a GeoTIFF (by extension)?
 pub fn is_geotiff(file: &str) -> bool {
@@ -53,7 +55,7 @@ pub fn tin(raster: &GeoRaster, file: &str) -> Result<Tin, TinError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geotiff::testing::{Encoding, write};
+    use karst_geodata::geotiff::testing::{Encoding, write};
 
     #[test]
     fn terrain_and_surface_agree_at_pixels_and_on_planes() {

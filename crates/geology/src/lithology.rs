@@ -2,8 +2,8 @@
 //! whose integer codes the scene maps to layers of rock: karstification potential, sampling
 //! radius, no-karst.
 //!
-//! The grid is a VTK ImageData file ([`crate::vti`]; its origin and spacing are the file's) or
-//! a NumPy array ([`crate::npy`]; `origin`, the centre of voxel [0, 0, 0], and `spacing` are
+//! The grid is a VTK ImageData file ([`karst_geodata::vti`]; its origin and spacing are the file's) or
+//! a NumPy array ([`karst_geodata::npy`]; `origin`, the centre of voxel [0, 0, 0], and `spacing` are
 //! given in the scene). Each voxel is a box centred on its sample; a point takes the code of
 //! the voxel containing it (nearest sample, no interpolation: codes are categories). Where the
 //! grid has a unit, that unit is the point's layer ([`crate::Geology::layer_at`]) — the voxel
@@ -16,8 +16,9 @@ use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
+use karst_geodata::voxels::{Lattice, Voxels};
+
 use crate::field::Layer;
-use crate::validate::Checks;
 use crate::{Domain, Point};
 
 /// `[geology.lithology]`.
@@ -68,22 +69,6 @@ fn one() -> f64 {
     1.0
 }
 
-/// Where the voxels are: boxes of `spacing` centred on first_centre + (i, j, k)·spacing.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Lattice {
-    /// Centre of voxel [0, 0, 0].
-    pub first_centre: [f64; 3],
-    pub spacing: [f64; 3],
-    pub size: [usize; 3],
-}
-
-/// A regular 3D grid of integer codes as a reader returns it, x fastest, then y, then z.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Voxels {
-    pub lattice: Lattice,
-    pub codes: Vec<i32>,
-}
-
 /// The loaded grid: each voxel's unit.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LithologyGrid {
@@ -100,28 +85,6 @@ const UNMAPPED: u16 = u16::MAX;
 /// Largest grid, in bytes of the file and of its voxels' units: 1 GiB.
 const BUDGET_BYTES: u64 = 1 << 30;
 
-impl Lattice {
-    /// The voxel containing `p` (clamped to the grid).
-    fn index(&self, p: Point) -> usize {
-        let at = |a: usize| {
-            let t = ((p[a] - self.first_centre[a]) / self.spacing[a] + 0.5).floor();
-            t.clamp(0.0, (self.size[a] - 1) as f64) as usize
-        };
-        (at(2) * self.size[1] + at(1)) * self.size[0] + at(0)
-    }
-
-    /// `[low, high]` of the voxels' boxes along each axis.
-    fn bounds(&self) -> [[f64; 2]; 3] {
-        std::array::from_fn(|a| {
-            let half = 0.5 * self.spacing[a];
-            [
-                self.first_centre[a] - half,
-                self.first_centre[a] + (self.size[a] - 1) as f64 * self.spacing[a] + half,
-            ]
-        })
-    }
-}
-
 impl LithologyGrid {
     /// Moves the voxels by `by`.
     pub fn translate(&mut self, by: [f64; 3]) {
@@ -132,7 +95,7 @@ impl LithologyGrid {
 
     /// The unit at `p`, if the grid has one there.
     fn unit_at(&self, p: Point) -> Option<usize> {
-        self.units.get(self.lattice.index(p)).filter(|u| **u != UNMAPPED).map(|u| *u as usize)
+        self.units.get(self.lattice.index(p.to_array())).filter(|u| **u != UNMAPPED).map(|u| *u as usize)
     }
 
     /// The layer of the unit at `p`.
@@ -153,7 +116,7 @@ impl Lithology {
     }
 
     /// Reads the grid (relative to `folder`) and maps its codes over `domain`.
-    pub(crate) fn load(&self, folder: &Path, domain: &Domain) -> Result<LithologyGrid, String> {
+    pub fn load(&self, folder: &Path, domain: &Domain) -> Result<LithologyGrid, String> {
         let path = folder.join(&self.file);
         let file = path.display().to_string();
         let size = std::fs::metadata(&path).map_err(|e| format!("cannot read {file}: {e}"))?.len();
@@ -177,7 +140,7 @@ impl Lithology {
             if self.origin.is_some() || self.spacing.is_some() {
                 return Err("a .vti file carries its origin and spacing: remove them from the scene".into());
             }
-            crate::vti::parse(bytes, self.array.as_deref())
+            karst_geodata::vti::parse(bytes, self.array.as_deref())
         } else if lower.ends_with(".npy") {
             let (Some(first_centre), Some(spacing)) = (self.origin, self.spacing) else {
                 return Err("a .npy array needs `origin` and `spacing` in the scene".into());
@@ -185,7 +148,7 @@ impl Lithology {
             if self.array.is_some() {
                 return Err("`array` names a .vti file's array; a .npy file holds one".into());
             }
-            let (size, codes) = crate::npy::parse(bytes)?;
+            let (size, codes) = karst_geodata::npy::parse(bytes)?;
             Ok(Voxels { lattice: Lattice { first_centre, spacing, size }, codes })
         } else {
             Err("is neither a VTK ImageData (.vti) nor a NumPy (.npy) file".into())
@@ -234,34 +197,6 @@ impl Lithology {
             units.push(unit);
         }
         Ok(units)
-    }
-
-    /// The units' own fields.
-    pub(crate) fn check(&self, found: &mut Checks) {
-        for (i, u) in self.units.iter().enumerate() {
-            let at = |f: &str| format!("geology.lithology.units[{i}].{f}");
-            if found.finite(&at("potential"), &[u.potential]) && !(0.0..=1.0).contains(&u.potential) {
-                found.report(&at("potential"), format!("must be in [0, 1], got {}", u.potential));
-            }
-            if let Some(r) = u.radius {
-                found.positive(&at("radius"), r);
-            }
-            if self.units[..i].iter().any(|o| o.code == u.code) {
-                found.report(&at("code"), format!("code {} is mapped twice", u.code));
-            }
-            if self.units[..i].iter().any(|o| o.name == u.name) {
-                found.report(&at("name"), format!("\"{}\" is used twice", u.name));
-            }
-        }
-        if let Some(s) = self.spacing
-            && found.finite("geology.lithology.spacing", &s)
-            && s.iter().any(|v| *v <= 0.0)
-        {
-            found.report("geology.lithology.spacing", format!("must be > 0, got {s:?}"));
-        }
-        if let Some(o) = self.origin {
-            found.finite("geology.lithology.origin", &o);
-        }
     }
 }
 

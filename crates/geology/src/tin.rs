@@ -1,13 +1,6 @@
-//! Triangulated surfaces (TIN) read from GOCAD TSurf files (`.ts`, what SKUA-Gocad exports) or
-//! from a plain text of vertices and triangles, with the geometric queries water tables,
-//! horizons and faults need (KarstNSim §1.1 uses TINs for all three).
-//!
-//! TSurf: `VRTX`/`PVRTX id x y z [properties]` define vertices, `ATOM`/`PATOM id ref` reuse one,
-//! `TRGL a b c` are triangles over those ids; several `TFACE` parts are merged; with
-//! `ZPOSITIVE Depth` z is negated so that z stays up. Other keywords (HEADER, properties,
-//! BSTONE, BORDER, ...) are skipped. Plain text: `v x y z` lines and `f a b c` lines with
-//! 1-based vertex numbers (OBJ's convention, so a triangulated OBJ reads too); `#` starts a
-//! comment.
+//! Triangulated surfaces (TIN) with the geometric queries water tables, horizons and faults
+//! need (KarstNSim §1.1 uses TINs for all three); their files (GOCAD TSurf, plain text) are read
+//! by [`karst_geodata::tin`].
 //!
 //! Queries use a bucket grid over the xy footprint: each bucket lists the triangles whose xy
 //! bounding box overlaps it. [`Tin::elevation_at`] is the barycentric elevation of the triangle
@@ -18,6 +11,7 @@
 use std::path::Path;
 
 use glam::{DVec2, DVec3};
+use karst_geodata::tin::TinError;
 use serde::{Deserialize, Serialize};
 
 /// A triangulated surface.
@@ -35,19 +29,6 @@ impl std::fmt::Debug for Tin {
     }
 }
 
-/// Why a triangulated surface cannot be used.
-#[derive(Debug, thiserror::Error, PartialEq)]
-pub enum TinError {
-    #[error("cannot read {file}: {message}")]
-    Read { file: String, message: String },
-    #[error("{file}:{line}: {message}")]
-    Syntax { file: String, line: usize, message: String },
-    #[error("{file}: triangle {index} {message}")]
-    Triangle { file: String, index: usize, message: String },
-    #[error("{file}: has no triangles")]
-    Empty { file: String },
-}
-
 #[derive(Clone, Default, PartialEq)]
 struct Buckets {
     lo: DVec2,
@@ -60,15 +41,10 @@ struct Buckets {
 }
 
 impl Tin {
-    /// Reads a `.ts` TSurf or a plain vertices/triangles text, by extension.
+    /// Reads a `.ts` TSurf or a plain vertices/triangles text ([`karst_geodata::tin`]).
     pub fn read(path: &Path) -> Result<Tin, TinError> {
-        let file = path.display().to_string();
-        let text = karst_artifact::files::read_regular_text(path, karst_artifact::files::MAX_DATA_BYTES)
-            .map_err(|e| TinError::Read { file: file.clone(), message: e.to_string() })?;
-        let is_tsurf = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ts"));
-        let (vertices, triangles) =
-            if is_tsurf { parse_tsurf(&text, &file)? } else { parse_plain(&text, &file)? };
-        Tin::new(vertices, triangles, &file)
+        let (vertices, triangles) = karst_geodata::tin::read(path)?;
+        Tin::new(vertices, triangles, &path.display().to_string())
     }
 
     /// Checks the triangles (indices, degeneracy) and builds the search structure.
@@ -336,137 +312,6 @@ pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     a + ab * (vb * denom) + ac * (vc * denom)
 }
 
-type Parsed = (Vec<[f64; 3]>, Vec<[u32; 3]>);
-
-fn syntax(file: &str, line: usize, message: String) -> TinError {
-    TinError::Syntax { file: file.into(), line, message }
-}
-
-fn numbers<T: std::str::FromStr>(
-    words: &[&str],
-    n: usize,
-    file: &str,
-    line: usize,
-) -> Result<Vec<T>, TinError> {
-    if words.len() < n {
-        return Err(syntax(file, line, format!("expected {n} numbers, found {}", words.len())));
-    }
-    words[..n]
-        .iter()
-        .map(|w| w.parse().map_err(|_| syntax(file, line, format!("\"{w}\" is not a valid number"))))
-        .collect()
-}
-
-fn finite_vertex(xyz: Vec<f64>, file: &str, line: usize) -> Result<[f64; 3], TinError> {
-    let limit = crate::validate::MAX_COORDINATE;
-    if let Some(v) = xyz.iter().find(|v| v.is_nan() || v.abs() > limit) {
-        return Err(syntax(file, line, format!("coordinate {v} is not a finite number within ±{limit:e}")));
-    }
-    Ok([xyz[0], xyz[1], xyz[2]])
-}
-
-fn parse_tsurf(text: &str, file: &str) -> Result<Parsed, TinError> {
-    let mut vertices = Vec::new();
-    let mut ids: std::collections::BTreeMap<i64, u32> = std::collections::BTreeMap::new();
-    let mut triangles = Vec::new();
-    let mut depth_positive = false;
-    if !text.trim_start().starts_with("GOCAD TSurf") {
-        return Err(syntax(file, 1, "not a GOCAD TSurf file (it must start with \"GOCAD TSurf\")".into()));
-    }
-    for (n, raw) in text.lines().enumerate() {
-        let line = n + 1;
-        let words: Vec<&str> = raw.split_whitespace().collect();
-        let Some((&key, rest)) = words.split_first() else { continue };
-        match key {
-            "ZPOSITIVE" => depth_positive = rest.first().is_some_and(|w| w.eq_ignore_ascii_case("depth")),
-            "VRTX" | "PVRTX" => {
-                let id: Vec<i64> = numbers(rest, 1, file, line)?;
-                let mut xyz = finite_vertex(numbers(&rest[1..], 3, file, line)?, file, line)?;
-                if depth_positive {
-                    xyz[2] = -xyz[2];
-                }
-                if ids.insert(id[0], vertices.len() as u32).is_some() {
-                    return Err(syntax(file, line, format!("vertex id {} is defined twice", id[0])));
-                }
-                vertices.push(xyz);
-            }
-            "ATOM" | "PATOM" => {
-                let v: Vec<i64> = numbers(rest, 2, file, line)?;
-                let target = *ids.get(&v[1]).ok_or_else(|| {
-                    syntax(file, line, format!("ATOM {} refers to undefined vertex {}", v[0], v[1]))
-                })?;
-                ids.insert(v[0], target);
-            }
-            "TRGL" => {
-                let v: Vec<i64> = numbers(rest, 3, file, line)?;
-                let mut t = [0u32; 3];
-                for (k, id) in v.iter().enumerate() {
-                    t[k] = *ids.get(id).ok_or_else(|| {
-                        syntax(file, line, format!("TRGL uses vertex id {id}, which no VRTX defines"))
-                    })?;
-                }
-                triangles.push(t);
-            }
-            _ => {}
-        }
-    }
-    Ok((vertices, triangles))
-}
-
-fn parse_plain(text: &str, file: &str) -> Result<Parsed, TinError> {
-    let mut vertices = Vec::new();
-    let mut triangles = Vec::new();
-    for (n, raw) in text.lines().enumerate() {
-        let line = n + 1;
-        let content = raw.split('#').next().unwrap_or("");
-        let words: Vec<&str> = content.split_whitespace().collect();
-        let Some((&key, rest)) = words.split_first() else { continue };
-        match key {
-            "v" => vertices.push(finite_vertex(numbers(rest, 3, file, line)?, file, line)?),
-            "f" => {
-                let v: Vec<i64> = numbers(rest, 3, file, line)?;
-                if v.len() != 3 || rest.len() != 3 {
-                    return Err(syntax(
-                        file,
-                        line,
-                        format!("a face must have 3 vertices, found {}", rest.len()),
-                    ));
-                }
-                let mut t = [0u32; 3];
-                for (k, i) in v.iter().enumerate() {
-                    if *i < 1 || *i as usize > vertices.len() {
-                        return Err(syntax(
-                            file,
-                            line,
-                            format!(
-                                "vertex number {i} is not in 1..={} (vertices read so far)",
-                                vertices.len()
-                            ),
-                        ));
-                    }
-                    t[k] = (*i - 1) as u32;
-                }
-                triangles.push(t);
-            }
-            other => return Err(syntax(file, line, format!("unknown record \"{other}\" (expected v or f)"))),
-        }
-    }
-    Ok((vertices, triangles))
-}
-
-/// Writes a TIN as a GOCAD TSurf.
-pub fn write_tsurf(path: &Path, name: &str, tin: &Tin) -> std::io::Result<()> {
-    let mut text = format!("GOCAD TSurf 1\nHEADER {{\nname: {name}\n}}\nTFACE\n");
-    for (i, v) in tin.vertices.iter().enumerate() {
-        text.push_str(&format!("VRTX {} {} {} {}\n", i + 1, v[0], v[1], v[2]));
-    }
-    for t in &tin.triangles {
-        text.push_str(&format!("TRGL {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1));
-    }
-    text.push_str("END\n");
-    std::fs::write(path, text)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -539,32 +384,18 @@ mod tests {
     }
 
     #[test]
-    fn tsurf_round_trip_and_bad_files() {
+    fn tsurf_round_trip_and_degenerate_triangles() {
         let dir = std::env::temp_dir().join(format!("karst-tin-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("h.ts");
-        write_tsurf(&path, "h", &sheet()).unwrap();
-        assert_eq!(Tin::read(&path).unwrap(), sheet());
+        let tin = sheet();
+        karst_geodata::tin::write_tsurf(&path, "h", &tin.vertices, &tin.triangles).unwrap();
+        assert_eq!(Tin::read(&path).unwrap(), tin);
         let bad = dir.join("bad.ts");
-        std::fs::write(&bad, "GOCAD TSurf 1\nTFACE\nVRTX 1 0 0 0\nVRTX 2 1 0 0\nTRGL 1 2 9\nEND\n").unwrap();
-        let e = Tin::read(&bad).unwrap_err().to_string();
-        assert!(e.contains("bad.ts:5: TRGL uses vertex id 9"), "{e}");
         std::fs::write(&bad, "GOCAD TSurf 1\nVRTX 1 0 0 0\nVRTX 2 1 0 0\nVRTX 3 2 0 0\nTRGL 1 2 3\n")
             .unwrap();
         let e = Tin::read(&bad).unwrap_err().to_string();
         assert!(e.contains("triangle 0 [0, 1, 2] is degenerate"), "{e}");
-        let depth = dir.join("depth.ts");
-        std::fs::write(
-            &depth,
-            "GOCAD TSurf 1\nZPOSITIVE Depth\nVRTX 1 0 0 10\nVRTX 2 1 0 10\nVRTX 3 0 1 10\nTRGL 1 2 3\n",
-        )
-        .unwrap();
-        assert_eq!(Tin::read(&depth).unwrap().vertices[0][2], -10.0);
-        let plain = dir.join("p.txt");
-        std::fs::write(&plain, "# a triangle\nv 0 0 1\nv 1 0 1\nv 0 1 nan\nf 1 2 3\n").unwrap();
-        assert!(Tin::read(&plain).unwrap_err().to_string().contains("p.txt:4: coordinate NaN"));
-        std::fs::write(&plain, "v 0 0 1\nv 1 0 1\nv 0 1 1\nf 1 2 4\n").unwrap();
-        assert!(Tin::read(&plain).unwrap_err().to_string().contains("vertex number 4 is not in 1..=3"));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

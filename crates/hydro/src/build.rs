@@ -1,8 +1,8 @@
 //! The hydro stage's algorithm entry: the sinks' recharge and the springs from the scene, then
 //! the hydraulics of the network.
 
-use karst_geology::params::Recharge;
-use karst_geology::{KeyPointKind, keypoints_of};
+use karst_scene::params::Recharge;
+use karst_scene::{KeyPointKind, keypoints_of};
 use karst_skeleton::Skeleton;
 
 use crate::error::HydroError;

@@ -19,7 +19,7 @@ pub enum HydroError {
     )]
     PoolClosed { index: usize, node: u32 },
     #[error(transparent)]
-    OverBudget(#[from] karst_geology::budget::OverBudget),
+    OverBudget(#[from] karst_scene::budget::OverBudget),
 }
 
 impl Failure for HydroError {

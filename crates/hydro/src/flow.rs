@@ -10,7 +10,7 @@
 
 use glam::DVec3;
 
-use karst_geology::params::PoolOutlet;
+use karst_scene::params::PoolOutlet;
 
 use crate::graph::{Graph, Terminal};
 use crate::orient::Orientation;

@@ -3,7 +3,7 @@
 
 use glam::{DVec2, DVec3};
 
-use karst_geology::params::{HydroParams, PoolWeights};
+use karst_scene::params::{HydroParams, PoolWeights};
 use karst_skeleton::{ConduitType, Skeleton, Zone};
 
 use crate::flow::{self, Flows, Split, propagate};

@@ -9,9 +9,9 @@
 //! terrain drains its own cell only.
 
 use crate::view::HydroView;
-use karst_geology::budget::{Cheaper, Estimate, OverBudget};
-use karst_geology::keypoint::KeyPointKind;
-use karst_geology::keypoints_of;
+use karst_scene::budget::{Cheaper, Estimate, OverBudget};
+use karst_scene::keypoint::KeyPointKind;
+use karst_scene::keypoints_of;
 
 /// Bytes per cell of the D8 grid: its height, its area and its place in the order of heights.
 const BYTES_PER_CELL: f64 = 32.0;
@@ -114,7 +114,7 @@ impl Grid {
 mod tests {
     use std::path::Path;
 
-    use karst_geology::{Scene, SceneView};
+    use karst_scene::{Scene, SceneView};
 
     use super::*;
 

@@ -3,9 +3,9 @@
 
 use std::time::Instant;
 
-use karst_geology::params::HydroParams;
-use karst_geology::rng::Random;
 use karst_hydro::{Inputs, compute};
+use karst_scene::params::HydroParams;
+use karst_scene::rng::Random;
 use karst_skeleton::{Conduit, ConduitType, Node, Route, Skeleton, Zone};
 
 /// An n × n grid maze on a slope with noisy elevations (every cell a loop), `sinks` sinks

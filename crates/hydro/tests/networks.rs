@@ -4,9 +4,9 @@
 
 use std::collections::BTreeMap;
 
-use karst_geology::params::{HydroParams, PoolOutlet, PoolWeights};
-use karst_geology::rng::Random;
 use karst_hydro::{Hydro, HydroError, Inputs, WaterType, compute, export};
+use karst_scene::params::{HydroParams, PoolOutlet, PoolWeights};
+use karst_scene::rng::Random;
 use karst_skeleton::{Conduit, ConduitType, Node, Route, Skeleton, Zone};
 use karst_stage::{Blame, Failure};
 

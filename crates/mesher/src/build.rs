@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use karst_geology::{KeyPoint, KeyPointKind};
+use karst_scene::{KeyPoint, KeyPointKind};
 use karst_sdf::{CarvedTerrain, SdfModel};
 
 use std::io::Write;
@@ -12,6 +12,7 @@ use std::io::Write;
 use karst_artifact::check::{self, MAX_COORDINATE};
 use karst_stage::ArtifactOut;
 
+use crate::cell::cave_cell;
 use crate::cleanup::{Solid, clean};
 use crate::error::MesherError;
 use crate::payload::{Mesh, SurfaceCounts};
@@ -48,7 +49,7 @@ fn checked_cells(view: &MesherView, model: &SdfModel) -> Result<f64, MesherError
     let cave_cell = cave_cell(model, params.cell_size, params.cave_cell_size);
     check_lattice(model, "mesher.cave_cell_size", cave_cell)?;
     crate::estimate::check(view.budget, model, params.cell_size, |c| {
-        crate::build::cave_cell(model, c, params.cave_cell_size)
+        crate::cell::cave_cell(model, c, params.cave_cell_size)
     })?;
     Ok(cave_cell)
 }
@@ -161,32 +162,6 @@ pub fn mesh_with(field: &CarvedTerrain, cell_size: f64, cave_cell_size: f64, anc
     let water = polygonize(&Water(field), cave_cell_size);
     Mesh { cell_size, cave_cell_size, terrain, cave, water }
 }
-
-/// The cell of the cave alone and the water: `requested` when positive, else the half-thickness
-/// of the thinnest karst leaf (capsule or sphere radius, half the smaller side of a sweep's
-/// section, chamber radius), at most `cell_size` and at least `cell_size` / [`CAVE_REFINE`].
-/// Every point of space is within √3/2 cells of a lattice point, so a conduit at least a cell
-/// thick always holds lattice points: it cannot fall between them.
-pub fn cave_cell(model: &SdfModel, cell_size: f64, requested: f64) -> f64 {
-    if requested > 0.0 {
-        return requested;
-    }
-    let section = |s: &karst_sdf::SectionSpec| (s.shape.radius * s.shape.ratio.min(1.0)) as f64;
-    let thinnest = model
-        .capsules
-        .iter()
-        .map(|c| c.radius)
-        .chain(model.spheres.iter().flat_map(|g| g.spheres.iter().map(|s| s[3] as f64)))
-        .chain(model.sweeps.iter().flat_map(|s| [section(&s.sweep.start), section(&s.sweep.end)]))
-        .chain(model.chambers.iter().map(|c| c.radius as f64))
-        .filter(|r| *r > 0.0)
-        .fold(f64::INFINITY, f64::min);
-    thinnest.clamp(cell_size / CAVE_REFINE, cell_size)
-}
-
-/// The automatic cave cell is at most this many times finer than the terrain's (the cost grows
-/// as its square).
-pub const CAVE_REFINE: f64 = 8.0;
 
 /// [`mesh_with`], then each surface simplified to at most `target_triangles` (0: not
 /// simplified).

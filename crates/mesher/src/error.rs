@@ -18,7 +18,7 @@ pub enum MesherError {
     #[error("cannot write the mesh: {0}")]
     Write(String),
     #[error(transparent)]
-    OverBudget(#[from] karst_geology::budget::OverBudget),
+    OverBudget(#[from] karst_scene::budget::OverBudget),
 }
 
 impl Failure for MesherError {

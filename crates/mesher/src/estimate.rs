@@ -1,17 +1,26 @@
-//! The mesher's work estimate, made before any cell is evaluated: about 2 triangles per cell²
-//! of the surface areas estimated here (measured: 1.9 for the tiny scene's terrain and 1.7 for
-//! its cave, 2.0 and 1.9 for the default scene's), counted at 2.5, and a triangle costs about
-//! 64 bytes at the peak (its share of the vertices, the bricks and the cleanup; BENCHMARKS.md:
-//! 48 M triangles peaked at 3 GB). The surfaces: the carved terrain at `cell_size` (the ground, the domain's sides
-//! and bottom, the cave walls) and the cave alone and its water at the cave cell.
+//! The mesher's work estimate, made before any cell is evaluated: [`Work`] (surface cells,
+//! triangles and the bytes of mesh.bin, held against the output budget of a run) and
+//! [`check`] (the memory peak, held against the memory budget). About 2 triangles come per
+//! cell² of the surface areas estimated here, counted at 2.5, and a triangle costs about 64
+//! bytes at the peak (its share of the vertices, the bricks and the cleanup; measured in
+//! BENCHMARKS.md, "mesher"). The surfaces: the carved terrain at `cell_size` (the ground, the
+//! domain's sides and bottom, the cave walls), the cave alone and its water at the cave cell.
+//! The cave's tortuous conduits are overlapping spheres: their union's area is probed, not
+//! summed ([`union_area`]).
 
-use karst_geology::budget::{Budget, Cheaper, Estimate, OverBudget};
+use karst_scene::budget::{Budget, Cheaper, Estimate, OverBudget};
 use karst_sdf::SdfModel;
+use rayon::prelude::*;
+
+use crate::view::MesherView;
 
 /// Triangles per cell² of estimated surface.
 const TRIANGLES_PER_CELL: f64 = 2.5;
 /// Bytes per triangle at the peak.
 const BYTES_PER_TRIANGLE: f64 = 64.0;
+/// Bytes of mesh.bin per triangle: half a vertex (three f32) and three u32 indices, a little
+/// less once encoded (13.7 to 15.3 on the fixture scenes).
+const MESH_BYTES_PER_TRIANGLE: f64 = 15.0;
 /// Terrain samples per axis for its area.
 const SAMPLES: usize = 64;
 
@@ -52,18 +61,105 @@ impl Areas {
                 tau * (shape.radius * shape.ratio.max(1.0)) as f64 * length
             })
             .sum();
-        let spheres: f64 =
-            model.spheres.iter().flat_map(|g| &g.spheres).map(|s| tau * (s[3] as f64).powi(2)).sum();
+        let spheres: f64 = model.spheres.iter().map(|g| union_area(&g.spheres)).sum();
         let chambers: f64 = model.chambers.iter().map(|c| 2.0 * tau * (c.radius as f64 * 1.5).powi(2)).sum();
         let capsules: f64 = model.capsules.iter().map(|c| 2.0 * tau * c.radius.powi(2)).sum();
         Areas { outside: top + sides + size.x * size.y, cave: sweeps + spheres + chambers + capsules }
     }
 
+    /// Surface cells of the carved terrain at `cell`, and of the cave and of its water at
+    /// `cave`: the water's surface is counted as half the cave's (14 to 63 % on the fixture
+    /// scenes).
+    fn cells(&self, cell: f64, cave: f64) -> [f64; 3] {
+        let cave_alone = self.cave / (cave * cave);
+        [(self.outside + self.cave) / (cell * cell), cave_alone, cave_alone / 2.0]
+    }
+
     /// Bytes of the three meshes at terrain cell `cell` and cave cell `cave`.
     fn bytes(&self, cell: f64, cave: f64) -> f64 {
-        let terrain = (self.outside + self.cave) / (cell * cell);
-        let cave_and_water = 2.0 * self.cave / (cave * cave);
-        (terrain + cave_and_water) * TRIANGLES_PER_CELL * BYTES_PER_TRIANGLE
+        self.cells(cell, cave).iter().sum::<f64>() * TRIANGLES_PER_CELL * BYTES_PER_TRIANGLE
+    }
+}
+
+/// Directions at which each sphere's surface is probed by [`union_area`].
+const PROBES: usize = 24;
+
+/// The wall area of a tortuous conduit, overlapping spheres `(x, y, z, r)` in no particular
+/// order: each sphere's area times the share of [`PROBES`] points of its surface (a Fibonacci
+/// lattice) that lie inside no other sphere of the group, found through a hash grid of cells
+/// as wide as the mean diameter, each sphere listed in every cell its bounding box meets.
+fn union_area(spheres: &[[f32; 4]]) -> f64 {
+    let mean = spheres.iter().map(|s| s[3] as f64).sum::<f64>() / spheres.len().max(1) as f64;
+    if spheres.is_empty() || mean.is_nan() || mean <= 0.0 {
+        return 0.0;
+    }
+    let cell = 2.0 * mean;
+    let key = |p: [f64; 3]| p.map(|c| (c / cell).floor() as i64);
+    let mut grid: std::collections::HashMap<[i64; 3], Vec<usize>> = std::collections::HashMap::new();
+    for (i, s) in spheres.iter().enumerate() {
+        let (c, r) = ([s[0], s[1], s[2]].map(f64::from), s[3] as f64);
+        let (lo, hi) = (key(c.map(|v| v - r)), key(c.map(|v| v + r)));
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    grid.entry([x, y, z]).or_default().push(i);
+                }
+            }
+        }
+    }
+    let inside_another = |i: usize, p: [f64; 3]| {
+        grid.get(&key(p)).is_some_and(|near| {
+            near.iter().any(|&j| {
+                let t = spheres[j];
+                let d2 = (0..3).map(|c| (p[c] - t[c] as f64).powi(2)).sum::<f64>();
+                j != i && d2 < (t[3] as f64).powi(2)
+            })
+        })
+    };
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let directions: Vec<[f64; 3]> = (0..PROBES)
+        .map(|k| {
+            let z = 1.0 - (2 * k + 1) as f64 / PROBES as f64;
+            let (r, phi) = ((1.0 - z * z).sqrt(), golden * k as f64);
+            [r * phi.cos(), r * phi.sin(), z]
+        })
+        .collect();
+    let exposed = |i: usize| {
+        let s = spheres[i].map(|v| v as f64);
+        let open =
+            directions.iter().filter(|u| !inside_another(i, [0, 1, 2].map(|c| s[c] + s[3] * u[c]))).count();
+        2.0 * std::f64::consts::TAU * s[3] * s[3] * open as f64 / PROBES as f64
+    };
+    // In parallel, summed in order: the estimate does not depend on the thread count.
+    let areas: Vec<f64> = (0..spheres.len()).into_par_iter().map(exposed).collect();
+    areas.iter().sum()
+}
+
+/// The mesher's work on a model at its cells, estimated from the model's domain, terrain and
+/// primitives: what a run prints before the mesher starts and holds against its output budget.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Work {
+    /// Surface cells polygonized (terrain, cave, water).
+    pub cells: f64,
+    /// Triangles of the three meshes, before any simplification.
+    pub triangles: f64,
+    /// Bytes of mesh.bin with those triangles.
+    pub bytes: f64,
+}
+
+impl Work {
+    /// The work of meshing `model` under `view`'s `[mesher]` cells (the cave cell derived from
+    /// the conduits when not set, as the mesher does).
+    pub fn of(view: &MesherView, model: &SdfModel) -> Work {
+        let cell = view.mesher.cell_size;
+        Work::at(model, cell, crate::cell::cave_cell(model, cell, view.mesher.cave_cell_size))
+    }
+
+    /// The work of meshing `model` at terrain cell `cell` and cave cell `cave`.
+    pub fn at(model: &SdfModel, cell: f64, cave: f64) -> Work {
+        let cells: f64 = Areas::of(model).cells(cell, cave).iter().sum();
+        let triangles = cells * TRIANGLES_PER_CELL;
+        Work { cells, triangles, bytes: triangles * MESH_BYTES_PER_TRIANGLE }
     }
 }
 

@@ -14,6 +14,7 @@
 //! [`TriMesh`], `payload.rs`); the export stage writes them as glb, OBJ, PLY, VTK or TSurf.
 
 mod build;
+mod cell;
 mod cleanup;
 pub mod components;
 mod cubes;
@@ -34,9 +35,11 @@ mod view;
 mod volume;
 pub mod watertight;
 
-pub use build::{CAVE_REFINE, anchors, build, cave_cell, mesh, mesh_simplified, mesh_with};
+pub use build::{anchors, build, mesh, mesh_simplified, mesh_with};
+pub use cell::{CAVE_REFINE, cave_cell};
 pub use cleanup::{Solid, clean};
 pub use error::MesherError;
+pub use estimate::Work;
 pub use normals::vertex_normals;
 pub use octree::BRICK;
 pub use payload::{Mesh, Removed, TriMesh};

@@ -5,10 +5,10 @@
 //! and the polygonizer are the same at every resolution.
 
 use karst_artifact::read_artifact;
-use karst_geology::Scene;
 use karst_mesher::anchors;
 use karst_mesher::mesh_with;
 use karst_mesher::{TriMesh, watertight};
+use karst_scene::Scene;
 use karst_sdf::{CarvedTerrain, SdfModel};
 use karst_testkit::{root, scratch};
 

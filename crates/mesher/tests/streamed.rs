@@ -3,13 +3,13 @@
 //! cells where the cleanup keeps everything, removes islands and pockets, and asks the sinks
 //! and springs; and no spill file may be left behind.
 
-use karst_geology::SceneView;
 use karst_mesher::MesherView;
+use karst_scene::SceneView;
 use std::fs;
 
 use karst_artifact::{Provenance, read_artifact, read_header, write_artifact};
-use karst_geology::Scene;
 use karst_mesher::{Mesh, MesherStage};
+use karst_scene::Scene;
 use karst_sdf::SdfModel;
 use karst_stage::Stage;
 use karst_testkit::{fixture, scratch};

@@ -6,8 +6,8 @@
 
 use glam::DVec3;
 use karst_artifact::read_artifact;
-use karst_geology::Scene;
 use karst_mesher::{anchors, mesh_with, watertight};
+use karst_scene::Scene;
 use karst_sdf::{CarvedTerrain, SdfModel};
 use karst_streams::{Outline, Streams};
 use karst_testkit::{fixture, run, scratch};

@@ -9,7 +9,7 @@
 
 use std::collections::BTreeMap;
 
-use karst_geology::params::{SamplingParams, SkeletonParams};
+use karst_scene::params::{SamplingParams, SkeletonParams};
 
 use crate::ranges::Compared;
 

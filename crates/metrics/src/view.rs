@@ -1,6 +1,6 @@
 //! What the metrics stage reads of the scene.
 
-karst_geology::view! {
+karst_scene::view! {
     /// The metrics stage's view of the scene: the network's statistics come from the artifacts
     /// alone; `[skeleton]` and `[sampling]` give the values the hints cite (`hints.rs`).
     pub struct MetricsView<'s> {

@@ -3,6 +3,7 @@
 //!
 //! - [`registry`]: the one place that maps a stage of the table to the type implementing it;
 //! - [`make`]: run the stages in order, skipping those whose artifact is up to date;
+//! - [`budget`]: the output budget, held against the mesher's work estimate before it runs;
 //! - [`scene`]: where a run's scene comes from (a file, or the embedded default scene);
 //! - [`diff`]: compare two artifacts of the same kind semantically;
 //! - [`ensemble`]: many realizations of one scene, differing only by seed;
@@ -10,6 +11,7 @@
 //!
 //! The `karstgen` command and `cargo xtask` are thin layers over this crate.
 
+pub mod budget;
 pub mod calibrate;
 pub mod diff;
 pub mod ensemble;

@@ -9,6 +9,7 @@ use karst_artifact::stages::{producer, stage_key};
 use karst_artifact::{InputRef, StageId, read_header};
 use karst_stage::{Handoff, Job, StageError};
 
+use crate::budget::OutputBudget;
 use crate::registry;
 use crate::scene::SceneFile;
 
@@ -23,6 +24,8 @@ pub struct Selection {
     pub to: Option<StageId>,
     /// Run every stage, even when up to date.
     pub force: bool,
+    /// What the outputs may take (`--budget`): the mesher's estimate is held against it.
+    pub budget: OutputBudget,
 }
 
 /// What happened to one stage.
@@ -76,7 +79,7 @@ pub fn run(
     })?;
     // One run writes into a folder at a time; what a killed run left half-written goes.
     let _lock = karst_artifact::lock_output(out)?;
-    karst_artifact::atomic::remove_stale_temporaries(out);
+    karst_stage::runner::sweep_leftovers(out);
     karst_stage::run_dir::record_scene(out, &scene.path).map_err(|e| {
         StageError::failure(format!("{}: cannot record the scene's path: {e}", out.display()))
     })?;
@@ -93,6 +96,9 @@ pub fn run(
         } else if !forced(stage, selection) && up_to_date(&job, stage) {
             Outcome::UpToDate
         } else {
+            if stage == StageId::Mesher {
+                eprintln!("{}", crate::budget::check_mesher(&job, selection.budget)?);
+            }
             let ran = registry::stage(stage).run(&job)?;
             Outcome::Ran { headline: ran.headline, notes: ran.notes }
         };

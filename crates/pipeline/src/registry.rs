@@ -5,7 +5,7 @@ use std::marker::PhantomData;
 use std::path::Path;
 
 use karst_artifact::{Payload, StageId};
-use karst_geology::Section;
+use karst_scene::Section;
 use karst_stage::{Job, Ran, Stage, StageError, cli, runner};
 
 /// A stage, seen through its id.

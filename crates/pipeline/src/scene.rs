@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use karst_geology::Scene;
+use karst_scene::Scene;
 use karst_stage::StageError;
 
 /// The embedded default scene, run when no scene is given.

@@ -54,7 +54,7 @@ fn outputs_do_not_depend_on_the_thread_count_and_a_rerun_does_no_work() {
     let seeds = [3, 4, 5];
     let run_with = |threads: usize, out: &Path| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| ensemble::run(&plan, out, &seeds)).unwrap()
+        pool.install(|| ensemble::run(&plan, out, &seeds, None)).unwrap()
     };
     let one = run_with(1, &base.join("one"));
     run_with(2, &base.join("two"));
@@ -80,7 +80,7 @@ fn outputs_do_not_depend_on_the_thread_count_and_a_rerun_does_no_work() {
 
     let record = base.join("one/realizations/seed-4/record.json");
     let before = std::fs::metadata(&record).unwrap().modified().unwrap();
-    let again = ensemble::run(&plan, &base.join("one"), &seeds).unwrap();
+    let again = ensemble::run(&plan, &base.join("one"), &seeds, None).unwrap();
     assert_eq!((again.ran, again.complete), (0, 3));
     assert_eq!(std::fs::metadata(&record).unwrap().modified().unwrap(), before, "the record was rewritten");
     std::fs::remove_dir_all(&base).unwrap();
@@ -90,10 +90,10 @@ fn outputs_do_not_depend_on_the_thread_count_and_a_rerun_does_no_work() {
 fn seed_ranges_merged_equal_one_run() {
     let base = scratch("ensemble-merge");
     let plan = plan(Some(StageId::Skeleton), Keep::Stages(vec![]));
-    ensemble::run(&plan, &base.join("all"), &[1, 2, 3, 4]).unwrap();
-    ensemble::run(&plan, &base.join("a"), &[1, 2]).unwrap();
-    ensemble::run(&plan, &base.join("b"), &[3, 4, 2]).unwrap();
-    let merged = ensemble::merge(&[base.join("a"), base.join("b")], &base.join("merged")).unwrap();
+    ensemble::run(&plan, &base.join("all"), &[1, 2, 3, 4], None).unwrap();
+    ensemble::run(&plan, &base.join("a"), &[1, 2], None).unwrap();
+    ensemble::run(&plan, &base.join("b"), &[3, 4, 2], None).unwrap();
+    let merged = ensemble::merge(&[base.join("a"), base.join("b")], &base.join("merged"), None).unwrap();
     assert_eq!((merged.ran, merged.complete), (0, 4));
     assert_same(&outputs(&base.join("all")), &outputs(&base.join("merged")), "merged vs one run");
     let header = std::fs::read_to_string(base.join("all/metrics.csv")).unwrap();
@@ -103,10 +103,11 @@ fn seed_ranges_merged_equal_one_run() {
     let other =
         Plan::new(SceneFile::load(&fixture("fixtures/scenes/tiny.toml")).unwrap(), None, 20.0, Keep::All)
             .unwrap();
-    let e = ensemble::run(&other, &base.join("a"), &[1]).unwrap_err().to_string();
+    let e = ensemble::run(&other, &base.join("a"), &[1], None).unwrap_err().to_string();
     assert!(e.contains("another scene or other settings"), "{e}");
-    ensemble::run(&other, &base.join("c"), &[1]).unwrap();
-    let e = ensemble::merge(&[base.join("a"), base.join("c")], &base.join("m2")).unwrap_err().to_string();
+    ensemble::run(&other, &base.join("c"), &[1], None).unwrap();
+    let e =
+        ensemble::merge(&[base.join("a"), base.join("c")], &base.join("m2"), None).unwrap_err().to_string();
     assert!(e.contains("another scene or other settings"), "{e}");
     std::fs::remove_dir_all(&base).unwrap();
 }
@@ -117,7 +118,7 @@ fn a_failing_realization_is_recorded_and_the_others_complete() {
     let plan = plan(Some(StageId::Skeleton), Keep::Stages(vec![]));
     // A folder where seed 2's samples.bin must go: its sampling stage cannot write it.
     std::fs::create_dir_all(out.join("realizations/seed-2/samples.bin/blocked")).unwrap();
-    let summary = ensemble::run(&plan, &out, &[1, 2, 3]).unwrap();
+    let summary = ensemble::run(&plan, &out, &[1, 2, 3], None).unwrap();
     assert_eq!(summary.complete, 2);
     assert_eq!(summary.failures.len(), 1);
     assert_eq!(summary.failures[0].0, 2);
@@ -127,7 +128,7 @@ fn a_failing_realization_is_recorded_and_the_others_complete() {
     assert!(matches!(record.outcome, Outcome::Failed { retry: true, .. }), "{record:?}");
     // A machine failure is tried again on the next run; once it can, it completes.
     std::fs::remove_dir_all(out.join("realizations/seed-2/samples.bin")).unwrap();
-    let again = ensemble::run(&plan, &out, &[1, 2, 3]).unwrap();
+    let again = ensemble::run(&plan, &out, &[1, 2, 3], None).unwrap();
     assert_eq!((again.ran, again.complete, again.failures.len()), (1, 3, 0));
     std::fs::remove_dir_all(&out).unwrap();
 }
@@ -138,7 +139,7 @@ fn data_files_are_read_from_the_scene_folder() {
     let out = scratch("ensemble-data");
     let scene = SceneFile::load(&fixture("fixtures/scenes/default.toml")).unwrap();
     let plan = Plan::new(scene, Some(StageId::Skeleton), 25.0, Keep::Stages(vec![])).unwrap();
-    let summary = ensemble::run(&plan, &out, &[11]).unwrap();
+    let summary = ensemble::run(&plan, &out, &[11], None).unwrap();
     assert_eq!((summary.complete, summary.failures.len()), (1, 0), "{:?}", summary.failures);
     std::fs::remove_dir_all(&out).unwrap();
 }

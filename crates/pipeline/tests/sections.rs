@@ -1,6 +1,6 @@
 //! The key of every artifact covers exactly the scene sections its stage reads.
 //!
-//! A stage reads the scene only through its view (`karst_geology::view!`), whose sections are
+//! A stage reads the scene only through its view (`karst_scene::view!`), whose sections are
 //! the ones its key hashes, so the two cannot differ. What can still go wrong is the hashing:
 //! a section whose value the hash does not see, a view whose hash differs from the scene's
 //! hash of the same sections, or a stage the registry gives the wrong sections. These tests
@@ -10,11 +10,12 @@
 use std::collections::BTreeMap;
 
 use karst_artifact::StageId;
-use karst_geology::params::{CalibrateParams, ExportFormat};
-use karst_geology::{Phase, Scene, SceneView, Section, Surface, Terrain};
+use karst_geology::{Surface, Terrain};
 use karst_pipeline::make::{self, Outcome, Selection};
 use karst_pipeline::registry;
 use karst_pipeline::scene::SceneFile;
+use karst_scene::params::{CalibrateParams, ExportFormat};
+use karst_scene::{Phase, Scene, SceneView, Section};
 use karst_stage::Job;
 use karst_testkit::{fixture, scratch};
 

@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use karst_geology::Surface;
-use karst_geology::rng::Random;
+use karst_scene::rng::Random;
 use karst_stage::progress;
 
 use crate::error::SamplingError;

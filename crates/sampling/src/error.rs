@@ -14,7 +14,7 @@ pub enum SamplingError {
     NothingToSample { smallest: f64, radius: f64 },
     /// The samples would not fit in the memory budget.
     #[error(transparent)]
-    OverBudget(#[from] karst_geology::budget::OverBudget),
+    OverBudget(#[from] karst_scene::budget::OverBudget),
 }
 
 impl Failure for SamplingError {

@@ -11,8 +11,8 @@
 use glam::DVec3;
 
 use karst_geology::Geometry;
-use karst_geology::budget::{Cheaper, Estimate, OverBudget};
-use karst_geology::params::SamplingParams;
+use karst_scene::budget::{Cheaper, Estimate, OverBudget};
+use karst_scene::params::SamplingParams;
 
 use crate::spacing::{PACKING, SpacingField, unit_scale};
 use crate::view::SamplingView;

@@ -54,7 +54,8 @@ impl Payload for Samples {
     const SCHEMA: u32 = 4;
 
     /// One tag per position, finite positions, no two alike (an edge between them would have no
-    /// direction), key point `i` at index `i`, a usable radius field.
+    /// direction), key point `i` at index `i`, at least one sample that is not a key point (the
+    /// conduits run through those), a usable radius field.
     fn validate(&self) -> Result<(), Invalid> {
         ensure(!self.positions.is_empty(), || "positions".into(), || "holds no sample".into())?;
         check::count(|| "tags".into(), self.tags.len(), self.positions.len())?;
@@ -70,6 +71,16 @@ impl Payload for Samples {
                 )?;
             }
         }
+        ensure(
+            self.tags.iter().any(|t| !matches!(t, Tag::KeyPoint(_))),
+            || "tags".into(),
+            || {
+                format!(
+                    "all {} samples are key points: no sample of the rock lies between them (sampling never writes this)",
+                    self.tags.len()
+                )
+            },
+        )?;
         if let Some((a, b)) = coincident(&self.positions) {
             return Err(Invalid::new(
                 format!("positions[{b}]"),
@@ -162,7 +173,7 @@ mod tests {
 
     #[test]
     fn coincident_samples_are_the_first_repeat_in_file_order() {
-        let mut rng = karst_geology::rng::Random::stream(7, "test", "coincident");
+        let mut rng = karst_scene::rng::Random::stream(7, "test", "coincident");
         let mut next = || rng.index(8) as f64 - 4.0;
         // Coarse coordinates repeat often; the sets grow until repeats appear and beyond.
         for n in [1, 2, 50, 120, 300, 600] {

@@ -22,10 +22,10 @@
 //! random live sub-cells, and each new sample removes the sub-cells its disk covers (a
 //! one-level, cell-local version of Ebeida et al. 2011's refinement), for `ROUNDS` rounds of
 //! one dart per live sub-cell. Sub-cells covered by the union of several disks but by none alone
-//! stay live and take darts in vain; what is left uncovered after the rounds is small: with one
-//! round, 0.14 % of the bedrock is farther than r from every sample on the 100k benchmark (the
-//! previous sampler's 8 consecutive failed darts per cell left 0.07 %); a second round halves
-//! it with 4 % more samples for about a quarter more instructions.
+//! stay live and take darts in vain; what is left uncovered after the rounds is small: a tiny
+//! fraction of the bedrock is farther than r from every sample after one round, and a second
+//! round halves it for a few more samples and markedly more instructions (BENCHMARKS.md,
+//! "sampling").
 //!
 //! Key points are inserted first as they are, even when closer than r to each other; surface
 //! samples are darts on the surfaces themselves, in phase groups of their own (see
@@ -38,8 +38,8 @@ use crate::spacing::SpacingField;
 
 const NONE: u32 = u32::MAX;
 
-/// Passes of one dart per cell before the saturation pass (a second one costs 6 % more
-/// instructions on the 100k benchmark and leaves as many holes).
+/// Passes of one dart per cell before the saturation pass (a second one costs more
+/// instructions and leaves as many holes).
 const WARM_PASSES: u32 = 1;
 /// Rounds of one dart per live sub-cell in the saturation pass (see the module's documentation).
 const ROUNDS: u32 = 1;
@@ -574,7 +574,7 @@ fn cover27(q: DVec3, r: f64, lo: DVec3, s: f64) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use karst_geology::rng::Random;
+    use karst_scene::rng::Random;
 
     fn field(values: impl Fn(DVec3) -> f32) -> SpacingField {
         let size = [13u32, 9, 5];

@@ -12,8 +12,8 @@ use glam::DVec3;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use karst_geology::params::{RadiusUnit, SamplingParams};
 use karst_geology::{Domain, Geometry, Surface};
+use karst_scene::params::{RadiusUnit, SamplingParams};
 
 use crate::view::SamplingView;
 

@@ -1,6 +1,6 @@
 //! What the sampling stage reads of the scene.
 
-karst_geology::view! {
+karst_scene::view! {
     /// The sampling stage's view of the scene: the bedrock (domain, terrain, geology) it fills,
     /// the key points it places first, its parameters and the seed of its random streams.
     pub struct SamplingView<'s> {

@@ -3,11 +3,11 @@
 //! terrain.
 
 use glam::DVec3;
-use karst_geology::Scene;
-use karst_geology::SceneView;
 use karst_sampling::SamplingView;
 use karst_sampling::build as sample_scene;
 use karst_sampling::{Samples, Tag};
+use karst_scene::Scene;
+use karst_scene::SceneView;
 use karst_testkit::root;
 
 fn scene(file: &str) -> Scene {
@@ -138,7 +138,7 @@ fn the_volume_is_filled_up_to_small_holes() {
     let r = s.radius;
     let points: Vec<DVec3> = s.positions.iter().map(|p| DVec3::from_array(*p)).collect();
     let (lo, hi) = (scene.domain().min(), scene.domain().max());
-    let mut rng = karst_geology::rng::Random::stream(3, "test", "holes");
+    let mut rng = karst_scene::rng::Random::stream(3, "test", "holes");
     let (mut inside, mut holes) = (0, 0);
     for _ in 0..4000 {
         let p = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
@@ -178,7 +178,7 @@ fn tsurf_horizon_samples_lie_on_it_and_cover_it() {
         })
         .collect();
     let total: f64 = areas.iter().sum();
-    let mut rng = karst_geology::rng::Random::stream(4, "test", "tin probes");
+    let mut rng = karst_scene::rng::Random::stream(4, "test", "tin probes");
     let (mut inside, mut holes) = (0, 0);
     while inside < 1500 {
         let mut pick = rng.uniform() * total;

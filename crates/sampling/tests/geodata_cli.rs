@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use karst_geology::geotiff::testing::{Encoding, write};
+use karst_geodata::geotiff::testing::{Encoding, write};
 use karst_testkit::scratch;
 
 const SCENE: &str = r#"name = "bad"

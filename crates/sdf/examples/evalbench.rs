@@ -3,7 +3,7 @@
 //! Times are the process's CPU time (/proc/self/schedstat, nanoseconds); the hash of the
 //! values' bits shows whether a change kept every value.
 use karst_artifact::read_artifact;
-use karst_geology::SceneView;
+use karst_scene::SceneView;
 use karst_sdf::{CarvedTerrain, SdfModel};
 use karst_skeleton::Skeleton;
 
@@ -18,7 +18,7 @@ fn main() {
     let (model, skeleton): (SdfModel, Skeleton) = if args[1] == "synthetic" {
         let (skeleton, hydro) = karst_sdf::synthetic::network(5, 100, 12);
         {
-            let scene = karst_geology::Scene::parse(
+            let scene = karst_scene::Scene::parse(
                 karst_sdf::synthetic::SCENE,
                 std::path::Path::new("synthetic.toml"),
             )

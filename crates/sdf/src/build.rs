@@ -16,9 +16,9 @@
 
 use glam::{DVec2, DVec3};
 
-use karst_geology::params::SdfParams;
-use karst_geology::rng::Random;
 use karst_hydro::Hydro;
+use karst_scene::params::SdfParams;
+use karst_scene::rng::Random;
 use karst_skeleton::{Conduit, ConduitType, Skeleton};
 
 use crate::chamber::ChamberSpec;
@@ -26,7 +26,7 @@ use crate::error::SdfError;
 use crate::noise::WaveNoise;
 use crate::payload::{SdfModel, SphereGroup, TypedSweep, WaterSpec};
 use crate::section::{Section, Shape};
-use crate::sweep::{SectionSpec, SweepSpec, frame};
+use crate::sweep::{SectionSpec, SweepSpec, frame, tortuosity};
 use crate::terrain::TerrainField;
 use crate::view::SdfView;
 use crate::water::{self, Water};
@@ -138,13 +138,6 @@ fn node_sections(
             Ok(spec)
         })
         .collect()
-}
-
-/// 1 − chord/length: 0 for a straight conduit, 1 for a loop.
-pub fn tortuosity(points: &[DVec3]) -> f64 {
-    let length: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
-    let chord = points[0].distance(points[points.len() - 1]);
-    if length > 0.0 { 1.0 - chord / length } else { 0.0 }
 }
 
 fn water_piece(sweep: &SweepSpec, water: Water) -> Option<WaterSpec> {
@@ -317,7 +310,7 @@ fn to_f32(p: DVec3) -> [f32; 3] {
 mod tests {
     use super::*;
     use crate::synthetic;
-    use karst_geology::{Scene, SceneView};
+    use karst_scene::{Scene, SceneView};
     use karst_stage::{Blame, Failure};
 
     fn build_with(edit: impl FnOnce(&mut Scene, &mut Skeleton)) -> Result<SdfModel, SdfError> {

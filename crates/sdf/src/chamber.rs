@@ -89,7 +89,7 @@ impl Chamber {
 mod tests {
     use super::*;
     use crate::testing::{Pairs, assert_lipschitz};
-    use karst_geology::rng::Random;
+    use karst_scene::rng::Random;
 
     #[test]
     fn chambers_are_one_lipschitz_and_hollow() {

@@ -7,7 +7,7 @@ use karst_stage::{Blame, Failure};
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SdfError {
     #[error(transparent)]
-    OverBudget(#[from] karst_geology::budget::OverBudget),
+    OverBudget(#[from] karst_scene::budget::OverBudget),
     #[error("describes {hydro} conduits, skeleton.json has {skeleton}")]
     ConduitCounts { hydro: usize, skeleton: usize },
     #[error("conduit {conduit} has fewer water segments than skeleton.json has segments")]

@@ -6,11 +6,11 @@
 
 use glam::DVec3;
 
-use karst_geology::budget::{Cheaper, Estimate, OverBudget};
-use karst_geology::params::SdfParams;
+use karst_scene::budget::{Cheaper, Estimate, OverBudget};
+use karst_scene::params::SdfParams;
 use karst_skeleton::{ConduitType, Skeleton};
 
-use crate::build::tortuosity;
+use crate::sweep::tortuosity;
 use crate::view::SdfView;
 
 /// Bytes per candidate sphere (centre, radius, station) while a segment is pruned, and per

@@ -16,17 +16,13 @@ use glam::DVec3;
 
 use crate::bvh::{Bvh, Candidate};
 use crate::chamber::Chamber;
+use crate::ops::REACH;
 use crate::payload::detail_factor;
 use crate::primitive::{Context, Leaf, WaterLeaf};
 use crate::surface_water::SurfaceField;
 use crate::sweep::SweepTable;
 use crate::{SdfModel, ops};
 use karst_skeleton::ConduitType;
-
-/// The karst terms are clamped to at most this many metres: min(cave, REACH) keeps the sign and
-/// the Lipschitz bound (a smaller |f| is still a distance bound), and spares eval every leaf
-/// farther away: a point deep in rock visits only the leaves within REACH.
-pub const REACH: f64 = 8.0;
 
 /// The leaves that can matter within a box: see [`CarvedTerrain::near`].
 #[derive(Debug, Clone, Default)]
@@ -316,7 +312,7 @@ mod tests {
         model.blend = 1.5;
         model.capsules.push(Capsule { a: [50.0, 80.0, 20.0], b: [50.0, 80.0, 60.0], radius: 2.0 });
         let f = CarvedTerrain::new(model);
-        let mut random = karst_geology::rng::Random::stream(3, "sdf", "eval_within");
+        let mut random = karst_scene::rng::Random::stream(3, "sdf", "eval_within");
         for _ in 0..20_000 {
             let p =
                 DVec3::new(random.range(-5.0, 105.0), random.range(-5.0, 105.0), random.range(-5.0, 55.0));
@@ -345,7 +341,7 @@ mod tests {
             });
         }
         let f = CarvedTerrain::new(model);
-        let mut random = karst_geology::rng::Random::stream(4, "sdf", "near");
+        let mut random = karst_scene::rng::Random::stream(4, "sdf", "near");
         for _ in 0..300 {
             let lo = DVec3::new(random.range(0.0, 95.0), random.range(0.0, 95.0), random.range(0.0, 45.0));
             let hi = lo + DVec3::splat(random.range(0.5, 5.0));

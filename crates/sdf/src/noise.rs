@@ -9,7 +9,7 @@
 //! random stream, so the noise is part of the deterministic model.
 
 use glam::DVec3;
-use karst_geology::rng::Random;
+use karst_scene::rng::Random;
 use serde::{Deserialize, Serialize};
 
 /// Waves per octave.

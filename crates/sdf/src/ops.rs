@@ -9,9 +9,16 @@
 //!   most k/4, which is what the BVH must allow for when it prunes.
 //! - warp: f(p + A·w(p)) with a displacement field w of Jacobian norm ≤ L has Lipschitz constant
 //!   ≤ 1 + A·L; dividing by that factor compensates it;
-//! - detail: f(p) + A·n(p) for a noise n of gradient ≤ G, divided by 1 + A·G.
+//! - detail: f(p) + A·n(p) for a noise n of gradient ≤ G, divided by 1 + A·G;
+//! - the clamp of the karst unions (caves and surface water) at [`REACH`]: a min, it keeps the
+//!   bound.
 
 use glam::DVec3;
+
+/// The karst terms are clamped to at most this many metres: min(cave, REACH) keeps the sign and
+/// the Lipschitz bound (a smaller |f| is still a distance bound), and spares eval every leaf
+/// farther away: a point deep in rock visits only the leaves within REACH.
+pub const REACH: f64 = 8.0;
 
 /// Quadratic smooth minimum of radius k ≥ 0 (the plain minimum for k = 0).
 pub fn smooth_union(a: f64, b: f64, k: f64) -> f64 {
@@ -43,7 +50,7 @@ mod tests {
     use super::*;
     use crate::noise::WaveNoise;
     use crate::testing::{Pairs, assert_lipschitz};
-    use karst_geology::rng::Random;
+    use karst_scene::rng::Random;
 
     fn ball(c: DVec3, r: f64) -> impl Fn(DVec3) -> f64 {
         move |p| p.distance(c) - r

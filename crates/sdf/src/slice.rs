@@ -344,7 +344,7 @@ fn sections_picture(ratio: f64, asymmetry: f64, scale: f64) -> Canvas {
 mod tests {
     use super::*;
     use crate::{SdfView, synthetic};
-    use karst_geology::{Scene, SceneView};
+    use karst_scene::{Scene, SceneView};
 
     fn field() -> CarvedTerrain {
         let (skeleton, hydro) = synthetic::network(3, 6, 8);

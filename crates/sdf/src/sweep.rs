@@ -283,6 +283,14 @@ pub fn to_dvec(v: [f32; 3]) -> DVec3 {
     DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64)
 }
 
+/// 1 − chord/length of a conduit's polyline: 0 for a straight conduit, 1 for a loop; above
+/// `sdf.tortuosity` the conduit is swept segment by segment.
+pub fn tortuosity(points: &[DVec3]) -> f64 {
+    let length: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+    let chord = points[0].distance(points[points.len() - 1]);
+    if length > 0.0 { 1.0 - chord / length } else { 0.0 }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -5,9 +5,9 @@
 
 use glam::DVec3;
 use karst_geology::Domain;
-use karst_geology::rng::Random;
 use karst_hydro::FlowUnits;
 use karst_hydro::{ConduitWater, Hydro, SegmentWater, WaterType};
+use karst_scene::rng::Random;
 use karst_skeleton::{Conduit, ConduitType, Node, Skeleton, Zone};
 
 /// The scene of the synthetic network: a 1 km × 1 km × 200 m block under a tilted plane.

@@ -6,14 +6,14 @@
 //! BVH's pruning changes nothing and the sign agrees with a brute-force inside test over every
 //! leaf.
 
-use karst_geology::SceneView;
+use karst_scene::SceneView;
 use karst_sdf::SdfView;
 use std::path::Path;
 
 use glam::DVec3;
 use karst_artifact::read_artifact;
-use karst_geology::Scene;
 use karst_hydro::Hydro;
+use karst_scene::Scene;
 use karst_sdf::{CarvedTerrain, add_streams, build, synthetic};
 use karst_skeleton::Skeleton;
 use karst_streams::Streams;
@@ -296,6 +296,6 @@ fn check_sign(field: &CarvedTerrain, n: usize, name: &str) {
 }
 
 /// The scene of the synthetic network.
-fn synthetic_scene() -> karst_geology::Scene {
-    karst_geology::Scene::parse(synthetic::SCENE, std::path::Path::new("synthetic.toml")).unwrap()
+fn synthetic_scene() -> karst_scene::Scene {
+    karst_scene::Scene::parse(synthetic::SCENE, std::path::Path::new("synthetic.toml")).unwrap()
 }

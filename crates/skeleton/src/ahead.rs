@@ -1,7 +1,8 @@
 //! Rows costed ahead of a search, on a core the routing leaves idle.
 //!
 //! The cost graph costs a row the first time a search reads it (karst_costgraph's `costs.rs`),
-//! on the searching thread: about 40 % of a KarstNSim leg's time on the peer scene of issue 21.
+//! on the searching thread: a large share of a KarstNSim leg's time on the peer scene of issue 21
+//! (BENCHMARKS.md).
 //! The legs of one sink run in parallel, but most sinks have one long leg, so one core searches
 //! while the other waits. [`Ahead`] gives that core the rows the search will read next: every
 //! [`HINT_EVERY`] settled nodes the search hands over the [`HINTED`] unsettled nodes of least
@@ -42,7 +43,7 @@ impl<'g> Ahead<'g> {
     /// Runs `work` with rows costed ahead of its searches on `graph` by a thread of their own,
     /// when the pool has more than one thread and some row is still to cost (else `work` runs
     /// alone, with None: on the regional scene, whose rows are all costed before the least
-    /// costs to the springs, an idle helper woken at every hint cost the routing 6 s).
+    /// costs to the springs, an idle helper woken at every hint slowed the routing down).
     pub fn run<R>(graph: &'g CostGraph, work: impl FnOnce(Option<&Ahead<'g>>) -> R) -> R {
         if rayon::current_num_threads() < 2 || graph.every_row_costed() {
             return work(None);
@@ -119,7 +120,7 @@ mod tests {
 
     use glam::DVec3;
     use karst_costgraph::Costing;
-    use karst_geology::{Scene, SceneView};
+    use karst_scene::{Scene, SceneView};
 
     use super::*;
     use crate::search::{EdgeCosts, astar_to_set, min_cost_per_metre};

@@ -37,10 +37,10 @@
 
 use glam::DVec3;
 use karst_costgraph::CostGraph;
-use karst_geology::KeyPointKind;
-use karst_geology::params::SkeletonMode;
-use karst_geology::rng::Random;
 use karst_sampling::Samples;
+use karst_scene::KeyPointKind;
+use karst_scene::params::SkeletonMode;
+use karst_scene::rng::Random;
 
 use crate::assemble::NetworkBuilder;
 use crate::ends::{End, sample_of};

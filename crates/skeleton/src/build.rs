@@ -3,9 +3,9 @@
 //! network is amplified, and the [`NetworkBuilder`] turns the paths into the artifact.
 
 use karst_costgraph::{CostGraph, Costing};
-use karst_geology::params::SkeletonMode;
-use karst_geology::{KeyPointKind, keypoints_of};
 use karst_sampling::Samples;
+use karst_scene::params::SkeletonMode;
+use karst_scene::{KeyPointKind, keypoints_of};
 
 use crate::assemble::NetworkBuilder;
 use crate::ends::{ends, sinks_in_order};

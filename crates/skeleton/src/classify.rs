@@ -45,7 +45,7 @@ pub fn classify(view: &SkeletonView, a: DVec3, b: DVec3) -> ConduitType {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use karst_geology::{Scene, SceneView};
+    use karst_scene::{Scene, SceneView};
     use std::path::Path;
 
     fn scene() -> Scene {

@@ -67,8 +67,8 @@
 //! keep L = R: the bound is weaker there, never wrong. R trades the bound's strength far from
 //! the network against the cost of the updates, proportional to the samples within R of each
 //! network sample: R is the radius holding 32,768 samples at their mean density (on the peer
-//! scene at 1 M samples, R = 100, 200 and 400 m settled 0.85, 0.73 and 0.66 M samples against
-//! 2.07 M before, and the updates took 0.03, 0.24 and 1.7 s).
+//! scene, larger radii settled fewer samples but their updates grew faster than the searches
+//! shrank: the trade-off measured in BENCHMARKS.md).
 
 use glam::DVec3;
 
@@ -296,7 +296,7 @@ mod tests {
     use crate::search::{Cohesive, EdgeCosts, astar_to_set, dijkstra, min_cost_per_metre};
     use crate::spring_distance::{InEdges, costs_to};
     use karst_costgraph::CostGraph;
-    use karst_geology::rng::Random;
+    use karst_scene::rng::Random;
 
     fn points(rng: &mut Random, n: usize) -> Vec<[f64; 3]> {
         (0..n).map(|_| [rng.range(0.0, 100.0), rng.range(0.0, 80.0), rng.range(0.0, 20.0)]).collect()

@@ -18,9 +18,9 @@
 
 use std::collections::BTreeMap;
 
-use karst_geology::params::SkeletonParams;
-use karst_geology::{KeyPointKind, keypoints_of};
 use karst_sampling::Samples;
+use karst_scene::params::SkeletonParams;
+use karst_scene::{KeyPointKind, keypoints_of};
 
 use crate::assemble::NetworkBuilder;
 use crate::view::SkeletonView;

@@ -6,9 +6,9 @@
 //! spring its connectivity row marks 1; when the row has no 1, to the cheapest of the springs
 //! marked 2 (uncertain connectivity keeps the closest spring in the cost metric).
 
-use karst_geology::rng::Random;
-use karst_geology::{KeyPointKind, Link, keypoints_of};
 use karst_sampling::Samples;
+use karst_scene::rng::Random;
+use karst_scene::{KeyPointKind, Link, keypoints_of};
 
 use crate::error::SkeletonError;
 use crate::view::SkeletonView;

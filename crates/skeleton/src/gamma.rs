@@ -26,8 +26,8 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use karst_costgraph::CostGraph;
-use karst_geology::KeyPointKind;
 use karst_sampling::Samples;
+use karst_scene::KeyPointKind;
 
 use crate::Route;
 use crate::assemble::NetworkBuilder;
@@ -213,7 +213,7 @@ fn link_cost(graph: &CostGraph, a: u32, b: u32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use karst_geology::rng::Random;
+    use karst_scene::rng::Random;
 
     fn random_distances(seed: u64, n: usize) -> Vec<Vec<f64>> {
         let mut rng = Random::stream(seed, "test", "gamma");

@@ -26,8 +26,9 @@ use std::collections::{BTreeMap, HashMap};
 
 use glam::DVec3;
 use karst_costgraph::CostGraph;
-use karst_geology::{KeyPointKind, Surface};
+use karst_geology::Surface;
 use karst_sampling::Samples;
+use karst_scene::KeyPointKind;
 use rayon::prelude::*;
 
 use crate::Route;
@@ -282,7 +283,7 @@ fn spring_costs_fit(view: &SkeletonView, graph: &CostGraph, springs: usize) -> b
 /// Computes T, the least cost from every sample to each spring of `worth` (`spring_distance.rs`),
 /// on the phase's costs before cohesion, one spring after the other, and sends it by spring row
 /// (None when those costs are not the stored ones). One spring at a time: side by side, each
-/// held its reversed costs (600 MB on the regional scene, whose skeleton then went over 4 GB).
+/// held its reversed costs, which took the regional scene's skeleton over its memory budget.
 fn costs_to_springs(
     graph: &CostGraph,
     phase: &PhaseSetup,

@@ -21,7 +21,7 @@
 use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
-use karst_geology::rng::Random;
+use karst_scene::rng::Random;
 
 use crate::nodes::node_at;
 use crate::payload::Node;

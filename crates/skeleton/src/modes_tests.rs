@@ -14,9 +14,9 @@ use crate::search::EdgeCosts;
 use crate::view::SkeletonView;
 use karst_costgraph::CostgraphView;
 use karst_costgraph::{CostGraph, Costing};
-use karst_geology::{Scene, SceneView};
 use karst_sampling::Samples;
 use karst_sampling::SamplingView;
+use karst_scene::{Scene, SceneView};
 
 const SCENE: &str = r#"
 name = "two-springs"

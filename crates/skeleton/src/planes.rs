@@ -104,7 +104,7 @@ water_table = "base"
 
     #[test]
     fn a_passage_along_a_joint_and_a_parting_bends_in_the_joint() {
-        let scene = karst_geology::Scene::parse(JOINTED, std::path::Path::new("jointed.toml")).unwrap();
+        let scene = karst_scene::Scene::parse(JOINTED, std::path::Path::new("jointed.toml")).unwrap();
         let planes = WeaknessPlanes::of(scene.geology());
         let at = DVec3::new(50.0, 50.0, 20.0);
         // North–south and level: in both families; the joint (vertical) carries the bends.

@@ -11,8 +11,8 @@
 //! junctions the conduits are drawn from.
 
 use glam::DVec3;
-use karst_geology::params::SkeletonParams;
-use karst_geology::rng::Random;
+use karst_scene::params::SkeletonParams;
+use karst_scene::rng::Random;
 
 use crate::payload::{ConduitType, Node};
 
@@ -90,7 +90,7 @@ mod tests {
     use super::*;
 
     use crate::Zone;
-    use karst_geology::Scene;
+    use karst_scene::Scene;
     use std::path::Path;
 
     fn scene() -> Scene {

@@ -42,7 +42,7 @@ pub trait EdgeCosts: Sync {
     fn for_each_out(&self, node: usize, f: &mut dyn FnMut(usize, usize, f64));
     /// The cost graph's rows, one of its cost sets and the cohesion layers on it, when the
     /// costs are these: searches then read them directly instead of through a callback per
-    /// edge (about three times faster).
+    /// edge (several times faster: BENCHMARKS.md).
     fn direct(&self) -> Option<Direct<'_>> {
         None
     }
@@ -258,8 +258,8 @@ struct Reached {
 const UNREACHED: Reached = Reached { cost: f64::INFINITY, predecessor: NONE, via: NONE };
 
 /// Per-node arrays of finished searches, reset, kept for the next search on the same thread:
-/// allocating and filling them for every search (17 bytes per sample: 85 MB at 5 M samples,
-/// about 200 searches on the regional scene) was most of the skeleton's system time.
+/// allocating and filling them for every search (17 bytes per sample, for each of the regional
+/// scene's searches) was most of the skeleton's system time (BENCHMARKS.md).
 struct Spare {
     trees: Vec<Vec<Reached>>,
     settled: Vec<Vec<bool>>,
@@ -541,7 +541,7 @@ mod tests {
 
     #[test]
     fn the_radix_heap_pops_in_key_order() {
-        let mut rng = karst_geology::rng::Random::stream(2, "test", "radix");
+        let mut rng = karst_scene::rng::Random::stream(2, "test", "radix");
         let mut heap = RadixHeap::new();
         let mut keys: Vec<f64> = (0..500).map(|_| rng.range(0.0, 1e4)).collect();
         for (i, k) in keys.iter().enumerate() {
@@ -585,7 +585,7 @@ mod tests {
 
     #[test]
     fn astar_agrees_with_dijkstra_on_a_random_graph() {
-        let mut rng = karst_geology::rng::Random::stream(1, "test", "astar");
+        let mut rng = karst_scene::rng::Random::stream(1, "test", "astar");
         let n = 400;
         let positions: Vec<[f64; 3]> =
             (0..n).map(|_| [rng.range(0.0, 100.0), rng.range(0.0, 100.0), rng.range(0.0, 20.0)]).collect();
@@ -612,7 +612,7 @@ mod tests {
 
     #[test]
     fn a_search_on_kept_arrays_is_a_search_on_fresh_ones() {
-        let mut rng = karst_geology::rng::Random::stream(3, "test", "spare");
+        let mut rng = karst_scene::rng::Random::stream(3, "test", "spare");
         let n = 300;
         let lists = (0..n)
             .map(|_| (0..6).map(|_| (rng.index(n) as u32, rng.range(0.5, 2.0) as f32)).collect())

@@ -1,18 +1,18 @@
 //! The least cost from every sample to a spring: the phreatic A*'s heuristic when many legs
 //! go to the same spring (`karstnsim.rs`, `cohesion_bound.rs`).
 //!
-//! The phreatic legs are most of the skeleton's time on a large scene (on the regional scene at
-//! 1 M samples, 100 legs reached 9.7 M samples: 6.2 s of 7 s). Their heuristic bounds the cost
-//! still to pay by the least cost per metre of any edge times the straight-line distance; the
-//! cheapest edges of a set are rare (straight down through the vadose zone, along the water
-//! table), so the bound is loose and each search explores a wide ellipsoid between its entry
-//! and the spring. The exact least cost to the spring, T(v) = d(v, t), is the tightest bound
-//! there is, and one Dijkstra over the reversed graph from the spring gives it for every
-//! sample at once: about the cost of one or two phreatic legs, repaid when the spring drains
-//! many sinks (the regional scene's springs drain 20 each; the peer scene's 4, and there it
-//! would not pay). It is computed on the phase's costs before cohesion (the inherited conduits'
-//! factor included), which cohesion only lowers: `cohesion_bound.rs` combines T with the
-//! network's discount so that the bound stays admissible and consistent.
+//! The phreatic legs are most of the skeleton's time on a large scene (on the regional scene, its
+//! legs together reach many times the samples there are: BENCHMARKS.md). Their heuristic bounds the
+//! cost still to pay by the least cost per metre of any edge times the straight-line distance; the
+//! cheapest edges of a set are rare (straight down through the vadose zone, along the water table),
+//! so the bound is loose and each search explores a wide ellipsoid between its entry and the
+//! spring. The exact least cost to the spring, T(v) = d(v, t), is the tightest bound there is, and
+//! one Dijkstra over the reversed graph from the spring gives it for every sample at once: about
+//! the cost of one or two phreatic legs, repaid when the spring drains many sinks (the regional
+//! scene's springs drain 20 each; the peer scene's 4, and there it would not pay). It is computed
+//! on the phase's costs before cohesion (the inherited conduits' factor included), which cohesion
+//! only lowers: `cohesion_bound.rs` combines T with the network's discount so that the bound stays
+//! admissible and consistent.
 //!
 //! T is computed where the spring is reachable and is +∞ elsewhere (those samples cannot reach
 //! it at any cost: no bound is wrong there). Sums are taken from the spring outwards, so T(u) ≤
@@ -99,7 +99,7 @@ pub fn costs_to(
 mod tests {
     use super::*;
     use crate::search::{Cohesive, EdgeCosts, dijkstra};
-    use karst_geology::rng::Random;
+    use karst_scene::rng::Random;
 
     /// A random directed graph: each node joined to 6 others at random costs.
     fn random_graph(rng: &mut Random, n: usize) -> CostGraph {

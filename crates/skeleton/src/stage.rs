@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 
 use karst_artifact::{Header, StageId, read_artifact};
 use karst_costgraph::CostGraph;
-use karst_geology::params::SkeletonMode;
 use karst_sampling::Samples;
+use karst_scene::params::SkeletonMode;
 use karst_stage::{Stage, StageError};
 
 use crate::build::build;

@@ -16,7 +16,7 @@
 use std::collections::BTreeMap;
 
 use glam::DVec3;
-use karst_geology::rng::Random;
+use karst_scene::rng::Random;
 
 use crate::nodes::node_at;
 use crate::payload::{Node, Route};

@@ -3,7 +3,7 @@
 use karst_costgraph::CostgraphView;
 use karst_geology::Point;
 
-karst_geology::view! {
+karst_scene::view! {
     /// The skeleton stage's view of the scene: the bedrock its branches stay in, `[sampling]`
     /// (the radius its derived defaults scale with, docs/skeleton.md), the geology
     /// that classifies and orients its conduits, the key points and connectivity it routes,

@@ -7,8 +7,8 @@ use std::process::ExitCode;
 use serde::Serialize;
 
 use karst_artifact::{Header, Payload, read_artifact};
-use karst_geology::Scene;
-use karst_geology::budget::Budget;
+use karst_scene::Scene;
+use karst_scene::budget::Budget;
 
 use crate::contract::Stage;
 use crate::error::StageError;
@@ -44,7 +44,7 @@ pub fn run<S: Stage>(args: &RunArgs) -> Result<(), StageError> {
         scene.set_budget(budget);
     }
     let _lock = karst_artifact::lock_output(&args.out)?;
-    karst_artifact::atomic::remove_stale_temporaries(&args.out);
+    runner::sweep_leftovers(&args.out);
     let ran = runner::run::<S>(&Job::new(&args.scene, &scene, &args.out))?;
     println!("{} in {:.2} s", ran.headline, ran.seconds);
     for note in &ran.notes {

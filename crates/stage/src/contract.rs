@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use karst_artifact::{Header, Payload, StageId};
-use karst_geology::{SceneView, Section};
+use karst_scene::{SceneView, Section};
 
 use crate::inputs::Inputs;
 use crate::streamed::{ArtifactOut, Written};
@@ -13,7 +13,7 @@ use crate::streamed::{ArtifactOut, Written};
 pub trait Stage: 'static {
     /// The stage's row of the stage table: name, binary, artifact file, encoding, inputs.
     const ID: StageId;
-    /// What the stage reads of the scene ([`karst_geology::view!`]): its artifact key hashes
+    /// What the stage reads of the scene ([`karst_scene::view!`]): its artifact key hashes
     /// exactly the view's sections ([`sections`]).
     type View<'s>: SceneView<'s>;
     /// The upstream payloads it reads, in the row's order.

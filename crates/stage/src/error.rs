@@ -44,7 +44,7 @@ impl StageError {
         let StageError::BadInput(e) = self else { return None };
         Some(if let Some(blamed) = e.downcast_ref::<Blamed>() {
             blamed.input
-        } else if e.downcast_ref::<karst_geology::SceneError>().is_some() {
+        } else if e.downcast_ref::<karst_scene::SceneError>().is_some() {
             Input::Scene
         } else if e.downcast_ref::<karst_artifact::Error>().is_some() {
             Input::Artifact
@@ -87,8 +87,8 @@ impl From<karst_artifact::Error> for StageError {
     }
 }
 
-impl From<karst_geology::SceneError> for StageError {
-    fn from(e: karst_geology::SceneError) -> Self {
+impl From<karst_scene::SceneError> for StageError {
+    fn from(e: karst_scene::SceneError) -> Self {
         StageError::BadInput(e.into())
     }
 }
@@ -103,7 +103,7 @@ mod tests {
         assert_eq!(StageError::artifact("a").input_at_fault(), Some(Input::Artifact));
         assert_eq!(StageError::input("x").input_at_fault(), Some(Input::Other));
         assert_eq!(StageError::failure("f").input_at_fault(), None);
-        let scene = karst_geology::Scene::parse("name = 1", std::path::Path::new("s.toml")).unwrap_err();
+        let scene = karst_scene::Scene::parse("name = 1", std::path::Path::new("s.toml")).unwrap_err();
         assert_eq!(StageError::from(scene).input_at_fault(), Some(Input::Scene));
         assert_eq!(StageError::scene("line 3: bad").to_string(), "line 3: bad");
     }

@@ -2,8 +2,8 @@
 //!
 //! `karstgen run` runs the stages one after the other in one process. Each stage writes its
 //! artifact, and the next one would read it back: open the file, hash the payload, decode it
-//! and check it again, for a payload that is still in memory. On the 1M-sample peer scene that
-//! is 0.5 s of the skeleton's 1.3 s; on the regional scene, 3.7 GB of cost graph. A
+//! and check it again, for a payload that is still in memory: on the large scenes a good part
+//! of the skeleton's time, and a cost graph of gigabytes (BENCHMARKS.md). A
 //! [`Handoff`] keeps the payload a stage wrote for the stage after it instead.
 //!
 //! What stays true:

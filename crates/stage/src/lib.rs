@@ -2,7 +2,7 @@
 //!
 //! A stage is a type implementing [`Stage`]: its row of the stage table (name, binary,
 //! artifact file, encoding, inputs: [`karst_artifact::StageRow`]), its view of the scene (the
-//! sections it reads, typed: [`karst_geology::view!`]), the upstream payloads it reads
+//! sections it reads, typed: [`karst_scene::view!`]), the upstream payloads it reads
 //! ([`Inputs`]), the payload it writes, its own typed error and a `build` function from the
 //! view and the inputs to the payload, plus a headline and an `inspect` summary. [`runner::run`] does everything around `build` the same way for every
 //! stage: read and check the inputs, time the build, write the side files then the artifact

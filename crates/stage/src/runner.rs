@@ -4,8 +4,10 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use karst_artifact::stages::{producer, stage_key};
-use karst_artifact::{Header, InputRef, Payload, Provenance, read_artifact, read_header, write_artifact};
-use karst_geology::{Scene, SceneView};
+use karst_artifact::{
+    Header, InputRef, Payload, Provenance, StageId, read_artifact, read_header, write_artifact,
+};
+use karst_scene::{Scene, SceneView};
 
 use crate::contract::{Blame, Failure, Stage, sections};
 use crate::error::StageError;
@@ -190,6 +192,23 @@ fn invalidate_other(path: &Path, key: &str) -> Result<(), StageError> {
 pub fn previous_artifact(path: &Path) -> PathBuf {
     let name = path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
     path.with_file_name(format!(".{name}.previous"))
+}
+
+/// Removes what killed runs left in the output folder `out`: temporary files of processes that
+/// are gone ([`karst_artifact::atomic::remove_stale_temporaries`]) and the `.NAME.previous`
+/// of every artifact NAME of karstgen's stages that exists again (a run killed after a stage
+/// wrote its new artifact, before it deleted the old one). Without its artifact, a previous one
+/// stays: the stage reads it when it runs again (the export removes the files it no longer
+/// writes) and deletes it then. Other files, a user's too, are never touched. Returns how many
+/// were removed.
+pub fn sweep_leftovers(out: &Path) -> usize {
+    let previous = StageId::ALL
+        .iter()
+        .map(|stage| out.join(stage.file_name()))
+        .filter(|artifact| artifact.is_file())
+        .filter(|artifact| std::fs::remove_file(previous_artifact(artifact)).is_ok())
+        .count();
+    previous + karst_artifact::atomic::remove_stale_temporaries(out)
 }
 
 /// The error a user sees for a stage's typed error: the file at fault named first.

@@ -4,8 +4,8 @@
 
 use glam::DVec3;
 
-use karst_geology::{KeyPointKind, keypoints_of};
 use karst_hydro::Hydro;
+use karst_scene::{KeyPointKind, keypoints_of};
 
 use crate::error::StreamsError;
 use crate::ground::{Grid, Ground};

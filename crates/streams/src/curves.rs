@@ -17,7 +17,7 @@
 
 use glam::{DVec2, DVec3};
 
-use karst_geology::params::{Curve, CurveKind, StreamsParams};
+use karst_scene::params::{Curve, CurveKind, StreamsParams};
 
 use crate::ground::Ground;
 use crate::heading;

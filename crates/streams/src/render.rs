@@ -144,7 +144,7 @@ mod tests {
         let text = karst_testkit::SceneText::new("m")
             .replace("[terrain]", "[terrain]\nkind = \"plane\"\nelevation = 45\ngradient = [-0.1, 0]")
             .text();
-        let scene = karst_geology::Scene::parse(&text, std::path::Path::new("m.toml")).unwrap();
+        let scene = karst_scene::Scene::parse(&text, std::path::Path::new("m.toml")).unwrap();
         let node = |x: f64, role| Node {
             position: [x, 25.0, 40.0 - 0.1 * x],
             role,

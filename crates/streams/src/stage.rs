@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 
 use karst_artifact::{Header, StageId, read_artifact};
-use karst_geology::Scene;
 use karst_hydro::Hydro;
+use karst_scene::Scene;
 use karst_stage::human::round;
 use karst_stage::{Stage, StageError};
 

@@ -26,8 +26,8 @@
 
 use glam::{DVec2, DVec3};
 
-use karst_geology::params::StreamsParams;
 use karst_hydro::G;
+use karst_scene::params::StreamsParams;
 
 use crate::flood::{self, Filled};
 use crate::ground::{Grid, Ground};

@@ -16,9 +16,9 @@
 
 use glam::DVec3;
 
-use karst_geology::params::StreamsParams;
 use karst_hydro::G;
 use karst_hydro::{FlowScale, WaterType, classify};
+use karst_scene::params::StreamsParams;
 
 use crate::network::Network;
 use crate::payload::{Motion, Segment};

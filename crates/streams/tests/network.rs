@@ -2,14 +2,14 @@
 //! controller curves, the angle split at a branch, lakes and bad inputs. (The ten Table 1 types
 //! on hand-built segments are a unit test of `water.rs`.)
 
-use karst_geology::SceneView;
+use karst_scene::SceneView;
 use karst_streams::StreamsView;
 use std::path::Path;
 
 use glam::DVec3;
-use karst_geology::Scene;
 use karst_geology::heightfield::{HeightGrid, write_png};
 use karst_hydro::{FlowUnits, Hydro, Spring};
+use karst_scene::Scene;
 use karst_streams::{PoolKind, Role, Streams, StreamsError, build};
 use karst_testkit::scratch;
 

@@ -5,14 +5,14 @@
 //! every preset's terrain with extra springs spread over it, and on a hand-built terrain with a
 //! flat and a pit.
 
-use karst_geology::SceneView;
+use karst_scene::SceneView;
 use karst_streams::StreamsView;
 use std::path::Path;
 
 use glam::DVec3;
 use karst_geology::heightfield::{HeightGrid, write_png};
-use karst_geology::{KeyPoint, KeyPointKind, Scene};
 use karst_hydro::{FlowUnits, Hydro, Spring};
+use karst_scene::{KeyPoint, KeyPointKind, Scene};
 use karst_streams::{Motion, Role, Streams, build};
 use karst_testkit::{root, scratch};
 
@@ -27,7 +27,7 @@ fn hydro_of(scene: &Scene) -> Hydro {
         conduits: Vec::new(),
         nodes: Vec::new(),
         sinks: Vec::new(),
-        springs: karst_geology::keypoints_of(scene.keypoints(), KeyPointKind::Spring)
+        springs: karst_scene::keypoints_of(scene.keypoints(), KeyPointKind::Spring)
             .map(|(_, k)| Spring { name: k.name.clone(), node: 0, flow: 1.0, sinks: Vec::new() })
             .collect(),
     }

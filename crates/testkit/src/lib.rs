@@ -1,5 +1,6 @@
 //! What karstgen's tests share: where the workspace and its fixtures are, fresh scratch
-//! folders, a small scene to start from ([`SceneText`]), and running one stage in process.
+//! folders, a small scene to start from ([`SceneText`]), running one stage in process, and the
+//! command-line contract of the stage binaries ([`cli`]).
 //!
 //! A dev-dependency of the stage crates; it depends on none of them, so any crate's tests can
 //! use it.
@@ -7,9 +8,11 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use karst_geology::Scene;
+use karst_scene::Scene;
 use karst_stage::{Job, Ran, Stage, StageError};
 
+pub mod cli;
+pub mod gdal;
 mod scene_text;
 
 pub use scene_text::SceneText;
@@ -41,8 +44,8 @@ pub fn scratch(name: &str) -> Scratch {
 }
 
 /// A test's scratch folder ([`scratch`]): a path, removed with everything in it when dropped
-/// while the thread is not panicking. The suite used to leave every run's folders behind
-/// (57 folders, 255 MB a run).
+/// while the thread is not panicking. The suite used to leave every run's folders behind, a
+/// run's worth of scratch space each time.
 #[derive(Debug)]
 pub struct Scratch(PathBuf);
 

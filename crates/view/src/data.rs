@@ -11,9 +11,10 @@
 
 use serde::Serialize;
 
-use karst_geology::{KeyPointKind, Scene, Surface};
+use karst_geology::Surface;
 use karst_hydro::{Hydro, Role, WaterType};
 use karst_metrics::MetricsReport;
+use karst_scene::{KeyPointKind, Scene};
 use karst_skeleton::Skeleton;
 use karst_streams::{Motion, Streams};
 

@@ -17,7 +17,7 @@ pub enum ViewError {
     #[error("{dir}: has no view/index.html: write the view first (`karst-view {run}`)")]
     NoView { dir: PathBuf, run: String },
     #[error(transparent)]
-    Scene(#[from] karst_geology::SceneError),
+    Scene(#[from] karst_scene::SceneError),
     /// The run folder cannot be locked: another process writes into it, or it is not writable.
     #[error(transparent)]
     Lock(#[from] karst_artifact::Error),

@@ -13,10 +13,10 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use karst_artifact::{Header, Payload, StageId, read_artifact};
-use karst_geology::Scene;
 use karst_hydro::Hydro;
 use karst_mesher::Mesh;
 use karst_metrics::MetricsReport;
+use karst_scene::Scene;
 use karst_skeleton::Skeleton;
 use karst_streams::Streams;
 

@@ -213,7 +213,7 @@ fn an_ensemble_in_the_run_folder_colours_every_segment() {
     let scene = SceneFile::load(&tiny_scene()).unwrap();
     let seed = scene.scene.seed();
     let plan = ensemble::Plan::new(scene, None, 10.0, ensemble::Keep::All).unwrap();
-    ensemble::run(&plan, &dir, &[seed, seed + 1, seed + 2]).unwrap();
+    ensemble::run(&plan, &dir, &[seed, seed + 1, seed + 2], None).unwrap();
     let report = write_view(&dir, Some(&tiny_scene())).unwrap();
     assert!(report.problems.is_empty(), "{:?}", report.problems);
     let data = run_json(&dir);

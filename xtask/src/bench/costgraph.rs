@@ -4,7 +4,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use karst_costgraph::CostgraphView;
-use karst_geology::SceneView;
+use karst_scene::SceneView;
 use karst_stage::StageError;
 
 use super::median;
@@ -31,9 +31,9 @@ pub struct CostgraphTimes {
 
 /// Times `case` under `scene` (median of `runs` builds).
 pub fn time_costgraph(scene: &Path, case: &CostgraphCase, runs: usize) -> Result<CostgraphTimes, StageError> {
-    let mut scene = karst_geology::Scene::load(scene)?;
+    let mut scene = karst_scene::Scene::load(scene)?;
     scene.costgraph_mut().k = case.k;
-    let mut rng = karst_geology::rng::Random::stream(scene.seed(), "bench", "costgraph-points");
+    let mut rng = karst_scene::rng::Random::stream(scene.seed(), "bench", "costgraph-points");
     let (min, max) = (scene.domain().min, scene.domain().max);
     let points: Vec<[f64; 3]> =
         (0..case.samples).map(|_| std::array::from_fn(|axis| rng.range(min[axis], max[axis]))).collect();

@@ -9,8 +9,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use karst_geology::Scene;
-use karst_geology::geotiff::testing::{Encoding, write};
+use karst_geodata::geotiff::testing::{Encoding, write};
+use karst_scene::Scene;
 use karst_stage::StageError;
 
 use crate::temp_folder::TempFolder;

@@ -11,9 +11,9 @@ use std::time::Instant;
 
 use glam::DVec3;
 use karst_geology::Domain;
-use karst_geology::rng::Random;
 use karst_mesher::{Cave, Volume};
 use karst_mesher::{MeshSink, TriMesh, polygonize, polygonize_into};
+use karst_scene::rng::Random;
 use karst_sdf::{Capsule, CarvedTerrain, SdfModel, TerrainField};
 use karst_stage::StageError;
 

@@ -6,9 +6,9 @@ use std::time::Instant;
 
 use glam::DVec3;
 use karst_artifact::{Provenance, StageId, read_artifact};
-use karst_geology::SceneView;
 use karst_pipeline::registry;
 use karst_pipeline::scene::SceneFile;
+use karst_scene::SceneView;
 use karst_sdf::{CarvedTerrain, SdfView};
 use karst_stage::{Job, StageError};
 
@@ -35,7 +35,7 @@ pub struct SdfBench {
 /// Times `karst_sdf::build` and `CarvedTerrain::eval` on `conduits` synthetic conduits of 12
 /// nodes: evaluations at 200k points uniform in the domain and 200k within 6 m of a node.
 pub fn sdf_network(conduits: usize, runs: usize) -> Result<SdfBench, StageError> {
-    let scene = karst_geology::Scene::parse(karst_sdf::synthetic::SCENE, Path::new("synthetic.toml"))?;
+    let scene = karst_scene::Scene::parse(karst_sdf::synthetic::SCENE, Path::new("synthetic.toml"))?;
     let (skeleton, hydro) = karst_sdf::synthetic::network(5, conduits, 12);
     sdf_tree(&scene, &skeleton, &hydro, runs)
 }
@@ -55,7 +55,7 @@ pub fn sdf_preset(scene: &Path, runs: usize) -> Result<SdfBench, StageError> {
 }
 
 fn sdf_tree(
-    scene: &karst_geology::Scene,
+    scene: &karst_scene::Scene,
     skeleton: &karst_skeleton::Skeleton,
     hydro: &karst_hydro::Hydro,
     runs: usize,

@@ -4,8 +4,8 @@ use std::path::Path;
 use std::time::Instant;
 
 use karst_costgraph::CostgraphView;
-use karst_geology::{KeyPointKind, Scene, SceneView, keypoints_of};
 use karst_sampling::SamplingView;
+use karst_scene::{KeyPointKind, Scene, SceneView, keypoints_of};
 use karst_skeleton::SkeletonView;
 use karst_stage::StageError;
 

@@ -13,11 +13,11 @@ use std::path::Path;
 use std::time::Instant;
 
 use karst_artifact::{StageId, read_artifact};
-use karst_geology::{Scene, SceneView};
 use karst_hydro::Hydro;
 use karst_mesher::{MesherStage, MesherView, anchors, mesh_with};
 use karst_pipeline::registry;
 use karst_pipeline::scene::SceneFile;
+use karst_scene::{Scene, SceneView};
 use karst_sdf::{CarvedTerrain, SdfModel, SdfStage, SdfView};
 use karst_skeleton::Skeleton;
 use karst_stage::{Job, Stage, StageError};

@@ -19,10 +19,10 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use karst_artifact::{StageId, read_artifact};
-use karst_geology::budget::Budget;
 use karst_metrics::ranges::{CHARACTERIZE_KEYS, real_cave_ranges};
 use karst_pipeline::registry;
 use karst_pipeline::scene::SceneFile;
+use karst_scene::budget::Budget;
 use karst_skeleton::Skeleton;
 use karst_stage::{Handoff, Job, StageError};
 
@@ -190,7 +190,7 @@ pub fn markdown(sets: &[(Set, Vec<Outcome>)]) -> String {
     row("**inside at least eight**".into(), &|o| o.inside_count() >= 8, String::new());
     for key in CHARACTERIZE_KEYS {
         let r = &ranges[key];
-        row(format!("{key}"), &|o| o.inside(key), format!("{} – {}", short(r.min), short(r.max)));
+        row(key.to_string(), &|o| o.inside(key), format!("{} – {}", short(r.min), short(r.max)));
     }
     row("failed runs".into(), &|o| o.result.is_err(), String::new());
     out

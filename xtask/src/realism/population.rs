@@ -21,7 +21,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use karst_geology::heightfield::{HeightGrid, write_png};
-use karst_geology::rng::Random;
+use karst_scene::rng::Random;
 
 use super::terrain::{PIXELS, Relief, VERTICAL_SCALE, heightfield};
 
@@ -134,7 +134,7 @@ pub fn generate(scene_seed: u64, dir: &Path) -> std::io::Result<Generated> {
         );
     }
     if rng.uniform() < 1.0 / 3.0 {
-        let radius = karst_geology::defaults::sampling_radius_for(side * north * (top - floor) * 0.6);
+        let radius = karst_scene::defaults::sampling_radius_for(side * north * (top - floor) * 0.6);
         let _ = write!(toml, "[sampling]\nradius = {:.2}\n\n", radius * rng.range(0.8, 1.25));
     }
     if rng.uniform() < 0.2 {

@@ -3,7 +3,7 @@
 //! the 16-bit PNG a user would bring (`[terrain] kind = "heightfield"`).
 
 use karst_geology::heightfield::HeightGrid;
-use karst_geology::rng::Random;
+use karst_scene::rng::Random;
 
 /// The kinds of terrain the population draws from, in equal shares.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

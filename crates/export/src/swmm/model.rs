@@ -25,7 +25,7 @@ use std::f64::consts::PI;
 use karst_hydro::Role;
 use karst_skeleton::ConduitType;
 
-use karst_geology::params::ExportParams;
+use karst_scene::params::ExportParams;
 
 use super::chains::{self, Reach};
 use super::section::Section;

@@ -66,6 +66,8 @@ pub struct Run {
     pub mesh: Option<Mesh>,
     /// The frame the artifacts record.
     pub frame: karst_artifact::Frame,
+    /// The scene, for the formats that read it (the GIS formats).
+    pub scene: Option<karst_scene::Scene>,
 }
 
 impl Run {
@@ -79,7 +81,15 @@ impl Run {
             samples: read(dir, "samples.bin"),
             mesh: mesh_path.exists().then(|| read(dir, "mesh.bin")),
             frame: karst_artifact::read_header(&dir.join("samples.bin")).unwrap().frame(),
+            scene: None,
         }
+    }
+
+    /// The run with its scene, `fixtures/scenes/NAME.toml`.
+    pub fn with_scene(mut self, name: &str) -> Run {
+        let path = root().join(format!("fixtures/scenes/{name}.toml"));
+        self.scene = Some(SceneFile::load(&path).unwrap().scene);
+        self
     }
 
     pub fn inputs(&self) -> Inputs<'_> {
@@ -91,6 +101,9 @@ impl Run {
             metrics: Some(&self.metrics),
             samples: Some(&self.samples),
             geology: None,
+            keypoints: self.scene.as_ref().map(|s| &s.keypoints()[..]),
+            terrain: self.scene.as_ref().map(|s| s.terrain()),
+            domain: self.scene.as_ref().map(|s| s.domain()),
             frame: &self.frame,
         }
     }

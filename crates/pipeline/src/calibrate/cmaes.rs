@@ -14,7 +14,9 @@
 //! diagonalised by cyclic Jacobi rotations in a fixed order: the same seed gives the same
 //! candidates on every machine, whatever the number of threads.
 
-use karst_geology::rng::Random;
+use karst_scene::rng::Random;
+
+use super::optimiser::{Optimiser, Start};
 
 /// The state of the search.
 pub struct Cmaes {
@@ -40,13 +42,8 @@ pub struct Cmaes {
     p_c: Vec<f64>,
     generation: usize,
     random: Random,
-}
-
-/// One generation's candidates: the steps y = B D z drawn, and the points m + σ y.
-pub struct Generation {
+    /// The steps y = B D z of the last generation drawn (its points are m + σ y).
     steps: Vec<Vec<f64>>,
-    /// The points in the unit cube (before reflection).
-    pub points: Vec<Vec<f64>>,
 }
 
 impl Cmaes {
@@ -87,21 +84,26 @@ impl Cmaes {
             p_c: vec![0.0; n],
             generation: 0,
             random,
+            steps: Vec::new(),
         }
     }
 
-    /// Candidates per generation.
-    pub fn lambda(&self) -> usize {
+    /// The search of a calibration's [`Start`].
+    pub fn from_start(start: Start) -> Cmaes {
+        Cmaes::new(start.mean, start.sigma, start.population, start.random)
+    }
+}
+
+impl Optimiser for Cmaes {
+    fn lambda(&self) -> usize {
         self.lambda
     }
 
-    /// The current step size.
-    pub fn sigma(&self) -> f64 {
+    fn sigma(&self) -> f64 {
         self.sigma
     }
 
-    /// Draws the next generation.
-    pub fn ask(&mut self) -> Generation {
+    fn ask(&mut self) -> Vec<Vec<f64>> {
         let n = self.n;
         let mut steps = Vec::with_capacity(self.lambda);
         let mut points = Vec::with_capacity(self.lambda);
@@ -112,18 +114,19 @@ impl Cmaes {
             points.push((0..n).map(|i| self.mean[i] + self.sigma * y[i]).collect());
             steps.push(y);
         }
-        Generation { steps, points }
+        self.steps = steps;
+        points
     }
 
     /// Updates the distribution from the generation's objective values (lower is better; ties
     /// go to the earlier candidate).
-    pub fn tell(&mut self, generation: &Generation, values: &[f64]) {
+    fn tell(&mut self, values: &[f64]) {
         let n = self.n;
         let mut order: Vec<usize> = (0..values.len()).collect();
         order.sort_by(|&a, &b| values[a].total_cmp(&values[b]).then(a.cmp(&b)));
         let best = &order[..self.weights.len()];
         let y_w: Vec<f64> = (0..n)
-            .map(|i| best.iter().zip(&self.weights).map(|(&k, w)| w * generation.steps[k][i]).sum())
+            .map(|i| best.iter().zip(&self.weights).map(|(&k, w)| w * self.steps[k][i]).sum())
             .collect();
         for (m, y) in self.mean.iter_mut().zip(&y_w) {
             *m += self.sigma * y;
@@ -151,7 +154,7 @@ impl Cmaes {
                 let rank_mu: f64 = best
                     .iter()
                     .zip(&self.weights)
-                    .map(|(&k, w)| w * generation.steps[k][i] * generation.steps[k][j])
+                    .map(|(&k, w)| w * self.steps[k][i] * self.steps[k][j])
                     .sum();
                 self.c[i * n + j] =
                     keep * self.c[i * n + j] + self.c_1 * self.p_c[i] * self.p_c[j] + self.c_mu * rank_mu;
@@ -261,9 +264,9 @@ mod tests {
         let search = |seed| {
             let mut es = Cmaes::new(vec![0.9, 0.1, 0.9], 0.3, None, Random::stream(seed, "test", "cmaes"));
             for _ in 0..150 {
-                let g = es.ask();
-                let values: Vec<f64> = g.points.iter().map(|p| f(p)).collect();
-                es.tell(&g, &values);
+                let points = es.ask();
+                let values: Vec<f64> = points.iter().map(|p| f(p)).collect();
+                es.tell(&values);
             }
             es.mean.clone()
         };

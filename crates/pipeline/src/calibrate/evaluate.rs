@@ -13,9 +13,9 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use karst_costgraph::{CostGraph, CostgraphView};
-use karst_geology::{Scene, SceneView, Section};
 use karst_metrics::ranges::CHARACTERIZE_KEYS;
 use karst_sampling::{Samples, SamplingView};
+use karst_scene::{Scene, SceneView, Section};
 use karst_skeleton::SkeletonView;
 
 /// The ten `characterize_graph()` metrics of a network, in karstnet's order.

@@ -5,7 +5,8 @@
 //! - [`objective`]: the distance of a network to it, each metric normalised by its real-cave
 //!   range; a candidate's distance is the median over `calibrate.seeds` realizations;
 //! - [`space`]: the box, as the unit cube the optimiser searches;
-//! - [`cmaes`]: the optimiser, CMA-ES with an ask-and-tell interface;
+//! - [`optimiser`]: the ask-and-tell interface of the search, so that it can be replaced
+//!   ([`run_with`]); [`cmaes`]: the one [`run`] uses, CMA-ES;
 //! - [`evaluate`]: candidates run sampling, cost graph and skeleton in memory, in parallel;
 //! - [`outputs`]: what is written: the calibrated scene, `report.json`, `report.png`
 //!   ([`chart`]) and `iterations.csv`; [`scene_edit`] writes the calibrated scene's text.
@@ -20,6 +21,7 @@ mod chart;
 mod cmaes;
 mod evaluate;
 mod objective;
+pub mod optimiser;
 mod outputs;
 mod scene_edit;
 mod space;
@@ -28,15 +30,16 @@ mod target;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use karst_geology::Scene;
-use karst_geology::params::CalibrateParams;
-use karst_geology::rng::Random;
+use karst_scene::Scene;
+use karst_scene::params::CalibrateParams;
+use karst_scene::rng::Random;
 use karst_stage::StageError;
 
 use crate::scene::SceneFile;
 use cmaes::Cmaes;
 use evaluate::{MetricVector, Runner};
 use objective::{Objective, median};
+use optimiser::{Optimiser, Start};
 use outputs::{Candidate, Outcome};
 use space::Space;
 
@@ -60,8 +63,16 @@ pub struct Evaluated {
     pub failure: Option<String>,
 }
 
-/// Runs the calibration and writes its outputs; returns a one-line summary.
+/// Runs the calibration with CMA-ES and writes its outputs; returns a one-line summary.
 pub fn run(args: &CalibrateArgs) -> Result<String, StageError> {
+    run_with(args, Cmaes::from_start)
+}
+
+/// Runs the calibration with the optimiser `search` makes from the start of the search.
+pub fn run_with<O: Optimiser>(
+    args: &CalibrateArgs,
+    search: impl FnOnce(Start) -> O,
+) -> Result<String, StageError> {
     let start = Instant::now();
     let scene = SceneFile::load(&args.scene)?;
     let config = scene.scene.calibrate().clone().ok_or_else(|| {
@@ -96,12 +107,12 @@ pub fn run(args: &CalibrateArgs) -> Result<String, StageError> {
     let current = space.current(&scene.scene);
     let mut candidates =
         vec![Candidate { generation: 0, index: 0, sigma: config.step, values: current, evaluated: before }];
-    let mut es = Cmaes::new(
-        space.start(&scene.scene),
-        config.step,
-        config.population,
-        Random::stream(scene.scene.seed(), "calibrate", "cmaes"),
-    );
+    let mut es = search(Start {
+        mean: space.start(&scene.scene),
+        sigma: config.step,
+        population: config.population,
+        random: Random::stream(scene.scene.seed(), "calibrate", "cmaes"),
+    });
     let mut generation = 0;
     let stopped_by = loop {
         if budget.is_some_and(|b| candidates.len() + es.lambda() > b) {
@@ -113,10 +124,10 @@ pub fn run(args: &CalibrateArgs) -> Result<String, StageError> {
         generation += 1;
         let sigma = es.sigma();
         let drawn = es.ask();
-        let values: Vec<Vec<f64>> = drawn.points.iter().map(|p| space.values(p)).collect();
+        let values: Vec<Vec<f64>> = drawn.iter().map(|p| space.values(p)).collect();
         let scenes: Vec<Scene> = values.iter().map(|v| space.apply(&scene.scene, v)).collect();
         let results = evaluate(&scenes);
-        es.tell(&drawn, &results.iter().map(|r| r.distance).collect::<Vec<_>>());
+        es.tell(&results.iter().map(|r| r.distance).collect::<Vec<_>>());
         for (index, (values, evaluated)) in values.into_iter().zip(results).enumerate() {
             let values = values.into_iter().map(Some).collect();
             candidates.push(Candidate { generation, index, sigma, values, evaluated });

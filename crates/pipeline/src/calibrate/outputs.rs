@@ -14,8 +14,8 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use karst_geology::params::CalibrateParams;
 use karst_metrics::ranges::{CHARACTERIZE_KEYS, real_cave_ranges};
+use karst_scene::params::CalibrateParams;
 use karst_stage::StageError;
 
 use super::Evaluated;

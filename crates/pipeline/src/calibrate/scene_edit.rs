@@ -8,7 +8,7 @@ use std::path::Path;
 
 use toml_edit::{DocumentMut, Item, Value, value};
 
-use karst_geology::Scene;
+use karst_scene::Scene;
 
 /// A calibrated value: the parameter (`section.field`), the value and whether it is an integer.
 pub struct Setting<'a> {

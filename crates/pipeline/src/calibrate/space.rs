@@ -2,8 +2,8 @@
 //! A point's coordinate u in [0, 1] is the value min + u (max − min), rounded for integer
 //! parameters; coordinates outside [0, 1] are reflected back first.
 
-use karst_geology::params::{Bounds, CalibrateParams, Parameter, parameter};
-use karst_geology::{Scene, Section};
+use karst_scene::params::{Bounds, CalibrateParams, Parameter, parameter};
+use karst_scene::{Scene, Section};
 
 use super::cmaes::reflect;
 

@@ -7,7 +7,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use karst_geology::Scene;
+use karst_scene::Scene;
 use karst_skeleton::Skeleton;
 
 /// Grids larger than this are refused (a `u32` count per cell).

@@ -16,7 +16,9 @@
 //!   error of each failed realization): see [`table`];
 //! - `probability.vti`: the conduit probability as one VTK volume (ParaView);
 //!   `probability/z-NNN.exr` the same, one horizontal slice per file, and `probability/grid.json`
-//!   placing them; `probability-top.png`, the top view as a map.
+//!   placing them; `probability-top.png`, the top view as a map;
+//! - `probability.tif` and `mean-depth.tif`: the same probability as GeoTIFF map rasters on
+//!   the grid of the single run's rasters, for a GIS (see [`maps`]).
 //!
 //! Running is resumable: a realization whose record is final is not run again, and the summary
 //! covers every record of the folder, so seed ranges run one after the other, or on several
@@ -25,6 +27,7 @@
 //! the number of threads or processes.
 
 mod grid;
+pub mod maps;
 mod picture;
 pub mod realization;
 pub mod record;
@@ -42,6 +45,7 @@ use karst_stage::StageError;
 
 use crate::scene::SceneFile;
 pub use grid::Grid;
+pub use maps::{MapGrid, parse_depth_band};
 pub use realization::{Keep, realize};
 pub use record::{Figures, Outcome, Record};
 pub use seeds::{first_n, parse_seeds};
@@ -59,6 +63,7 @@ pub struct Plan {
     pub scene: SceneFile,
     stages: Vec<StageId>,
     grid: Grid,
+    maps: MapGrid,
     keep: Keep,
     key: String,
 }
@@ -71,6 +76,9 @@ pub struct Definition {
     pub name: String,
     pub stages: Vec<String>,
     pub grid: Grid,
+    /// The map rasters' grid (absent from ensembles made before them: no GeoTIFFs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub maps: Option<MapGrid>,
     pub karstgen: String,
 }
 
@@ -88,6 +96,7 @@ impl Plan {
             )));
         }
         let grid = Grid::new(&scene.scene, cell).map_err(|e| StageError::input(format!("ensemble: {e}")))?;
+        let maps = MapGrid::of(&scene.scene)?;
         let mut without_seed = serde_json::to_value(&scene.scene)
             .map_err(|e| StageError::failure(format!("{}: {e}", scene.path.display())))?;
         if let Some(table) = without_seed.as_object_mut() {
@@ -99,9 +108,10 @@ impl Plan {
             without_seed.to_string(),
             names.join(","),
             serde_json::to_string(&grid).unwrap_or_default(),
+            serde_json::to_string(&maps).unwrap_or_default(),
         ];
         let key = karst_artifact::hash::hex_of_parts(parts.iter().map(|p| p.as_bytes()));
-        Ok(Plan { scene, stages, grid, keep, key })
+        Ok(Plan { scene, stages, grid, maps, keep, key })
     }
 
     /// The stages each realization runs, in order.
@@ -111,6 +121,11 @@ impl Plan {
 
     pub fn grid(&self) -> &Grid {
         &self.grid
+    }
+
+    /// The map rasters' grid.
+    pub fn maps(&self) -> &MapGrid {
+        &self.maps
     }
 
     pub fn keep(&self) -> &Keep {
@@ -130,6 +145,7 @@ impl Plan {
             name: self.scene.scene.name().to_string(),
             stages: self.stages.iter().map(|s| s.name().to_string()).collect(),
             grid: self.grid.clone(),
+            maps: Some(self.maps.clone()),
             karstgen: env!("CARGO_PKG_VERSION").to_string(),
         }
     }
@@ -220,8 +236,8 @@ impl Summary {
 }
 
 /// Runs the realizations of `seeds` still pending in `out`, in parallel, then summarises the
-/// folder.
-pub fn run(plan: &Plan, out: &Path, seeds: &[u64]) -> Result<Summary, StageError> {
+/// folder (`band`: the depth band of `probability.tif`, metres below ground; None: any depth).
+pub fn run(plan: &Plan, out: &Path, seeds: &[u64], band: Option<[f64; 2]>) -> Result<Summary, StageError> {
     plan.prepare(out)?;
     let pending = plan.pending(out, seeds);
     let bar = karst_stage::progress::bar(pending.len() as u64, "ensemble");
@@ -235,14 +251,14 @@ pub fn run(plan: &Plan, out: &Path, seeds: &[u64]) -> Result<Summary, StageError
         .collect();
     bar.finish_and_clear();
     written?;
-    let mut summary = summarize(out)?;
+    let mut summary = summarize(out, band)?;
     summary.ran = pending.len();
     Ok(summary)
 }
 
 /// Gathers the records of the ensemble folders `dirs` (one plan, several seed ranges) into
-/// `out` and summarises it.
-pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Summary, StageError> {
+/// `out` and summarises it (`band` as for [`run`]).
+pub fn merge(dirs: &[PathBuf], out: &Path, band: Option<[f64; 2]>) -> Result<Summary, StageError> {
     let definitions = dirs.iter().map(|d| read_definition(d)).collect::<Result<Vec<_>, _>>()?;
     let Some(first) = definitions.first() else {
         return Err(StageError::input("ensemble merge: name at least one ensemble folder"));
@@ -276,11 +292,12 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Summary, StageError> {
             })?;
         }
     }
-    summarize(out)
+    summarize(out, band)
 }
 
-/// Writes the summary outputs of the ensemble folder `out` from its records.
-pub fn summarize(out: &Path) -> Result<Summary, StageError> {
+/// Writes the summary outputs of the ensemble folder `out` from its records (`band`: the depth
+/// band of `probability.tif`, metres below ground; None: any depth).
+pub fn summarize(out: &Path, band: Option<[f64; 2]>) -> Result<Summary, StageError> {
     let definition = read_definition(out)?;
     let grid = definition.grid;
     let records = record::read_all(out, &definition.key);
@@ -301,6 +318,9 @@ pub fn summarize(out: &Path) -> Result<Summary, StageError> {
         }
     }
     write_outputs(out, &grid, &table, &failures, &counts, &complete)?;
+    if let Some(map) = &definition.maps {
+        maps::write(out, map, &complete, band)?;
+    }
     Ok(Summary { ran: 0, complete: complete.len(), failures, table, grid, counts })
 }
 

@@ -84,8 +84,13 @@ fn figures(plan: &Plan, out: &Path, seed: u64) -> Result<Figures, StageError> {
             e => e,
         })?;
     let cells = plan.grid().cells_of(&skeleton);
+    let hydro = match plan.stages().contains(&StageId::Hydro) {
+        true => Some(read_artifact::<Hydro>(&dir.join(StageId::Hydro.file_name()))?.1),
+        false => None,
+    };
+    let columns = plan.maps().columns(&scene.scene, &skeleton, hydro.as_ref())?;
     tidy(&dir, plan.keep()).map_err(|e| StageError::failure(format!("{}: {e}", dir.display())))?;
-    Ok(Figures { report, springs, cells })
+    Ok(Figures { report, springs, cells, columns })
 }
 
 /// The metrics report of the run in `dir` (with the water-type lengths when `hydro`), its

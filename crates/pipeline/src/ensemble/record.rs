@@ -1,6 +1,7 @@
 //! One realization's record, `realizations/seed-N/record.json`: written last, atomically, so
 //! that its presence says the realization is done. It holds everything the summary needs (the
-//! metrics report, the spring discharges, the probability cells), so that the realization's
+//! metrics report, the spring discharges, the probability cells, the footprint columns of the
+//! map rasters), so that the realization's
 //! artifacts can go, and records from several machines can be merged.
 //!
 //! A record carries the ensemble's key: a record of another scene or other settings is not
@@ -12,6 +13,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use karst_export::rasters::Columns;
 use karst_metrics::MetricsReport;
 
 /// One realization of an ensemble.
@@ -45,6 +47,10 @@ pub struct Figures {
     pub springs: Vec<SpringDischarge>,
     /// Sorted indices of the probability-grid cells its conduits pass through.
     pub cells: Vec<u32>,
+    /// The depth spans of its conduits over each pixel of the map grid (`maps.rs`); empty in
+    /// records of ensembles without one.
+    #[serde(default)]
+    pub columns: Columns,
 }
 
 /// The water leaving one spring.
