@@ -26,6 +26,7 @@ mod network;
 mod nullable;
 mod payload;
 mod plots;
+mod quantum;
 pub mod ranges;
 pub mod readers;
 mod reduced;

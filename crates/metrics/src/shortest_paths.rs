@@ -31,6 +31,7 @@ use std::collections::BinaryHeap;
 use rayon::prelude::*;
 
 use crate::graph::Csr;
+use crate::quantum::quantize;
 
 /// Number of source ranges (fixed, so results do not depend on the thread count).
 const CHUNKS: usize = 64;
@@ -171,15 +172,66 @@ impl Kept {
 /// buckets between far-apart distances cost more than a heap.
 const DIAL_RATIO: f64 = 64.0;
 
-/// Runs a BFS (with Brandes' accumulation) and a Dijkstra from every kept node and derives the
-/// peeled nodes' results from their parents'.
+/// How the conduit-length distance sums are found (fastest exact method first).
+enum LengthMethod {
+    /// Every length is one quantum: the sums are the hop sums times the quantum.
+    Hops { quantum: f64 },
+    /// Lengths of a few quanta each: a bucket queue on integer distances.
+    Units { quantum: f64, units: Vec<u32>, max_unit: u32 },
+    /// Lengths within [`DIAL_RATIO`] of each other: Dial's buckets of this width.
+    Dial(f64),
+    /// Dijkstra's algorithm with a binary heap.
+    Heap,
+}
+
+impl LengthMethod {
+    fn choose(trees: &Trees, kept: &Kept) -> Self {
+        if let Some(q) = quantize(trees.lengths, trees.adj.n_nodes()) {
+            if q.max_unit == 1 {
+                return Self::Hops { quantum: q.quantum };
+            }
+            let units = kept.lengths.iter().map(|&l| (l / q.quantum) as u32).collect();
+            return Self::Units { quantum: q.quantum, units, max_unit: q.max_unit };
+        }
+        kept.dial_width().map_or(Self::Heap, Self::Dial)
+    }
+}
+
+/// The sums of the distances from a kept node to the nodes hanging from the kept nodes of its
+/// component, for the exact (quantized) methods whose sums do not depend on the order of the
+/// additions.
+struct ComponentTails {
+    /// Component of each kept node.
+    component: Vec<u32>,
+    hops: Vec<u64>,
+    lengths: Vec<f64>,
+}
+
+impl ComponentTails {
+    fn new(trees: &Trees, kept: &Kept) -> Self {
+        let (of_node, count) = trees.adj.components();
+        let component: Vec<u32> = kept.nodes.iter().map(|&v| of_node[v] as u32).collect();
+        let (mut hops, mut lengths) = (vec![0; count], vec![0.0; count]);
+        for (k, &c) in component.iter().enumerate() {
+            hops[c as usize] += kept.hop_tail[k];
+            lengths[c as usize] += kept.length_tail[k];
+        }
+        Self { component, hops, lengths }
+    }
+}
+
+/// Runs a BFS (with Brandes' accumulation) and a shortest-length traversal from every kept node
+/// and derives the peeled nodes' results from their parents'.
 pub(crate) fn all_pairs(adj: &Csr, lengths: &[f64]) -> AllPairs {
     let n = adj.n_nodes();
     let trees = Trees::new(adj, lengths);
     let kept = Kept::new(&trees);
+    let method = LengthMethod::choose(&trees, &kept);
+    let tails = ComponentTails::new(&trees, &kept);
     let sources: Vec<u32> = (0..kept.len() as u32).collect();
     let chunk = sources.len().div_ceil(CHUNKS).max(1);
-    let parts: Vec<AllPairs> = sources.par_chunks(chunk).map(|chunk| from_sources(&kept, chunk)).collect();
+    let parts: Vec<AllPairs> =
+        sources.par_chunks(chunk).map(|chunk| from_sources(&kept, &method, &tails, chunk)).collect();
     let mut total = AllPairs { hop_sums: vec![0; n], length_sums: vec![0.0; n], betweenness: vec![0.0; n] };
     for (part, chunk) in parts.into_iter().zip(sources.chunks(chunk)) {
         for (i, &s) in chunk.iter().enumerate() {
@@ -215,16 +267,26 @@ fn add_tree_sources(trees: &Trees, total: &mut AllPairs) {
 }
 
 /// The sums and betweenness of one range of sources (kept ids; betweenness per kept id).
-fn from_sources(kept: &Kept, sources: &[u32]) -> AllPairs {
+fn from_sources(kept: &Kept, method: &LengthMethod, tails: &ComponentTails, sources: &[u32]) -> AllPairs {
     let mut bfs = Brandes::new(kept.len());
     let mut betweenness = vec![0.0; kept.len()];
-    let hop_sums = sources.iter().map(|&s| bfs.run(kept, s, &mut betweenness)).collect();
-    let length_sums = match kept.dial_width() {
-        Some(width) => {
-            let mut dial = Dial::new(kept.len(), kept, width);
+    let reach: Vec<u64> = sources.iter().map(|&s| bfs.run(kept, s, &mut betweenness)).collect();
+    let component = |s: u32| tails.component[s as usize] as usize;
+    let hop_sums = sources.iter().zip(&reach).map(|(&s, &r)| r + tails.hops[component(s)]).collect();
+    let exact = |s: u32, r: u64, quantum: f64| r as f64 * quantum + tails.lengths[component(s)];
+    let length_sums = match method {
+        LengthMethod::Hops { quantum } => {
+            sources.iter().zip(&reach).map(|(&s, &r)| exact(s, r, *quantum)).collect()
+        }
+        LengthMethod::Units { quantum, units, max_unit } => {
+            let mut queue = UnitBuckets::new(kept.len(), *max_unit);
+            sources.iter().map(|&s| exact(s, queue.run(kept, units, s), *quantum)).collect()
+        }
+        LengthMethod::Dial(width) => {
+            let mut dial = Dial::new(kept.len(), kept, *width);
             sources.iter().map(|&s| dial.run(kept, s)).collect()
         }
-        None => {
+        LengthMethod::Heap => {
             let mut dijkstra = Dijkstra::new(kept.len());
             sources.iter().map(|&s| dijkstra.run(kept, s)).collect()
         }
@@ -251,58 +313,119 @@ impl Brandes {
     }
 
     /// Adds the dependencies of kept source `s` on kept nodes, times the size(s) sources it
-    /// stands for, to `betweenness`; returns `Σ_t d(s, t)` over all targets (module docs).
+    /// stands for, to `betweenness`; returns `Σ_c size(c) d(s, c)` over the kept nodes c it
+    /// reaches (the hop sum without the trees' tails, module docs).
+    ///
+    /// The buffers of a node are reset as soon as its dependency is final: a node nearer the
+    /// source then sees it at distance `u32::MAX`, never one hop farther than itself, since only
+    /// the source is at distance 0 and the source's own dependency is not needed.
     fn run(&mut self, kept: &Kept, s: u32, betweenness: &mut [f64]) -> u64 {
-        self.count_shortest_paths(kept, s);
+        let reach = self.count_shortest_paths(kept, s);
         let weight = kept.size[s as usize] as f64;
-        for &w in self.order.iter().rev() {
+        for &w in self.order[1..].iter().rev() {
             let w = w as usize;
+            let dist = self.dist[w];
             let coeff = (kept.size[w] as f64 + self.delta[w]) / self.sigma[w];
             for arc in kept.arcs(w as u32) {
                 let v = kept.targets[arc] as usize;
-                if self.dist[v].wrapping_add(1) == self.dist[w] {
+                if self.dist[v].wrapping_add(1) == dist {
                     self.delta[v] += self.sigma[v] * coeff;
                 }
             }
-            if w != s as usize {
-                betweenness[w] += weight * (self.delta[w] + (kept.size[w] - 1) as f64);
-            }
+            betweenness[w] += weight * (self.delta[w] + (kept.size[w] - 1) as f64);
+            self.dist[w] = u32::MAX;
+            self.sigma[w] = 0.0;
+            self.delta[w] = 0.0;
         }
-        let hop_sum = self
-            .order
-            .iter()
-            .map(|&v| kept.size[v as usize] * self.dist[v as usize] as u64 + kept.hop_tail[v as usize])
-            .sum();
-        for &v in &self.order {
-            let v = v as usize;
-            self.dist[v] = u32::MAX;
-            self.sigma[v] = 0.0;
-            self.delta[v] = 0.0;
-        }
-        hop_sum
+        let s = s as usize;
+        self.dist[s] = u32::MAX;
+        self.sigma[s] = 0.0;
+        self.delta[s] = 0.0;
+        reach
     }
 
-    /// BFS from `s` over the kept nodes: hop distances, shortest-path counts, visiting order.
-    fn count_shortest_paths(&mut self, kept: &Kept, s: u32) {
+    /// BFS from `s` over the kept nodes: hop distances, shortest-path counts, visiting order;
+    /// returns `Σ_c size(c) d(s, c)`.
+    fn count_shortest_paths(&mut self, kept: &Kept, s: u32) -> u64 {
         self.order.clear();
         self.order.push(s);
         self.dist[s as usize] = 0;
         self.sigma[s as usize] = 1.0;
+        let mut reach = 0;
         let mut head = 0;
         while let Some(&v) = self.order.get(head) {
             head += 1;
             let (v, next) = (v as usize, self.dist[v as usize] + 1);
+            let sigma_v = self.sigma[v];
             for arc in kept.arcs(v as u32) {
                 let w = kept.targets[arc] as usize;
                 if self.dist[w] == u32::MAX {
                     self.dist[w] = next;
                     self.order.push(w as u32);
+                    reach += kept.size[w] * u64::from(next);
                 }
                 if self.dist[w] == next {
-                    self.sigma[w] += self.sigma[v];
+                    self.sigma[w] += sigma_v;
                 }
             }
         }
+        reach
+    }
+}
+
+/// A bucket queue on integer distances (Dial's algorithm for lengths of 1 to `max_unit`
+/// quanta): a ring of `max_unit + 1` buckets holds every pending distance, a node is final when
+/// its bucket is reached.
+struct UnitBuckets {
+    dist: Vec<u32>,
+    ring: Vec<Vec<u32>>,
+    reached: Vec<u32>,
+}
+
+impl UnitBuckets {
+    fn new(n: usize, max_unit: u32) -> Self {
+        Self { dist: vec![u32::MAX; n], ring: vec![Vec::new(); max_unit as usize + 1], reached: Vec::new() }
+    }
+
+    /// `Σ_c size(c) d(s, c)` in quanta over the kept nodes c reached from `s`.
+    fn run(&mut self, kept: &Kept, units: &[u32], s: u32) -> u64 {
+        let ring = self.ring.len() as u32;
+        self.dist[s as usize] = 0;
+        self.ring[0].push(s);
+        self.reached.push(s);
+        let (mut pending, mut current, mut sum) = (1usize, 0u32, 0u64);
+        while pending > 0 {
+            let slot = (current % ring) as usize;
+            let bucket = std::mem::take(&mut self.ring[slot]);
+            pending -= bucket.len();
+            for &v in &bucket {
+                // An entry whose node was since moved to a nearer bucket (and settled there).
+                if self.dist[v as usize] != current {
+                    continue;
+                }
+                sum += kept.size[v as usize] * u64::from(current);
+                for arc in kept.arcs(v) {
+                    let w = kept.targets[arc] as usize;
+                    let through = current + units[arc];
+                    if through < self.dist[w] {
+                        if self.dist[w] == u32::MAX {
+                            self.reached.push(w as u32);
+                        }
+                        self.dist[w] = through;
+                        self.ring[(through % ring) as usize].push(w as u32);
+                        pending += 1;
+                    }
+                }
+            }
+            self.ring[slot] = bucket;
+            self.ring[slot].clear();
+            current += 1;
+        }
+        for &v in &self.reached {
+            self.dist[v as usize] = u32::MAX;
+        }
+        self.reached.clear();
+        sum
     }
 }
 
