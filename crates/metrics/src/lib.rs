@@ -16,6 +16,7 @@
 //!
 //! [`readers`] load karstnet `_nodes.dat`/`_links.dat` pairs, GOCAD PLines and CSV tables.
 
+mod bitbfs;
 mod branches;
 mod build;
 mod error;

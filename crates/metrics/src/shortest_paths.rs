@@ -31,6 +31,7 @@ use std::collections::BinaryHeap;
 use rayon::prelude::*;
 
 use crate::graph::Csr;
+use crate::bitbfs::{StepGraph, distance_sums};
 use crate::quantum::quantize;
 
 /// Number of source ranges (fixed, so results do not depend on the thread count).
@@ -176,25 +177,61 @@ const DIAL_RATIO: f64 = 64.0;
 enum LengthMethod {
     /// Every length is one quantum: the sums are the hop sums times the quantum.
     Hops { quantum: f64 },
-    /// Lengths of a few quanta each: a bucket queue on integer distances.
-    Units { quantum: f64, units: Vec<u32>, max_unit: u32 },
+    /// Lengths of a few quanta each: bit-parallel BFS on the graph of unit steps.
+    Steps { quantum: f64, graph: StepGraph },
     /// Lengths within [`DIAL_RATIO`] of each other: Dial's buckets of this width.
     Dial(f64),
     /// Dijkstra's algorithm with a binary heap.
     Heap,
 }
 
+/// Largest number of extra nodes of the unit-step graph per kept node: beyond it the steps cost
+/// more than Dial's float buckets.
+const STEPS_PER_NODE: usize = 4;
+
 impl LengthMethod {
     fn choose(trees: &Trees, kept: &Kept) -> Self {
-        if let Some(q) = quantize(trees.lengths, trees.adj.n_nodes()) {
-            if q.max_unit == 1 {
-                return Self::Hops { quantum: q.quantum };
-            }
-            let units = kept.lengths.iter().map(|&l| (l / q.quantum) as u32).collect();
-            return Self::Units { quantum: q.quantum, units, max_unit: q.max_unit };
+        match quantize(trees.lengths, trees.adj.n_nodes()) {
+            Some(q) if q.max_unit == 1 => Self::Hops { quantum: q.quantum },
+            Some(q) => match step_graph(trees, kept, &q.units) {
+                Some(graph) => Self::Steps { quantum: q.quantum, graph },
+                None => kept.dial_width().map_or(Self::Heap, Self::Dial),
+            },
+            None => kept.dial_width().map_or(Self::Heap, Self::Dial),
         }
-        kept.dial_width().map_or(Self::Heap, Self::Dial)
     }
+}
+
+/// The kept graph with every edge of u quanta (`units` by edge id) a chain of u unit steps,
+/// unless that adds more than [`STEPS_PER_NODE`] nodes per kept node.
+fn step_graph(trees: &Trees, kept: &Kept, units: &[u32]) -> Option<StepGraph> {
+    let mut index = vec![u32::MAX; trees.adj.n_nodes()];
+    for (k, &v) in kept.nodes.iter().enumerate() {
+        index[v] = k as u32;
+    }
+    let extra: usize = kept
+        .nodes
+        .iter()
+        .flat_map(|&v| trees.kept(v).filter(move |&(w, _)| v < w))
+        .map(|(_, e)| units[e] as usize - 1)
+        .sum();
+    if extra > STEPS_PER_NODE * kept.len() {
+        return None;
+    }
+    let mut n_nodes = kept.len() as u32;
+    let mut edges = Vec::new();
+    for &v in &kept.nodes {
+        for (w, e) in trees.kept(v).filter(|&(w, _)| v < w) {
+            let mut from = index[v];
+            for _ in 1..units[e] {
+                edges.push([from, n_nodes]);
+                from = n_nodes;
+                n_nodes += 1;
+            }
+            edges.push([from, index[w]]);
+        }
+    }
+    Some(StepGraph::new(n_nodes as usize, kept.len(), &edges))
 }
 
 /// The sums of the distances from a kept node to the nodes hanging from the kept nodes of its
@@ -226,25 +263,57 @@ pub(crate) fn all_pairs(adj: &Csr, lengths: &[f64]) -> AllPairs {
     let n = adj.n_nodes();
     let trees = Trees::new(adj, lengths);
     let kept = Kept::new(&trees);
-    let method = LengthMethod::choose(&trees, &kept);
     let tails = ComponentTails::new(&trees, &kept);
     let sources: Vec<u32> = (0..kept.len() as u32).collect();
     let chunk = sources.len().div_ceil(CHUNKS).max(1);
-    let parts: Vec<AllPairs> =
-        sources.par_chunks(chunk).map(|chunk| from_sources(&kept, &method, &tails, chunk)).collect();
+    let parts: Vec<(Vec<u64>, Vec<f64>)> =
+        sources.par_chunks(chunk).map(|chunk| brandes_chunk(&kept, chunk)).collect();
     let mut total = AllPairs { hop_sums: vec![0; n], length_sums: vec![0.0; n], betweenness: vec![0.0; n] };
-    for (part, chunk) in parts.into_iter().zip(sources.chunks(chunk)) {
-        for (i, &s) in chunk.iter().enumerate() {
-            let v = kept.nodes[s as usize];
-            total.hop_sums[v] = part.hop_sums[i];
-            total.length_sums[v] = part.length_sums[i];
-        }
-        for (k, p) in part.betweenness.into_iter().enumerate() {
+    let mut reach = Vec::with_capacity(kept.len());
+    for (part_reach, part_betweenness) in parts {
+        reach.extend(part_reach);
+        for (k, p) in part_betweenness.into_iter().enumerate() {
             total.betweenness[kept.nodes[k]] += p;
         }
     }
+    let length_sums = conduit_length_sums(&kept, &LengthMethod::choose(&trees, &kept), &tails, &reach);
+    for (k, &v) in kept.nodes.iter().enumerate() {
+        total.hop_sums[v] = reach[k] + tails.hops[tails.component[k] as usize];
+        total.length_sums[v] = length_sums[k];
+    }
     add_tree_sources(&trees, &mut total);
     total
+}
+
+/// `Σ_t d(s, t)` along conduit lengths for every kept source, its trees' targets included;
+/// `reach`: the sources' hop sums without the trees' tails.
+fn conduit_length_sums(kept: &Kept, method: &LengthMethod, tails: &ComponentTails, reach: &[u64]) -> Vec<f64> {
+    // Exact sums (module `quantum`): any order of the additions gives the same bits.
+    let exact = |k: usize, steps: u64, quantum: f64| steps as f64 * quantum + tails.lengths[tails.component[k] as usize];
+    let sources: Vec<u32> = (0..kept.len() as u32).collect();
+    let chunk = sources.len().div_ceil(CHUNKS).max(1);
+    match method {
+        LengthMethod::Hops { quantum } => reach.iter().enumerate().map(|(k, &r)| exact(k, r, *quantum)).collect(),
+        LengthMethod::Steps { quantum, graph } => distance_sums(graph, &kept.size)
+            .into_iter()
+            .enumerate()
+            .map(|(k, steps)| exact(k, steps, *quantum))
+            .collect(),
+        LengthMethod::Dial(width) => sources
+            .par_chunks(chunk)
+            .flat_map_iter(|chunk| {
+                let mut dial = Dial::new(kept.len(), kept, *width);
+                chunk.iter().map(|&s| dial.run(kept, s)).collect::<Vec<_>>()
+            })
+            .collect(),
+        LengthMethod::Heap => sources
+            .par_chunks(chunk)
+            .flat_map_iter(|chunk| {
+                let mut dijkstra = Dijkstra::new(kept.len());
+                chunk.iter().map(|&s| dijkstra.run(kept, s)).collect::<Vec<_>>()
+            })
+            .collect(),
+    }
 }
 
 /// Completes `total` with the contributions of the peeled nodes as sources (module docs).
@@ -266,32 +335,13 @@ fn add_tree_sources(trees: &Trees, total: &mut AllPairs) {
     }
 }
 
-/// The sums and betweenness of one range of sources (kept ids; betweenness per kept id).
-fn from_sources(kept: &Kept, method: &LengthMethod, tails: &ComponentTails, sources: &[u32]) -> AllPairs {
+/// The hop sums without tails (`Σ_c size(c) d(s, c)`) of one range of sources and the
+/// betweenness they add (per kept id).
+fn brandes_chunk(kept: &Kept, sources: &[u32]) -> (Vec<u64>, Vec<f64>) {
     let mut bfs = Brandes::new(kept.len());
     let mut betweenness = vec![0.0; kept.len()];
-    let reach: Vec<u64> = sources.iter().map(|&s| bfs.run(kept, s, &mut betweenness)).collect();
-    let component = |s: u32| tails.component[s as usize] as usize;
-    let hop_sums = sources.iter().zip(&reach).map(|(&s, &r)| r + tails.hops[component(s)]).collect();
-    let exact = |s: u32, r: u64, quantum: f64| r as f64 * quantum + tails.lengths[component(s)];
-    let length_sums = match method {
-        LengthMethod::Hops { quantum } => {
-            sources.iter().zip(&reach).map(|(&s, &r)| exact(s, r, *quantum)).collect()
-        }
-        LengthMethod::Units { quantum, units, max_unit } => {
-            let mut queue = UnitBuckets::new(kept.len(), *max_unit);
-            sources.iter().map(|&s| exact(s, queue.run(kept, units, s), *quantum)).collect()
-        }
-        LengthMethod::Dial(width) => {
-            let mut dial = Dial::new(kept.len(), kept, *width);
-            sources.iter().map(|&s| dial.run(kept, s)).collect()
-        }
-        LengthMethod::Heap => {
-            let mut dijkstra = Dijkstra::new(kept.len());
-            sources.iter().map(|&s| dijkstra.run(kept, s)).collect()
-        }
-    };
-    AllPairs { hop_sums, length_sums, betweenness }
+    let reach = sources.iter().map(|&s| bfs.run(kept, s, &mut betweenness)).collect();
+    (reach, betweenness)
 }
 
 /// Reusable buffers of Brandes' algorithm for unweighted graphs.
@@ -370,62 +420,6 @@ impl Brandes {
             }
         }
         reach
-    }
-}
-
-/// A bucket queue on integer distances (Dial's algorithm for lengths of 1 to `max_unit`
-/// quanta): a ring of `max_unit + 1` buckets holds every pending distance, a node is final when
-/// its bucket is reached.
-struct UnitBuckets {
-    dist: Vec<u32>,
-    ring: Vec<Vec<u32>>,
-    reached: Vec<u32>,
-}
-
-impl UnitBuckets {
-    fn new(n: usize, max_unit: u32) -> Self {
-        Self { dist: vec![u32::MAX; n], ring: vec![Vec::new(); max_unit as usize + 1], reached: Vec::new() }
-    }
-
-    /// `Σ_c size(c) d(s, c)` in quanta over the kept nodes c reached from `s`.
-    fn run(&mut self, kept: &Kept, units: &[u32], s: u32) -> u64 {
-        let ring = self.ring.len() as u32;
-        self.dist[s as usize] = 0;
-        self.ring[0].push(s);
-        self.reached.push(s);
-        let (mut pending, mut current, mut sum) = (1usize, 0u32, 0u64);
-        while pending > 0 {
-            let slot = (current % ring) as usize;
-            let bucket = std::mem::take(&mut self.ring[slot]);
-            pending -= bucket.len();
-            for &v in &bucket {
-                // An entry whose node was since moved to a nearer bucket (and settled there).
-                if self.dist[v as usize] != current {
-                    continue;
-                }
-                sum += kept.size[v as usize] * u64::from(current);
-                for arc in kept.arcs(v) {
-                    let w = kept.targets[arc] as usize;
-                    let through = current + units[arc];
-                    if through < self.dist[w] {
-                        if self.dist[w] == u32::MAX {
-                            self.reached.push(w as u32);
-                        }
-                        self.dist[w] = through;
-                        self.ring[(through % ring) as usize].push(w as u32);
-                        pending += 1;
-                    }
-                }
-            }
-            self.ring[slot] = bucket;
-            self.ring[slot].clear();
-            current += 1;
-        }
-        for &v in &self.reached {
-            self.dist[v as usize] = u32::MAX;
-        }
-        self.reached.clear();
-        sum
     }
 }
 
