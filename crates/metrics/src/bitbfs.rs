@@ -52,7 +52,7 @@ impl StepGraph {
 }
 
 /// `Σ_t weight(t) d(s, t)` over the real nodes t reached from each real source s (in steps).
-pub(crate) fn distance_sums(graph: &StepGraph, weight: &[u64]) -> Vec<u64> {
+pub(crate) fn distance_sums(graph: &StepGraph, weight: &[u32]) -> Vec<u64> {
     let batches = batches(graph);
     let sums: Vec<Vec<u64>> = batches
         .par_iter()
@@ -117,7 +117,7 @@ impl Levels {
     }
 
     /// The distance sums of the sources of `batch` (bit j: `batch[j]`).
-    fn run(&mut self, graph: &StepGraph, weight: &[u64], batch: &[u32]) -> Vec<u64> {
+    fn run(&mut self, graph: &StepGraph, weight: &[u32], batch: &[u32]) -> Vec<u64> {
         let mut sums = vec![0u64; batch.len()];
         self.active.clear();
         for (j, &s) in batch.iter().enumerate() {
@@ -152,7 +152,7 @@ impl Levels {
                 self.seen[w] |= new;
                 self.frontier[w] = new;
                 if w < graph.real {
-                    let add = weight[w] * level;
+                    let add = u64::from(weight[w]) * level;
                     while new != 0 {
                         sums[new.trailing_zeros() as usize] += add;
                         new &= new - 1;

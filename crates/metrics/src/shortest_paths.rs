@@ -120,7 +120,7 @@ struct Kept {
     offsets: Vec<u32>,
     targets: Vec<u32>,
     lengths: Vec<f64>,
-    size: Vec<u64>,
+    size: Vec<u32>,
     hop_tail: Vec<u64>,
     length_tail: Vec<f64>,
 }
@@ -142,7 +142,7 @@ impl Kept {
             offsets.push(targets.len() as u32);
         }
         Self {
-            size: nodes.iter().map(|&v| trees.size[v] as u64).collect(),
+            size: nodes.iter().map(|&v| trees.size[v] as u32).collect(),
             hop_tail: nodes.iter().map(|&v| trees.hop_tail[v]).collect(),
             length_tail: nodes.iter().map(|&v| trees.length_tail[v]).collect(),
             nodes,
@@ -347,19 +347,21 @@ fn brandes_chunk(kept: &Kept, sources: &[u32]) -> (Vec<u64>, Vec<f64>) {
 /// Reusable buffers of Brandes' algorithm for unweighted graphs.
 struct Brandes {
     dist: Vec<u32>,
-    sigma: Vec<f64>,
-    delta: Vec<f64>,
+    /// Shortest-path count σ and dependency δ of each node, side by side: the backward sweep
+    /// reads both of a neighbour from one cache line.
+    paths: Vec<Paths>,
     order: Vec<u32>,
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Paths {
+    sigma: f64,
+    delta: f64,
 }
 
 impl Brandes {
     fn new(n: usize) -> Self {
-        Self {
-            dist: vec![u32::MAX; n],
-            sigma: vec![0.0; n],
-            delta: vec![0.0; n],
-            order: Vec::with_capacity(n),
-        }
+        Self { dist: vec![u32::MAX; n], paths: vec![Paths::default(); n], order: vec![0; n + 1] }
     }
 
     /// Adds the dependencies of kept source `s` on kept nodes, times the size(s) sources it
@@ -368,58 +370,59 @@ impl Brandes {
     ///
     /// The buffers of a node are reset as soon as its dependency is final: a node nearer the
     /// source then sees it at distance `u32::MAX`, never one hop farther than itself, since only
-    /// the source is at distance 0 and the source's own dependency is not needed.
+    /// the source is at distance 0 and the source's own dependency is not needed. Arcs that are
+    /// not on a shortest path add 0 to a dependency instead of branching (unpredictable in a
+    /// maze): x + 0 is x for the non-negative counts and dependencies.
     fn run(&mut self, kept: &Kept, s: u32, betweenness: &mut [f64]) -> u64 {
-        let reach = self.count_shortest_paths(kept, s);
-        let weight = kept.size[s as usize] as f64;
-        for &w in self.order[1..].iter().rev() {
+        let reached = self.count_shortest_paths(kept, s);
+        let weight = f64::from(kept.size[s as usize]);
+        let mut reach = 0;
+        for &w in self.order[1..reached].iter().rev() {
             let w = w as usize;
             let dist = self.dist[w];
-            let coeff = (kept.size[w] as f64 + self.delta[w]) / self.sigma[w];
+            let size = kept.size[w];
+            reach += u64::from(size) * u64::from(dist);
+            let Paths { sigma, delta } = self.paths[w];
+            let coeff = (f64::from(size) + delta) / sigma;
             for arc in kept.arcs(w as u32) {
                 let v = kept.targets[arc] as usize;
-                if self.dist[v].wrapping_add(1) == dist {
-                    self.delta[v] += self.sigma[v] * coeff;
-                }
+                let on_path = self.dist[v].wrapping_add(1) == dist;
+                let paths = &mut self.paths[v];
+                paths.delta += if on_path { paths.sigma * coeff } else { 0.0 };
             }
-            betweenness[w] += weight * (self.delta[w] + (kept.size[w] - 1) as f64);
+            betweenness[w] += weight * (delta + f64::from(size - 1));
             self.dist[w] = u32::MAX;
-            self.sigma[w] = 0.0;
-            self.delta[w] = 0.0;
+            self.paths[w] = Paths::default();
         }
-        let s = s as usize;
-        self.dist[s] = u32::MAX;
-        self.sigma[s] = 0.0;
-        self.delta[s] = 0.0;
+        self.dist[s as usize] = u32::MAX;
+        self.paths[s as usize] = Paths::default();
         reach
     }
 
-    /// BFS from `s` over the kept nodes: hop distances, shortest-path counts, visiting order;
-    /// returns `Σ_c size(c) d(s, c)`.
-    fn count_shortest_paths(&mut self, kept: &Kept, s: u32) -> u64 {
-        self.order.clear();
-        self.order.push(s);
+    /// BFS from `s` over the kept nodes: hop distances, shortest-path counts and the visiting
+    /// order in `order[..n]`; returns n, the number of nodes reached.
+    fn count_shortest_paths(&mut self, kept: &Kept, s: u32) -> usize {
+        self.order[0] = s;
         self.dist[s as usize] = 0;
-        self.sigma[s as usize] = 1.0;
-        let mut reach = 0;
-        let mut head = 0;
-        while let Some(&v) = self.order.get(head) {
+        self.paths[s as usize].sigma = 1.0;
+        let (mut head, mut end) = (0, 1);
+        while head < end {
+            let v = self.order[head] as usize;
             head += 1;
-            let (v, next) = (v as usize, self.dist[v as usize] + 1);
-            let sigma_v = self.sigma[v];
+            let (next, sigma_v) = (self.dist[v] + 1, self.paths[v].sigma);
             for arc in kept.arcs(v as u32) {
                 let w = kept.targets[arc] as usize;
                 if self.dist[w] == u32::MAX {
                     self.dist[w] = next;
-                    self.order.push(w as u32);
-                    reach += kept.size[w] * u64::from(next);
+                    self.order[end] = w as u32;
+                    end += 1;
                 }
                 if self.dist[w] == next {
-                    self.sigma[w] += sigma_v;
+                    self.paths[w].sigma += sigma_v;
                 }
             }
         }
-        reach
+        end
     }
 }
 
