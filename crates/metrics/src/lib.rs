@@ -9,7 +9,8 @@
 //! Pipeline (one module per step):
 //! [`Network`] (validated) → `graph` (simple undirected graph in karstnet's node order) →
 //! `branches` (spec §1) → `reduced` (spec §2) → `geometry` / `topology` (spec §3), with the
-//! all-pairs traversals of the reduced graph in `shortest_paths`.
+//! all-pairs traversals of the reduced graph in `shortest_paths` (exact integer length sums by
+//! `quantum` and `bitbfs` where the lengths allow).
 //!
 //! [`ranges`] compares the metrics with real caves, `plots.rs` draws them. [`build`] makes the
 //! stage's report of a skeleton ([`MetricsReport`], `payload.rs`), [`MetricsStage`] is the stage.

@@ -1,6 +1,8 @@
 //! All-sources traversals of the reduced graph: hop distances and Brandes' betweenness from one
-//! BFS per source, conduit-length distances from one Dijkstra per source (spec §3 "aspl", "cpd"
-//! and `average_SPL(dist_weight=True)`).
+//! BFS per source, conduit-length distances from the fastest method that gives Dijkstra's bits
+//! (spec §3 "aspl", "cpd" and `average_SPL(dist_weight=True)`): the hop sums times the quantum
+//! or a bit-parallel BFS of unit steps when the lengths are whole multiples of one quantum
+//! (`quantum`, `bitbfs`), else Dial's buckets or Dijkstra with a binary heap, one per source.
 //!
 //! Nodes of hanging trees are not run as sources. Peeling leaves repeatedly (keeping one node
 //! of a component that is a tree) leaves the 2-core plus one root per tree component; every
@@ -21,9 +23,10 @@
 //! every source of its component into its subtree: n_c (size(x) − 1) dependencies. Real caves
 //! have ~30 % leaves in the reduced graph and more in their dead-end trees, which this skips.
 //!
-//! Sources are split into [`CHUNKS`] fixed ranges that depend only on the graph; rayon runs the
-//! ranges in parallel and their results are combined in range order, so every value is
-//! bit-identical whatever the number of threads.
+//! Brandes' sources are split into [`CHUNKS`] fixed ranges that depend only on the graph; rayon
+//! runs the ranges in parallel and their betweenness is summed in range order, so every value is
+//! bit-identical whatever the number of threads. Each length sum comes from one source alone, or
+//! is an exact integer, so neither the ranges nor the batches change it.
 
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -645,5 +648,151 @@ mod tests {
         let r = all_pairs(&adj, &[2.0, 3.0]);
         assert_eq!(r.hop_sums, vec![1; 4]);
         assert_eq!(r.length_sums, vec![2.0, 2.0, 3.0, 3.0]);
+    }
+
+    /// A pseudo-random stream of integers below `bound`.
+    fn stream(seed: u64) -> impl FnMut(u64) -> u64 {
+        let mut state = seed;
+        move |bound| {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            (state >> 33) % bound
+        }
+    }
+
+    /// Random test graphs with lengths that are whole multiples of `quantum` (1 to `max_unit`
+    /// of them): trees, grids with missing edges (hanging trees) and diagonals, random meshes.
+    fn random_graphs(seed: u64, quantum: f64, max_unit: u64) -> Vec<(Csr, Vec<f64>)> {
+        let mut next = stream(seed);
+        let mut graphs = Vec::new();
+        let tree: Vec<[usize; 2]> = (1..60).map(|v| [next(v as u64) as usize, v]).collect();
+        graphs.push((60, tree));
+        let side = 9;
+        let mut grid = Vec::new();
+        for v in 0..side * side {
+            let (x, y) = (v % side, v / side);
+            for (ok, w) in [(x + 1 < side, v + 1), (y + 1 < side, v + side), (x + 1 < side && y + 1 < side, v + side + 1)] {
+                if ok && next(10) < 6 {
+                    grid.push([v, w]);
+                }
+            }
+        }
+        graphs.push((side * side, grid));
+        let mut mesh = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        for v in 1..70usize {
+            for _ in 0..1 + next(3) {
+                let w = next(v as u64) as usize;
+                if seen.insert((w, v)) {
+                    mesh.push([w, v]);
+                }
+            }
+        }
+        graphs.push((70, mesh));
+        graphs
+            .into_iter()
+            .map(|(n, edges)| {
+                let lengths = edges.iter().map(|_| quantum * (1 + next(max_unit)) as f64).collect();
+                (Csr::from_edges(n, &edges), lengths)
+            })
+            .collect()
+    }
+
+    /// Every pair's hop and length distances, dependencies summed from one plain BFS (Brandes)
+    /// and one plain Dijkstra per node: no tree peeling, no shortcut.
+    fn straightforward(adj: &Csr, lengths: &[f64]) -> AllPairs {
+        let n = adj.n_nodes();
+        let mut total = AllPairs { hop_sums: vec![0; n], length_sums: vec![0.0; n], betweenness: vec![0.0; n] };
+        for s in 0..n {
+            let (mut dist, mut sigma, mut delta) = (vec![usize::MAX; n], vec![0.0; n], vec![0.0; n]);
+            let (mut order, mut head) = (vec![s], 0);
+            (dist[s], sigma[s]) = (0, 1.0);
+            while let Some(&v) = order.get(head) {
+                head += 1;
+                for &w in adj.neighbors(v) {
+                    if dist[w] == usize::MAX {
+                        dist[w] = dist[v] + 1;
+                        order.push(w);
+                    }
+                    if dist[w] == dist[v] + 1 {
+                        sigma[w] += sigma[v];
+                    }
+                }
+            }
+            for &w in order.iter().rev() {
+                for &v in adj.neighbors(w) {
+                    if dist[v] + 1 == dist[w] {
+                        delta[v] += sigma[v] / sigma[w] * (1.0 + delta[w]);
+                    }
+                }
+                if w != s {
+                    total.betweenness[w] += delta[w];
+                }
+            }
+            total.hop_sums[s] = order.iter().map(|&v| dist[v] as u64).sum();
+            let mut length = vec![f64::INFINITY; n];
+            let mut heap = BinaryHeap::from([Reverse((0f64.to_bits(), s))]);
+            length[s] = 0.0;
+            while let Some(Reverse((bits, v))) = heap.pop() {
+                if bits != length[v].to_bits() {
+                    continue;
+                }
+                for (w, e) in adj.incident(v) {
+                    if length[v] + lengths[e] < length[w] {
+                        length[w] = length[v] + lengths[e];
+                        heap.push(Reverse((length[w].to_bits(), w)));
+                    }
+                }
+            }
+            total.length_sums[s] = length.iter().filter(|l| l.is_finite()).sum();
+        }
+        total
+    }
+
+    #[test]
+    fn fast_paths_match_the_straightforward_traversals() {
+        for (seed, quantum, max_unit) in [(1, 10.0, 1), (2, 10.0, 2), (3, 0.25, 3), (4, 1.5, 2), (5, 0.1, 1)] {
+            for (adj, lengths) in random_graphs(seed, quantum, max_unit) {
+                let fast = all_pairs(&adj, &lengths);
+                let plain = straightforward(&adj, &lengths);
+                assert_eq!(fast.hop_sums, plain.hop_sums, "seed {seed}");
+                for (a, b) in fast.length_sums.iter().zip(&plain.length_sums) {
+                    // Exact (hence equal) sums for the quantized lengths, 0.1 is not one.
+                    if quantum == 0.1 {
+                        assert!((a - b).abs() <= 1e-12 * b.abs(), "seed {seed}: {a} {b}");
+                    } else {
+                        assert_eq!(a.to_bits(), b.to_bits(), "seed {seed}: {a} {b}");
+                    }
+                }
+                for (a, b) in fast.betweenness.iter().zip(&plain.betweenness) {
+                    assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "seed {seed}: {a} {b}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn exact_length_sums_are_those_of_dijkstra_to_the_last_bit() {
+        let mut methods = Vec::new();
+        for (seed, quantum, max_unit) in [(6, 10.0, 1), (7, 10.0, 2), (8, 0.5, 4), (9, 3.0, 3)] {
+            for (adj, lengths) in random_graphs(seed, quantum, max_unit) {
+                let trees = Trees::new(&adj, &lengths);
+                let kept = Kept::new(&trees);
+                let tails = ComponentTails::new(&trees, &kept);
+                let (reach, _) = brandes_chunk(&kept, &(0..kept.len() as u32).collect::<Vec<_>>());
+                let method = LengthMethod::choose(&trees, &kept);
+                methods.push(match method {
+                    LengthMethod::Hops { .. } => "hops",
+                    LengthMethod::Steps { .. } => "steps",
+                    LengthMethod::Dial(_) | LengthMethod::Heap => "float",
+                });
+                let fast = conduit_length_sums(&kept, &method, &tails, &reach);
+                let heap = conduit_length_sums(&kept, &LengthMethod::Heap, &tails, &reach);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&fast), bits(&heap), "seed {seed}");
+            }
+        }
+        // The trees keep one node, the grids and meshes of 1 quantum take the hop sums.
+        assert!(methods.iter().filter(|&&m| m == "steps").count() >= 4, "{methods:?}");
+        assert!(methods.iter().filter(|&&m| m == "hops").count() >= 3, "{methods:?}");
     }
 }
