@@ -33,8 +33,8 @@ use std::collections::BinaryHeap;
 
 use rayon::prelude::*;
 
-use crate::graph::Csr;
 use crate::bitbfs::{StepGraph, distance_sums};
+use crate::graph::Csr;
 use crate::quantum::quantize;
 
 /// Number of source ranges (fixed, so results do not depend on the thread count).
@@ -290,13 +290,22 @@ pub(crate) fn all_pairs(adj: &Csr, lengths: &[f64]) -> AllPairs {
 
 /// `Σ_t d(s, t)` along conduit lengths for every kept source, its trees' targets included;
 /// `reach`: the sources' hop sums without the trees' tails.
-fn conduit_length_sums(kept: &Kept, method: &LengthMethod, tails: &ComponentTails, reach: &[u64]) -> Vec<f64> {
+fn conduit_length_sums(
+    kept: &Kept,
+    method: &LengthMethod,
+    tails: &ComponentTails,
+    reach: &[u64],
+) -> Vec<f64> {
     // Exact sums (module `quantum`): any order of the additions gives the same bits.
-    let exact = |k: usize, steps: u64, quantum: f64| steps as f64 * quantum + tails.lengths[tails.component[k] as usize];
+    let exact = |k: usize, steps: u64, quantum: f64| {
+        steps as f64 * quantum + tails.lengths[tails.component[k] as usize]
+    };
     let sources: Vec<u32> = (0..kept.len() as u32).collect();
     let chunk = sources.len().div_ceil(CHUNKS).max(1);
     match method {
-        LengthMethod::Hops { quantum } => reach.iter().enumerate().map(|(k, &r)| exact(k, r, *quantum)).collect(),
+        LengthMethod::Hops { quantum } => {
+            reach.iter().enumerate().map(|(k, &r)| exact(k, r, *quantum)).collect()
+        }
         LengthMethod::Steps { quantum, graph } => distance_sums(graph, &kept.size)
             .into_iter()
             .enumerate()
@@ -670,7 +679,11 @@ mod tests {
         let mut grid = Vec::new();
         for v in 0..side * side {
             let (x, y) = (v % side, v / side);
-            for (ok, w) in [(x + 1 < side, v + 1), (y + 1 < side, v + side), (x + 1 < side && y + 1 < side, v + side + 1)] {
+            for (ok, w) in [
+                (x + 1 < side, v + 1),
+                (y + 1 < side, v + side),
+                (x + 1 < side && y + 1 < side, v + side + 1),
+            ] {
                 if ok && next(10) < 6 {
                     grid.push([v, w]);
                 }
@@ -701,7 +714,8 @@ mod tests {
     /// and one plain Dijkstra per node: no tree peeling, no shortcut.
     fn straightforward(adj: &Csr, lengths: &[f64]) -> AllPairs {
         let n = adj.n_nodes();
-        let mut total = AllPairs { hop_sums: vec![0; n], length_sums: vec![0.0; n], betweenness: vec![0.0; n] };
+        let mut total =
+            AllPairs { hop_sums: vec![0; n], length_sums: vec![0.0; n], betweenness: vec![0.0; n] };
         for s in 0..n {
             let (mut dist, mut sigma, mut delta) = (vec![usize::MAX; n], vec![0.0; n], vec![0.0; n]);
             let (mut order, mut head) = (vec![s], 0);
@@ -750,7 +764,8 @@ mod tests {
 
     #[test]
     fn fast_paths_match_the_straightforward_traversals() {
-        for (seed, quantum, max_unit) in [(1, 10.0, 1), (2, 10.0, 2), (3, 0.25, 3), (4, 1.5, 2), (5, 0.1, 1)] {
+        for (seed, quantum, max_unit) in [(1, 10.0, 1), (2, 10.0, 2), (3, 0.25, 3), (4, 1.5, 2), (5, 0.1, 1)]
+        {
             for (adj, lengths) in random_graphs(seed, quantum, max_unit) {
                 let fast = all_pairs(&adj, &lengths);
                 let plain = straightforward(&adj, &lengths);
