@@ -64,11 +64,6 @@ fn surface_colour(name: &str) -> [f32; 4] {
     }
 }
 
-/// Bytes of `karst.glb` holding surfaces of `vertices` and `triangles` in all and the network.
-pub fn bytes(vertices: f64, triangles: f64, net: &NetworkView) -> f64 {
-    DOCUMENT_BYTES + vertices * VERTEX_BYTES + triangles * TRIANGLE_BYTES + network_bytes(net)
-}
-
 fn network_bytes(net: &NetworkView) -> f64 {
     12.0 * net.nodes.len() as f64 + 8.0 * net.segments.len() as f64
 }
