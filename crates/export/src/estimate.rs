@@ -44,9 +44,11 @@ impl Counts {
     ) -> Counts {
         let (mut vertices, mut triangles) = (0.0, 0.0);
         if let Some(mesh) = mesh {
-            for (which, surface) in
-                [(MeshSurface::Terrain, &mesh.terrain), (MeshSurface::Cave, &mesh.cave), (MeshSurface::Water, &mesh.water)]
-            {
+            for (which, surface) in [
+                (MeshSurface::Terrain, &mesh.terrain),
+                (MeshSurface::Cave, &mesh.cave),
+                (MeshSurface::Water, &mesh.water),
+            ] {
                 if surfaces.contains(&which) {
                     vertices += surface.vertices.len() as f64;
                     triangles += surface.triangles.len() as f64;
@@ -55,7 +57,8 @@ impl Counts {
         }
         Counts {
             nodes: skeleton.map_or(0, |s| s.nodes.len()) as f64,
-            segments: skeleton.map_or(0, |s| s.conduits.iter().map(|c| c.nodes.len().saturating_sub(1)).sum()) as f64,
+            segments: skeleton.map_or(0, |s| s.conduits.iter().map(|c| c.nodes.len().saturating_sub(1)).sum())
+                as f64,
             samples: samples.map_or(0, |s| s.positions.len()) as f64,
             stream_segments: streams.map_or(0, |s| s.segments.len()) as f64,
             vertices,
@@ -66,7 +69,9 @@ impl Counts {
 
 /// Bytes of `format`'s files for `counts`; `raster_pixels` the pixels of one GIS raster.
 pub fn format_bytes(format: ExportFormat, c: &Counts, params: &ExportParams, raster_pixels: f64) -> f64 {
-    let mesh = |per_vertex: f64, per_triangle: f64| 3.0 * HEADER + per_vertex * c.vertices + per_triangle * c.triangles;
+    let mesh = |per_vertex: f64, per_triangle: f64| {
+        3.0 * HEADER + per_vertex * c.vertices + per_triangle * c.triangles
+    };
     match format {
         ExportFormat::Vtk => 2.0 * HEADER + 70.0 * (c.nodes + c.segments) + 100.0 * c.stream_segments,
         ExportFormat::VtkMeshes => mesh(36.0, 16.0),

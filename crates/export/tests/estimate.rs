@@ -11,12 +11,19 @@ fn estimated_bytes_are_within_a_factor_two_of_the_files() {
     let run = Run::load(&tiny());
     // Every format but the GIS ones (their estimate is an upper bound: mostly no-data rasters
     // and SQLite pages), the glb at full resolution so that its estimate is not its bound.
-    let formats: Vec<ExportFormat> =
-        ExportFormat::ALL.into_iter().filter(|f| !matches!(f, ExportFormat::Gpkg | ExportFormat::Geotiff)).collect();
+    let formats: Vec<ExportFormat> = ExportFormat::ALL
+        .into_iter()
+        .filter(|f| !matches!(f, ExportFormat::Gpkg | ExportFormat::Geotiff))
+        .collect();
     let params = ExportParams { formats: formats.clone(), gltf_full: true, ..ExportParams::default() };
     let (_scratch, _, manifest) = export_with(&run, &params, "estimate");
-    let counts =
-        Counts::of(Some(&run.skeleton), Some(&run.samples), Some(&run.streams), run.mesh.as_ref(), &params.surfaces);
+    let counts = Counts::of(
+        Some(&run.skeleton),
+        Some(&run.samples),
+        Some(&run.streams),
+        run.mesh.as_ref(),
+        &params.surfaces,
+    );
     let (mut estimated, mut written) = (0.0, 0.0);
     for format in formats {
         let real: u64 = manifest.files.iter().filter(|f| f.format == format.name()).map(|f| f.bytes).sum();

@@ -364,7 +364,11 @@ fn gltf_over_its_bound_is_simplified_within_it_and_validates() {
     assert!(bytes <= bound && bytes >= 0.5 * bound, "{bytes} bytes for a bound of {bound}");
     let file = dir.join("karst.glb");
     let issues = &validate_gltf(&file)["issues"];
-    assert_eq!((issues["numErrors"].as_u64(), issues["numWarnings"].as_u64()), (Some(0), Some(0)), "{issues}");
+    assert_eq!(
+        (issues["numErrors"].as_u64(), issues["numWarnings"].as_u64()),
+        (Some(0), Some(0)),
+        "{issues}"
+    );
     let glb = std::fs::read(&file).unwrap();
     let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
     let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();

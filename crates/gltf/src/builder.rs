@@ -173,7 +173,9 @@ impl<'a> Gltf<'a> {
             }
             let mut buffers = vec![json!({ "byteLength": self.length })];
             if self.fallback > 0 {
-                buffers.push(json!({ "byteLength": self.fallback, "extensions": { MESHOPT: { "fallback": true } } }));
+                buffers.push(
+                    json!({ "byteLength": self.fallback, "extensions": { MESHOPT: { "fallback": true } } }),
+                );
             }
             document["buffers"] = json!(buffers);
         }

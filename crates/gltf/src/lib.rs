@@ -42,7 +42,8 @@ pub const MESHOPT: &str = "EXT_meshopt_compression";
 pub const QUANTIZATION: &str = "KHR_mesh_quantization";
 
 /// The unit quaternion of −90° about x: Z-up to glTF's Y-up, for a node's `rotation`.
-pub const Z_UP_TO_Y_UP: [f64; 4] = [-std::f64::consts::FRAC_1_SQRT_2, 0.0, 0.0, std::f64::consts::FRAC_1_SQRT_2];
+pub const Z_UP_TO_Y_UP: [f64; 4] =
+    [-std::f64::consts::FRAC_1_SQRT_2, 0.0, 0.0, std::f64::consts::FRAC_1_SQRT_2];
 
 /// A Z-up vector turned Y-up: (x, y, z) → (x, z, −y).
 pub fn y_up([x, y, z]: [f32; 3]) -> [f32; 3] {

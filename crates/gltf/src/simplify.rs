@@ -34,7 +34,8 @@ pub fn to_triangles(positions: &[[f32; 3]], triangles: &[[u32; 3]], target: usiz
         );
         if kept.len() / 3 > target {
             let mut sloppy_error = 0.0f32;
-            kept = meshopt::simplify_sloppy_decoder(&kept, positions, target * 3, 1.0, Some(&mut sloppy_error));
+            kept =
+                meshopt::simplify_sloppy_decoder(&kept, positions, target * 3, 1.0, Some(&mut sloppy_error));
             relative_error = relative_error.max(sloppy_error);
         }
     }
@@ -67,8 +68,14 @@ mod tests {
     /// A closed surface: an octahedron subdivided `levels` times, its vertices pushed out to the
     /// unit sphere (edges shared, so no seam is open).
     fn sphere(levels: u32) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-        let mut positions: Vec<[f32; 3]> =
-            vec![[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+        let mut positions: Vec<[f32; 3]> = vec![
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+        ];
         let mut triangles: Vec<[u32; 3]> =
             vec![[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]];
         for _ in 0..levels {
@@ -85,8 +92,11 @@ mod tests {
             triangles = triangles
                 .iter()
                 .flat_map(|&[a, b, c]| {
-                    let (ab, bc, ca) =
-                        (split(a, b, &mut positions), split(b, c, &mut positions), split(c, a, &mut positions));
+                    let (ab, bc, ca) = (
+                        split(a, b, &mut positions),
+                        split(b, c, &mut positions),
+                        split(c, a, &mut positions),
+                    );
                     [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
                 })
                 .collect();

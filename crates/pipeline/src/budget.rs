@@ -11,14 +11,14 @@ use karst_artifact::{StageId, read_artifact};
 use karst_export::ExportView;
 use karst_export::estimate::{Counts, format_bytes, raster_pixels};
 use karst_mesher::Mesh;
-use karst_sampling::Samples;
-use karst_skeleton::Skeleton;
-use karst_streams::Streams;
 use karst_mesher::{MesherView, Work};
+use karst_sampling::Samples;
 use karst_scene::SceneView;
 use karst_scene::budget::bytes;
 use karst_sdf::SdfModel;
+use karst_skeleton::Skeleton;
 use karst_stage::{Job, StageError};
+use karst_streams::Streams;
 
 /// The default budget of the meshes and the exports, MB (MiB).
 pub const DEFAULT_MESH_MB: f64 = 300.0;
@@ -92,7 +92,12 @@ pub fn check_export(job: &Job, budget: OutputBudget) -> Result<String, StageErro
     let exports: f64 = each.iter().map(|(_, b)| b).sum();
     let mesh_bytes = std::fs::metadata(&mesh_file).map_or(0, |m| m.len()) as f64;
     let list: Vec<String> = each.iter().map(|(name, b)| format!("{name} {}", bytes(*b))).collect();
-    let estimate = format!("about {} of exports ({}) beside {} of mesh.bin", bytes(exports), list.join(", "), bytes(mesh_bytes));
+    let estimate = format!(
+        "about {} of exports ({}) beside {} of mesh.bin",
+        bytes(exports),
+        list.join(", "),
+        bytes(mesh_bytes)
+    );
     if exports + mesh_bytes > budget.mesh_bytes {
         return Err(StageError::scene(format!(
             "{}: the export would write {estimate}, more than the budget of {}: drop formats from \

@@ -18,8 +18,8 @@
 
 use serde_json::json;
 
-use karst_gltf::quantize::snorm;
 pub use karst_gltf::quantize::Quantization;
+use karst_gltf::quantize::snorm;
 use karst_gltf::{BYTE, Gltf, MESHOPT, QUANTIZATION, UNSIGNED_INT, UNSIGNED_SHORT, Z_UP_TO_Y_UP};
 
 use crate::chunks::Chunk;
@@ -45,12 +45,18 @@ pub fn encode(chunk: &Chunk, q: &Quantization) -> Result<Vec<u8>, String> {
     b.accessor(json!({ "bufferView": view, "componentType": UNSIGNED_SHORT, "count": n, "type": "VEC3", "min": qmin, "max": qmax }));
     let stream = meshopt::encode_vertex_buffer_level(&normals, 2, Some(0)).map_err(codec)?;
     let view = b.compressed_view(stream, 4, n, "ATTRIBUTES");
-    b.accessor(json!({ "bufferView": view, "componentType": BYTE, "normalized": true, "count": n, "type": "VEC3" }));
+    b.accessor(
+        json!({ "bufferView": view, "componentType": BYTE, "normalized": true, "count": n, "type": "VEC3" }),
+    );
     let stream = meshopt::encode_index_buffer(&chunk.indices, n).map_err(codec)?;
     let view = b.compressed_view(stream, index_size, chunk.indices.len(), "TRIANGLES");
-    b.accessor(json!({ "bufferView": view, "componentType": if wide { UNSIGNED_INT } else { UNSIGNED_SHORT },
-        "count": chunk.indices.len(), "type": "SCALAR" }));
-    b.mesh(json!({ "primitives": [{ "attributes": { "POSITION": 0, "NORMAL": 1 }, "indices": 2, "mode": 4 }] }));
+    b.accessor(
+        json!({ "bufferView": view, "componentType": if wide { UNSIGNED_INT } else { UNSIGNED_SHORT },
+        "count": chunk.indices.len(), "type": "SCALAR" }),
+    );
+    b.mesh(
+        json!({ "primitives": [{ "attributes": { "POSITION": 0, "NORMAL": 1 }, "indices": 2, "mode": 4 }] }),
+    );
     let corner = q.point(low);
     let translation = [corner[0], corner[2], -corner[1]];
     let scale = [q.step; 3];
@@ -65,7 +71,7 @@ mod tests {
     use crate::chunks::{split, tests::grid};
 
     /// The JSON chunk and the BIN chunk of a .glb.
-    fn parts(glb: &[u8]) -> (Value, &[u8]) {
+    fn parts(glb: &[u8]) -> (serde_json::Value, &[u8]) {
         assert_eq!(&glb[..4], b"glTF");
         assert_eq!(u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize, glb.len());
         let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;

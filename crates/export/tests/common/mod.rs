@@ -120,7 +120,11 @@ pub fn export_run(
 }
 
 /// Exports `run` with `params` into a scratch folder, as [`export_run`].
-pub fn export_with(run: &Run, params: &ExportParams, tag: &str) -> (karst_testkit::Scratch, PathBuf, Manifest) {
+pub fn export_with(
+    run: &Run,
+    params: &ExportParams,
+    tag: &str,
+) -> (karst_testkit::Scratch, PathBuf, Manifest) {
     let dir = scratch(tag);
     let manifest = export(&run.inputs(), params, &dir).unwrap_or_else(|e| panic!("{tag}: {e}"));
     let folder = dir.join(karst_export::FOLDER);
