@@ -7,6 +7,7 @@
 //! - [`metrics_table`]: table every scene's metrics against the real caves;
 //! - [`modules`]: the module-graph check, no import circle inside any crate;
 //! - [`ensemble_table`]: the presets' metrics over many seeds against the real caves;
+//! - [`realism`]: the network defaults on a generated population of scenes (issue 38);
 //! - [`python`]: build and install the Python package's wheel and run its pytest suite;
 //! - [`tools`]: install the outside programs the tests check outputs with;
 //! - [`temp_folder`]: the tasks' scratch folders, removed however the task ends.
@@ -20,6 +21,7 @@ pub mod metrics_table;
 pub mod modules;
 pub mod peer;
 pub mod python;
+pub mod realism;
 pub mod regional;
 pub mod temp_folder;
 pub mod tools;

@@ -102,6 +102,16 @@ enum Task {
     },
     /// Table the presets' metrics over N seeds each (`karstgen ensemble`) against the real-cave
     /// ranges: median, 10th–90th percentile, share inside.
+    /// The network's defaults on a generated population of scenes (no `[skeleton]`): share of
+    /// realizations inside the real-cave ranges, on the tuning and the held-out scene seeds.
+    RealismDefaults {
+        /// Also replace the table in docs/metrics.md.
+        #[arg(long)]
+        write: bool,
+        /// Only the tuning set.
+        #[arg(long)]
+        tuning: bool,
+    },
     Ensemble {
         /// Realizations per preset.
         #[arg(long, default_value_t = 20)]
@@ -185,6 +195,7 @@ fn main() -> ExitCode {
         Task::Fuzz { minutes, seed } => fuzz(minutes, seed),
         Task::MetricsTable { write } => metrics_table_command(write),
         Task::Ensemble { n, write } => ensemble_table_command(n, write),
+        Task::RealismDefaults { write, tuning } => realism_command(write, tuning),
     };
     finish(result)
 }
@@ -300,6 +311,27 @@ fn ensemble_table_command(n: usize, write: bool) -> Result<(), StageError> {
         sets.push(ensemble_table::realize(preset, n)?);
     }
     let table = ensemble_table::markdown(&sets);
+    print!("{table}");
+    if write {
+        let doc = Path::new("docs/metrics.md");
+        let text = std::fs::read_to_string(doc)
+            .map_err(|e| StageError::failure(format!("{}: {e}", doc.display())))?;
+        let updated = metrics_table::replace_between(&text, BEGIN, END, &table);
+        scene::write_if_changed(doc, updated.as_bytes())?;
+    }
+    Ok(())
+}
+
+/// `cargo xtask realism-defaults`: both sets (or the tuning set), the table printed and, with
+/// `--write`, put into docs/metrics.md.
+fn realism_command(write: bool, tuning_only: bool) -> Result<(), StageError> {
+    use xtask::realism::{self, BEGIN, END, Set};
+    let sets: &[Set] = if tuning_only { &[Set::Tuning] } else { &[Set::Tuning, Set::HeldOut] };
+    let mut results = Vec::new();
+    for &set in sets {
+        results.push((set, realism::run_set(set, &realism::out_dir())?));
+    }
+    let table = realism::markdown(&results);
     print!("{table}");
     if write {
         let doc = Path::new("docs/metrics.md");

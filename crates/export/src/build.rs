@@ -152,7 +152,9 @@ pub fn export(inputs: &Inputs, params: &ExportParams, dir: &Path) -> Result<Mani
             ExportFormat::GocadMeshes => gocad::write_tsurfs(&mut folder, &frame, surfaces())?,
             ExportFormat::Survex => survex::write(&mut folder, &frame, network())?,
             ExportFormat::Swmm => swmm::write(&mut folder, &frame, network(), params)?,
-            ExportFormat::Gltf => gltf::write(&mut folder, &frame, surfaces(), network())?,
+            ExportFormat::Gltf => {
+                gltf::write(&mut folder, &frame, surfaces(), network(), params.gltf_bound())?
+            }
             ExportFormat::Obj => obj::write(&mut folder, &frame, surfaces())?,
             ExportFormat::Ply => ply::write(&mut folder, &frame, surfaces())?,
             ExportFormat::Csv => {

@@ -139,7 +139,7 @@ pub fn surface_name(surface: MeshSurface) -> &'static str {
 
 /// Vertex normals, each of unit length: a vertex no triangle uses (none after the mesher's
 /// cleanup, but a reader must never see a zero normal) gets +z.
-fn unit_normals(surface: &TriMesh) -> Vec<[f32; 3]> {
+pub(crate) fn unit_normals(surface: &TriMesh) -> Vec<[f32; 3]> {
     let mut normals = vertex_normals(surface);
     for n in &mut normals {
         if *n == [0.0; 3] {

@@ -1,7 +1,15 @@
 //! Binary glTF 2.0 (`karst.glb`: Blender, three.js, game engines; checked by the Khronos
 //! glTF-Validator): one scene whose nodes are named `terrain`, `cave`, `water` (the chosen
 //! surfaces, triangles with normals) and `network` (the conduit segments as line primitives,
-//! one per conduit type, each with a material named and coloured after its type).
+//! one per conduit type, each with a material named and coloured after its type). Laid out and
+//! written by the shared glTF writer (`karst-gltf`).
+//!
+//! A file for viewers, not an archive: when the full surfaces would make it larger than its
+//! bound (`export.gltf_max_mb`, 100 MB by default), they are simplified by meshoptimizer
+//! ([`karst_gltf::simplify`]: closed surfaces stay closed, open borders stay put) to the
+//! triangles the bound allows, each surface keeping the same share of its triangles; the
+//! surface's node says so in its `extras` (full and kept triangles, the error in metres).
+//! `export.gltf_full = true` writes the full mesh whatever its size.
 //!
 //! glTF is Y-up, the scene Z-up: positions and normals are turned by −90° about x,
 //! (x, y, z) → (x, z, −y), a rotation, so winding and orientation are kept. Positions are
@@ -9,31 +17,31 @@
 //! the four nodes are the children of a root node `karst` translated by the world position of
 //! the local origin (turned Y-up, written as JSON numbers, i.e. in f64), so that a viewer
 //! places the model at its world coordinates; the scene's `extras.origin` holds the same origin
-//! z up. The file is
-//! streamed: the JSON chunk is built from the counts, then every buffer goes straight from the
-//! artifacts to the file.
+//! z up. The file is streamed: the JSON chunk is built from the counts, then every buffer goes
+//! straight from the arrays to the file.
 
-use std::io::{self, Write};
+use std::borrow::Cow;
 
-use serde_json::{Value, json};
+use serde_json::json;
 
+use karst_gltf::simplify;
+use karst_gltf::{Gltf, LINES, TRIANGLES, y_up};
+use karst_mesher::TriMesh;
 use karst_scene::params::ExportFormat;
 use karst_skeleton::ConduitType;
 
 use crate::ExportError;
-use crate::folder::{Fill, Folder, Surfaces};
+use crate::folder::{Folder, Surfaces, unit_normals};
 use crate::frame::Frame;
 use crate::network::NetworkView;
 
-const MAGIC: &[u8; 4] = b"glTF";
-const JSON_CHUNK: u32 = 0x4E4F_534A;
-const BIN_CHUNK: u32 = 0x004E_4942;
-const FLOAT: u32 = 5126;
-const UNSIGNED_INT: u32 = 5125;
-const ARRAY_BUFFER: u32 = 34962;
-const ELEMENT_ARRAY_BUFFER: u32 = 34963;
-const TRIANGLES: u32 = 4;
-const LINES: u32 = 1;
+/// Bytes of the JSON chunk and headers, an upper bound for the few dozen objects of the file.
+const DOCUMENT_BYTES: f64 = 16384.0;
+/// Bytes per vertex (position and normal, f32) and per triangle (three u32 indices).
+const VERTEX_BYTES: f64 = 24.0;
+const TRIANGLE_BYTES: f64 = 12.0;
+/// Simplification passes at most: each corrects the triangle share by the bytes the last gave.
+const PASSES: usize = 4;
 
 /// RGBA colour of each conduit type's lines, and of each surface.
 fn type_colour(kind: ConduitType) -> [f32; 4] {
@@ -56,163 +64,127 @@ fn surface_colour(name: &str) -> [f32; 4] {
     }
 }
 
-fn y_up([x, y, z]: [f32; 3]) -> [f32; 3] {
-    [x, z, -y]
+fn network_bytes(net: &NetworkView) -> f64 {
+    12.0 * net.nodes.len() as f64 + 8.0 * net.segments.len() as f64
 }
 
-/// The document being assembled and the byte blocks of its buffer, in order.
-struct Builder<'a> {
-    views: Vec<Value>,
-    accessors: Vec<Value>,
-    materials: Vec<Value>,
-    meshes: Vec<Value>,
-    nodes: Vec<Value>,
-    blocks: Vec<Block<'a>>,
-    length: usize,
+/// One surface as the file holds it: the mesh's own arrays, or a simplified copy.
+struct Shown<'a> {
+    name: &'static str,
+    vertices: Cow<'a, [[f32; 3]]>,
+    normals: Cow<'a, [[f32; 3]]>,
+    triangles: Cow<'a, [[u32; 3]]>,
+    /// The full surface's triangles and the simplification's error (metres), when simplified.
+    simplified: Option<(usize, f64)>,
 }
 
-/// How to write one block of the buffer.
-struct Block<'a> {
-    write: Fill<'a>,
-}
-
-impl<'a> Builder<'a> {
-    /// Adds a block and its buffer view; returns the view index.
-    fn view(
-        &mut self,
-        bytes: usize,
-        target: u32,
-        write: impl Fn(&mut dyn Write) -> io::Result<()> + 'a,
-    ) -> usize {
-        self.views
-            .push(json!({ "buffer": 0, "byteOffset": self.length, "byteLength": bytes, "target": target }));
-        self.blocks.push(Block { write: Box::new(write) });
-        self.length += bytes;
-        self.views.len() - 1
+impl Shown<'_> {
+    fn bytes(&self) -> f64 {
+        self.vertices.len() as f64 * VERTEX_BYTES + self.triangles.len() as f64 * TRIANGLE_BYTES
     }
+}
 
-    fn accessor(&mut self, value: Value) -> usize {
-        self.accessors.push(value);
-        self.accessors.len() - 1
+/// The surfaces at full resolution when they fit in `bound` bytes (or `bound` is `None`),
+/// otherwise simplified, each to the same share of its triangles, so that the file fits.
+fn shown<'a>(surfaces: &'a Surfaces, net: &NetworkView, bound: Option<f64>) -> Vec<Shown<'a>> {
+    let full: Vec<Shown> = surfaces
+        .list
+        .iter()
+        .map(|s| Shown {
+            name: s.name,
+            vertices: Cow::Borrowed(&s.surface.vertices),
+            normals: Cow::Borrowed(&s.normals),
+            triangles: Cow::Borrowed(&s.surface.triangles),
+            simplified: None,
+        })
+        .collect();
+    let Some(bound) = bound else { return full };
+    let room = (bound - DOCUMENT_BYTES - network_bytes(net)).max(0.0);
+    let full_bytes: f64 = full.iter().map(Shown::bytes).sum();
+    if full_bytes <= room {
+        return full;
     }
-
-    fn material(&mut self, name: &str, colour: [f32; 4]) -> usize {
-        let mut m = json!({ "name": name, "pbrMetallicRoughness": { "baseColorFactor": colour, "metallicFactor": 0.0, "roughnessFactor": 0.9 } });
-        if colour[3] < 1.0 {
-            m["alphaMode"] = json!("BLEND");
+    let mut share = room / full_bytes;
+    let mut kept = Vec::new();
+    for _ in 0..PASSES {
+        kept = surfaces.list.iter().map(|s| simplified(s.name, s.surface, share)).collect();
+        let kept_bytes: f64 = kept.iter().map(Shown::bytes).sum();
+        if kept_bytes <= room {
+            break;
         }
-        self.materials.push(m);
-        self.materials.len() - 1
+        share *= 0.98 * room / kept_bytes;
     }
+    kept
+}
 
-    /// A VEC3 float accessor over `points` (already Y-up), with the bounds glTF requires.
-    fn positions(&mut self, points: impl Fn(usize) -> [f32; 3] + 'a, count: usize) -> usize {
-        let (mut min, mut max) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
-        for p in (0..count).map(&points) {
-            for a in 0..3 {
-                min[a] = min[a].min(p[a]);
-                max[a] = max[a].max(p[a]);
-            }
-        }
-        let view = self.view(count * 12, ARRAY_BUFFER, move |w| {
-            (0..count).try_for_each(|i| points(i).iter().try_for_each(|c| w.write_all(&c.to_le_bytes())))
-        });
-        self.accessor(json!({ "bufferView": view, "componentType": FLOAT, "count": count, "type": "VEC3", "min": min, "max": max }))
-    }
-
-    fn indices(&mut self, count: usize, index: impl Fn(usize) -> u32 + 'a) -> usize {
-        let view = self.view(count * 4, ELEMENT_ARRAY_BUFFER, move |w| {
-            (0..count).try_for_each(|i| w.write_all(&index(i).to_le_bytes()))
-        });
-        self.accessor(
-            json!({ "bufferView": view, "componentType": UNSIGNED_INT, "count": count, "type": "SCALAR" }),
-        )
+/// `surface` reduced to `share` of its triangles, with its normals computed again.
+fn simplified<'a>(name: &'static str, surface: &TriMesh, share: f64) -> Shown<'a> {
+    let target = (surface.triangles.len() as f64 * share).floor() as usize;
+    let s = simplify::to_triangles(&surface.vertices, &surface.triangles, target);
+    let mesh = TriMesh { vertices: s.positions, triangles: s.triangles, ..TriMesh::default() };
+    let normals = unit_normals(&mesh);
+    let extent = extent(&surface.vertices);
+    Shown {
+        name,
+        normals: Cow::Owned(normals),
+        simplified: Some((surface.triangles.len(), f64::from(s.relative_error) * extent)),
+        vertices: Cow::Owned(mesh.vertices),
+        triangles: Cow::Owned(mesh.triangles),
     }
 }
 
-/// `karst.glb`.
+/// The longest side of the box around `points`: meshoptimizer's errors are relative to it.
+fn extent(points: &[[f32; 3]]) -> f64 {
+    let (mut min, mut max) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+    for p in points {
+        for a in 0..3 {
+            min[a] = min[a].min(p[a]);
+            max[a] = max[a].max(p[a]);
+        }
+    }
+    (0..3).map(|a| f64::from(max[a] - min[a])).fold(0.0, f64::max)
+}
+
+/// `karst.glb`, within `bound` bytes when one is given (simplified surfaces).
 pub fn write(
     folder: &mut Folder,
     frame: &Frame,
     surfaces: &Surfaces,
     net: &NetworkView,
+    bound: Option<f64>,
 ) -> Result<(), ExportError> {
-    let mut b = Builder {
-        views: Vec::new(),
-        accessors: Vec::new(),
-        materials: Vec::new(),
-        meshes: Vec::new(),
-        nodes: Vec::new(),
-        blocks: Vec::new(),
-        length: 0,
-    };
-    for s in &surfaces.list {
+    let shown = shown(surfaces, net, bound);
+    let mut b = Gltf::new();
+    for s in &shown {
         let mut node = json!({ "name": s.name });
-        if !s.surface.triangles.is_empty() {
-            let (vertices, normals, triangles) = (&s.surface.vertices, &s.normals, &s.surface.triangles);
+        if !s.triangles.is_empty() {
+            let (vertices, normals, triangles) = (&s.vertices, &s.normals, &s.triangles);
             let position = b.positions(move |i| y_up(vertices[i]), vertices.len());
-            let view = b.view(normals.len() * 12, ARRAY_BUFFER, move |w| {
-                normals.iter().flat_map(|n| y_up(*n)).try_for_each(|c| w.write_all(&c.to_le_bytes()))
-            });
-            let normal = b.accessor(
-                json!({ "bufferView": view, "componentType": FLOAT, "count": normals.len(), "type": "VEC3" }),
-            );
+            let normal = b.directions(move |i| y_up(normals[i]), normals.len());
             let indices = b.indices(triangles.len() * 3, move |i| triangles[i / 3][i % 3]);
             let material = b.material(s.name, surface_colour(s.name));
-            b.meshes.push(json!({ "name": s.name, "primitives": [{ "attributes": { "POSITION": position, "NORMAL": normal }, "indices": indices, "material": material, "mode": TRIANGLES }] }));
-            node["mesh"] = json!(b.meshes.len() - 1);
+            let mesh = b.mesh(json!({ "name": s.name, "primitives": [{ "attributes": { "POSITION": position, "NORMAL": normal }, "indices": indices, "material": material, "mode": TRIANGLES }] }));
+            node["mesh"] = json!(mesh);
         }
-        b.nodes.push(node);
+        if let Some((full, error)) = s.simplified {
+            node["extras"] = json!({ "simplified": { "full_triangles": full, "triangles": s.triangles.len(), "error_m": error } });
+        }
+        b.node(node);
     }
     network(&mut b, net);
-    let children: Vec<usize> = (0..b.nodes.len()).collect();
+    let children: Vec<usize> = (0..=shown.len()).collect();
     // + 0.0 turns the −0.0 of a zero origin's −y into 0.
     let translation = [0, 2, 1].map(|a| if a == 1 { -frame.origin()[a] + 0.0 } else { frame.origin()[a] });
-    b.nodes.push(json!({ "name": "karst", "children": children, "translation": translation }));
-    let scene_nodes = [b.nodes.len() - 1];
-    let mut document = json!({
-        "asset": { "version": "2.0", "generator": concat!("karstgen ", env!("CARGO_PKG_VERSION")) },
-        "scene": 0,
-        "scenes": [{ "name": "karst", "nodes": scene_nodes, "extras": { "origin": frame.origin(), "origin_axes": "x east, y north, z up (metres); glTF +y is z, glTF -z is y" } }],
-        "nodes": b.nodes,
-    });
-    if b.length > 0 {
-        document["meshes"] = json!(b.meshes);
-        document["materials"] = json!(b.materials);
-        document["accessors"] = json!(b.accessors);
-        document["bufferViews"] = json!(b.views);
-        document["buffers"] = json!([{ "byteLength": b.length }]);
-    }
-    let mut text = serde_json::to_vec(&document).map_err(|e| ExportError::Unsupported(e.to_string()))?;
-    while !text.len().is_multiple_of(4) {
-        text.push(b' ');
-    }
-    let bin = b.length.next_multiple_of(4);
-    let total = 12 + 8 + text.len() + if b.length > 0 { 8 + bin } else { 0 };
-    if total > u32::MAX as usize {
-        return Err(ExportError::Unsupported(format!("karst.glb would be {total} bytes, over glTF's 4 GiB")));
-    }
-    folder.write("karst.glb", ExportFormat::Gltf, |w| {
-        w.write_all(MAGIC)?;
-        w.write_all(&2u32.to_le_bytes())?;
-        w.write_all(&(total as u32).to_le_bytes())?;
-        w.write_all(&(text.len() as u32).to_le_bytes())?;
-        w.write_all(&JSON_CHUNK.to_le_bytes())?;
-        w.write_all(&text)?;
-        if b.length > 0 {
-            w.write_all(&(bin as u32).to_le_bytes())?;
-            w.write_all(&BIN_CHUNK.to_le_bytes())?;
-            for block in &b.blocks {
-                (block.write)(w)?;
-            }
-            w.write_all(&vec![0u8; bin - b.length])?;
-        }
-        Ok(())
-    })
+    let root = b.node(json!({ "name": "karst", "children": children, "translation": translation }));
+    let scenes = json!([{ "name": "karst", "nodes": [root], "extras": { "origin": frame.origin(), "origin_axes": "x east, y north, z up (metres); glTF +y is z, glTF -z is y" } }]);
+    let glb = b
+        .finish(concat!("karstgen ", env!("CARGO_PKG_VERSION")), scenes)
+        .map_err(|e| ExportError::Unsupported(format!("karst.glb: {e}")))?;
+    folder.write("karst.glb", ExportFormat::Gltf, |w| glb.write_to(w))
 }
 
 /// The `network` node: one shared position accessor, one LINES primitive per conduit type.
-fn network<'a>(b: &mut Builder<'a>, net: &'a NetworkView) {
+fn network<'a>(b: &mut Gltf<'a>, net: &'a NetworkView) {
     let mut node = json!({ "name": "network" });
     let segments: Vec<_> = net.segments.iter().filter(|s| !s.is_loop()).collect();
     if !segments.is_empty() {
@@ -230,8 +202,7 @@ fn network<'a>(b: &mut Builder<'a>, net: &'a NetworkView) {
             let material = b.material(kind.name(), type_colour(kind));
             primitives.push(json!({ "attributes": { "POSITION": position }, "indices": indices, "material": material, "mode": LINES }));
         }
-        b.meshes.push(json!({ "name": "network", "primitives": primitives }));
-        node["mesh"] = json!(b.meshes.len() - 1);
+        node["mesh"] = json!(b.mesh(json!({ "name": "network", "primitives": primitives })));
     }
-    b.nodes.push(node);
+    b.node(node);
 }

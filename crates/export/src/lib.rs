@@ -26,6 +26,7 @@
 mod build;
 mod csv;
 mod error;
+pub mod estimate;
 mod folder;
 pub mod footprint;
 pub mod frame;

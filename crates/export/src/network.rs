@@ -417,6 +417,7 @@ mod tests {
                 conduit(vec![5, 4]),
             ],
             routes: Vec::new(),
+            derived: Default::default(),
         };
         let segment = |flow: f64| SegmentWater {
             downstream: true,
@@ -468,7 +469,12 @@ mod tests {
 
     #[test]
     fn artifacts_of_different_runs_are_refused() {
-        let mut skeleton = Skeleton { nodes: Vec::new(), conduits: Vec::new(), routes: Vec::new() };
+        let mut skeleton = Skeleton {
+            nodes: Vec::new(),
+            conduits: Vec::new(),
+            routes: Vec::new(),
+            derived: Default::default(),
+        };
         skeleton.nodes.push(Node { position: [0.0; 3], sample: 0, keypoint: None, zone: Zone::Vadose });
         let hydro: Hydro = serde_json::from_value(serde_json::json!({
             "flow_units": {"min": 1.0, "max": 1.0}, "conduits": [], "nodes": [], "sinks": [], "springs": []

@@ -6,7 +6,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{Run, export_run, network_run, python_json, run_tool, tiny, validate_gltf};
+use common::{Run, export_run, export_with, network_run, python_json, run_tool, tiny, validate_gltf};
 use karst_export::ExportFormat;
 use karst_hydro::WaterType;
 use karst_skeleton::ConduitType;
@@ -343,6 +343,44 @@ fn gltf_validator_accepts_the_scene_with_named_nodes_and_typed_lines() {
         assert_eq!(p["mode"], 1, "line primitives");
         let material = &doc["materials"][p["material"].as_u64().unwrap() as usize];
         assert!(used.contains(material["name"].as_str().unwrap()));
+    }
+}
+
+#[test]
+fn gltf_over_its_bound_is_simplified_within_it_and_validates() {
+    let run = Run::load(&tiny());
+    let full = karst_export::ExportParams {
+        formats: vec![ExportFormat::Gltf],
+        gltf_full: true,
+        ..karst_export::ExportParams::default()
+    };
+    let (_full_scratch, _, whole) = export_with(&run, &full, "gltf-full");
+    // A bound of a third of the full file: the surfaces must lose about two thirds of their bytes.
+    let bound_mb = whole.files[0].bytes as f64 / 3.0 / (1u64 << 20) as f64;
+    let bounded = karst_export::ExportParams { gltf_full: false, gltf_max_mb: Some(bound_mb), ..full };
+    let (_scratch, dir, manifest) = export_with(&run, &bounded, "gltf-bounded");
+    let bytes = manifest.files[0].bytes as f64;
+    let bound = bound_mb * (1u64 << 20) as f64;
+    assert!(bytes <= bound && bytes >= 0.5 * bound, "{bytes} bytes for a bound of {bound}");
+    let file = dir.join("karst.glb");
+    let issues = &validate_gltf(&file)["issues"];
+    assert_eq!(
+        (issues["numErrors"].as_u64(), issues["numWarnings"].as_u64()),
+        (Some(0), Some(0)),
+        "{issues}"
+    );
+    let glb = std::fs::read(&file).unwrap();
+    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+    let mesh = run.mesh.as_ref().unwrap();
+    for (i, surface) in [&mesh.terrain, &mesh.cave, &mesh.water].into_iter().enumerate() {
+        let simplified = &doc["nodes"][i]["extras"]["simplified"];
+        if surface.triangles.is_empty() {
+            continue;
+        }
+        assert_eq!(simplified["full_triangles"].as_u64(), Some(surface.triangles.len() as u64));
+        let kept = simplified["triangles"].as_u64().unwrap() as usize;
+        assert!(kept < surface.triangles.len() / 2, "node {i}: {kept} of {}", surface.triangles.len());
     }
 }
 

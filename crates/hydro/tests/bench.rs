@@ -44,7 +44,7 @@ fn maze(n: usize, sinks: usize) -> Skeleton {
             cost: 0.0,
         })
         .collect();
-    Skeleton { nodes, conduits, routes }
+    Skeleton { nodes, conduits, routes, derived: Default::default() }
 }
 
 #[test]

@@ -78,7 +78,7 @@ fn random_network(seed: u64) -> Skeleton {
             )
         })
         .collect();
-    Skeleton { nodes, conduits, routes }
+    Skeleton { nodes, conduits, routes, derived: Default::default() }
 }
 
 /// Water in minus water out at every node, recharge and discharge included, and the water in.
@@ -203,6 +203,7 @@ fn tee() -> Skeleton {
         nodes,
         conduits: vec![conduit(vec![0, 1]), conduit(vec![1, 2]), conduit(vec![3, 1])],
         routes: vec![route("a", "east", 4.0, 0, 2), route("a", "north", 4.0, 0, 3)],
+        derived: Default::default(),
     }
 }
 
@@ -344,6 +345,7 @@ fn a_vertical_shaft_with_water_is_a_free_fall_with_its_parabola() {
         nodes: shaft_nodes(),
         conduits: vec![conduit(vec![0, 1, 2, 3, 4])],
         routes: vec![route("a", "s", 1.0, 0, 4)],
+        derived: Default::default(),
     };
     let h = compute(&skeleton, &HydroParams::default(), &Inputs::default()).unwrap();
     let s = &h.conduits[0].segments;
@@ -442,6 +444,7 @@ fn the_picture_colours_every_segment_by_its_water_type() {
         nodes,
         conduits: vec![conduit(vec![0, 1, 2, 3, 4]), conduit(vec![2, 5])],
         routes: vec![route("a", "s", 1.0, 0, 4)],
+        derived: Default::default(),
     };
     let h = compute(&skeleton, &HydroParams::default(), &Inputs::default()).unwrap();
     let canvas = picture(&skeleton, &h);

@@ -76,6 +76,7 @@ pub fn report(skeleton: &Skeleton) -> Result<MetricsReport, crate::MetricsError>
         surface: SurfaceWater::default(),
         passages: BTreeMap::new(),
         void_volume: None,
+        hints: Vec::new(),
     })
 }
 
@@ -147,6 +148,7 @@ mod tests {
                 profile: Vec::new(),
             }],
             routes: vec![],
+            derived: Default::default(),
         };
         let r = report(&skeleton).expect("valid");
         assert_eq!(r.zones, ZoneLengths { vadose: 12.0, phreatic: 8.0 });

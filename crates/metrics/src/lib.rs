@@ -9,23 +9,27 @@
 //! Pipeline (one module per step):
 //! [`Network`] (validated) → `graph` (simple undirected graph in karstnet's node order) →
 //! `branches` (spec §1) → `reduced` (spec §2) → `geometry` / `topology` (spec §3), with the
-//! all-pairs traversals of the reduced graph in `shortest_paths`.
+//! all-pairs traversals of the reduced graph in `shortest_paths` (exact integer length sums by
+//! `quantum` and `bitbfs` where the lengths allow).
 //!
 //! [`ranges`] compares the metrics with real caves, `plots.rs` draws them. [`build`] makes the
 //! stage's report of a skeleton ([`MetricsReport`], `payload.rs`), [`MetricsStage`] is the stage.
 //!
 //! [`readers`] load karstnet `_nodes.dat`/`_links.dat` pairs, GOCAD PLines and CSV tables.
 
+mod bitbfs;
 mod branches;
 mod build;
 mod error;
 mod geometry;
 mod graph;
+pub mod hints;
 mod metrics;
 mod network;
 mod nullable;
 mod payload;
 mod plots;
+mod quantum;
 pub mod ranges;
 pub mod readers;
 mod reduced;

@@ -41,6 +41,11 @@ pub struct MetricsReport {
     /// The cave's void volume per zone and conduit type (survey.json), m³.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub void_volume: Option<VoidVolume>,
+    /// For each karstnet metric outside its real-cave range, a hint in plain words with the
+    /// parameter that moves it and its value in the run (`hints.rs`); empty for reports made
+    /// from a skeleton alone.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hints: Vec<String>,
 }
 
 /// The surface streams fed by the springs (streams.json).

@@ -1,6 +1,8 @@
 //! All-sources traversals of the reduced graph: hop distances and Brandes' betweenness from one
-//! BFS per source, conduit-length distances from one Dijkstra per source (spec §3 "aspl", "cpd"
-//! and `average_SPL(dist_weight=True)`).
+//! BFS per source, conduit-length distances from the fastest method that gives Dijkstra's bits
+//! (spec §3 "aspl", "cpd" and `average_SPL(dist_weight=True)`): the hop sums times the quantum
+//! or a bit-parallel BFS of unit steps when the lengths are whole multiples of one quantum
+//! (`quantum`, `bitbfs`), else Dial's buckets or Dijkstra with a binary heap, one per source.
 //!
 //! Nodes of hanging trees are not run as sources. Peeling leaves repeatedly (keeping one node
 //! of a component that is a tree) leaves the 2-core plus one root per tree component; every
@@ -21,16 +23,19 @@
 //! every source of its component into its subtree: n_c (size(x) − 1) dependencies. Real caves
 //! have ~30 % leaves in the reduced graph and more in their dead-end trees, which this skips.
 //!
-//! Sources are split into [`CHUNKS`] fixed ranges that depend only on the graph; rayon runs the
-//! ranges in parallel and their results are combined in range order, so every value is
-//! bit-identical whatever the number of threads.
+//! Brandes' sources are split into [`CHUNKS`] fixed ranges that depend only on the graph; rayon
+//! runs the ranges in parallel and their betweenness is summed in range order, so every value is
+//! bit-identical whatever the number of threads. Each length sum comes from one source alone, or
+//! is an exact integer, so neither the ranges nor the batches change it.
 
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use rayon::prelude::*;
 
+use crate::bitbfs::{StepGraph, distance_sums};
 use crate::graph::Csr;
+use crate::quantum::quantize;
 
 /// Number of source ranges (fixed, so results do not depend on the thread count).
 const CHUNKS: usize = 64;
@@ -118,7 +123,7 @@ struct Kept {
     offsets: Vec<u32>,
     targets: Vec<u32>,
     lengths: Vec<f64>,
-    size: Vec<u64>,
+    size: Vec<u32>,
     hop_tail: Vec<u64>,
     length_tail: Vec<f64>,
 }
@@ -140,7 +145,7 @@ impl Kept {
             offsets.push(targets.len() as u32);
         }
         Self {
-            size: nodes.iter().map(|&v| trees.size[v] as u64).collect(),
+            size: nodes.iter().map(|&v| trees.size[v] as u32).collect(),
             hop_tail: nodes.iter().map(|&v| trees.hop_tail[v]).collect(),
             length_tail: nodes.iter().map(|&v| trees.length_tail[v]).collect(),
             nodes,
@@ -171,28 +176,156 @@ impl Kept {
 /// buckets between far-apart distances cost more than a heap.
 const DIAL_RATIO: f64 = 64.0;
 
-/// Runs a BFS (with Brandes' accumulation) and a Dijkstra from every kept node and derives the
-/// peeled nodes' results from their parents'.
+/// How the conduit-length distance sums are found (fastest exact method first).
+enum LengthMethod {
+    /// Every length is one quantum: the sums are the hop sums times the quantum.
+    Hops { quantum: f64 },
+    /// Lengths of a few quanta each: bit-parallel BFS on the graph of unit steps.
+    Steps { quantum: f64, graph: StepGraph },
+    /// Lengths within [`DIAL_RATIO`] of each other: Dial's buckets of this width.
+    Dial(f64),
+    /// Dijkstra's algorithm with a binary heap.
+    Heap,
+}
+
+/// Largest number of extra nodes of the unit-step graph per kept node: beyond it the steps cost
+/// more than Dial's float buckets.
+const STEPS_PER_NODE: usize = 4;
+
+impl LengthMethod {
+    fn choose(trees: &Trees, kept: &Kept) -> Self {
+        match quantize(trees.lengths, trees.adj.n_nodes()) {
+            Some(q) if q.max_unit == 1 => Self::Hops { quantum: q.quantum },
+            Some(q) => match step_graph(trees, kept, &q.units) {
+                Some(graph) => Self::Steps { quantum: q.quantum, graph },
+                None => kept.dial_width().map_or(Self::Heap, Self::Dial),
+            },
+            None => kept.dial_width().map_or(Self::Heap, Self::Dial),
+        }
+    }
+}
+
+/// The kept graph with every edge of u quanta (`units` by edge id) a chain of u unit steps,
+/// unless that adds more than [`STEPS_PER_NODE`] nodes per kept node.
+fn step_graph(trees: &Trees, kept: &Kept, units: &[u32]) -> Option<StepGraph> {
+    let mut index = vec![u32::MAX; trees.adj.n_nodes()];
+    for (k, &v) in kept.nodes.iter().enumerate() {
+        index[v] = k as u32;
+    }
+    let extra: usize = kept
+        .nodes
+        .iter()
+        .flat_map(|&v| trees.kept(v).filter(move |&(w, _)| v < w))
+        .map(|(_, e)| units[e] as usize - 1)
+        .sum();
+    if extra > STEPS_PER_NODE * kept.len() {
+        return None;
+    }
+    let mut n_nodes = kept.len() as u32;
+    let mut edges = Vec::new();
+    for &v in &kept.nodes {
+        for (w, e) in trees.kept(v).filter(|&(w, _)| v < w) {
+            let mut from = index[v];
+            for _ in 1..units[e] {
+                edges.push([from, n_nodes]);
+                from = n_nodes;
+                n_nodes += 1;
+            }
+            edges.push([from, index[w]]);
+        }
+    }
+    Some(StepGraph::new(n_nodes as usize, kept.len(), &edges))
+}
+
+/// The sums of the distances from a kept node to the nodes hanging from the kept nodes of its
+/// component, for the exact (quantized) methods whose sums do not depend on the order of the
+/// additions.
+struct ComponentTails {
+    /// Component of each kept node.
+    component: Vec<u32>,
+    hops: Vec<u64>,
+    lengths: Vec<f64>,
+}
+
+impl ComponentTails {
+    fn new(trees: &Trees, kept: &Kept) -> Self {
+        let (of_node, count) = trees.adj.components();
+        let component: Vec<u32> = kept.nodes.iter().map(|&v| of_node[v] as u32).collect();
+        let (mut hops, mut lengths) = (vec![0; count], vec![0.0; count]);
+        for (k, &c) in component.iter().enumerate() {
+            hops[c as usize] += kept.hop_tail[k];
+            lengths[c as usize] += kept.length_tail[k];
+        }
+        Self { component, hops, lengths }
+    }
+}
+
+/// Runs a BFS (with Brandes' accumulation) and a shortest-length traversal from every kept node
+/// and derives the peeled nodes' results from their parents'.
 pub(crate) fn all_pairs(adj: &Csr, lengths: &[f64]) -> AllPairs {
     let n = adj.n_nodes();
     let trees = Trees::new(adj, lengths);
     let kept = Kept::new(&trees);
+    let tails = ComponentTails::new(&trees, &kept);
     let sources: Vec<u32> = (0..kept.len() as u32).collect();
     let chunk = sources.len().div_ceil(CHUNKS).max(1);
-    let parts: Vec<AllPairs> = sources.par_chunks(chunk).map(|chunk| from_sources(&kept, chunk)).collect();
+    let parts: Vec<(Vec<u64>, Vec<f64>)> =
+        sources.par_chunks(chunk).map(|chunk| brandes_chunk(&kept, chunk)).collect();
     let mut total = AllPairs { hop_sums: vec![0; n], length_sums: vec![0.0; n], betweenness: vec![0.0; n] };
-    for (part, chunk) in parts.into_iter().zip(sources.chunks(chunk)) {
-        for (i, &s) in chunk.iter().enumerate() {
-            let v = kept.nodes[s as usize];
-            total.hop_sums[v] = part.hop_sums[i];
-            total.length_sums[v] = part.length_sums[i];
-        }
-        for (k, p) in part.betweenness.into_iter().enumerate() {
+    let mut reach = Vec::with_capacity(kept.len());
+    for (part_reach, part_betweenness) in parts {
+        reach.extend(part_reach);
+        for (k, p) in part_betweenness.into_iter().enumerate() {
             total.betweenness[kept.nodes[k]] += p;
         }
     }
+    let length_sums = conduit_length_sums(&kept, &LengthMethod::choose(&trees, &kept), &tails, &reach);
+    for (k, &v) in kept.nodes.iter().enumerate() {
+        total.hop_sums[v] = reach[k] + tails.hops[tails.component[k] as usize];
+        total.length_sums[v] = length_sums[k];
+    }
     add_tree_sources(&trees, &mut total);
     total
+}
+
+/// `Σ_t d(s, t)` along conduit lengths for every kept source, its trees' targets included;
+/// `reach`: the sources' hop sums without the trees' tails.
+fn conduit_length_sums(
+    kept: &Kept,
+    method: &LengthMethod,
+    tails: &ComponentTails,
+    reach: &[u64],
+) -> Vec<f64> {
+    // Exact sums (module `quantum`): any order of the additions gives the same bits.
+    let exact = |k: usize, steps: u64, quantum: f64| {
+        steps as f64 * quantum + tails.lengths[tails.component[k] as usize]
+    };
+    let sources: Vec<u32> = (0..kept.len() as u32).collect();
+    let chunk = sources.len().div_ceil(CHUNKS).max(1);
+    match method {
+        LengthMethod::Hops { quantum } => {
+            reach.iter().enumerate().map(|(k, &r)| exact(k, r, *quantum)).collect()
+        }
+        LengthMethod::Steps { quantum, graph } => distance_sums(graph, &kept.size)
+            .into_iter()
+            .enumerate()
+            .map(|(k, steps)| exact(k, steps, *quantum))
+            .collect(),
+        LengthMethod::Dial(width) => sources
+            .par_chunks(chunk)
+            .flat_map_iter(|chunk| {
+                let mut dial = Dial::new(kept.len(), kept, *width);
+                chunk.iter().map(|&s| dial.run(kept, s)).collect::<Vec<_>>()
+            })
+            .collect(),
+        LengthMethod::Heap => sources
+            .par_chunks(chunk)
+            .flat_map_iter(|chunk| {
+                let mut dijkstra = Dijkstra::new(kept.len());
+                chunk.iter().map(|&s| dijkstra.run(kept, s)).collect::<Vec<_>>()
+            })
+            .collect(),
+    }
 }
 
 /// Completes `total` with the contributions of the peeled nodes as sources (module docs).
@@ -214,95 +347,94 @@ fn add_tree_sources(trees: &Trees, total: &mut AllPairs) {
     }
 }
 
-/// The sums and betweenness of one range of sources (kept ids; betweenness per kept id).
-fn from_sources(kept: &Kept, sources: &[u32]) -> AllPairs {
+/// The hop sums without tails (`Σ_c size(c) d(s, c)`) of one range of sources and the
+/// betweenness they add (per kept id).
+fn brandes_chunk(kept: &Kept, sources: &[u32]) -> (Vec<u64>, Vec<f64>) {
     let mut bfs = Brandes::new(kept.len());
     let mut betweenness = vec![0.0; kept.len()];
-    let hop_sums = sources.iter().map(|&s| bfs.run(kept, s, &mut betweenness)).collect();
-    let length_sums = match kept.dial_width() {
-        Some(width) => {
-            let mut dial = Dial::new(kept.len(), kept, width);
-            sources.iter().map(|&s| dial.run(kept, s)).collect()
-        }
-        None => {
-            let mut dijkstra = Dijkstra::new(kept.len());
-            sources.iter().map(|&s| dijkstra.run(kept, s)).collect()
-        }
-    };
-    AllPairs { hop_sums, length_sums, betweenness }
+    let reach = sources.iter().map(|&s| bfs.run(kept, s, &mut betweenness)).collect();
+    (reach, betweenness)
 }
 
 /// Reusable buffers of Brandes' algorithm for unweighted graphs.
 struct Brandes {
     dist: Vec<u32>,
-    sigma: Vec<f64>,
-    delta: Vec<f64>,
+    /// Shortest-path count σ and dependency δ of each node, side by side: the backward sweep
+    /// reads both of a neighbour from one cache line.
+    paths: Vec<Paths>,
     order: Vec<u32>,
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Paths {
+    sigma: f64,
+    delta: f64,
 }
 
 impl Brandes {
     fn new(n: usize) -> Self {
-        Self {
-            dist: vec![u32::MAX; n],
-            sigma: vec![0.0; n],
-            delta: vec![0.0; n],
-            order: Vec::with_capacity(n),
-        }
+        Self { dist: vec![u32::MAX; n], paths: vec![Paths::default(); n], order: vec![0; n + 1] }
     }
 
     /// Adds the dependencies of kept source `s` on kept nodes, times the size(s) sources it
-    /// stands for, to `betweenness`; returns `Σ_t d(s, t)` over all targets (module docs).
+    /// stands for, to `betweenness`; returns `Σ_c size(c) d(s, c)` over the kept nodes c it
+    /// reaches (the hop sum without the trees' tails, module docs).
+    ///
+    /// The buffers of a node are reset as soon as its dependency is final: a node nearer the
+    /// source then sees it at distance `u32::MAX`, never one hop farther than itself, since only
+    /// the source is at distance 0 and the source's own dependency is not needed. Arcs that are
+    /// not on a shortest path add 0 to a dependency instead of branching (unpredictable in a
+    /// maze): x + 0 is x for the non-negative counts and dependencies.
     fn run(&mut self, kept: &Kept, s: u32, betweenness: &mut [f64]) -> u64 {
-        self.count_shortest_paths(kept, s);
-        let weight = kept.size[s as usize] as f64;
-        for &w in self.order.iter().rev() {
+        let reached = self.count_shortest_paths(kept, s);
+        let weight = f64::from(kept.size[s as usize]);
+        let mut reach = 0;
+        for &w in self.order[1..reached].iter().rev() {
             let w = w as usize;
-            let coeff = (kept.size[w] as f64 + self.delta[w]) / self.sigma[w];
+            let dist = self.dist[w];
+            let size = kept.size[w];
+            reach += u64::from(size) * u64::from(dist);
+            let Paths { sigma, delta } = self.paths[w];
+            let coeff = (f64::from(size) + delta) / sigma;
             for arc in kept.arcs(w as u32) {
                 let v = kept.targets[arc] as usize;
-                if self.dist[v].wrapping_add(1) == self.dist[w] {
-                    self.delta[v] += self.sigma[v] * coeff;
-                }
+                let on_path = self.dist[v].wrapping_add(1) == dist;
+                let paths = &mut self.paths[v];
+                paths.delta += if on_path { paths.sigma * coeff } else { 0.0 };
             }
-            if w != s as usize {
-                betweenness[w] += weight * (self.delta[w] + (kept.size[w] - 1) as f64);
-            }
+            betweenness[w] += weight * (delta + f64::from(size - 1));
+            self.dist[w] = u32::MAX;
+            self.paths[w] = Paths::default();
         }
-        let hop_sum = self
-            .order
-            .iter()
-            .map(|&v| kept.size[v as usize] * self.dist[v as usize] as u64 + kept.hop_tail[v as usize])
-            .sum();
-        for &v in &self.order {
-            let v = v as usize;
-            self.dist[v] = u32::MAX;
-            self.sigma[v] = 0.0;
-            self.delta[v] = 0.0;
-        }
-        hop_sum
+        self.dist[s as usize] = u32::MAX;
+        self.paths[s as usize] = Paths::default();
+        reach
     }
 
-    /// BFS from `s` over the kept nodes: hop distances, shortest-path counts, visiting order.
-    fn count_shortest_paths(&mut self, kept: &Kept, s: u32) {
-        self.order.clear();
-        self.order.push(s);
+    /// BFS from `s` over the kept nodes: hop distances, shortest-path counts and the visiting
+    /// order in `order[..n]`; returns n, the number of nodes reached.
+    fn count_shortest_paths(&mut self, kept: &Kept, s: u32) -> usize {
+        self.order[0] = s;
         self.dist[s as usize] = 0;
-        self.sigma[s as usize] = 1.0;
-        let mut head = 0;
-        while let Some(&v) = self.order.get(head) {
+        self.paths[s as usize].sigma = 1.0;
+        let (mut head, mut end) = (0, 1);
+        while head < end {
+            let v = self.order[head] as usize;
             head += 1;
-            let (v, next) = (v as usize, self.dist[v as usize] + 1);
+            let (next, sigma_v) = (self.dist[v] + 1, self.paths[v].sigma);
             for arc in kept.arcs(v as u32) {
                 let w = kept.targets[arc] as usize;
                 if self.dist[w] == u32::MAX {
                     self.dist[w] = next;
-                    self.order.push(w as u32);
+                    self.order[end] = w as u32;
+                    end += 1;
                 }
                 if self.dist[w] == next {
-                    self.sigma[w] += self.sigma[v];
+                    self.paths[w].sigma += sigma_v;
                 }
             }
         }
+        end
     }
 }
 
@@ -525,5 +657,157 @@ mod tests {
         let r = all_pairs(&adj, &[2.0, 3.0]);
         assert_eq!(r.hop_sums, vec![1; 4]);
         assert_eq!(r.length_sums, vec![2.0, 2.0, 3.0, 3.0]);
+    }
+
+    /// A pseudo-random stream of integers below `bound`.
+    fn stream(seed: u64) -> impl FnMut(u64) -> u64 {
+        let mut state = seed;
+        move |bound| {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            (state >> 33) % bound
+        }
+    }
+
+    /// Random test graphs with lengths that are whole multiples of `quantum` (1 to `max_unit`
+    /// of them): trees, grids with missing edges (hanging trees) and diagonals, random meshes.
+    fn random_graphs(seed: u64, quantum: f64, max_unit: u64) -> Vec<(Csr, Vec<f64>)> {
+        let mut next = stream(seed);
+        let mut graphs = Vec::new();
+        let tree: Vec<[usize; 2]> = (1..60).map(|v| [next(v as u64) as usize, v]).collect();
+        graphs.push((60, tree));
+        let side = 9;
+        let mut grid = Vec::new();
+        for v in 0..side * side {
+            let (x, y) = (v % side, v / side);
+            for (ok, w) in [
+                (x + 1 < side, v + 1),
+                (y + 1 < side, v + side),
+                (x + 1 < side && y + 1 < side, v + side + 1),
+            ] {
+                if ok && next(10) < 6 {
+                    grid.push([v, w]);
+                }
+            }
+        }
+        graphs.push((side * side, grid));
+        let mut mesh = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        for v in 1..70usize {
+            for _ in 0..1 + next(3) {
+                let w = next(v as u64) as usize;
+                if seen.insert((w, v)) {
+                    mesh.push([w, v]);
+                }
+            }
+        }
+        graphs.push((70, mesh));
+        graphs
+            .into_iter()
+            .map(|(n, edges)| {
+                let lengths = edges.iter().map(|_| quantum * (1 + next(max_unit)) as f64).collect();
+                (Csr::from_edges(n, &edges), lengths)
+            })
+            .collect()
+    }
+
+    /// Every pair's hop and length distances, dependencies summed from one plain BFS (Brandes)
+    /// and one plain Dijkstra per node: no tree peeling, no shortcut.
+    fn straightforward(adj: &Csr, lengths: &[f64]) -> AllPairs {
+        let n = adj.n_nodes();
+        let mut total =
+            AllPairs { hop_sums: vec![0; n], length_sums: vec![0.0; n], betweenness: vec![0.0; n] };
+        for s in 0..n {
+            let (mut dist, mut sigma, mut delta) = (vec![usize::MAX; n], vec![0.0; n], vec![0.0; n]);
+            let (mut order, mut head) = (vec![s], 0);
+            (dist[s], sigma[s]) = (0, 1.0);
+            while let Some(&v) = order.get(head) {
+                head += 1;
+                for &w in adj.neighbors(v) {
+                    if dist[w] == usize::MAX {
+                        dist[w] = dist[v] + 1;
+                        order.push(w);
+                    }
+                    if dist[w] == dist[v] + 1 {
+                        sigma[w] += sigma[v];
+                    }
+                }
+            }
+            for &w in order.iter().rev() {
+                for &v in adj.neighbors(w) {
+                    if dist[v] + 1 == dist[w] {
+                        delta[v] += sigma[v] / sigma[w] * (1.0 + delta[w]);
+                    }
+                }
+                if w != s {
+                    total.betweenness[w] += delta[w];
+                }
+            }
+            total.hop_sums[s] = order.iter().map(|&v| dist[v] as u64).sum();
+            let mut length = vec![f64::INFINITY; n];
+            let mut heap = BinaryHeap::from([Reverse((0f64.to_bits(), s))]);
+            length[s] = 0.0;
+            while let Some(Reverse((bits, v))) = heap.pop() {
+                if bits != length[v].to_bits() {
+                    continue;
+                }
+                for (w, e) in adj.incident(v) {
+                    if length[v] + lengths[e] < length[w] {
+                        length[w] = length[v] + lengths[e];
+                        heap.push(Reverse((length[w].to_bits(), w)));
+                    }
+                }
+            }
+            total.length_sums[s] = length.iter().filter(|l| l.is_finite()).sum();
+        }
+        total
+    }
+
+    #[test]
+    fn fast_paths_match_the_straightforward_traversals() {
+        for (seed, quantum, max_unit) in [(1, 10.0, 1), (2, 10.0, 2), (3, 0.25, 3), (4, 1.5, 2), (5, 0.1, 1)]
+        {
+            for (adj, lengths) in random_graphs(seed, quantum, max_unit) {
+                let fast = all_pairs(&adj, &lengths);
+                let plain = straightforward(&adj, &lengths);
+                assert_eq!(fast.hop_sums, plain.hop_sums, "seed {seed}");
+                for (a, b) in fast.length_sums.iter().zip(&plain.length_sums) {
+                    // Exact (hence equal) sums for the quantized lengths, 0.1 is not one.
+                    if quantum == 0.1 {
+                        assert!((a - b).abs() <= 1e-12 * b.abs(), "seed {seed}: {a} {b}");
+                    } else {
+                        assert_eq!(a.to_bits(), b.to_bits(), "seed {seed}: {a} {b}");
+                    }
+                }
+                for (a, b) in fast.betweenness.iter().zip(&plain.betweenness) {
+                    assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "seed {seed}: {a} {b}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn exact_length_sums_are_those_of_dijkstra_to_the_last_bit() {
+        let mut methods = Vec::new();
+        for (seed, quantum, max_unit) in [(6, 10.0, 1), (7, 10.0, 2), (8, 0.5, 4), (9, 3.0, 3)] {
+            for (adj, lengths) in random_graphs(seed, quantum, max_unit) {
+                let trees = Trees::new(&adj, &lengths);
+                let kept = Kept::new(&trees);
+                let tails = ComponentTails::new(&trees, &kept);
+                let (reach, _) = brandes_chunk(&kept, &(0..kept.len() as u32).collect::<Vec<_>>());
+                let method = LengthMethod::choose(&trees, &kept);
+                methods.push(match method {
+                    LengthMethod::Hops { .. } => "hops",
+                    LengthMethod::Steps { .. } => "steps",
+                    LengthMethod::Dial(_) | LengthMethod::Heap => "float",
+                });
+                let fast = conduit_length_sums(&kept, &method, &tails, &reach);
+                let heap = conduit_length_sums(&kept, &LengthMethod::Heap, &tails, &reach);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&fast), bits(&heap), "seed {seed}");
+            }
+        }
+        // The trees keep one node, the grids and meshes of 1 quantum take the hop sums.
+        assert!(methods.iter().filter(|&&m| m == "steps").count() >= 4, "{methods:?}");
+        assert!(methods.iter().filter(|&&m| m == "hops").count() >= 3, "{methods:?}");
     }
 }

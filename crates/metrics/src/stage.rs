@@ -19,7 +19,7 @@ use crate::payload::MetricsReport;
 use crate::ranges::Compared;
 use crate::readers::{self, ReadError};
 use crate::view::MetricsView;
-use crate::{Metrics, Network, characterize, distributions, plots, ranges};
+use crate::{Metrics, Network, characterize, distributions, hints, plots, ranges};
 
 /// Stage 8: karstnet's statistics of the network against real caves.
 pub struct MetricsStage;
@@ -32,22 +32,33 @@ impl Stage for MetricsStage {
     type View<'s> = MetricsView<'s>;
 
     fn build(
-        _: &MetricsView,
+        view: &MetricsView,
         (skeleton, hydro, streams, survey): &(Skeleton, Hydro, Streams, Survey),
     ) -> Result<MetricsReport, ReportError> {
-        build(skeleton, hydro, streams, survey)
+        let mut report = build(skeleton, hydro, streams, survey)?;
+        let parameters = hints::Parameters {
+            skeleton: view.skeleton,
+            sampling: view.sampling,
+            derived: &skeleton.derived,
+        };
+        report.hints = hints::hints(&report.karstnet, &parameters);
+        Ok(report)
     }
 
     fn headline(_: &MetricsView, report: &MetricsReport) -> String {
         let m = &report.network;
-        let inside = report.karstnet.values().filter(|c| c.inside).count();
         format!(
-            "{} nodes, {} branches, {:.0} m, {inside}/{} metrics within real caves",
+            "{} nodes, {} branches, {:.0} m, {}",
             m.n_nodes_full,
             m.n_branches,
             m.total_length,
-            report.karstnet.len()
+            hints::verdict(&report.karstnet)
         )
+    }
+
+    /// The hints of the metrics outside the real-cave ranges.
+    fn notes(report: &MetricsReport) -> Vec<String> {
+        report.hints.clone()
     }
 
     fn summary(_: &Header, report: &MetricsReport) -> Vec<String> {

@@ -1,7 +1,10 @@
 //! What the metrics stage reads of the scene.
 
 karst_scene::view! {
-    /// The metrics stage's view of the scene: no section (the network's statistics come from
-    /// the artifacts alone).
-    pub struct MetricsView<'s> {}
+    /// The metrics stage's view of the scene: the network's statistics come from the artifacts
+    /// alone; `[skeleton]` and `[sampling]` give the values the hints cite (`hints.rs`).
+    pub struct MetricsView<'s> {
+        sampling: Sampling,
+        skeleton: Skeleton,
+    }
 }

@@ -77,3 +77,31 @@ fn all_loop_network_matches_karstnet() {
     let links = (0..m).map(|k| [k, (k + 1) % m]).collect();
     check(&python(), "cycle", &Network { nodes, links });
 }
+
+#[test]
+fn grid_mazes_match_karstnet() {
+    // Grids of junctions 10 m apart: the corner branches are two grid edges long, so the
+    // length-weighted aspl takes the bit-parallel BFS of unit steps; with a station in the
+    // middle of some grid edges, corners of two such edges make longer branches too.
+    let python = python();
+    for (name, side, station_every) in [("maze", 30, 0), ("maze-stations", 24, 3)] {
+        let mut nodes: Vec<[f64; 3]> =
+            (0..side * side).map(|v| [(v % side) as f64 * 10.0, (v / side) as f64 * 10.0, 0.0]).collect();
+        let mut links = Vec::new();
+        for v in 0..side * side {
+            for (ok, w) in [(v % side + 1 < side, v + 1), (v / side + 1 < side, v + side)] {
+                if !ok {
+                    continue;
+                }
+                if station_every > 0 && (v + w) % station_every == 0 {
+                    let (a, b) = (nodes[v], nodes[w]);
+                    nodes.push([0, 1, 2].map(|c| (a[c] + b[c]) / 2.0));
+                    links.extend([[v, nodes.len() - 1], [nodes.len() - 1, w]]);
+                } else {
+                    links.push([v, w]);
+                }
+            }
+        }
+        check(&python, name, &Network { nodes, links });
+    }
+}

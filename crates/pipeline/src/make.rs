@@ -99,6 +99,9 @@ pub fn run(
             if stage == StageId::Mesher {
                 eprintln!("{}", crate::budget::check_mesher(&job, selection.budget)?);
             }
+            if stage == StageId::Export {
+                eprintln!("{}", crate::budget::check_export(&job, selection.budget)?);
+            }
             let ran = registry::stage(stage).run(&job)?;
             Outcome::Ran { headline: ran.headline, notes: ran.notes }
         };

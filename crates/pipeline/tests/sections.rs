@@ -41,7 +41,7 @@ fn edited(scene: &Scene, section: Section) -> (Scene, Vec<Section>) {
             inherited_cost: 1.0,
             weights: BTreeMap::new(),
         }),
-        Section::Sampling => s.sampling_mut().radius *= 1.5,
+        Section::Sampling => s.sampling_mut().radius = Some(s.sampling().radius.unwrap_or(20.0) * 1.5),
         Section::Costgraph => s.costgraph_mut().k += 1,
         Section::Skeleton => s.skeleton_mut().gamma += 1.0,
         Section::ForcedLinks => {

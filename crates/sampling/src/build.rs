@@ -24,7 +24,7 @@ pub fn build(view: &SamplingView) -> Result<Samples, SamplingError> {
     let field = SpacingField::of_view(view);
     let d = view.domain;
     // Background cells of the volume's base radius (a few samples each, linked lists).
-    let base = view.sampling.radius * crate::spacing::unit_scale(view.sampling, view.domain);
+    let base = view.sampling.radius_metres(view.domain, view.terrain);
     let cell = field.min().max(base);
     let mut sampler = Sampler::new(&field, d.min(), d.max(), cell);
     // Runs of equal tags (the tags themselves are built once the grid is freed).
@@ -59,7 +59,10 @@ pub fn build(view: &SamplingView) -> Result<Samples, SamplingError> {
     let volume = sampler.count() - runs.iter().map(|r| r.1).sum::<usize>();
     runs.push((Tag::Volume, volume));
     if sampler.count() == view.keypoints.len() {
-        return Err(SamplingError::NothingToSample { smallest: field.min(), radius: view.sampling.radius });
+        return Err(SamplingError::NothingToSample {
+            smallest: field.min(),
+            radius: view.sampling.radius_in_units(view.domain, view.terrain),
+        });
     }
     // Free the background grid first: the positions are copied out of its records (32 bytes a
     // sample, so not in place), then converted in place.

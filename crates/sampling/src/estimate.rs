@@ -42,14 +42,14 @@ impl Work {
     fn of(view: &SamplingView) -> Work {
         let s = view.sampling;
         let scale = unit_scale(view.sampling, view.domain);
-        let radius = s.radius * scale;
+        let radius = s.radius_metres(view.domain, view.terrain);
         let size = view.domain.size();
         let cells = (size / radius).ceil().max(DVec3::ONE).element_product();
         let largest = s
             .surface_radius
             .into_iter()
             .chain(view.geology.layers.iter().filter_map(|l| l.radius))
-            .fold(s.radius, f64::max)
+            .fold(radius / scale, f64::max)
             * scale;
         let reach = (largest / radius).ceil();
         let bedrock = |p: DVec3| p.z < view.terrain.height(p.x, p.y) && !view.geology.in_no_karst(p);
@@ -84,7 +84,7 @@ impl Work {
 fn surface_layers(view: &SamplingView) -> f64 {
     let s = view.sampling;
     let scale = unit_scale(view.sampling, view.domain);
-    let radius = s.radius * scale;
+    let radius = s.radius_metres(view.domain, view.terrain);
     let Some(surface_radius) = s.surface_radius.map(|r| r * scale).filter(|r| *r < radius) else {
         return 0.0;
     };
@@ -138,7 +138,8 @@ fn driver(view: &SamplingView) -> Driver {
             Work::of(&SamplingView { sampling: &sampling, ..*view }).bytes()
         })
     };
-    let mut best: Driver = ("sampling.radius".into(), s.radius, with_sampling(|s, v| s.radius = v));
+    let radius = s.radius_in_units(view.domain, view.terrain);
+    let mut best: Driver = ("sampling.radius".into(), radius, with_sampling(|s, v| s.radius = Some(v)));
     if let Some(r) = s.surface_radius.filter(|r| *r < best.1) {
         best = ("sampling.surface_radius".into(), r, with_sampling(|s, v| s.surface_radius = Some(v)));
     }

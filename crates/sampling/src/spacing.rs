@@ -60,7 +60,7 @@ impl SpacingField {
     /// Nodes of the scene's field: [`NODES_PER_SAMPLE`] per expected sample at the base radius,
     /// at least 32³.
     pub fn nodes_for(view: &SamplingView) -> f64 {
-        let radius = view.sampling.radius * unit_scale(view.sampling, view.domain);
+        let radius = view.sampling.radius_metres(view.domain, view.terrain);
         let volume = view.domain.size().element_product();
         (NODES_PER_SAMPLE * PACKING * volume / radius.powi(3)).max(MIN_NODES)
     }
@@ -70,7 +70,7 @@ impl SpacingField {
     pub fn tabulate(view: &SamplingView, nodes: f64) -> SpacingField {
         let s = view.sampling;
         let scale = unit_scale(view.sampling, view.domain);
-        let radius = s.radius * scale;
+        let radius = s.radius_metres(view.domain, view.terrain);
         let surface_radius = s.surface_radius.map_or(radius, |r| r * scale);
         let surface_distance = s.surface_distance.map_or(2.0 * radius, |d| d * scale);
         let layer_min = view.geology.layer_radii().fold(f64::INFINITY, f64::min) * scale;

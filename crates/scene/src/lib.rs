@@ -15,6 +15,7 @@
 //! magnitude of the file's coordinates.
 
 pub mod budget;
+pub mod defaults;
 pub mod keypoint;
 mod links;
 mod load;

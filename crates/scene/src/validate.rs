@@ -211,7 +211,9 @@ impl Checks<'_> {
     /// Amplification branches shorter than the sampling radius could not be drawn: the
     /// samples are that far apart.
     fn amplification(&mut self, scene: &Scene) {
-        let radius = scene.sampling.radius;
+        let Some(radius) = scene.sampling.radius.map(|r| r * scene.sampling.unit_scale(&scene.domain)) else {
+            return;
+        };
         if let Some([lo, _]) = scene.skeleton.amplification_length
             && lo.is_finite()
             && radius.is_finite()

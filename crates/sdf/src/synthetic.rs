@@ -40,7 +40,8 @@ water_table = "wt"
 pub fn network(seed: u64, conduits: usize, nodes: usize) -> (Skeleton, Hydro) {
     let mut random = Random::stream(seed, "sdf", "synthetic");
     let domain = Domain { min: [20.0, 20.0, 20.0], max: [980.0, 980.0, 170.0] };
-    let mut skeleton = Skeleton { nodes: Vec::new(), conduits: Vec::new(), routes: Vec::new() };
+    let mut skeleton =
+        Skeleton { nodes: Vec::new(), conduits: Vec::new(), routes: Vec::new(), derived: Default::default() };
     let mut flows = Vec::new();
     let kinds = [
         ConduitType::Tube,

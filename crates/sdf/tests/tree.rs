@@ -206,7 +206,8 @@ fn a_pool_controller_is_dug_into_the_terrain() {
         sinks: Vec::new(),
         springs: Vec::new(),
     };
-    let skeleton = Skeleton { nodes: Vec::new(), conduits: Vec::new(), routes: Vec::new() };
+    let skeleton =
+        Skeleton { nodes: Vec::new(), conduits: Vec::new(), routes: Vec::new(), derived: Default::default() };
     let streams = karst_streams::build(&karst_streams::StreamsView::of(&scene), &hydro).unwrap();
     let pool = streams.pools.iter().find(|p| p.kind == karst_streams::PoolKind::Curve).unwrap();
     let floor = pool.level - pool.depth;

@@ -89,7 +89,7 @@ pub fn amplify(view: &SkeletonView, samples: &Samples, graph: &CostGraph, networ
         let scale = p.amplification_ratio.powi(step as i32);
         let before = network.samples.len();
         let mut joined = Vec::new();
-        for _ in 0..(p.amplification_points as f64 * scale).round() as usize {
+        for _ in 0..(p.amplification_points.unwrap_or(0) as f64 * scale).round() as usize {
             let dead_end = rng.uniform() < p.dead_end_fraction;
             let point = match p.amplification_length {
                 Some([min, max]) => {

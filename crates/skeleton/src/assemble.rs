@@ -118,7 +118,7 @@ impl NetworkBuilder {
                 Conduit { radius, nodes: chain, types, phase, keypoints, profile }
             })
             .collect();
-        Skeleton { nodes, conduits, routes }
+        Skeleton { nodes, conduits, routes, derived: Default::default() }
     }
 
     fn phase_of(&self, a: u32, b: u32) -> u32 {

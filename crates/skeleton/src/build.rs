@@ -14,23 +14,29 @@ use crate::karstnsim::PhaseSetup;
 use crate::payload::{Route, Skeleton};
 use crate::search::{CostSetOf, EdgeCosts};
 use crate::view::SkeletonView;
-use crate::{amplify, gamma, karstnsim};
+use crate::{amplify, defaults, gamma, karstnsim};
 
 /// Builds the network of `scene` on the cost graph; each spring routes on the cost set of its
-/// water table. Dead-end key points are
+/// water table. What `[skeleton]` leaves out of the tributaries and meanders is derived from the
+/// scene ([`defaults`]), the tributary count once the routes are known. Dead-end key points are
 /// closed to the mode's paths and to amplification, then joined once.
 pub fn build(view: &SkeletonView, samples: &Samples, full: &CostGraph) -> Result<Skeleton, SkeletonError> {
     if full.node_count() != samples.len() {
         return Err(SkeletonError::GraphOfOtherSamples { nodes: full.node_count(), samples: samples.len() });
     }
     full.cost_from(&view.costs(), &samples.positions, costing(view, full))?;
+    let mut resolved = defaults::resolve(view);
     let mut network = NetworkBuilder::default();
     let closed = without_dead_ends(view, samples, full);
     let graph = closed.as_ref().unwrap_or(full);
     let routes = mode_routes(view, samples, graph, &mut network)?;
+    resolved.count(view, samples, &network);
+    let view = &SkeletonView { skeleton: &resolved.params, ..*view };
     amplify::join_keypoints(view, samples, full, &mut network)?;
     amplify::amplify(view, samples, graph, &mut network);
-    Ok(network.finish(view, samples, routes))
+    let mut skeleton = network.finish(view, samples, routes);
+    skeleton.derived = resolved.derived;
+    Ok(skeleton)
 }
 
 /// The least-cost paths of the scene's mode alone (no other key point joined, no amplification,

@@ -104,6 +104,7 @@ mod tests {
             nodes: vec![node(0.0, Some("a, b")), node(1.0, None), node(2.0, None)],
             conduits: vec![conduit(vec![0, 1, 1, 2], 1.0, 1), conduit(vec![2, 1], 3.0, 0)],
             routes: Vec::new(),
+            derived: Default::default(),
         };
         let dir = karst_testkit::scratch("karstnet");
         write(&skeleton, &dir.join("net")).unwrap();

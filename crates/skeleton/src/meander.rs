@@ -79,7 +79,8 @@ pub fn bend(
     let planes = WeaknessPlanes::of(view.geology);
     let mut inserted = Insertions::new();
     for chain in chains.iter_mut() {
-        let wavelength = rng.range(p.meander_wavelength[0], p.meander_wavelength[1]);
+        let [shortest, longest] = p.meander_wavelength.unwrap_or_default();
+        let wavelength = rng.range(shortest, longest);
         let originals: Vec<DVec3> =
             chain.iter().map(|&i| DVec3::from_array(nodes[i as usize].position)).collect();
         let chord = originals[originals.len() - 1] - originals[0];

@@ -70,7 +70,31 @@ radius = 9.0
 k = 16
 "#;
 
+/// The mechanisms the defaults turn on (issue 38), off unless a test sets them: these tests
+/// check one mechanism at a time.
+const PLAIN: [(&str, &str); 4] = [
+    ("cohesion_vadose", "1.0"),
+    ("cohesion_phreatic", "1.0"),
+    ("amplification_steps", "0"),
+    ("sinuosity", "1.0"),
+];
+
+/// The scene with `extra` and, in `[skeleton]`, the [`PLAIN`] values `extra` does not set.
 fn scene(extra: &str) -> Scene {
+    let plain: String = PLAIN
+        .iter()
+        .filter(|(key, _)| !extra.contains(&format!("{key} =")))
+        .map(|(key, value)| format!("{key} = {value}\n"))
+        .collect();
+    let extra = match extra.find("[skeleton]\n") {
+        Some(at) => format!("{}[skeleton]\n{plain}{}", &extra[..at], &extra[at + "[skeleton]\n".len()..]),
+        None => format!("{extra}\n[skeleton]\n{plain}"),
+    };
+    with_defaults(&extra)
+}
+
+/// The scene with `extra` and the defaults for everything else.
+fn with_defaults(extra: &str) -> Scene {
     Scene::parse(&format!("{SCENE}\n{extra}"), Path::new("two-springs.toml")).unwrap()
 }
 
@@ -506,4 +530,48 @@ fn realism_parameters_out_of_range_are_refused() {
     assert!(bad("[skeleton]\nconfluence_attraction = 2.0\n").contains("skeleton.confluence_attraction"));
     assert!(bad("[skeleton]\nsinuosity = 0.9\n").contains("skeleton.sinuosity"));
     assert!(bad("[skeleton]\nmeander_wavelength = [0.0, 10.0]\n").contains("skeleton.meander_wavelength"));
+}
+
+#[test]
+fn defaults_derived_from_the_scene_are_recorded_and_shape_the_network() {
+    let scene = with_defaults("");
+    let (samples, graph) = inputs(&scene);
+    let skeleton = build(&scene, &samples, &graph).unwrap();
+    let derived = &skeleton.derived;
+    // [sampling] gives the radius (9 m): the shortest tributary is twice it; the sinks' median
+    // nearest-neighbour distance (about 78 m) halved is below 10 radii, so the longest is 90 m.
+    assert_eq!(derived.get("sampling.radius"), None);
+    assert_eq!(derived["skeleton.amplification_length"], serde_json::json!([18.0, 90.0]));
+    // Ten passage widths of the default radii [0.5, 4] m.
+    assert_eq!(derived["skeleton.meander_wavelength"], serde_json::json!([10.0, 80.0]));
+    let points = derived["skeleton.amplification_points"].as_u64().unwrap();
+    assert!(points >= 2, "{points}");
+    // Dead-end tributaries: many nodes of degree 1 beyond the five key points.
+    let ends = degrees(&skeleton).iter().filter(|d| **d == 1).count();
+    assert!(ends > 5 + points as usize / 2, "{ends} dead ends for {points} first-step tributaries");
+    let text = crate::resolved_toml(&skeleton).unwrap();
+    assert!(text.contains("[skeleton]\namplification_length = [18.0,90.0]\n"), "{text}");
+}
+
+#[test]
+fn values_the_scene_gives_are_not_derived() {
+    let scene = with_defaults(
+        "[skeleton]\namplification_points = 3\namplification_length = [20.0, 60.0]\nmeander_wavelength = [30.0, 50.0]\n",
+    );
+    let (samples, graph) = inputs(&scene);
+    let skeleton = build(&scene, &samples, &graph).unwrap();
+    assert!(skeleton.derived.is_empty(), "{:?}", skeleton.derived);
+    assert_eq!(crate::resolved_toml(&skeleton), None);
+}
+
+#[test]
+fn the_sampling_radius_left_out_is_derived_from_the_bedrock() {
+    let text = SCENE.replace("[sampling]\nradius = 9.0\n", "");
+    let scene = Scene::parse(&text, Path::new("two-springs.toml")).unwrap();
+    let view = SkeletonView::of(&scene);
+    // 300 × 200 m under a flat ground at 78 m: 4.68e6 m³, (0.725 × 4.68e6 / 30000)^⅓ ≈ 4.84 m.
+    let r = crate::defaults::sampling_radius(&view);
+    assert!((r - 4.84).abs() < 0.01, "{r}");
+    let (samples, _) = inputs(&scene);
+    assert!((25_000..=40_000).contains(&samples.len()), "{} samples", samples.len());
 }

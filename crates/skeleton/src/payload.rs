@@ -158,6 +158,10 @@ pub struct Skeleton {
     pub nodes: Vec<Node>,
     pub conduits: Vec<Conduit>,
     pub routes: Vec<Route>,
+    /// The defaults derived from the scene for what it left out (field → resolved value,
+    /// `crate::defaults`), so that a run can be reproduced and its hints cite real numbers.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub derived: std::collections::BTreeMap<String, serde_json::Value>,
 }
 
 /// Smallest conduit radius a skeleton may hold, metres (the scene's radii are at least 1 mm).

@@ -97,6 +97,7 @@ mod tests {
                 profile: Vec::new(),
             }],
             routes: vec![],
+            derived: Default::default(),
         }
     }
 

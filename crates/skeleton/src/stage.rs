@@ -78,15 +78,49 @@ impl Stage for SkeletonStage {
         lines
     }
 
-    /// karstnet's `network_nodes.dat` / `network_links.dat`.
+    /// karstnet's `network_nodes.dat` / `network_links.dat`, and `resolved.toml`: the defaults
+    /// derived from the scene, as scene sections (none: no file).
     fn side_files(
         out: &Path,
         _: &SkeletonView,
         _: &Self::Inputs,
         skeleton: &mut Skeleton,
     ) -> std::io::Result<()> {
-        karstnet::write(skeleton, &out.join(KARSTNET_BASE))
+        karstnet::write(skeleton, &out.join(KARSTNET_BASE))?;
+        let resolved = out.join(RESOLVED_FILE);
+        match resolved_toml(skeleton) {
+            Some(text) => std::fs::write(resolved, text),
+            None => match std::fs::remove_file(resolved) {
+                Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(e),
+                _ => Ok(()),
+            },
+        }
     }
+}
+
+/// The file beside the artifacts that holds the derived defaults.
+pub const RESOLVED_FILE: &str = "resolved.toml";
+
+/// The derived defaults of `skeleton` as the scene sections they belong to; None when the scene
+/// gave every value.
+pub fn resolved_toml(skeleton: &Skeleton) -> Option<String> {
+    if skeleton.derived.is_empty() {
+        return None;
+    }
+    let mut text = String::from(
+        "# Defaults karstgen derived from the scene for the values it left out (docs/skeleton.md,\n\
+         # \"Defaults from the scene\"). Copy them into the scene to pin them.\n",
+    );
+    let mut section = "";
+    for (field, value) in &skeleton.derived {
+        let (table, name) = field.split_once('.').unwrap_or(("skeleton", field));
+        if table != section {
+            text += &format!("\n[{table}]\n");
+            section = table;
+        }
+        text += &format!("{name} = {value}\n");
+    }
+    Some(text)
 }
 
 /// `karst-skeleton render FILE --png PNG`.

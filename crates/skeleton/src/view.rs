@@ -4,7 +4,8 @@ use karst_costgraph::CostgraphView;
 use karst_geology::Point;
 
 karst_scene::view! {
-    /// The skeleton stage's view of the scene: the bedrock its branches stay in, the geology
+    /// The skeleton stage's view of the scene: the bedrock its branches stay in, `[sampling]`
+    /// (the radius its derived defaults scale with, docs/skeleton.md), the geology
     /// that classifies and orients its conduits, the key points and connectivity it routes,
     /// the phases, its parameters, the seed, `sdf.passage_detail` (whether conduits get passage
     /// profiles), and `[costgraph]`: the skeleton costs the edges
@@ -18,6 +19,7 @@ karst_scene::view! {
         connectivity: Connectivity,
         phases: Phases,
         costgraph: Costgraph,
+        sampling: Sampling,
         skeleton: Skeleton,
         passage_detail: PassageDetail,
     }

@@ -40,15 +40,15 @@ pub fn time_skeleton_budgets(runs: usize) -> Result<Vec<(String, usize, f64)>, S
     };
     let mut results = Vec::new();
     let (scene, samples, graph) =
-        prepare("fixtures/scenes/looping.toml", &|s| s.sampling_mut().radius = 8.8)?;
+        prepare("fixtures/scenes/looping.toml", &|s| s.sampling_mut().radius = Some(8.8))?;
     let seconds = time_paths(&scene, &samples, &graph)?;
     results.push(("γ-skeleton, looping preset (47 key points)".to_string(), samples.len(), seconds));
     let one_spring = |s: &mut Scene| {
         s.keypoints_mut().retain(|k| k.name != "S2");
         s.connectivity_mut().matrix = None;
         // About 100k samples: every radius (the layers' too) scaled by the same factor.
-        let scale = KARSTNSIM_BENCH_RADIUS / s.sampling().radius;
-        s.sampling_mut().radius = KARSTNSIM_BENCH_RADIUS;
+        let scale = KARSTNSIM_BENCH_RADIUS / s.sampling().radius.unwrap_or(KARSTNSIM_BENCH_RADIUS);
+        s.sampling_mut().radius = Some(KARSTNSIM_BENCH_RADIUS);
         for radius in s.geology_mut().layers.iter_mut().filter_map(|l| l.radius.as_mut()) {
             *radius *= scale;
         }

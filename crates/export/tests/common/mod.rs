@@ -116,9 +116,17 @@ pub fn export_run(
     formats: &[ExportFormat],
     tag: &str,
 ) -> (karst_testkit::Scratch, PathBuf, Manifest) {
+    export_with(run, &ExportParams { formats: formats.to_vec(), ..ExportParams::default() }, tag)
+}
+
+/// Exports `run` with `params` into a scratch folder, as [`export_run`].
+pub fn export_with(
+    run: &Run,
+    params: &ExportParams,
+    tag: &str,
+) -> (karst_testkit::Scratch, PathBuf, Manifest) {
     let dir = scratch(tag);
-    let params = ExportParams { formats: formats.to_vec(), ..ExportParams::default() };
-    let manifest = export(&run.inputs(), &params, &dir).unwrap_or_else(|e| panic!("{tag}: {e}"));
+    let manifest = export(&run.inputs(), params, &dir).unwrap_or_else(|e| panic!("{tag}: {e}"));
     let folder = dir.join(karst_export::FOLDER);
     (dir, folder, manifest)
 }

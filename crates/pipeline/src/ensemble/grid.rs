@@ -121,6 +121,7 @@ mod tests {
                 profile: Vec::new(),
             }],
             routes: vec![],
+            derived: Default::default(),
         };
         // x cells 0..=3 of row y 0 in layer 0, then up the x = 3 column to layer 2.
         assert_eq!(grid.cells_of(&skeleton), [0, 1, 2, 3, 23, 43]);

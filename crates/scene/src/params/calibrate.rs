@@ -155,7 +155,16 @@ const INF: f64 = f64::INFINITY;
 /// Every parameter that may be calibrated: those that shape the network (sampling, cost graph,
 /// skeleton). Ranges are the scene's own validation ranges.
 pub const PARAMETERS: &[Parameter] = &[
-    real!("sampling.radius", sampling.radius, 0.0, true, INF, always_used),
+    Parameter {
+        name: "sampling.radius",
+        integer: false,
+        lower: 0.0,
+        lower_open: true,
+        upper: INF,
+        get: |s| s.sampling.radius,
+        set: |s, v| s.sampling.radius = Some(v),
+        ignored: always_used,
+    },
     integer!("costgraph.k", costgraph.k: usize, 1.0, crate::params::costgraph::MAX_K as f64),
     real!("costgraph.alpha_inception", costgraph.alpha_inception, 0.0, false, INF, unless_karstnsim_costs),
     real!("costgraph.alpha_fracture", costgraph.alpha_fracture, 0.0, false, INF, unless_karstnsim_costs),
@@ -185,7 +194,16 @@ pub const PARAMETERS: &[Parameter] = &[
     real!("skeleton.cohesion_vadose", skeleton.cohesion_vadose, 0.0, true, 1.0, unless_karstnsim),
     real!("skeleton.cohesion_phreatic", skeleton.cohesion_phreatic, 0.0, true, 1.0, unless_karstnsim),
     integer!("skeleton.amplification_steps", skeleton.amplification_steps: usize, 0.0, 50.0),
-    integer!("skeleton.amplification_points", skeleton.amplification_points: usize, 0.0, 1000.0),
+    Parameter {
+        name: "skeleton.amplification_points",
+        integer: true,
+        lower: 0.0,
+        lower_open: false,
+        upper: 1000.0,
+        get: |s| s.skeleton.amplification_points.map(|p| p as f64),
+        set: |s, v| s.skeleton.amplification_points = Some(v.round() as usize),
+        ignored: always_used,
+    },
     real!("skeleton.dead_end_fraction", skeleton.dead_end_fraction, 0.0, false, 1.0, always_used),
     Parameter {
         name: "skeleton.tortuosity",

@@ -120,7 +120,18 @@ pub struct ExportParams {
     /// longer horizontal side / 500, about a metre for a 500 m cave system.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub raster_cell: Option<f64>,
+    /// Largest size of `karst.glb`, MB (MiB), default [`DEFAULT_GLTF_MB`]: a file for viewers,
+    /// whose surfaces are simplified to the triangles that fit (docs/exports.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gltf_max_mb: Option<f64>,
+    /// `karst.glb` at the mesher's full resolution, whatever its size (an archive, not a file
+    /// for viewers).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub gltf_full: bool,
 }
+
+/// The default bound of `karst.glb`, MB (MiB).
+pub const DEFAULT_GLTF_MB: f64 = 100.0;
 
 impl Default for ExportParams {
     fn default() -> Self {
@@ -139,11 +150,18 @@ impl Default for ExportParams {
             swmm_max_slope: 0.1,
             swmm_conduit_length: 20.0,
             raster_cell: None,
+            gltf_max_mb: None,
+            gltf_full: false,
         }
     }
 }
 
 impl ExportParams {
+    /// The bound of `karst.glb`, bytes; `None` when it is written at full resolution.
+    pub fn gltf_bound(&self) -> Option<f64> {
+        (!self.gltf_full).then(|| self.gltf_max_mb.unwrap_or(DEFAULT_GLTF_MB) * (1u64 << 20) as f64)
+    }
+
     pub(crate) fn check(&self, c: &mut Checks) {
         c.positive("export.manning", self.manning);
         c.positive("export.swmm_hours", self.swmm_hours);
@@ -151,6 +169,9 @@ impl ExportParams {
         c.positive("export.swmm_conduit_length", self.swmm_conduit_length);
         if let Some(cell) = self.raster_cell {
             c.positive("export.raster_cell", cell);
+        }
+        if let Some(mb) = self.gltf_max_mb {
+            c.positive("export.gltf_max_mb", mb);
         }
         if self.swmm_hours.is_finite() && self.swmm_hours > 24.0 * 365.0 {
             c.report("export.swmm_hours", format!("{} hours is more than a year", self.swmm_hours));
@@ -200,6 +221,8 @@ mod tests {
             p[0].contains(":21:") && p[0].contains("export.formats") && p[0].contains("shapefile"),
             "{p:?}"
         );
+        let p = parse("gltf_max_mb = -1").unwrap_err();
+        assert!(p.iter().any(|m| m.contains("export.gltf_max_mb")), "{p:?}");
         let p = parse("manning = 0\nswmm_hours = nan").unwrap_err();
         assert!(p.iter().any(|m| m.contains("export.manning: must be > 0, got 0")), "{p:?}");
         assert!(p.iter().any(|m| m.contains("export.swmm_hours")), "{p:?}");

@@ -21,8 +21,10 @@ pub enum RadiusUnit {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SamplingParams {
-    /// Minimum distance between two samples in the volume, far from surfaces.
-    pub radius: f64,
+    /// Minimum distance between two samples in the volume, far from surfaces. Absent: derived
+    /// from the bedrock's volume ([`crate::defaults::sampling_radius_for`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
     /// Radius on and near horizons, water tables and faults; default `radius`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub surface_radius: Option<f64>,
@@ -42,7 +44,7 @@ pub struct SamplingParams {
 impl Default for SamplingParams {
     fn default() -> Self {
         SamplingParams {
-            radius: 20.0,
+            radius: None,
             surface_radius: None,
             surface_distance: None,
             potential_factor: 1.0,
@@ -57,7 +59,9 @@ pub const MAX_ATTEMPTS: u32 = 1000;
 
 impl SamplingParams {
     pub(crate) fn check(&self, c: &mut Checks) {
-        c.positive("sampling.radius", self.radius);
+        if let Some(r) = self.radius {
+            c.positive("sampling.radius", r);
+        }
         if let Some(r) = self.surface_radius {
             c.positive("sampling.surface_radius", r);
         }

@@ -22,15 +22,17 @@ pub struct SkeletonParams {
     /// Amplification (Paris et al. 2021 §5.2): steps of new key points drawn in the bedrock of
     /// the network's bounding box and joined to it.
     pub amplification_steps: usize,
-    /// New key points per amplification step.
-    pub amplification_points: usize,
+    /// New key points of the first amplification step. Absent: one per
+    /// ten sampling radii of routed conduit (docs/skeleton.md, "Defaults from the scene").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub amplification_points: Option<usize>,
     /// Fraction of the new key points that are dead ends (joined once); the others are interior
     /// points (joined at two places, closing loops).
     pub dead_end_fraction: f64,
     /// Range `[min, max]` of the length of the first step's amplification branches, metres:
     /// each new key point is drawn at a distance from an anchor on the network that follows a
     /// power law over this range (each later step divides max by `amplification_ratio`).
-    /// Absent: uniform in the network's bounding box (Paris et al. 2021).
+    /// Absent: derived from the sampling radius and the sinks' spacing (docs/skeleton.md).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub amplification_length: Option<[f64; 2]>,
     /// Exponent α of that power law, P(length > ℓ) ∝ ℓ^−α: small α, heavier tail.
@@ -48,8 +50,10 @@ pub struct SkeletonParams {
     /// Sinuosity of the meanders conduits make in their bedding plane (arc length over chord of
     /// each meander, ≥ 1); 1: no meanders.
     pub sinuosity: f64,
-    /// Range `[min, max]` of the meander wavelength, metres, drawn per conduit.
-    pub meander_wavelength: [f64; 2],
+    /// Range `[min, max]` of the meander wavelength, metres, drawn per conduit. Absent: ten
+    /// passage widths (2 × `radius`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meander_wavelength: Option<[f64; 2]>,
     /// Midpoint-displacement levels (each doubles the segments of a conduit).
     pub tortuosity_levels: u32,
     /// Range `[min, max]` of conduit radii, metres, outside the epikarst: a Gaussian process
@@ -78,19 +82,19 @@ impl Default for SkeletonParams {
             mode: Mode::Karstnsim,
             gamma: 2.0,
             forced_links: Vec::new(),
-            cohesion_vadose: 1.0,
-            cohesion_phreatic: 1.0,
-            amplification_steps: 0,
-            amplification_points: 5,
-            dead_end_fraction: 0.5,
+            cohesion_vadose: DEFAULT_COHESION_VADOSE,
+            cohesion_phreatic: DEFAULT_COHESION_PHREATIC,
+            amplification_steps: 3,
+            amplification_points: None,
+            dead_end_fraction: 1.0,
             amplification_length: None,
-            amplification_exponent: 1.5,
-            amplification_ratio: 1.0,
-            confluence_attraction: 0.0,
+            amplification_exponent: 1.0,
+            amplification_ratio: 2.0,
+            confluence_attraction: 1.0,
             tortuosity: None,
             tortuosity_levels: 2,
-            sinuosity: 1.0,
-            meander_wavelength: [40.0, 100.0],
+            sinuosity: 1.15,
+            meander_wavelength: None,
             radius: [0.5, 4.0],
             radius_correlation: [50.0, 200.0],
             epikarst_radius: 0.5,
@@ -113,6 +117,13 @@ pub enum Mode {
     Karstnsim,
 }
 
+/// KarstNSim's P_red in the vadose zone (Gouy et al. 2024's examples): conduit piracy merges the
+/// sinks' paths into trunks.
+pub const DEFAULT_COHESION_VADOSE: f64 = 0.7;
+/// KarstNSim's P_red in the phreatic zone, stronger: phreatic conduits capture the flow around
+/// them.
+pub const DEFAULT_COHESION_PHREATIC: f64 = 0.4;
+
 /// Largest γ (γ = 50 already keeps only the relative neighbourhood graph's pairs).
 pub const MAX_GAMMA: f64 = 100.0;
 /// Most amplification steps.
@@ -133,13 +144,13 @@ impl SkeletonParams {
                 format!("must be at most {MAX_AMPLIFICATION_STEPS}, got {}", self.amplification_steps),
             );
         }
-        if self.amplification_points > MAX_AMPLIFICATION_POINTS {
+        if let Some(points) = self.amplification_points.filter(|p| *p > MAX_AMPLIFICATION_POINTS) {
             c.report(
                 "skeleton.amplification_points",
-                format!("must be at most {MAX_AMPLIFICATION_POINTS}, got {}", self.amplification_points),
+                format!("must be at most {MAX_AMPLIFICATION_POINTS}, got {points}"),
             );
         }
-        let new_points = self.amplification_steps.saturating_mul(self.amplification_points);
+        let new_points = self.amplification_steps.saturating_mul(self.amplification_points.unwrap_or(0));
         if new_points > MAX_AMPLIFICATION_WORK {
             // One or two least-cost searches per new point.
             c.report(
@@ -167,7 +178,9 @@ impl SkeletonParams {
         c.within("skeleton.amplification_ratio", self.amplification_ratio, 1.0, 10.0);
         c.within("skeleton.confluence_attraction", self.confluence_attraction, 0.0, 1.0);
         c.within("skeleton.sinuosity", self.sinuosity, 1.0, 3.0);
-        c.range("skeleton.meander_wavelength", self.meander_wavelength, MIN_LENGTH, MAX_LENGTH);
+        if let Some(range) = self.meander_wavelength {
+            c.range("skeleton.meander_wavelength", range, MIN_LENGTH, MAX_LENGTH);
+        }
         if let Some(theta) = self.tortuosity
             && c.finite("skeleton.tortuosity", &[theta])
             && !(0.0..=1.0).contains(&theta)
