@@ -221,7 +221,7 @@ fn draw_tributary(
     let along = (tangent - up * tangent.dot(up)).normalize_or(up.any_orthonormal_vector());
     let side = up.cross(along);
     (0..TRIES).find_map(|_| {
-        let turn = rng.range(15f64, 45.0).to_radians() * if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        let turn = rng.range(20f64, 70.0).to_radians() * if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
         let way = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
         let rise = rng.range(-30f64, 30.0).to_radians();
         let flat = (along * (way * turn.cos()) + side * turn.sin()) * rise.cos();
