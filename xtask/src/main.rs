@@ -100,8 +100,6 @@ enum Task {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
-    /// Table the presets' metrics over N seeds each (`karstgen ensemble`) against the real-cave
-    /// ranges: median, 10th–90th percentile, share inside.
     /// The network's defaults on a generated population of scenes (no `[skeleton]`): share of
     /// realizations inside the real-cave ranges, on the tuning and the held-out scene seeds.
     RealismDefaults {
@@ -111,7 +109,12 @@ enum Task {
         /// Only the tuning set.
         #[arg(long)]
         tuning: bool,
+        /// Only the first 12 scenes of the tuning set, one seed each (to iterate on a rule).
+        #[arg(long, conflicts_with = "write")]
+        quick: bool,
     },
+    /// Table the presets' metrics over N seeds each (`karstgen ensemble`) against the real-cave
+    /// ranges: median, 10th–90th percentile, share inside.
     Ensemble {
         /// Realizations per preset.
         #[arg(long, default_value_t = 20)]
@@ -195,7 +198,7 @@ fn main() -> ExitCode {
         Task::Fuzz { minutes, seed } => fuzz(minutes, seed),
         Task::MetricsTable { write } => metrics_table_command(write),
         Task::Ensemble { n, write } => ensemble_table_command(n, write),
-        Task::RealismDefaults { write, tuning } => realism_command(write, tuning),
+        Task::RealismDefaults { write, tuning, quick } => realism_command(write, tuning, quick),
     };
     finish(result)
 }
@@ -322,16 +325,17 @@ fn ensemble_table_command(n: usize, write: bool) -> Result<(), StageError> {
     Ok(())
 }
 
-/// `cargo xtask realism-defaults`: both sets (or the tuning set), the table printed and, with
-/// `--write`, put into docs/metrics.md.
-fn realism_command(write: bool, tuning_only: bool) -> Result<(), StageError> {
-    use xtask::realism::{self, BEGIN, END, Set};
-    let sets: &[Set] = if tuning_only { &[Set::Tuning] } else { &[Set::Tuning, Set::HeldOut] };
+/// `cargo xtask realism-defaults`: both sets (or the tuning set, or its quick subset), the table
+/// printed and, with `--write`, put into docs/metrics.md.
+fn realism_command(write: bool, tuning_only: bool, quick: bool) -> Result<(), StageError> {
+    use xtask::realism::{self, BEGIN, END, Set, Subset};
+    let sets: &[Set] = if tuning_only || quick { &[Set::Tuning] } else { &[Set::Tuning, Set::HeldOut] };
+    let subset = if quick { Subset::QUICK } else { Subset::FULL };
     let mut results = Vec::new();
     for &set in sets {
-        results.push((set, realism::run_set(set, &realism::out_dir())?));
+        results.push((set, realism::run_set(set, subset, &realism::out_dir())?));
     }
-    let table = realism::markdown(&results);
+    let table = realism::markdown(&results, subset);
     print!("{table}");
     if write {
         let doc = Path::new("docs/metrics.md");

@@ -34,6 +34,20 @@ pub const SCENES: u64 = 32;
 /// Realizations (seeds) per scene.
 pub const SEEDS: u64 = 3;
 
+/// How much of a set runs: its first `scenes` scenes, `seeds` realizations each.
+#[derive(Debug, Clone, Copy)]
+pub struct Subset {
+    pub scenes: u64,
+    pub seeds: u64,
+}
+
+impl Subset {
+    /// Every scene, every seed: the figures reported.
+    pub const FULL: Subset = Subset { scenes: SCENES, seeds: SEEDS };
+    /// Twelve scenes, one seed each: a quick look while iterating on a rule.
+    pub const QUICK: Subset = Subset { scenes: 12, seeds: 1 };
+}
+
 /// The two sets of scene seeds: the defaults are chosen on the first, reported on the second.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Set {
@@ -49,19 +63,19 @@ impl Set {
         }
     }
 
-    /// Its scene seeds.
-    pub fn scene_seeds(self) -> std::ops::Range<u64> {
+    /// Its first `n` scene seeds.
+    pub fn scene_seeds(self, n: u64) -> std::ops::Range<u64> {
         let first = match self {
             Set::Tuning => 1,
             Set::HeldOut => 1001,
         };
-        first..first + SCENES
+        first..first + n
     }
 }
 
-/// The realization seeds of a scene.
-fn seeds_of(scene_seed: u64) -> impl Iterator<Item = u64> {
-    (0..SEEDS).map(move |k| scene_seed * 100 + k)
+/// The first `n` realization seeds of a scene.
+fn seeds_of(scene_seed: u64, n: u64) -> impl Iterator<Item = u64> {
+    (0..n).map(move |k| scene_seed * 100 + k)
 }
 
 /// Memory a realization may plan to use: scenes whose defaults ask for more fail (and count
@@ -86,17 +100,17 @@ impl Outcome {
     }
 }
 
-/// Generates the scenes of `set` under `out` and runs every realization.
-pub fn run_set(set: Set, out: &Path) -> Result<Vec<Outcome>, StageError> {
+/// Generates the scenes of `subset` of `set` under `out` and runs every realization.
+pub fn run_set(set: Set, subset: Subset, out: &Path) -> Result<Vec<Outcome>, StageError> {
     let dir = out.join(set.name());
     std::fs::create_dir_all(&dir).map_err(|e| StageError::failure(format!("{}: {e}", dir.display())))?;
     let scenes = set
-        .scene_seeds()
+        .scene_seeds(subset.scenes)
         .map(|s| population::generate(s, &dir))
         .collect::<std::io::Result<Vec<_>>>()
         .map_err(|e| StageError::failure(format!("{}: {e}", dir.display())))?;
     let jobs: Vec<(&population::Generated, u64)> =
-        scenes.iter().flat_map(|g| seeds_of(g.scene_seed).map(move |s| (g, s))).collect();
+        scenes.iter().flat_map(|g| seeds_of(g.scene_seed, subset.seeds).map(move |s| (g, s))).collect();
     // One worker per core takes the next realization; the stages inside use rayon's pool
     // themselves (the skeleton's helper threads wait on it, so the workers must not be its
     // threads).
@@ -164,14 +178,15 @@ fn realize(scene: &Path, seed: u64, dir: &Path) -> Result<Vec<(String, f64, bool
 }
 
 /// The Markdown table of both sets: one row per figure, one column per set.
-pub fn markdown(sets: &[(Set, Vec<Outcome>)]) -> String {
+pub fn markdown(sets: &[(Set, Vec<Outcome>)], subset: Subset) -> String {
     let ranges = real_cave_ranges();
     let share = |outcomes: &[Outcome], pass: &dyn Fn(&Outcome) -> bool| {
         let n = outcomes.iter().filter(|o| pass(o)).count();
         format!("{:.0} % ({n}/{})", 100.0 * n as f64 / outcomes.len().max(1) as f64, outcomes.len())
     };
     let mut out = format!(
-        "{SCENES} scenes per set × {SEEDS} seeds, defaults only (no `[skeleton]`); `cargo xtask realism-defaults --write`.\n\n| share of realizations |"
+        "{} scenes per set × {} seeds, defaults only (no `[skeleton]`); `cargo xtask realism-defaults --write`.\n\n| share of realizations |",
+        subset.scenes, subset.seeds
     );
     for (set, _) in sets {
         let _ = write!(out, " {} |", set.name());
