@@ -424,12 +424,13 @@ impl Brandes {
             let (next, sigma_v) = (self.dist[v] + 1, self.paths[v].sigma);
             for arc in kept.arcs(v as u32) {
                 let w = kept.targets[arc] as usize;
-                if self.dist[w] == u32::MAX {
+                let seen = self.dist[w];
+                if seen == u32::MAX {
                     self.dist[w] = next;
                     self.order[end] = w as u32;
                     end += 1;
-                }
-                if self.dist[w] == next {
+                    self.paths[w].sigma += sigma_v;
+                } else if seen == next {
                     self.paths[w].sigma += sigma_v;
                 }
             }

@@ -261,12 +261,16 @@ fn mesher_and_network_bench(runs: usize) -> Result<(), StageError> {
     Ok(())
 }
 
-/// The network statistics of mazes, where the all-pairs traversals dominate.
+/// The network statistics of mazes, where the all-pairs traversals dominate; each row is
+/// printed as soon as it is measured (the 250,000-junction grid takes minutes).
 fn maze_bench(runs: usize) -> Result<(), StageError> {
     println!("\nnetwork statistics of mazes");
     println!("{:<16} {:>8} {:>8} {:>12}", "network", "nodes", "reduced", "karstgen s");
-    for t in metrics::time_mazes(runs)? {
+    for (name, net) in metrics::mazes() {
+        let t = metrics::time_maze(name, &net, runs)?;
         println!("{:<16} {:>8} {:>8} {:>12.3}", t.name, t.nodes, t.reduced_nodes, t.ours);
+        std::io::Write::flush(&mut std::io::stdout())
+            .map_err(|e| StageError::failure(format!("stdout: {e}")))?;
     }
     Ok(())
 }
