@@ -98,3 +98,25 @@ fn a_mesher_cell_of_five_centimetres_is_refused_before_the_mesher_runs() {
     assert!(out.join("sdf.bin").is_file() && !out.join("mesh.bin").exists());
     fs::remove_dir_all(&out).unwrap();
 }
+
+#[test]
+fn exports_beyond_the_budget_are_refused_before_a_file_is_written() {
+    let out = scratch("export-budget");
+    // tiny's meshes take about 2.8 MiB and its exports about 5 MiB: a 4 MB budget lets the
+    // mesher run and stops the export.
+    let budget = karst_pipeline::budget::OutputBudget::megabytes(4.0).unwrap();
+    let selection = Selection { budget, ..Selection::default() };
+    let err = run(&root().join("fixtures/scenes/tiny.toml"), &out, &selection).unwrap_err();
+    assert_eq!(err.exit_code(), 2, "{err}");
+    let message = err.to_string();
+    for part in ["the export would write about", "gltf", "beside", "of mesh.bin", "budget of 4 MiB"] {
+        assert!(message.contains(part), "{part}: {message}");
+    }
+    for advice in ["export.formats", "export.gltf_max_mb", "mesher.cell_size", "--budget MB"] {
+        assert!(message.contains(advice), "{advice}: {message}");
+    }
+    assert!(
+        out.join("mesh.bin").is_file() && !out.join("export.json").exists() && !out.join("export").exists()
+    );
+    fs::remove_dir_all(&out).unwrap();
+}
