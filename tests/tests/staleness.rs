@@ -25,25 +25,40 @@ fn second_run_is_up_to_date_and_edits_rerun_the_stages_that_read_them() {
 
     fs::write(&scene, format!("{text}\n[sdf]\nradius_scale = 1.25\n")).unwrap();
     let third = run(&scene, &out, &Selection::default()).unwrap();
-    assert_eq!(ran(&third), vec![StageId::Sdf, StageId::Mesher, StageId::Export]);
+    // The survey measures the carved passages and the metrics read it.
+    assert_eq!(
+        ran(&third),
+        vec![StageId::Sdf, StageId::Mesher, StageId::Survey, StageId::Metrics, StageId::Export]
+    );
 
     // [streams] is read by streams and sdf; the banks' slope leaves streams.json as it was, so
     // the metrics (which read streams.json) stay up to date; the runoff changes the flows.
     let streams = |s: &str| format!("{text}\n[sdf]\nradius_scale = 1.25\n[streams]\n{s}\n");
     fs::write(&scene, streams("bank_slope = 0.8")).unwrap();
     let fourth = run(&scene, &out, &Selection::default()).unwrap();
-    assert_eq!(ran(&fourth), vec![StageId::Streams, StageId::Sdf, StageId::Mesher, StageId::Export]);
+    // The survey remeasures the carved passages and finds them as they were.
+    assert_eq!(
+        ran(&fourth),
+        vec![StageId::Streams, StageId::Sdf, StageId::Mesher, StageId::Survey, StageId::Export]
+    );
     fs::write(&scene, streams("bank_slope = 0.8\nrunoff = 900")).unwrap();
     let fifth = run(&scene, &out, &Selection::default()).unwrap();
     assert_eq!(
         ran(&fifth),
-        vec![StageId::Streams, StageId::Sdf, StageId::Mesher, StageId::Metrics, StageId::Export]
+        vec![
+            StageId::Streams,
+            StageId::Sdf,
+            StageId::Mesher,
+            StageId::Survey,
+            StageId::Metrics,
+            StageId::Export
+        ]
     );
 
     let only = run(&scene, &out, &Selection { only: Some(StageId::Hydro), ..Selection::default() }).unwrap();
     assert_eq!(ran(&only), vec![StageId::Hydro]);
     let from = run(&scene, &out, &Selection { from: Some(StageId::Mesher), ..Selection::default() }).unwrap();
-    assert_eq!(ran(&from), vec![StageId::Mesher, StageId::Metrics, StageId::Export]);
+    assert_eq!(ran(&from), vec![StageId::Mesher, StageId::Survey, StageId::Metrics, StageId::Export]);
 }
 
 #[test]

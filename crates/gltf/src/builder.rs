@@ -10,11 +10,8 @@ use std::io::{self, Write};
 
 use serde_json::{Value, json};
 
-use crate::container::Glb;
+use crate::container::{Fill, Glb};
 use crate::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, GltfError, MESHOPT, UNSIGNED_INT};
-
-/// A deferred writer of some bytes of the buffer.
-pub type Fill<'a> = Box<dyn Fn(&mut dyn Write) -> io::Result<()> + 'a>;
 
 /// A glTF document being assembled; [`Gltf::finish`] lays out the file.
 #[derive(Default)]

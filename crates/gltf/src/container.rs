@@ -6,7 +6,9 @@ use std::io::{self, Write};
 use serde_json::Value;
 
 use crate::GltfError;
-use crate::builder::Fill;
+
+/// A deferred writer of some bytes of the buffer.
+pub type Fill<'a> = Box<dyn Fn(&mut dyn Write) -> io::Result<()> + 'a>;
 
 const MAGIC: &[u8; 4] = b"glTF";
 const JSON_CHUNK: u32 = 0x4E4F_534A;

@@ -21,7 +21,8 @@ mod container;
 pub mod quantize;
 pub mod simplify;
 
-pub use builder::{Fill, Gltf};
+pub use builder::Gltf;
+pub use container::Fill;
 pub use container::Glb;
 
 /// Accessor component types.

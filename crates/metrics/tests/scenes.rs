@@ -42,6 +42,11 @@ fn run_stages(scene: &Path, out: &Path) {
         .unwrap_or_else(|e| panic!("{name}: hydro: {e}"));
     karst_testkit::run::<karst_streams::StreamsStage>(&args.0, &args.1)
         .unwrap_or_else(|e| panic!("{name}: streams: {e}"));
+    // The metrics read the survey of the carved passages (survey.json), which reads sdf.bin.
+    karst_testkit::run::<karst_sdf::SdfStage>(&args.0, &args.1)
+        .unwrap_or_else(|e| panic!("{name}: sdf: {e}"));
+    karst_testkit::run::<karst_survey::SurveyStage>(&args.0, &args.1)
+        .unwrap_or_else(|e| panic!("{name}: survey: {e}"));
     karst_testkit::run::<karst_metrics::MetricsStage>(&args.0, &args.1)
         .unwrap_or_else(|e| panic!("{name}: metrics: {e}"));
 }

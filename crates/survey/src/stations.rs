@@ -96,6 +96,7 @@ mod tests {
             nodes: vec![node(0.0, 0.0), node(6.0, 0.0), node(10.0, 0.0), node(10.0, 9.0), node(10.0, -3.0)],
             conduits: vec![conduit(vec![0, 1, 2]), conduit(vec![2, 3]), conduit(vec![2, 4])],
             routes: Vec::new(),
+            derived: Default::default(),
         };
         let placed = place(&skeleton);
         let first: Vec<f64> = placed.iter().filter(|p| p.conduit == 0).map(|p| p.position[0]).collect();

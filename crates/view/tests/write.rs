@@ -53,8 +53,11 @@ fn a_complete_run_gives_every_layer() {
     assert!(report.problems.is_empty(), "{:?}", report.problems);
     let data = run_json(&dir);
     assert_eq!(data["format"], "karstgen-view");
-    assert_eq!(data["skeleton"]["conduits"].as_array().unwrap().len(), 3);
-    assert_eq!(data["hydro"]["conduits"].as_array().unwrap().len(), 3);
+    let skeleton: Value = serde_json::from_slice(&std::fs::read(dir.join("skeleton.json")).unwrap()).unwrap();
+    let conduits = skeleton["payload"]["conduits"].as_array().unwrap().len();
+    assert!(conduits > 1);
+    assert_eq!(data["skeleton"]["conduits"].as_array().unwrap().len(), conduits);
+    assert_eq!(data["hydro"]["conduits"].as_array().unwrap().len(), conduits);
     assert_eq!(data["domain"]["max"], serde_json::json!([200.0, 150.0, 60.0]));
     // The surface streams: every segment of streams.json with its type and its two ends.
     let streams: Value = serde_json::from_slice(&std::fs::read(dir.join("streams.json")).unwrap()).unwrap();
@@ -94,7 +97,9 @@ fn a_complete_run_gives_every_layer() {
         }
         assert_eq!(triangles, mesh["triangles"].as_u64().unwrap(), "the finest levels hold every triangle");
     }
-    assert_eq!(data["metrics"]["network"]["n_nodes_full"], 30);
+    let metrics: Value = serde_json::from_slice(&std::fs::read(dir.join("metrics.json")).unwrap()).unwrap();
+    assert_eq!(data["metrics"]["network"]["n_nodes_full"], metrics["payload"]["network"]["n_nodes_full"]);
+    assert!(metrics["payload"]["network"]["n_nodes_full"].as_u64().unwrap() > 2);
     assert!(dir.join("view/index.html").is_file());
     assert!(dir.join("view/vendor/three/LICENSE").is_file());
 }

@@ -20,8 +20,8 @@ use karst_skeleton::Skeleton;
 use karst_streams::Streams;
 pub use karst_testkit::{root, scratch};
 
-/// The run of `fixtures/scenes/NAME.toml` up to streams and metrics (no sdf, no mesh: the
-/// network formats need neither), made once per test binary.
+/// The run of `fixtures/scenes/NAME.toml` up to streams and metrics (no mesh: the network
+/// formats need none; the sdf only for the survey the metrics read), made once per test binary.
 pub fn network_run(name: &str) -> PathBuf {
     static RUNS: OnceLock<Mutex<HashMap<String, PathBuf>>> = OnceLock::new();
     let runs = RUNS.get_or_init(Default::default);
@@ -36,6 +36,8 @@ pub fn network_run(name: &str) -> PathBuf {
                 StageId::Skeleton,
                 StageId::Hydro,
                 StageId::Streams,
+                StageId::Sdf,
+                StageId::Survey,
                 StageId::Metrics,
             ] {
                 let only = Selection { only: Some(stage), ..Selection::default() };
