@@ -316,13 +316,19 @@ fn ensemble_table_command(n: usize, write: bool) -> Result<(), StageError> {
     let table = ensemble_table::markdown(&sets);
     print!("{table}");
     if write {
-        let doc = Path::new("docs/metrics.md");
-        let text = std::fs::read_to_string(doc)
-            .map_err(|e| StageError::failure(format!("{}: {e}", doc.display())))?;
-        let updated = metrics_table::replace_between(&text, BEGIN, END, &table);
-        scene::write_if_changed(doc, updated.as_bytes())?;
+        write_into_metrics_doc(BEGIN, END, &table)?;
     }
     Ok(())
+}
+
+/// Puts `table` between the markers `begin` and `end` of docs/metrics.md (written only if it
+/// changes).
+fn write_into_metrics_doc(begin: &str, end: &str, table: &str) -> Result<(), StageError> {
+    let doc = Path::new("docs/metrics.md");
+    let text =
+        std::fs::read_to_string(doc).map_err(|e| StageError::failure(format!("{}: {e}", doc.display())))?;
+    let updated = metrics_table::replace_between(&text, begin, end, table);
+    scene::write_if_changed(doc, updated.as_bytes())
 }
 
 /// `cargo xtask realism-defaults`: both sets (or the tuning set, or its quick subset), the table
@@ -338,11 +344,7 @@ fn realism_command(write: bool, tuning_only: bool, quick: bool) -> Result<(), St
     let table = realism::markdown(&results, subset);
     print!("{table}");
     if write {
-        let doc = Path::new("docs/metrics.md");
-        let text = std::fs::read_to_string(doc)
-            .map_err(|e| StageError::failure(format!("{}: {e}", doc.display())))?;
-        let updated = metrics_table::replace_between(&text, BEGIN, END, &table);
-        scene::write_if_changed(doc, updated.as_bytes())?;
+        write_into_metrics_doc(BEGIN, END, &table)?;
     }
     Ok(())
 }
