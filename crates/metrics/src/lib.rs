@@ -15,6 +15,8 @@
 //! [`ranges`] compares the metrics with real caves, `plots.rs` draws them. [`build`] makes the
 //! stage's report of a skeleton ([`MetricsReport`], `payload.rs`), [`MetricsStage`] is the stage.
 //!
+//! [`published`] holds the statistics of the published networks `calibrate --like` aims at.
+//!
 //! [`readers`] load karstnet `_nodes.dat`/`_links.dat` pairs, GOCAD PLines and CSV tables.
 
 mod bitbfs;
@@ -29,6 +31,7 @@ mod network;
 mod nullable;
 mod payload;
 mod plots;
+pub mod published;
 mod quantum;
 pub mod ranges;
 pub mod readers;
