@@ -35,7 +35,8 @@ enum Command {
     /// realization's metrics and hydro figures, their summary and the conduit probability.
     Ensemble(EnsembleArgs),
     /// Search the network parameters of SCENE's [calibrate] box that bring its networks closest
-    /// to a surveyed cave (CMA-ES over karstnet's statistics).
+    /// to a surveyed cave, yours (--target) or a published one (--like; --like list names them),
+    /// by CMA-ES over karstnet's statistics.
     Calibrate(CalibrateArgs),
     /// Write a run's outputs in other tools' formats (VTK, GOCAD, Survex, SWMM, glTF, OBJ, PLY,
     /// CSV) into DIR/export/.
@@ -159,12 +160,18 @@ struct EnsembleRunArgs {
 
 /// `karstgen calibrate`.
 #[derive(Debug, Clone, clap::Args)]
+#[command(group = clap::ArgGroup::new("aim").required(true).args(["target", "like"]))]
 pub struct CalibrateArgs {
-    scene: PathBuf,
+    /// The scene, with a [calibrate] box (not needed by `--like list`).
+    scene: Option<PathBuf>,
     /// The surveyed cave: karstnet's BASE_nodes.dat (or BASE), a GOCAD PLine .pl, or two CSV
     /// files NODES EDGES.
-    #[arg(long, required = true, num_args = 1..=2, value_name = "CAVE")]
+    #[arg(long, num_args = 1..=2, value_name = "CAVE")]
     target: Vec<PathBuf>,
+    /// A published network (KNdata-public, any case), `surveyed` for the median of its 25
+    /// surveyed caves, or `list` to print the names.
+    #[arg(long, value_name = "NAME")]
+    like: Option<String>,
     /// Output folder (default out/calibrate-<scene name>).
     #[arg(long)]
     out: Option<PathBuf>,
@@ -314,9 +321,18 @@ fn ensemble_command(args: EnsembleArgs) -> Result<(), StageError> {
 }
 
 fn calibrate_command(args: CalibrateArgs) -> Result<(), StageError> {
-    let name = SceneFile::load(&args.scene)?.scene.name().to_string();
+    let target = match args.like {
+        Some(name) if name.eq_ignore_ascii_case("list") => {
+            calibrate::like_names()?.iter().for_each(|line| println!("{line}"));
+            return Ok(());
+        }
+        Some(name) => calibrate::Aim::Like(name),
+        None => calibrate::Aim::Cave(args.target),
+    };
+    let scene = args.scene.ok_or_else(|| StageError::input("calibrate: give the SCENE to calibrate"))?;
+    let name = SceneFile::load(&scene)?.scene.name().to_string();
     let out = args.out.unwrap_or_else(|| PathBuf::from("out").join(format!("calibrate-{name}")));
-    let summary = calibrate::run(&calibrate::CalibrateArgs { scene: args.scene, target: args.target, out })?;
+    let summary = calibrate::run(&calibrate::CalibrateArgs { scene, target, out })?;
     println!("{summary}");
     Ok(())
 }
@@ -324,4 +340,40 @@ fn calibrate_command(args: CalibrateArgs) -> Result<(), StageError> {
 /// `path` made absolute against `base` (the user's working folder) when relative.
 pub fn resolve(base: &Path, path: &Path) -> PathBuf {
     if path.is_absolute() { path.to_path_buf() } else { base.join(path) }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+    use clap::error::ErrorKind;
+
+    use super::Cli;
+
+    fn refused(args: &[&str]) -> clap::Error {
+        match Cli::try_parse_from(args) {
+            Ok(_) => panic!("{args:?} accepted"),
+            Err(e) => e,
+        }
+    }
+
+    #[test]
+    fn calibrate_takes_like_or_target_not_both_nor_neither() {
+        let both = refused(&["karstgen", "calibrate", "s.toml", "--like", "Sakany", "--target", "c.pl"]);
+        assert_eq!(both.kind(), ErrorKind::ArgumentConflict);
+        assert_eq!(both.exit_code(), 2);
+        assert!(both.to_string().contains("--like"), "{both}");
+        let neither = refused(&["karstgen", "calibrate", "s.toml"]);
+        assert_eq!(neither.kind(), ErrorKind::MissingRequiredArgument);
+        assert_eq!(neither.exit_code(), 2);
+        assert!(Cli::try_parse_from(["karstgen", "calibrate", "s.toml", "--like", "surveyed"]).is_ok());
+        assert!(Cli::try_parse_from(["karstgen", "calibrate", "--like", "list"]).is_ok());
+    }
+
+    #[test]
+    fn like_without_a_scene_exits_2() {
+        let Ok(cli) = Cli::try_parse_from(["karstgen", "calibrate", "--like", "Sakany"]) else { panic!() };
+        let e = super::execute(cli.command).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.to_string().contains("SCENE"), "{e}");
+    }
 }

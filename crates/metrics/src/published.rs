@@ -72,7 +72,11 @@ impl Published {
             .iter()
             .map(|(name, values)| {
                 let statistics = statistics(name, values)?;
-                Ok(PublishedNetwork { name: name.clone(), idealized: file.idealized.contains(name), statistics })
+                Ok(PublishedNetwork {
+                    name: name.clone(),
+                    idealized: file.idealized.contains(name),
+                    statistics,
+                })
             })
             .collect::<Result<Vec<_>, PublishedError>>()?;
         Ok(Published { networks })

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use karst_pipeline::calibrate::optimiser::{Optimiser, Start};
-use karst_pipeline::calibrate::{CalibrateArgs, run, run_with};
+use karst_pipeline::calibrate::{Aim, CalibrateArgs, run, run_with};
 use karst_stage::StageError;
 use karst_testkit::{fixture, scratch};
 
@@ -40,7 +40,11 @@ fn tiny_with(dir: &Path, calibrate: &str) -> PathBuf {
 }
 
 fn calibrate(scene: &Path, target: &[PathBuf], out: &Path) -> Result<String, StageError> {
-    run(&CalibrateArgs { scene: scene.to_path_buf(), target: target.to_vec(), out: out.to_path_buf() })
+    run(&CalibrateArgs {
+        scene: scene.to_path_buf(),
+        target: Aim::Cave(target.to_vec()),
+        out: out.to_path_buf(),
+    })
 }
 
 fn outputs(out: &Path) -> Vec<(String, Vec<u8>)> {
@@ -128,7 +132,7 @@ fn sakany_reduction(name: &str, calibrate: impl FnOnce(&CalibrateArgs) -> Result
     let scene = tiny_with(&dir, SAKANY_BOX);
     let target = [fixture("fixtures/caves/Sakany_nodes.dat")];
     let out = dir.join("out");
-    let args = CalibrateArgs { scene, target: target.to_vec(), out: out.clone() };
+    let args = CalibrateArgs { scene, target: Aim::Cave(target.to_vec()), out: out.clone() };
     calibrate(&args).unwrap();
     let report: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
@@ -238,5 +242,33 @@ fn bad_boxes_exit_2_naming_the_field_and_value() {
     let without = tiny_with(&dir, "");
     assert!(refused(&without, &target, &out).contains("no [calibrate] section"));
     assert!(!out.exists(), "nothing written for a bad box");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn like_aims_at_a_published_network_by_name() {
+    let dir = scratch("calibrate-like");
+    let scene = tiny_with(&dir, BOX);
+    let like = |name: &str, out: &Path| {
+        run(&CalibrateArgs {
+            scene: scene.clone(),
+            target: Aim::Like(name.to_string()),
+            out: out.to_path_buf(),
+        })
+    };
+    let unknown = dir.join("out-unknown");
+    let e = like("Lascaux", &unknown).expect_err("no such network");
+    assert_eq!(e.exit_code(), 2, "{e}");
+    assert!(e.to_string().contains("--like Lascaux") && e.to_string().contains("Sakany"), "{e}");
+    assert!(!unknown.exists(), "nothing written for an unknown name");
+    let out = dir.join("out-surveyed");
+    let summary = like("SURVEYED", &out).unwrap();
+    assert!(summary.contains("median of 25 surveyed caves"), "{summary}");
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["target"], "median of 25 surveyed caves");
+    let (before, after) =
+        (report["distance"]["before"].as_f64().unwrap(), report["distance"]["after"].as_f64().unwrap());
+    assert!(after <= before && after > 0.0, "{before} → {after}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

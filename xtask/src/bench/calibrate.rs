@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use karst_pipeline::calibrate::{CalibrateArgs, run};
+use karst_pipeline::calibrate::{Aim, CalibrateArgs, run};
 use karst_stage::StageError;
 
 use super::probes;
@@ -17,7 +17,8 @@ const TARGET: &str = "fixtures/caves/Sakany_nodes.dat";
 /// Runs the calibration into a scratch folder (removed afterwards) and prints its figures.
 pub fn calibrate_bench() -> Result<(), StageError> {
     let out = super::scratch_dir(Path::new(SCENE));
-    let args = CalibrateArgs { scene: SCENE.into(), target: vec![TARGET.into()], out: out.to_path_buf() };
+    let args =
+        CalibrateArgs { scene: SCENE.into(), target: Aim::Cave(vec![TARGET.into()]), out: out.to_path_buf() };
     let (cpu0, start) = (probes::cpu_seconds(), Instant::now());
     let summary = run(&args)?;
     let wall = start.elapsed().as_secs_f64();

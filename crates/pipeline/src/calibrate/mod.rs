@@ -1,7 +1,9 @@
-//! `karstgen calibrate SCENE --target CAVE`: the network parameters of the scene's
-//! `[calibrate]` box that bring its networks closest to a surveyed cave.
+//! `karstgen calibrate SCENE --target CAVE` (or `--like NAME`): the network parameters of the
+//! scene's `[calibrate]` box that bring its networks closest to a surveyed cave, the user's or a
+//! published one.
 //!
-//! - [`target`]: the cave, read and characterised with karstnet's statistics;
+//! - [`target`]: the cave, read and characterised with karstnet's statistics, or a published
+//!   network's statistics;
 //! - [`objective`]: the distance of a network to it, each metric normalised by its real-cave
 //!   range; a candidate's distance is the median over `calibrate.seeds` realizations;
 //! - [`space`]: the box, as the unit cube the optimiser searches;
@@ -27,6 +29,8 @@ mod scene_edit;
 mod space;
 mod target;
 
+pub use target::{Aim, SURVEYED, like_names};
+
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -47,8 +51,8 @@ use space::Space;
 #[derive(Debug, Clone)]
 pub struct CalibrateArgs {
     pub scene: PathBuf,
-    /// The cave: one network file, or two CSV files (nodes, edges).
-    pub target: Vec<PathBuf>,
+    /// The cave, or the published network.
+    pub target: Aim,
     pub out: PathBuf,
 }
 
