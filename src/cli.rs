@@ -9,7 +9,7 @@ use karst_artifact::StageId;
 use karst_pipeline::budget::OutputBudget;
 use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::{self, SceneFile};
-use karst_pipeline::{calibrate, diff, ensemble, registry};
+use karst_pipeline::{calibrate, diff, ensemble, registry, verdict};
 use karst_stage::StageError;
 use karst_stage::cli::{default_sigpipe, finish};
 
@@ -277,7 +277,8 @@ pub fn run(args: &RunArgs) -> Result<PathBuf, StageError> {
         force: args.force,
         budget: args.budget.unwrap_or_default(),
     };
-    make::run(&scene, &out, &selection, &mut |report| println!("{}", report.line()))?;
+    let reports = make::run(&scene, &out, &selection, &mut |report| println!("{}", report.line()))?;
+    verdict::verdict(&out, &reports)?.iter().for_each(|line| println!("{line}"));
     Ok(out)
 }
 

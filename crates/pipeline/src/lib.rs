@@ -4,6 +4,7 @@
 //! - [`registry`]: the one place that maps a stage of the table to the type implementing it;
 //! - [`make`]: run the stages in order, skipping those whose artifact is up to date;
 //! - [`budget`]: the output budget, held against the mesher's work estimate before it runs;
+//! - [`verdict`]: the closing lines of a run: the metrics inside the real-cave ranges, hints;
 //! - [`scene`]: where a run's scene comes from (a file, or the embedded default scene);
 //! - [`diff`]: compare two artifacts of the same kind semantically;
 //! - [`ensemble`]: many realizations of one scene, differing only by seed;
@@ -18,3 +19,4 @@ pub mod ensemble;
 pub mod make;
 pub mod registry;
 pub mod scene;
+pub mod verdict;
