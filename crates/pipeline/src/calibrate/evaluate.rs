@@ -18,6 +18,8 @@ use karst_sampling::{Samples, SamplingView};
 use karst_scene::{Scene, SceneView, Section};
 use karst_skeleton::SkeletonView;
 
+use super::error::CalibrateError;
+
 /// The ten `characterize_graph()` metrics of a network, in karstnet's order.
 pub type MetricVector = [f64; CHARACTERIZE_KEYS.len()];
 
@@ -38,7 +40,7 @@ impl Runner {
     /// Prepares the `seeds` of `scene`, sharing the stages none of the `sections` (those the
     /// box changes) feeds: a stage is shared when its view holds none of them, nor does any
     /// stage's before it.
-    pub fn new(scene: &Scene, seeds: Vec<u64>, sections: &[Section]) -> Result<Runner, String> {
+    pub fn new(scene: &Scene, seeds: Vec<u64>, sections: &[Section]) -> Result<Runner, CalibrateError> {
         let reads = |view: &[Section]| sections.iter().any(|s| view.contains(s));
         let shares_samples = !reads(SamplingView::SECTIONS);
         let shares_graph = shares_samples && !reads(CostgraphView::SECTIONS);
@@ -49,18 +51,19 @@ impl Runner {
                 let mut upstream = Upstream::default();
                 if shares_samples {
                     let samples = Arc::new(
-                        karst_sampling::build(&SamplingView::of(&scene)).map_err(|e| e.to_string())?,
+                        karst_sampling::build(&SamplingView::of(&scene))
+                            .map_err(|e| CalibrateError::stage("sampling", e))?,
                     );
                     if shares_graph {
                         let graph = karst_costgraph::build(&CostgraphView::of(&scene), &samples)
-                            .map_err(|e| e.to_string())?;
+                            .map_err(|e| CalibrateError::stage("costgraph", e))?;
                         upstream.graph = Some(Arc::new(graph));
                     }
                     upstream.samples = Some(samples);
                 }
                 Ok(upstream)
             })
-            .collect::<Result<Vec<_>, String>>()?;
+            .collect::<Result<Vec<_>, CalibrateError>>()?;
         Ok(Runner { seeds, shared })
     }
 
@@ -75,10 +78,10 @@ impl Runner {
         &self,
         candidates: &[Scene],
         done: &(dyn Fn() + Sync),
-    ) -> Vec<Vec<Result<MetricVector, String>>> {
+    ) -> Vec<Vec<Result<MetricVector, CalibrateError>>> {
         let items: Vec<(usize, usize)> =
             (0..candidates.len()).flat_map(|c| (0..self.seeds.len()).map(move |s| (c, s))).collect();
-        let results: Vec<Result<MetricVector, String>> = items
+        let results: Vec<Result<MetricVector, CalibrateError>> = items
             .par_iter()
             .map(|&(c, s)| {
                 let r = self.network_metrics(&with_seed(&candidates[c], self.seeds[s]), &self.shared[s]);
@@ -90,24 +93,25 @@ impl Runner {
         (0..candidates.len()).map(|_| results.by_ref().take(self.seeds.len()).collect()).collect()
     }
 
-    fn network_metrics(&self, scene: &Scene, upstream: &Upstream) -> Result<MetricVector, String> {
+    fn network_metrics(&self, scene: &Scene, upstream: &Upstream) -> Result<MetricVector, CalibrateError> {
         let samples = match &upstream.samples {
             Some(samples) => Arc::clone(samples),
             None => Arc::new(
-                karst_sampling::build(&SamplingView::of(scene)).map_err(|e| format!("sampling: {e}"))?,
+                karst_sampling::build(&SamplingView::of(scene))
+                    .map_err(|e| CalibrateError::stage("sampling", e))?,
             ),
         };
         let graph = match &upstream.graph {
             Some(graph) => Arc::clone(graph),
             None => Arc::new(
                 karst_costgraph::build(&CostgraphView::of(scene), &samples)
-                    .map_err(|e| format!("costgraph: {e}"))?,
+                    .map_err(|e| CalibrateError::stage("costgraph", e))?,
             ),
         };
         let skeleton = karst_skeleton::build(&SkeletonView::of(scene), &samples, &graph)
-            .map_err(|e| format!("skeleton: {e}"))?;
+            .map_err(|e| CalibrateError::stage("skeleton", e))?;
         let metrics = karst_metrics::characterize(&karst_metrics::network_of(&skeleton))
-            .map_err(|e| format!("metrics: {e}"))?;
+            .map_err(|e| CalibrateError::stage("metrics", e))?;
         Ok(metric_vector(&metrics))
     }
 }

@@ -10,6 +10,7 @@
 //! - [`optimiser`]: the ask-and-tell interface of the search, so that it can be replaced
 //!   ([`run_with`]); [`cmaes`]: the one [`run`] uses, CMA-ES;
 //! - [`evaluate`]: candidates run sampling, cost graph and skeleton in memory, in parallel;
+//! - [`error`]: why a candidate cannot be evaluated or the calibrated scene written;
 //! - [`outputs`]: what is written: the calibrated scene, `report.json`, `report.png`
 //!   ([`chart`]) and `iterations.csv`; [`scene_edit`] writes the calibrated scene's text.
 //!
@@ -21,6 +22,7 @@
 
 mod chart;
 mod cmaes;
+mod error;
 mod evaluate;
 mod objective;
 pub mod optimiser;
@@ -29,6 +31,7 @@ mod scene_edit;
 mod space;
 mod target;
 
+pub use error::CalibrateError;
 pub use target::{Aim, SURVEYED, like_names};
 
 use std::path::PathBuf;
@@ -64,7 +67,7 @@ pub struct Evaluated {
     /// Median of each metric over the seeds.
     pub metrics: MetricVector,
     /// Why a seed failed.
-    pub failure: Option<String>,
+    pub failure: Option<CalibrateError>,
 }
 
 /// Runs the calibration with CMA-ES and writes its outputs; returns a one-line summary.
@@ -177,8 +180,8 @@ fn seeds(scene: &SceneFile, config: &CalibrateParams) -> Result<Vec<u64>, StageE
 
 /// A candidate's distance and metrics: medians over its seeds, or +∞ and the reason when a seed
 /// failed.
-fn summarise(objective: &Objective, runs: Vec<Result<MetricVector, String>>) -> Evaluated {
-    let runs = match runs.into_iter().collect::<Result<Vec<_>, String>>() {
+fn summarise(objective: &Objective, runs: Vec<Result<MetricVector, CalibrateError>>) -> Evaluated {
+    let runs = match runs.into_iter().collect::<Result<Vec<_>, CalibrateError>>() {
         Ok(runs) => runs,
         Err(why) => {
             return Evaluated { distance: f64::INFINITY, metrics: [f64::NAN; 10], failure: Some(why) };

@@ -239,7 +239,10 @@ fn log(outcome: &Outcome) -> String {
         cells.extend(c.values.iter().map(|v| v.map_or(String::new(), show)));
         cells.extend(metric_cells(&c.evaluated.metrics, show));
         cells.push(
-            c.evaluated.failure.as_ref().map_or(String::new(), |f| format!("\"{}\"", f.replace('"', "'"))),
+            c.evaluated
+                .failure
+                .as_ref()
+                .map_or(String::new(), |f| format!("\"{}\"", f.to_string().replace('"', "'"))),
         );
         let _ = writeln!(out, "{}", cells.join(","));
     }

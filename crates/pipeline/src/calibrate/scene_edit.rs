@@ -10,6 +10,8 @@ use toml_edit::{DocumentMut, Item, Value, value};
 
 use karst_scene::Scene;
 
+use super::error::CalibrateError;
+
 /// A calibrated value: the parameter (`section.field`), the value and whether it is an integer.
 pub struct Setting<'a> {
     pub name: &'a str,
@@ -23,13 +25,13 @@ pub fn calibrated_text(
     scene_path: &Path,
     settings: &[Setting],
     comment: &str,
-) -> Result<String, String> {
-    let mut doc: DocumentMut = text.parse().map_err(|e| format!("{e}"))?;
+) -> Result<String, CalibrateError> {
+    let mut doc: DocumentMut = text.parse().map_err(|e| CalibrateError::Toml(format!("{e}")))?;
     let name = doc.get("name").and_then(Item::as_str).unwrap_or("scene").to_string();
     doc["name"] = value(format!("{name}-calibrated"));
     for s in settings {
         let (section, field) =
-            s.name.split_once('.').ok_or_else(|| format!("{}: not section.field", s.name))?;
+            s.name.split_once('.').ok_or_else(|| CalibrateError::NotSectionField(s.name.to_string()))?;
         let v = if s.integer { value(s.value.round() as i64) } else { value(s.value) };
         if doc.get(section).is_none() {
             doc[section] = toml_edit::table();
@@ -37,15 +39,18 @@ pub fn calibrated_text(
         match &mut doc[section] {
             Item::Table(table) => table[field] = v,
             Item::Value(Value::InlineTable(table)) => {
-                table.insert(field, v.into_value().map_err(|_| "not a value".to_string())?);
+                table.insert(
+                    field,
+                    v.into_value().map_err(|_| CalibrateError::NotATable(section.to_string()))?,
+                );
             }
-            _ => return Err(format!("[{section}] is not a table")),
+            _ => return Err(CalibrateError::NotATable(section.to_string())),
         }
     }
     let folder = scene_path.parent().unwrap_or(Path::new(""));
     absolute_data_files(&mut doc, folder);
     let out = format!("{comment}{doc}");
-    Scene::parse(&out, scene_path).map_err(|e| format!("the calibrated scene does not validate: {e}"))?;
+    Scene::parse(&out, scene_path).map_err(|e| CalibrateError::Invalid(e.to_string()))?;
     Ok(out)
 }
 
