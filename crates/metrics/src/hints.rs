@@ -27,18 +27,42 @@ impl Parameters<'_> {
         if let Some(v) = self.derived.get(field) {
             return format!("{v} (derived from the scene)");
         }
-        let s = self.skeleton;
         match field {
-            "skeleton.amplification_points" => s.amplification_points.map_or("0".into(), |p| p.to_string()),
-            "skeleton.amplification_steps" => s.amplification_steps.to_string(),
-            "skeleton.amplification_exponent" => s.amplification_exponent.to_string(),
-            "skeleton.confluence_attraction" => s.confluence_attraction.to_string(),
-            "skeleton.dead_end_fraction" => s.dead_end_fraction.to_string(),
-            "skeleton.sinuosity" => s.sinuosity.to_string(),
-            "skeleton.cohesion_phreatic" => s.cohesion_phreatic.to_string(),
             "sampling.radius" => self.sampling.radius.map_or("derived".into(), |r| r.to_string()),
-            _ => "?".into(),
+            _ => self.number(field).map_or("?".into(), |v| v.to_string()),
         }
+    }
+
+    /// `field`'s value in this run as a number, when it has one.
+    fn number(&self, field: &str) -> Option<f64> {
+        if let Some(v) = self.derived.get(field) {
+            return v.as_f64();
+        }
+        let s = self.skeleton;
+        Some(match field {
+            "skeleton.amplification_points" => s.amplification_points.unwrap_or(0) as f64,
+            "skeleton.amplification_steps" => s.amplification_steps as f64,
+            "skeleton.amplification_exponent" => s.amplification_exponent,
+            "skeleton.confluence_attraction" => s.confluence_attraction,
+            "skeleton.dead_end_fraction" => s.dead_end_fraction,
+            "skeleton.sinuosity" => s.sinuosity,
+            "skeleton.cohesion_phreatic" => s.cohesion_phreatic,
+            _ => return None,
+        })
+    }
+
+    /// Whether `field` already sits at the end of its valid range that the advice would move it
+    /// past (a fraction at 1 cannot be raised, a count at 0 cannot be lowered).
+    fn at_limit(&self, field: &str, raise: bool) -> bool {
+        let Some(v) = self.number(field) else { return false };
+        let (lo, hi) = match field {
+            "skeleton.confluence_attraction"
+            | "skeleton.dead_end_fraction"
+            | "skeleton.cohesion_phreatic" => (0.0, 1.0),
+            "skeleton.sinuosity" => (1.0, 3.0),
+            _ => (0.0, f64::INFINITY),
+        };
+        if raise { v >= hi } else { v <= lo }
     }
 }
 
@@ -61,9 +85,15 @@ fn hint(key: &str, c: &Compared, p: &Parameters) -> String {
         return format!("{key} undefined: the network has too few branches for it; add sinks or tributaries");
     }
     let (words, field, raise) = advice(key, high);
-    let verb = if raise { "raise" } else { "lower" };
+    let action = if p.at_limit(field, raise) {
+        "as far as it goes: the sinks, the springs and the cost graph shape this, not the tributaries"
+    } else if raise {
+        "raise it"
+    } else {
+        "lower it"
+    };
     format!(
-        "{key} {} {sign} {}: {words} — {field} is {}, {verb} it",
+        "{key} {} {sign} {}: {words} — {field} is {}, {action}",
         short(c.value),
         short(bound),
         p.value(field)
@@ -158,6 +188,18 @@ mod tests {
             hints,
             ["tortuosity 1.030 < 1.121: passages too straight — skeleton.sinuosity is 1.05, raise it"]
         );
+    }
+
+    #[test]
+    fn a_parameter_at_its_limit_is_not_pushed_past_it() {
+        let skeleton = SkeletonParams { amplification_points: None, ..SkeletonParams::default() };
+        let sampling = SamplingParams::default();
+        let derived = BTreeMap::new();
+        let p = Parameters { skeleton: &skeleton, sampling: &sampling, derived: &derived };
+        let karstnet = compared("correlation vertex degree", -0.7);
+        let hints = hints(&karstnet, &p);
+        assert_eq!(hints.len(), 1);
+        assert!(hints[0].contains("skeleton.amplification_points is 0, as far as it goes"), "{}", hints[0]);
     }
 
     #[test]
