@@ -79,10 +79,10 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
                     radius: radius * p.chamber_scale as f32,
                 });
             }
-            for w in segment.windows(2) {
+            for (k, w) in segment.windows(2).enumerate() {
                 let sweep = SweepSpec { a: to_f32(w[0].1), b: to_f32(w[1].1), start: w[0].2, end: w[1].2 };
                 if kind != ConduitType::Chamber && !tortuous {
-                    model.sweeps.push(TypedSweep { kind, sweep });
+                    model.sweeps.push(TypedSweep { kind, continues: k > 0, sweep });
                 }
                 let height = sweep.floor().abs() * 2.0;
                 let segment = water::Segment { kind, zones, water: wet.water, depth: wet.depth, height };
