@@ -474,6 +474,20 @@ mod tests {
     }
 
     #[test]
+    fn a_sweep_that_continues_no_run_is_refused_when_the_model_is_read() {
+        use karst_artifact::Payload;
+        let model = build_with(|_, _| {}).unwrap();
+        model.validate().unwrap();
+        let mut first = model.clone();
+        first.sweeps[0].continues = true;
+        assert_eq!(first.validate().unwrap_err().field, "sweeps[0].continues");
+        let mut elsewhere = model.clone();
+        elsewhere.sweeps[1].continues = true;
+        let e = elsewhere.validate().unwrap_err();
+        assert_eq!(e.field, "sweeps[1].continues", "{e:?}");
+    }
+
+    #[test]
     fn the_model_is_deterministic() {
         assert_eq!(build_with(|_, _| {}).unwrap(), build_with(|_, _| {}).unwrap());
     }

@@ -150,8 +150,10 @@ impl SweepTable {
     /// Appends the nodes of a piece (its start only when the last node is not already it);
     /// returns the index of its start node.
     fn append(&mut self, start: SweepNode, end: SweepNode, pair: [u32; 12]) -> u32 {
-        let continues =
-            self.nodes.last().is_some_and(|last| node_key(last) == node_key(&start) && last.unit == start.unit);
+        let continues = self
+            .nodes
+            .last()
+            .is_some_and(|last| node_key(last) == node_key(&start) && last.unit == start.unit);
         if !continues {
             self.nodes.push(start);
         }
@@ -415,6 +417,46 @@ mod tests {
                 assert!(f >= c - 1e-3, "{p}");
             }
         }
+    }
+
+    /// Pieces of a straight segment every 2 m, a pinch and a room among them.
+    fn run(table: &mut SweepTable) -> (SweepLeaf, Vec<SweepSpec>) {
+        let radii = [2.0, 1.0, 0.4, 1.5, 3.0, 2.0];
+        let at = |i: usize| [2.0 * i as f32, 0.5 * i as f32, 0.0];
+        let pieces: Vec<SweepSpec> = radii
+            .windows(2)
+            .enumerate()
+            .map(|(i, r)| SweepSpec {
+                a: at(i),
+                b: at(i + 1),
+                start: spec(ConduitType::Canyon, r[0]),
+                end: spec(ConduitType::Canyon, r[1]),
+            })
+            .collect();
+        (table.push_run(&pieces), pieces)
+    }
+
+    #[test]
+    fn a_run_is_one_lipschitz_and_open_from_piece_to_piece() {
+        let mut table = SweepTable::default();
+        let (leaf, pieces) = run(&mut table);
+        let singles: Vec<SweepLeaf> = pieces.iter().map(|p| table.push(p)).collect();
+        let s = table.sweep(&leaf);
+        assert_lipschitz(
+            |p| s.distance(p),
+            Pairs::new(4, 8.0, 1.5).around(DVec3::new(5.0, 1.2, 0.0)),
+            20_000,
+        );
+        for (p, _) in Pairs::new(5, 8.0, 0.0).around(DVec3::new(5.0, 1.2, 0.0)).take(5000) {
+            assert!(s.lower_bound(p) <= s.distance(p) + 1e-9, "{p}");
+        }
+        // At a joint between pieces, inside the passage, the run is as deep as the section
+        // (times its factor); each single piece is cut there by its flat cap.
+        let joint = DVec3::new(6.0, 1.5, 0.5);
+        let single = singles.iter().map(|l| table.sweep(l).distance(joint)).fold(f64::INFINITY, f64::min);
+        let depth = s.section_at(3, 0.0).distance(s.local(joint).1) * s.scale;
+        assert!((s.distance(joint) - depth).abs() < 1e-9, "{} vs {depth}", s.distance(joint));
+        assert!(single > -0.01 && s.distance(joint) < -0.5, "run {} single {single}", s.distance(joint));
     }
 
     #[test]
