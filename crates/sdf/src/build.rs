@@ -79,10 +79,10 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
                     radius: radius * p.chamber_scale as f32,
                 });
             }
-            for w in segment.windows(2) {
+            for (k, w) in segment.windows(2).enumerate() {
                 let sweep = SweepSpec { a: to_f32(w[0].1), b: to_f32(w[1].1), start: w[0].2, end: w[1].2 };
                 if kind != ConduitType::Chamber && !tortuous {
-                    model.sweeps.push(TypedSweep { kind, sweep });
+                    model.sweeps.push(TypedSweep { kind, continues: k > 0, sweep });
                 }
                 let height = sweep.floor().abs() * 2.0;
                 let segment = water::Segment { kind, zones, water: wet.water, depth: wet.depth, height };
@@ -471,6 +471,20 @@ mod tests {
             DVec3::new(0.0, 10.0, 0.0),
         ];
         assert!((tortuosity(&winding) - (1.0 - 10.0 / 30.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_sweep_that_continues_no_run_is_refused_when_the_model_is_read() {
+        use karst_artifact::Payload;
+        let model = build_with(|_, _| {}).unwrap();
+        model.validate().unwrap();
+        let mut first = model.clone();
+        first.sweeps[0].continues = true;
+        assert_eq!(first.validate().unwrap_err().field, "sweeps[0].continues");
+        let mut elsewhere = model.clone();
+        elsewhere.sweeps[1].continues = true;
+        let e = elsewhere.validate().unwrap_err();
+        assert_eq!(e.field, "sweeps[1].continues", "{e:?}");
     }
 
     #[test]

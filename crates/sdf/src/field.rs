@@ -20,7 +20,7 @@ use crate::ops::REACH;
 use crate::payload::detail_factor;
 use crate::primitive::{Context, Leaf, WaterLeaf};
 use crate::surface_water::SurfaceField;
-use crate::sweep::SweepTable;
+use crate::sweep::{SweepSpec, SweepTable};
 use crate::{SdfModel, ops};
 use karst_skeleton::ConduitType;
 
@@ -260,8 +260,9 @@ impl CarvedTerrain {
 fn karst_leaves(model: &SdfModel, sweeps: &mut SweepTable) -> Vec<Leaf> {
     let mut leaves = Vec::new();
     leaves.extend(model.capsules.iter().map(|c| Leaf::Capsule(*c)));
-    for s in &model.sweeps {
-        leaves.push(Leaf::Sweep(sweeps.push(&s.sweep), s.kind));
+    for run in model.sweep_runs() {
+        let pieces: Vec<SweepSpec> = run.iter().map(|s| s.sweep).collect();
+        leaves.push(Leaf::Sweep(sweeps.push_run(&pieces), run[0].kind));
     }
     for group in &model.spheres {
         leaves.extend(group.spheres.iter().map(|&s| Leaf::Sphere(s, group.kind)));

@@ -14,7 +14,7 @@ use crate::Capsule;
 use crate::chamber::ChamberSpec;
 use crate::noise::WaveNoise;
 use crate::surface_water::SurfacePieces;
-use crate::sweep::SweepSpec;
+use crate::sweep::{SweepSpec, to_dvec};
 use crate::terrain::TerrainField;
 
 /// The spheres of one tortuous conduit, with their conduit type (for the detail amplitude).
@@ -25,11 +25,61 @@ pub struct SphereGroup {
     pub spheres: Vec<[f32; 4]>,
 }
 
-/// A sweep with its conduit type.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// A sweep with its conduit type. `continues`: the sweep is the next piece of the previous
+/// sweep's straight segment (a passage profile's pieces), and the two are one leaf, capped at
+/// the run's ends only ([`crate::sweep::SweepTable::push_run`]).
+///
+/// In the artifact (postcard) the type and the flag are one byte, the type's index plus
+/// [`CONTINUES`]: without profiles that is the byte the type alone was, so `passage_detail =
+/// "off"` writes the artifact of karstgen before runs existed. Readable formats (`inspect
+/// --json`) get the three fields.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TypedSweep {
     pub kind: ConduitType,
+    pub continues: bool,
     pub sweep: SweepSpec,
+}
+
+/// The flag of a continuing sweep in the artifact's type byte.
+const CONTINUES: u8 = 0x40;
+
+#[derive(Serialize, Deserialize)]
+struct ReadableSweep {
+    kind: ConduitType,
+    continues: bool,
+    sweep: SweepSpec,
+}
+
+#[derive(Serialize, Deserialize)]
+struct CompactSweep {
+    tag: u8,
+    sweep: SweepSpec,
+}
+
+impl Serialize for TypedSweep {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let TypedSweep { kind, continues, sweep } = *self;
+        if s.is_human_readable() {
+            ReadableSweep { kind, continues, sweep }.serialize(s)
+        } else {
+            let tag = kind as u8 | if continues { CONTINUES } else { 0 };
+            CompactSweep { tag, sweep }.serialize(s)
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for TypedSweep {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        if d.is_human_readable() {
+            let ReadableSweep { kind, continues, sweep } = ReadableSweep::deserialize(d)?;
+            return Ok(TypedSweep { kind, continues, sweep });
+        }
+        let CompactSweep { tag, sweep } = CompactSweep::deserialize(d)?;
+        let kind = ConduitType::ALL.get((tag & !CONTINUES) as usize).copied().ok_or_else(|| {
+            serde::de::Error::custom(format!("sweep type byte {tag} names no conduit type"))
+        })?;
+        Ok(TypedSweep { kind, continues: tag & CONTINUES != 0, sweep })
+    }
 }
 
 /// The water of one segment: the part of its sweep below `level` (height above the axis along
@@ -88,6 +138,11 @@ impl Payload for SdfModel {
         for (i, s) in self.sweeps.iter().enumerate() {
             validate_sweep(&|| format!("sweeps[{i}].sweep"), &s.sweep)?;
         }
+        let mut first = 0;
+        for run in self.sweep_runs() {
+            validate_run(first, run)?;
+            first += run.len();
+        }
         for (g, group) in self.spheres.iter().enumerate() {
             for (i, s) in group.spheres.iter().enumerate() {
                 check::position_f32(|| format!("spheres[{g}].spheres[{i}]"), &s[..3])?;
@@ -130,6 +185,35 @@ fn validate_sweep(at: &dyn Fn() -> String, sweep: &SweepSpec) -> Result<(), Inva
     Ok(())
 }
 
+/// A run: its first sweep continues none, and each next one starts where the one before ends,
+/// with its section and type, and its nodes lie along the run's axis in order (strictly
+/// increasing abscissas, within a thousandth of the run's length of the axis), which the
+/// run's leaf assumes.
+fn validate_run(first: usize, run: &[TypedSweep]) -> Result<(), Invalid> {
+    let at = |k: usize| move || format!("sweeps[{}].continues", first + k);
+    ensure(!run[0].continues, at(0), || "the first sweep continues no sweep".into())?;
+    for (k, w) in run.windows(2).enumerate() {
+        let (p, q) = (&w[0], &w[1]);
+        ensure(p.sweep.b == q.sweep.a && p.sweep.end == q.sweep.start, at(k + 1), || {
+            "starts elsewhere, or with another section, than the previous sweep ends".into()
+        })?;
+        ensure(p.kind == q.kind, at(k + 1), || "has another conduit type than the previous sweep".into())?;
+    }
+    let (a, b) = (to_dvec(run[0].sweep.a), to_dvec(run[run.len() - 1].sweep.b));
+    let (length, axis) = (a.distance(b), (b - a).normalize_or_zero());
+    let mut previous = 0.0;
+    for (k, s) in run.iter().enumerate().take(run.len() - 1) {
+        let p = to_dvec(s.sweep.b) - a;
+        let l = p.dot(axis);
+        let off = (p - axis * l).length();
+        ensure(l > previous && l < length && off <= 1e-3 * length, at(k + 1), || {
+            format!("its start is not along the run's axis after the previous one ({l} m along, {off} m off)")
+        })?;
+        previous = l;
+    }
+    Ok(())
+}
+
 impl SdfModel {
     /// A model with no caves: the terrain cut to the domain.
     pub fn new(domain: Domain, terrain: TerrainField) -> Self {
@@ -148,6 +232,11 @@ impl SdfModel {
             chamber_bias: 0.5,
             surface: SurfacePieces::default(),
         }
+    }
+
+    /// The sweeps by run: each a sweep and the sweeps that continue it.
+    pub fn sweep_runs(&self) -> impl Iterator<Item = &[TypedSweep]> {
+        self.sweeps.chunk_by(|_, next| next.continues)
     }
 
     /// Leaves by kind: (name, count), in a fixed order.

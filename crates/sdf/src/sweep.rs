@@ -11,6 +11,13 @@
 //! k = max_i |ΔP_i|/|ab| per metre along the axis (curve points are convex combinations of
 //! control points), so g is √(1 + k²)-Lipschitz and g/√(1 + k²) is the 1-Lipschitz leaf.
 //!
+//! A run of sweeps along one straight segment (a passage profile's pieces, see
+//! [`SweepTable::push_run`]) is one leaf: the section moves piecewise linearly through the
+//! nodes' sections and the extrusion is capped at the run's two ends only. The boundary then
+//! moves at most k = the largest of the pieces' k per metre, and the same argument gives the
+//! √(1 + k²) factor. Caps between the pieces would bound the depth inside the passage to half a
+//! piece, which is what keeps the mesher from proving the cells inside a passage empty.
+//!
 //! Frame: the section's y axis is the world's up projected perpendicular to ab (x for vertical
 //! shafts), its x axis points to the right looking from a to b.
 
@@ -72,11 +79,13 @@ pub struct SweepNode {
     unit: u32,
 }
 
-/// A sweep leaf: its first node (the second follows it), its Lipschitz factor 1/√(1 + k²)
-/// rounded down and the largest control-point distance to the axis rounded up (f32).
+/// A sweep leaf: its first node and its number of pieces (its nodes follow the first), its
+/// Lipschitz factor 1/√(1 + k²) rounded down and the largest control-point distance to the
+/// axis rounded up (f32).
 #[derive(Debug, Clone, Copy)]
 pub struct SweepLeaf {
     pub node: u32,
+    pub pieces: u32,
     pub scale: f32,
     pub extent: f32,
 }
@@ -113,36 +122,54 @@ impl SweepTable {
     /// an earlier sweep of the same segment.
     pub fn push(&mut self, spec: &SweepSpec) -> SweepLeaf {
         let (start, end) = (self.node(spec.a, &spec.start), self.node(spec.b, &spec.end));
-        let key = |n: &SweepNode| [n.p[0], n.p[1], n.p[2], n.shape[0], n.shape[1]].map(f32::to_bits);
-        let pair: [u32; 12] = {
-            let (k0, k1) = (key(&start), key(&end));
-            let mut pair = [0; 12];
-            pair[..5].copy_from_slice(&k0);
-            pair[5] = start.unit;
-            pair[6..11].copy_from_slice(&k1);
-            pair[11] = end.unit;
-            pair
-        };
+        let pair = pair_key(&start, &end);
         let node = match self.pair_index.get(&pair) {
             Some(&i) => i,
-            None => {
-                let continues =
-                    self.nodes.last().is_some_and(|last| key(last) == key(&start) && last.unit == start.unit);
-                if !continues {
-                    self.nodes.push(start);
-                }
-                self.nodes.push(end);
-                let i = (self.nodes.len() - 2) as u32;
-                self.pair_index.insert(pair, i);
-                i
-            }
+            None => self.append(start, end, pair),
         };
-        let mut leaf = SweepLeaf { node, scale: 1.0, extent: 0.0 };
+        self.finish(SweepLeaf { node, pieces: 1, scale: 1.0, extent: 0.0 })
+    }
+
+    /// One leaf for the consecutive pieces `specs` of one straight segment (each piece starts
+    /// where the one before ends), capped at the run's ends only. Each piece's nodes stay
+    /// shared with a later sweep of the same piece (its water).
+    pub fn push_run(&mut self, specs: &[SweepSpec]) -> SweepLeaf {
+        if specs.len() == 1 {
+            return self.push(&specs[0]);
+        }
+        let mut first = None;
+        for spec in specs {
+            let (start, end) = (self.node(spec.a, &spec.start), self.node(spec.b, &spec.end));
+            let pair = pair_key(&start, &end);
+            first.get_or_insert(self.append(start, end, pair));
+        }
+        let node = first.expect("a run has pieces");
+        self.finish(SweepLeaf { node, pieces: specs.len() as u32, scale: 1.0, extent: 0.0 })
+    }
+
+    /// Appends the nodes of a piece (its start only when the last node is not already it);
+    /// returns the index of its start node.
+    fn append(&mut self, start: SweepNode, end: SweepNode, pair: [u32; 12]) -> u32 {
+        let continues = self
+            .nodes
+            .last()
+            .is_some_and(|last| node_key(last) == node_key(&start) && last.unit == start.unit);
+        if !continues {
+            self.nodes.push(start);
+        }
+        self.nodes.push(end);
+        let i = (self.nodes.len() - 2) as u32;
+        self.pair_index.entry(pair).or_insert(i);
+        i
+    }
+
+    /// `leaf` with its Lipschitz factor (from its fastest piece) and its extent.
+    fn finish(&self, mut leaf: SweepLeaf) -> SweepLeaf {
         let sweep = self.sweep(&leaf);
-        let k = (0..CONTROL).map(|i| sweep.control(0, i).distance(sweep.control(1, i))).fold(0.0, f64::max)
-            / sweep.length;
-        let extent = (0..CONTROL)
-            .map(|i| sweep.control(0, i).length().max(sweep.control(1, i).length()))
+        let k = (0..sweep.nodes.len() - 1).map(|j| sweep.taper(j)).fold(0.0, f64::max);
+        let extent = (0..sweep.nodes.len())
+            .flat_map(|e| (0..CONTROL).map(move |i| (e, i)))
+            .map(|(e, i)| sweep.control(e, i).length())
             .fold(0.0, f64::max);
         leaf.scale = round_down(1.0 / (1.0 + k * k).sqrt());
         leaf.extent = -round_down(-extent);
@@ -151,20 +178,19 @@ impl SweepTable {
 
     /// The sweep of `leaf`, ready to evaluate.
     pub fn sweep(&self, leaf: &SweepLeaf) -> Sweep<'_> {
-        let (n0, n1) = (&self.nodes[leaf.node as usize], &self.nodes[leaf.node as usize + 1]);
-        let (a, b) = (to_dvec(n0.p), to_dvec(n1.p));
+        let nodes = &self.nodes[leaf.node as usize..=(leaf.node + leaf.pieces) as usize];
+        let (a, b) = (to_dvec(nodes[0].p), to_dvec(nodes[nodes.len() - 1].p));
         let length = a.distance(b);
         let axis = (b - a) / length;
         let (right, up) = frame(axis);
-        let scale_of = |n: &SweepNode| DVec2::new(n.shape[0] as f64, n.shape[0] as f64 * n.shape[1] as f64);
         Sweep {
             a,
             axis,
             length,
             right,
             up,
-            units: [&self.units[n0.unit as usize], &self.units[n1.unit as usize]],
-            scales: [scale_of(n0), scale_of(n1)],
+            nodes,
+            units: &self.units,
             scale: leaf.scale as f64,
             extent: leaf.extent as f64,
         }
@@ -172,7 +198,8 @@ impl SweepTable {
 
     /// The end points of `leaf`'s axis.
     pub fn ends(&self, leaf: &SweepLeaf) -> (DVec3, DVec3) {
-        (to_dvec(self.nodes[leaf.node as usize].p), to_dvec(self.nodes[leaf.node as usize + 1].p))
+        let last = (leaf.node + leaf.pieces) as usize;
+        (to_dvec(self.nodes[leaf.node as usize].p), to_dvec(self.nodes[last].p))
     }
 
     /// Axis-aligned bounds of the swept volume of `leaf`, without building the sweep.
@@ -188,13 +215,27 @@ impl SweepTable {
     }
 }
 
+fn node_key(n: &SweepNode) -> [u32; 5] {
+    [n.p[0], n.p[1], n.p[2], n.shape[0], n.shape[1]].map(f32::to_bits)
+}
+
+/// The key of a piece: its two nodes' positions, shapes and unit polygons.
+fn pair_key(start: &SweepNode, end: &SweepNode) -> [u32; 12] {
+    let mut pair = [0; 12];
+    pair[..5].copy_from_slice(&node_key(start));
+    pair[5] = start.unit;
+    pair[6..11].copy_from_slice(&node_key(end));
+    pair[11] = end.unit;
+    pair
+}
+
 /// The largest f32 not above `v`.
 fn round_down(v: f64) -> f32 {
     let f = v as f32;
     if f as f64 > v { f.next_down() } else { f }
 }
 
-/// A sweep ready to evaluate, built on the fly from its two nodes.
+/// A sweep ready to evaluate, built on the fly from its nodes.
 #[derive(Debug, Clone)]
 pub struct Sweep<'a> {
     a: DVec3,
@@ -202,8 +243,9 @@ pub struct Sweep<'a> {
     length: f64,
     right: DVec3,
     up: DVec3,
-    units: [&'a Unit; 2],
-    scales: [DVec2; 2],
+    /// The run's nodes, first to last (two for a single sweep).
+    nodes: &'a [SweepNode],
+    units: &'a [Unit],
     /// 1/√(1 + k²).
     scale: f64,
     /// At least the largest control-point distance to the axis.
@@ -211,9 +253,51 @@ pub struct Sweep<'a> {
 }
 
 impl Sweep<'_> {
-    /// Control point i of end e (0 at a, 1 at b).
+    /// Control point i of node e of the run.
     fn control(&self, e: usize, i: usize) -> DVec2 {
-        self.units[e].control[i] * self.scales[e]
+        let n = &self.nodes[e];
+        self.units[n.unit as usize].control[i] * shape_scale(n)
+    }
+
+    /// The control box of node e: (lo, hi).
+    fn control_box(&self, e: usize) -> (DVec2, DVec2) {
+        let (n, scale) = (&self.nodes[e], shape_scale(&self.nodes[e]));
+        let unit = &self.units[n.unit as usize];
+        (unit.lo * scale, unit.hi * scale)
+    }
+
+    /// Abscissa of node e along the axis: the ends at 0 and the length exactly, the inner
+    /// nodes (on the segment up to f32 rounding) projected on the axis.
+    fn abscissa(&self, e: usize) -> f64 {
+        if e == 0 {
+            0.0
+        } else if e == self.nodes.len() - 1 {
+            self.length
+        } else {
+            (to_dvec(self.nodes[e].p) - self.a).dot(self.axis)
+        }
+    }
+
+    /// How fast piece j's section moves: its largest control-point move per metre of axis.
+    fn taper(&self, j: usize) -> f64 {
+        let span = self.abscissa(j + 1) - self.abscissa(j);
+        (0..CONTROL).map(|i| self.control(j, i).distance(self.control(j + 1, i))).fold(0.0, f64::max) / span
+    }
+
+    /// The piece at abscissa l (the first or last beyond the ends) and the fraction of the way
+    /// along it, clamped to [0, 1].
+    fn piece(&self, l: f64) -> (usize, f64) {
+        let (mut lo, mut hi) = (0, self.nodes.len() - 1);
+        while hi - lo > 1 {
+            let mid = (lo + hi) / 2;
+            if self.abscissa(mid) <= l {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let (l0, l1) = (self.abscissa(lo), self.abscissa(hi));
+        (lo, ((l - l0) / (l1 - l0)).clamp(0.0, 1.0))
     }
 
     /// Position of p in the sweep's frame: (abscissa along ab, section-plane coordinates).
@@ -231,8 +315,8 @@ impl Sweep<'_> {
 
     /// [`Sweep::distance`] at the local coordinates of [`Sweep::local`].
     pub fn distance_local(&self, l: f64, q: DVec2) -> f64 {
-        let t = (l / self.length).clamp(0.0, 1.0);
-        let f = self.section_at(t).distance(q);
+        let (j, t) = self.piece(l);
+        let f = self.section_at(j, t).distance(q);
         self.combine(f, l)
     }
 
@@ -245,7 +329,8 @@ impl Sweep<'_> {
     }
 
     /// A lower bound of [`Sweep::distance`]: the section value is at least the signed
-    /// distance to the union of the end sections' control boxes and at least |q| − extent.
+    /// distance to the union of the control boxes of the piece's end sections and at least
+    /// |q| − extent.
     #[cfg(test)]
     pub fn lower_bound(&self, p: DVec3) -> f64 {
         let (l, q) = self.local(p);
@@ -254,8 +339,9 @@ impl Sweep<'_> {
 
     /// [`Sweep::lower_bound`] at local coordinates.
     pub fn lower_bound_local(&self, l: f64, q: DVec2) -> f64 {
-        let lo = (self.units[0].lo * self.scales[0]).min(self.units[1].lo * self.scales[1]);
-        let hi = (self.units[0].hi * self.scales[0]).max(self.units[1].hi * self.scales[1]);
+        let (j, _) = self.piece(l);
+        let ((lo0, hi0), (lo1, hi1)) = (self.control_box(j), self.control_box(j + 1));
+        let (lo, hi) = (lo0.min(lo1), hi0.max(hi1));
         let d = (lo - q).max(q - hi);
         let boxed = d.max(DVec2::ZERO).length() + d.max_element().min(0.0);
         self.combine(boxed.max(q.length() - self.extent), l)
@@ -266,10 +352,15 @@ impl Sweep<'_> {
         (p - self.a).dot(self.up)
     }
 
-    /// The section at fraction t of the way from a to b.
-    fn section_at(&self, t: f64) -> Section {
-        Section { control: std::array::from_fn(|i| self.control(0, i).lerp(self.control(1, i), t)) }
+    /// The section at fraction t of the way along piece j.
+    fn section_at(&self, j: usize, t: f64) -> Section {
+        Section { control: std::array::from_fn(|i| self.control(j, i).lerp(self.control(j + 1, i), t)) }
     }
+}
+
+/// A node's (radius, radius·ratio): the scale of its unit polygon.
+fn shape_scale(n: &SweepNode) -> DVec2 {
+    DVec2::new(n.shape[0] as f64, n.shape[0] as f64 * n.shape[1] as f64)
 }
 
 /// (right, up) for a conduit running along `axis`.
@@ -326,6 +417,46 @@ mod tests {
                 assert!(f >= c - 1e-3, "{p}");
             }
         }
+    }
+
+    /// Pieces of a straight segment every 2 m, a pinch and a room among them.
+    fn run(table: &mut SweepTable) -> (SweepLeaf, Vec<SweepSpec>) {
+        let radii = [2.0, 1.0, 0.4, 1.5, 3.0, 2.0];
+        let at = |i: usize| [2.0 * i as f32, 0.5 * i as f32, 0.0];
+        let pieces: Vec<SweepSpec> = radii
+            .windows(2)
+            .enumerate()
+            .map(|(i, r)| SweepSpec {
+                a: at(i),
+                b: at(i + 1),
+                start: spec(ConduitType::Canyon, r[0]),
+                end: spec(ConduitType::Canyon, r[1]),
+            })
+            .collect();
+        (table.push_run(&pieces), pieces)
+    }
+
+    #[test]
+    fn a_run_is_one_lipschitz_and_open_from_piece_to_piece() {
+        let mut table = SweepTable::default();
+        let (leaf, pieces) = run(&mut table);
+        let singles: Vec<SweepLeaf> = pieces.iter().map(|p| table.push(p)).collect();
+        let s = table.sweep(&leaf);
+        assert_lipschitz(
+            |p| s.distance(p),
+            Pairs::new(4, 8.0, 1.5).around(DVec3::new(5.0, 1.2, 0.0)),
+            20_000,
+        );
+        for (p, _) in Pairs::new(5, 8.0, 0.0).around(DVec3::new(5.0, 1.2, 0.0)).take(5000) {
+            assert!(s.lower_bound(p) <= s.distance(p) + 1e-9, "{p}");
+        }
+        // At a joint between pieces, inside the passage, the run is as deep as the section
+        // (times its factor); each single piece is cut there by its flat cap.
+        let joint = DVec3::new(6.0, 1.5, 0.5);
+        let single = singles.iter().map(|l| table.sweep(l).distance(joint)).fold(f64::INFINITY, f64::min);
+        let depth = s.section_at(3, 0.0).distance(s.local(joint).1) * s.scale;
+        assert!((s.distance(joint) - depth).abs() < 1e-9, "{} vs {depth}", s.distance(joint));
+        assert!(single > -0.01 && s.distance(joint) < -0.5, "run {} single {single}", s.distance(joint));
     }
 
     #[test]

@@ -136,13 +136,31 @@ fn tiny_tree_is_one_lipschitz() {
 fn preset_field(name: &str) -> CarvedTerrain {
     let scene = root().join(format!("fixtures/scenes/{name}.toml"));
     let out = scratch(&format!("sdf-{name}"));
-    let args = (scene.clone(), out.to_path_buf());
-    karst_testkit::run::<karst_sampling::SamplingStage>(&args.0, &args.1).unwrap();
-    karst_testkit::run::<karst_costgraph::CostgraphStage>(&args.0, &args.1).unwrap();
-    karst_testkit::run::<karst_skeleton::SkeletonStage>(&args.0, &args.1).unwrap();
-    karst_testkit::run::<karst_hydro::HydroStage>(&args.0, &args.1).unwrap();
-    karst_testkit::run::<karst_streams::StreamsStage>(&args.0, &args.1).unwrap();
-    field_of(&scene, &out)
+    stages_field(&scene, &out)
+}
+
+/// The tree of `scene`, its upstream stages run into `out`.
+fn stages_field(scene: &Path, out: &Path) -> CarvedTerrain {
+    karst_testkit::run::<karst_sampling::SamplingStage>(scene, out).unwrap();
+    karst_testkit::run::<karst_costgraph::CostgraphStage>(scene, out).unwrap();
+    karst_testkit::run::<karst_skeleton::SkeletonStage>(scene, out).unwrap();
+    karst_testkit::run::<karst_hydro::HydroStage>(scene, out).unwrap();
+    karst_testkit::run::<karst_streams::StreamsStage>(scene, out).unwrap();
+    field_of(scene, out)
+}
+
+/// The tree of a preset scene with `[sdf] passage_detail = "full"`: the scene is copied into a
+/// scratch folder with its data files named from the presets' folder.
+fn detailed_preset_field(name: &str) -> CarvedTerrain {
+    let scenes = root().join("fixtures/scenes");
+    let text = std::fs::read_to_string(scenes.join(format!("{name}.toml"))).unwrap();
+    assert!(!text.contains("\n[sdf]"), "{name} has an [sdf] section: add the level to it");
+    let text = text.replace("file = \"data/", &format!("file = \"{}/data/", scenes.display()))
+        + "\n[sdf]\npassage_detail = \"full\"\n";
+    let out = scratch(&format!("sdf-{name}-full"));
+    let scene = out.join(format!("{name}.toml"));
+    std::fs::write(&scene, text).unwrap();
+    stages_field(&scene, &out)
 }
 
 /// On a preset's tree: 1-Lipschitz on pairs near its leaves (and a quarter anywhere); the BVH
@@ -152,6 +170,31 @@ fn check_preset(name: &str, pairs: usize, brute: usize) {
     assert!(field.leaves() > 0, "{name}: no leaves");
     check_tree(&field, pairs);
     check_sign(&field, brute, name);
+}
+
+/// The same with passage detail: the runs of profile pieces (one leaf per segment) and the
+/// profiles' sphere stations keep the tree 1-Lipschitz and the BVH exact.
+fn check_detailed_preset(name: &str, pairs: usize, brute: usize) {
+    let field = detailed_preset_field(name);
+    assert!(field.model().sweeps.iter().any(|s| s.continues), "{name}: no passage profile was swept");
+    check_tree(&field, pairs);
+    check_sign(&field, brute, name);
+}
+
+macro_rules! detailed_preset_tests {
+    ($($test:ident: $name:literal, $pairs:literal, $brute:literal;)*) => {$(
+        #[test]
+        fn $test() {
+            check_detailed_preset($name, $pairs, $brute);
+        }
+    )*};
+}
+
+detailed_preset_tests! {
+    default_tree_with_passage_detail_is_one_lipschitz: "default", 10_000, 500;
+    looping_tree_with_passage_detail_is_one_lipschitz: "looping", 5000, 100;
+    karstnsim_tree_with_passage_detail_is_one_lipschitz: "karstnsim", 5000, 100;
+    waterfall_tree_with_passage_detail_is_one_lipschitz: "waterfall", 5000, 100;
 }
 
 macro_rules! preset_tests {
