@@ -30,9 +30,11 @@ mod simplify;
 mod sink;
 mod spill;
 mod spilled;
+mod terrain_lattice;
 pub mod stage;
 mod view;
 mod volume;
+mod warp;
 pub mod watertight;
 
 pub use build::{anchors, build, mesh, mesh_simplified, mesh_with};
@@ -48,4 +50,6 @@ pub use simplify::simplify;
 pub use sink::MeshSink;
 pub use stage::MesherStage;
 pub use view::MesherView;
+pub use terrain_lattice::{TerrainLattice, coarse_cell};
 pub use volume::{Cave, Volume, Water};
+pub use warp::{polygonize_terrain, polygonize_terrain_into};
