@@ -78,7 +78,10 @@ fn the_mesher_s_work_estimate_is_within_a_factor_two_of_its_meshes() {
         let bytes = fs::metadata(out.join("mesh.bin")).unwrap().len() as f64;
         let within_two = |estimate: f64, real: f64| estimate <= 2.0 * real && real <= 2.0 * estimate;
         assert!(within_two(work.triangles, triangles as f64), "{name}: {work:?} for {triangles} triangles");
-        assert!(within_two(work.terrain_triangles, terrain), "{name}: {work:?} for {terrain} terrain triangles");
+        assert!(
+            within_two(work.terrain_triangles, terrain),
+            "{name}: {work:?} for {terrain} terrain triangles"
+        );
         assert!(within_two(work.bytes, bytes), "{name}: {work:?} for {bytes} bytes of mesh.bin");
         assert!(within_two(work.cells * 2.0, triangles as f64), "{name}: {work:?} for {triangles} triangles");
         fs::remove_dir_all(&out).unwrap();

@@ -17,11 +17,11 @@ use crate::cleanup::{Solid, clean};
 use crate::error::MesherError;
 use crate::payload::{Mesh, SurfaceCounts};
 use crate::polygonize::{polygonize, polygonize_into};
-use crate::warp::{polygonize_terrain, polygonize_terrain_into};
 use crate::simplify::simplify;
 use crate::spilled::{self, SpilledSurface};
 use crate::view::MesherView;
 use crate::volume::{Cave, Water};
+use crate::warp::{polygonize_terrain, polygonize_terrain_into};
 
 /// The meshes of `model` under the scene's `[mesher]` cells, the sinks and springs kept open.
 pub fn build(view: &MesherView, model: &SdfModel) -> Result<Mesh, MesherError> {
@@ -94,8 +94,9 @@ pub fn write_streamed(
             }
             Ok(surface)
         };
-    let terrain = spilled(&|s| polygonize_terrain_into(&field, cell, s), "terrain", Some((Solid::Rock, cell)))
-        .map_err(failed)?;
+    let terrain =
+        spilled(&|s| polygonize_terrain_into(&field, cell, s), "terrain", Some((Solid::Rock, cell)))
+            .map_err(failed)?;
     let cave =
         spilled(&|s| polygonize_into(&Cave(&field), cave_cell, s), "cave", Some((Solid::Cave, cave_cell)))
             .map_err(failed)?;

@@ -204,7 +204,8 @@ fn lattice_cells(lattice: &TerrainLattice, model: &SdfModel) -> f64 {
             (0..nx)
                 .map(|i| {
                     let h = [ground(i, j), ground(i + 1, j), ground(i, j + 1), ground(i + 1, j + 1)];
-                    let (lo, hi) = h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+                    let (lo, hi) =
+                        h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
                     (below(hi) - below(lo)).max(1.0)
                 })
                 .sum()

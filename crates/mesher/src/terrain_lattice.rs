@@ -83,11 +83,14 @@ impl TerrainLattice {
     }
 }
 
-/// Whether plane `i` of `n` fine cells is kept: the lattice's first two and last two (the
-/// domain's walls lie between them), every `ratio`-th, and both planes of a fine window's cell.
+/// Whether plane `i` of `n` fine cells is kept: the lattice's first three and last three, every
+/// `ratio`-th, and both planes of a fine window's cell. The domain's walls lie on or next to
+/// the second and the second to last, where the field is 0 (air), so the top of a wall is the
+/// highest z plane under the ground, joined to the ground at the next plane inwards: a fine
+/// cell away, not a coarse one (a chamfer of a coarse cell's height along every wall).
 fn keeps(i: u64, n: u64, ratio: u64, window: &[bool]) -> bool {
     let fine_cell = |c: u64| window.get(c as usize).copied().unwrap_or(false);
-    i <= 1 || i + 1 >= n || i % ratio == 0 || fine_cell(i) || (i > 0 && fine_cell(i - 1))
+    i <= 2 || i + 2 >= n || i % ratio == 0 || fine_cell(i) || (i > 0 && fine_cell(i - 1))
 }
 
 /// A fine cell of the ground that a cut reaches: its x and y cells, and the range of its
@@ -144,7 +147,8 @@ fn cuts(field: &CarvedTerrain, fine: &Lattice, ratio: u64, margin: f64) -> Vec<C
         let ground = |i: u64, j: u64| {
             let at = |di: u64, dj: u64| heights[(j - j0 + dj) as usize * row + (i - i0 + di) as usize];
             let h = [at(0, 0), at(1, 0), at(0, 1), at(1, 1)];
-            let (lo, hi) = h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+            let (lo, hi) =
+                h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
             ((lo - slack).max(floor), (hi + slack).min(ceiling))
         };
         let boxed = |i: u64, j: u64, di: u64, dj: u64, (bottom, top): (f64, f64)| {
@@ -152,11 +156,13 @@ fn cuts(field: &CarvedTerrain, fine: &Lattice, ratio: u64, margin: f64) -> Vec<C
             let hi = lo + DVec2::new(di as f64, dj as f64) * cell;
             (lo.extend(bottom), hi.extend(top))
         };
-        let subcells: Vec<([u64; 2], (f64, f64))> =
-            (j0..j1).flat_map(|j| (i0..i1).map(move |i| [i, j])).map(|[i, j]| ([i, j], ground(i, j))).collect();
-        let whole = subcells.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(_, (lo, hi))| {
-            (a.min(lo), b.max(hi))
-        });
+        let subcells: Vec<([u64; 2], (f64, f64))> = (j0..j1)
+            .flat_map(|j| (i0..i1).map(move |i| [i, j]))
+            .map(|[i, j]| ([i, j], ground(i, j)))
+            .collect();
+        let whole = subcells
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(_, (lo, hi))| (a.min(lo), b.max(hi)));
         if subcells.is_empty() || whole.0 > whole.1 {
             return Vec::new();
         }
@@ -166,9 +172,11 @@ fn cuts(field: &CarvedTerrain, fine: &Lattice, ratio: u64, margin: f64) -> Vec<C
         }
         subcells
             .into_iter()
-            .filter(|&([i, j], ground)| ground.0 <= ground.1 && {
-                let (lo, hi) = boxed(i, j, 1, 1, ground);
-                field.carves(lo, hi, margin)
+            .filter(|&([i, j], ground)| {
+                ground.0 <= ground.1 && {
+                    let (lo, hi) = boxed(i, j, 1, 1, ground);
+                    field.carves(lo, hi, margin)
+                }
             })
             .map(|(cell, ground)| Cut { cell, ground })
             .collect()
@@ -189,7 +197,7 @@ mod tests {
         let mut window = vec![false; 20];
         window[7] = true;
         let kept: Vec<u64> = (0..=20).filter(|&i| keeps(i, 20, 5, &window)).collect();
-        assert_eq!(kept, vec![0, 1, 5, 7, 8, 10, 15, 19, 20]);
+        assert_eq!(kept, vec![0, 1, 2, 5, 7, 8, 10, 15, 18, 19, 20]);
     }
 
     #[test]

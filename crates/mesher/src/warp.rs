@@ -65,7 +65,8 @@ impl<V: Volume> Volume for Warped<'_, V> {
     }
 
     fn bounds(&self, lo: DVec3, hi: DVec3, boxes: &[(DVec3, DVec3)], out: &mut [f64]) {
-        let world: Vec<(DVec3, DVec3)> = boxes.iter().map(|&(l, h)| (self.to_world(l), self.to_world(h))).collect();
+        let world: Vec<(DVec3, DVec3)> =
+            boxes.iter().map(|&(l, h)| (self.to_world(l), self.to_world(h))).collect();
         self.solid.bounds(self.to_world(lo), self.to_world(hi), &world, out);
         for b in out.iter_mut() {
             *b /= self.widest;
