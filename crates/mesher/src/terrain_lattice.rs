@@ -90,7 +90,7 @@ impl TerrainLattice {
 /// cell away, not a coarse one (a chamfer of a coarse cell's height along every wall).
 fn keeps(i: u64, n: u64, ratio: u64, window: &[bool]) -> bool {
     let fine_cell = |c: u64| window.get(c as usize).copied().unwrap_or(false);
-    i <= 2 || i + 2 >= n || i % ratio == 0 || fine_cell(i) || (i > 0 && fine_cell(i - 1))
+    i <= 2 || i + 2 >= n || i.is_multiple_of(ratio) || fine_cell(i) || (i > 0 && fine_cell(i - 1))
 }
 
 /// A fine cell of the ground that a cut reaches: its x and y cells, and the range of its
@@ -107,10 +107,10 @@ fn mark_windows(field: &CarvedTerrain, fine: &Lattice, ratio: u64, windows: &mut
     let margin = margin(field, fine.cell);
     let grow = (margin / fine.cell).ceil() as u64;
     for cut in cuts(field, fine, ratio, margin) {
-        for a in 0..2 {
-            let n = windows[a].len() as u64;
-            let (from, to) = (cut.cell[a].saturating_sub(grow), (cut.cell[a] + grow + 1).min(n));
-            windows[a][from as usize..to as usize].fill(true);
+        for (window, at) in windows.iter_mut().zip(cut.cell) {
+            let n = window.len() as u64;
+            let (from, to) = (at.saturating_sub(grow), (at + grow + 1).min(n));
+            window[from as usize..to as usize].fill(true);
         }
         let n = windows[2].len() as f64;
         let z = |h: f64| ((h - fine.origin.z) / fine.cell).floor().clamp(0.0, n) as usize;
