@@ -63,21 +63,37 @@ fn every_estimating_stage_refuses_with_its_field_and_a_value_that_fits() {
 
 #[test]
 fn the_mesher_s_work_estimate_is_within_a_factor_two_of_its_meshes() {
-    let out = scratch("mesh-estimate");
-    let scene_path = out.join("scene.toml");
-    fs::copy(root().join("fixtures/scenes/tiny.toml"), &scene_path).unwrap();
-    run(&scene_path, &out, &Selection { to: Some(StageId::Mesher), ..Selection::default() }).unwrap();
-    let scene = Scene::load(&scene_path).unwrap();
-    let (_, model) = karst_artifact::read_artifact::<karst_sdf::SdfModel>(&out.join("sdf.bin")).unwrap();
-    let work = karst_mesher::Work::of(&karst_mesher::MesherView::of(&scene), &model);
-    let (_, mesh) = karst_artifact::read_artifact::<karst_mesher::Mesh>(&out.join("mesh.bin")).unwrap();
-    let triangles: usize = mesh.surfaces().iter().map(|(_, m)| m.triangles.len()).sum();
-    let bytes = fs::metadata(out.join("mesh.bin")).unwrap().len() as f64;
-    let within_two = |estimate: f64, real: f64| estimate <= 2.0 * real && real <= 2.0 * estimate;
-    assert!(within_two(work.triangles, triangles as f64), "{work:?} for {triangles} triangles");
-    assert!(within_two(work.bytes, bytes), "{work:?} for {bytes} bytes of mesh.bin");
-    assert!(within_two(work.cells * 2.0, triangles as f64), "{work:?} for {triangles} triangles");
-    fs::remove_dir_all(&out).unwrap();
+    // tiny: the uniform lattice (a plane); geotiff: the terrain lattice (20 m pixels, 4 m cells).
+    for name in ["tiny", "geotiff"] {
+        let out = scratch(&format!("mesh-estimate-{name}"));
+        let scene_path = out.join("scene.toml");
+        copy_scene(name, &scene_path);
+        run(&scene_path, &out, &Selection { to: Some(StageId::Mesher), ..Selection::default() }).unwrap();
+        let scene = Scene::load(&scene_path).unwrap();
+        let (_, model) = karst_artifact::read_artifact::<karst_sdf::SdfModel>(&out.join("sdf.bin")).unwrap();
+        let work = karst_mesher::Work::of(&karst_mesher::MesherView::of(&scene), &model);
+        let (_, mesh) = karst_artifact::read_artifact::<karst_mesher::Mesh>(&out.join("mesh.bin")).unwrap();
+        let triangles: usize = mesh.surfaces().iter().map(|(_, m)| m.triangles.len()).sum();
+        let terrain = mesh.terrain.triangles.len() as f64;
+        let bytes = fs::metadata(out.join("mesh.bin")).unwrap().len() as f64;
+        let within_two = |estimate: f64, real: f64| estimate <= 2.0 * real && real <= 2.0 * estimate;
+        assert!(within_two(work.triangles, triangles as f64), "{name}: {work:?} for {triangles} triangles");
+        assert!(
+            within_two(work.terrain_triangles, terrain),
+            "{name}: {work:?} for {terrain} terrain triangles"
+        );
+        assert!(within_two(work.bytes, bytes), "{name}: {work:?} for {bytes} bytes of mesh.bin");
+        assert!(within_two(work.cells * 2.0, triangles as f64), "{name}: {work:?} for {triangles} triangles");
+        fs::remove_dir_all(&out).unwrap();
+    }
+}
+
+/// Copies fixtures/scenes/NAME.toml to `to` with its data files, which it names relative to it.
+fn copy_scene(name: &str, to: &Path) {
+    let scenes = root().join("fixtures/scenes");
+    let text = fs::read_to_string(scenes.join(format!("{name}.toml"))).unwrap();
+    let data = format!("file = \"{}/data/", scenes.display());
+    fs::write(to, text.replace("file = \"data/", &data)).unwrap();
 }
 
 #[test]

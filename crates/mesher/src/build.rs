@@ -21,6 +21,7 @@ use crate::simplify::simplify;
 use crate::spilled::{self, SpilledSurface};
 use crate::view::MesherView;
 use crate::volume::{Cave, Water};
+use crate::warp::{polygonize_terrain, polygonize_terrain_into};
 
 /// The meshes of `model` under the scene's `[mesher]` cells, the sinks and springs kept open.
 pub fn build(view: &MesherView, model: &SdfModel) -> Result<Mesh, MesherError> {
@@ -93,8 +94,9 @@ pub fn write_streamed(
             }
             Ok(surface)
         };
-    let terrain = spilled(&|s| polygonize_into(&field, cell, s), "terrain", Some((Solid::Rock, cell)))
-        .map_err(failed)?;
+    let terrain =
+        spilled(&|s| polygonize_terrain_into(&field, cell, s), "terrain", Some((Solid::Rock, cell)))
+            .map_err(failed)?;
     let cave =
         spilled(&|s| polygonize_into(&Cave(&field), cave_cell, s), "cave", Some((Solid::Cave, cave_cell)))
             .map_err(failed)?;
@@ -155,7 +157,7 @@ pub fn mesh(field: &CarvedTerrain, cell_size: f64, anchors: &[DVec3]) -> Mesh {
 
 /// [`mesh`] with the cave alone and the water at `cave_cell_size`.
 pub fn mesh_with(field: &CarvedTerrain, cell_size: f64, cave_cell_size: f64, anchors: &[DVec3]) -> Mesh {
-    let mut terrain = polygonize(field, cell_size);
+    let mut terrain = polygonize_terrain(field, cell_size);
     clean(&mut terrain, Solid::Rock, field.model(), anchors, cell_size);
     let mut cave = polygonize(&Cave(field), cave_cell_size);
     clean(&mut cave, Solid::Cave, field.model(), anchors, cave_cell_size);

@@ -4,13 +4,16 @@
 //! cell² of the surface areas estimated here, counted at 2.5, and a triangle costs about 64
 //! bytes at the peak (its share of the vertices, the bricks and the cleanup; measured in
 //! BENCHMARKS.md, "mesher"). The surfaces: the carved terrain at `cell_size` (the ground, the
-//! domain's sides and bottom, the cave walls), the cave alone and its water at the cave cell.
+//! domain's sides and bottom, the cave walls), or counted cell by cell on its terrain lattice
+//! when it has one ([`crate::terrain_lattice`]), the cave alone and its water at the cave cell.
 //! The cave's tortuous conduits are overlapping spheres: their union's area is probed, not
 //! summed ([`union_area`]).
 
 use karst_scene::budget::{Budget, Cheaper, Estimate, OverBudget};
-use karst_sdf::SdfModel;
+use karst_sdf::{CarvedTerrain, SdfModel};
 use rayon::prelude::*;
+
+use crate::terrain_lattice::{TerrainLattice, coarse_cell};
 
 use crate::view::MesherView;
 
@@ -141,6 +144,8 @@ fn union_area(spheres: &[[f32; 4]]) -> f64 {
 pub struct Work {
     /// Surface cells polygonized (terrain, cave, water).
     pub cells: f64,
+    /// Triangles of the carved terrain, before any simplification.
+    pub terrain_triangles: f64,
     /// Triangles of the three meshes, before any simplification.
     pub triangles: f64,
     /// Bytes of mesh.bin with those triangles.
@@ -155,12 +160,64 @@ impl Work {
         Work::at(model, cell, crate::cell::cave_cell(model, cell, view.mesher.cave_cell_size))
     }
 
-    /// The work of meshing `model` at terrain cell `cell` and cave cell `cave`.
+    /// The work of meshing `model` at terrain cell `cell` and cave cell `cave`. On a terrain
+    /// lattice ([`TerrainLattice`]) the carved terrain's cells are counted on it
+    /// ([`lattice_cells`]); on the uniform lattice they come from its area.
     pub fn at(model: &SdfModel, cell: f64, cave: f64) -> Work {
-        let cells: f64 = Areas::of(model).cells(cell, cave).iter().sum();
-        let triangles = cells * TRIANGLES_PER_CELL;
-        Work { cells, triangles, bytes: triangles * MESH_BYTES_PER_TRIANGLE }
+        let areas = Areas::of(model);
+        let [terrain, cave_alone, water] = areas.cells(cell, cave);
+        let lattice = (coarse_cell(model, cell) >= 2.0 * cell)
+            .then(|| TerrainLattice::of(&CarvedTerrain::new(model.clone()), cell))
+            .flatten();
+        let (terrain_cells, terrain_triangles) = match lattice {
+            Some(lattice) => {
+                let cells = lattice_cells(&lattice, model);
+                (cells, cells * LATTICE_TRIANGLES_PER_CELL)
+            }
+            None => (terrain, terrain * TRIANGLES_PER_CELL),
+        };
+        let cells = terrain_cells + cave_alone + water;
+        let triangles = terrain_triangles + (cave_alone + water) * TRIANGLES_PER_CELL;
+        Work { cells, terrain_triangles, triangles, bytes: triangles * MESH_BYTES_PER_TRIANGLE }
     }
+}
+
+/// Triangles per crossed cell of the terrain lattice: a heightfield crosses most cells as one
+/// quadrilateral.
+const LATTICE_TRIANGLES_PER_CELL: f64 = 2.0;
+
+/// The cells of the terrain lattice that the carved terrain crosses, counted column by column:
+/// in each column of the ground the z cells between the lowest and the highest of its corners'
+/// heights (at least one), the cells of the domain's sides under the ground and of its floor.
+/// The caves' walls inside the rock are not counted: away from the fine windows the coarse
+/// cells do not resolve them (their pockets are filled by the cleanup).
+fn lattice_cells(lattice: &TerrainLattice, model: &SdfModel) -> f64 {
+    let [xs, ys, zs] = &lattice.planes;
+    let (floor, ceiling) = (model.domain.min[2], model.domain.max[2]);
+    let ground = |i: usize, j: usize| model.terrain.height(xs[i], ys[j]).clamp(floor, ceiling);
+    // z planes below height h.
+    let below = |h: f64| zs.partition_point(|&z| z < h) as f64;
+    let (nx, ny) = (xs.len() - 1, ys.len() - 1);
+    let rows: Vec<f64> = (0..ny)
+        .into_par_iter()
+        .map(|j| {
+            (0..nx)
+                .map(|i| {
+                    let h = [ground(i, j), ground(i + 1, j), ground(i, j + 1), ground(i + 1, j + 1)];
+                    let (lo, hi) =
+                        h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+                    (below(hi) - below(lo)).max(1.0)
+                })
+                .sum()
+        })
+        .collect();
+    let top: f64 = rows.iter().sum();
+    let side = |heights: &mut dyn Iterator<Item = f64>| heights.map(|h| below(h) - below(floor)).sum::<f64>();
+    let sides = side(&mut (0..nx).map(|i| ground(i, 0)))
+        + side(&mut (0..nx).map(|i| ground(i, ny)))
+        + side(&mut (0..ny).map(|j| ground(0, j)))
+        + side(&mut (0..ny).map(|j| ground(nx, j)));
+    top + sides + (nx * ny) as f64
 }
 
 /// Refuses lattices whose meshes would not fit in the memory budget, naming the cell that

@@ -31,8 +31,10 @@ mod sink;
 mod spill;
 mod spilled;
 pub mod stage;
+mod terrain_lattice;
 mod view;
 mod volume;
+mod warp;
 pub mod watertight;
 
 pub use build::{anchors, build, mesh, mesh_simplified, mesh_with};
@@ -47,5 +49,7 @@ pub use polygonize::{polygonize, polygonize_into};
 pub use simplify::simplify;
 pub use sink::MeshSink;
 pub use stage::MesherStage;
+pub use terrain_lattice::{TerrainLattice, coarse_cell};
 pub use view::MesherView;
 pub use volume::{Cave, Volume, Water};
+pub use warp::{polygonize_terrain, polygonize_terrain_into};

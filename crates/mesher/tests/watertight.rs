@@ -312,3 +312,70 @@ fn thin_conduits_are_meshed_whole_at_the_automatic_cave_cell() {
     let ratio = mesh.cave.enclosed_volume() / volume;
     assert!(ratio > 0.7 && ratio < 1.0, "{} vs {volume}", mesh.cave.enclosed_volume());
 }
+
+/// A 120 × 100 m heightfield of 8 m pixels (two hills and a valley), a conduit that opens in
+/// the valley floor and a sealed one deep below.
+fn raster_model() -> SdfModel {
+    let (nx, ny) = (17u32, 15u32);
+    let heights = (0..ny)
+        .flat_map(|j| {
+            (0..nx).map(move |i| {
+                let (x, y) = (i as f64 * 8.0, j as f64 * 8.0);
+                30.0 + 6.0 * (x / 25.0).sin() * (y / 31.0).cos() + 0.04 * x
+            })
+        })
+        .collect();
+    let grid = karst_geology::heightfield::HeightGrid::new([-4.0, -4.0], 8.0, nx, ny, heights);
+    SdfModel {
+        capsules: vec![
+            Capsule { a: [60.0, 50.0, 40.0], b: [62.0, 48.0, 15.0], radius: 2.0 },
+            Capsule { a: [62.0, 48.0, 15.0], b: [95.0, 40.0, 12.0], radius: 2.5 },
+            Capsule { a: [20.0, 20.0, 6.0], b: [30.0, 22.0, 6.0], radius: 1.5 },
+        ],
+        ..SdfModel::new(Domain { min: [0.0, 0.0, 0.0], max: [120.0, 100.0, 50.0] }, TerrainField::Grid(grid))
+    }
+}
+
+#[test]
+fn a_raster_terrain_is_meshed_coarsely_away_from_its_openings_and_stays_closed() {
+    let field = CarvedTerrain::new(raster_model());
+    let lattice = karst_mesher::TerrainLattice::of(&field, 1.0).expect("8 m pixels over 1 m cells");
+    assert_eq!(lattice.ratio, 8);
+    let cells = lattice.cells();
+    // Fine around the opening, coarse elsewhere: far fewer planes than the 122 × 102 × 52 of
+    // the uniform lattice, more than the coarse ones alone.
+    assert!(cells[0] < 122 / 2 && cells[0] > 122 / 8, "{cells:?}");
+    assert!(cells[1] < 102 / 2 && cells[1] > 102 / 8, "{cells:?}");
+    let planes = &lattice.planes[0];
+    let fine_at = |x: f64| planes.windows(2).any(|w| w[0] <= x && x < w[1] && w[1] - w[0] == 1.0);
+    assert!(fine_at(60.5) && !fine_at(10.5), "the opening at x = 60 is fine, the west end coarse");
+
+    let coarse = with_threads(2, || karst_mesher::polygonize_terrain(&field, 1.0));
+    let mut cleaned = coarse.clone();
+    clean(&mut cleaned, Solid::Rock, field.model(), &[], 1.0);
+    assert_watertight("raster terrain", &coarse);
+    assert_watertight("raster terrain, cleaned", &cleaned);
+    assert_eq!(components::count(&cleaned), 1, "the sealed conduit is filled, the opening kept");
+    let uniform = polygonize(&field, 1.0);
+    assert!(
+        coarse.triangles.len() * 4 < uniform.triangles.len(),
+        "{} vs {} triangles",
+        coarse.triangles.len(),
+        uniform.triangles.len()
+    );
+    // The same solid: the rock's volume (less the sealed conduit, in both) within 0.5 %.
+    let mut uniform_cleaned = uniform.clone();
+    clean(&mut uniform_cleaned, Solid::Rock, field.model(), &[], 1.0);
+    let (a, b) = (cleaned.enclosed_volume(), uniform_cleaned.enclosed_volume());
+    assert!((a - b).abs() < 0.005 * b, "{a} vs {b} m³");
+    // The opening: the terrain's surface goes down the shaft, below the valley floor.
+    let in_shaft = |m: &TriMesh| {
+        m.vertices
+            .iter()
+            .filter(|v| (v[0] - 61.0).abs() < 2.0 && (v[1] - 49.0).abs() < 2.0 && v[2] < 22.0)
+            .count()
+    };
+    assert!(in_shaft(&cleaned) > 10, "{} vertices down the shaft", in_shaft(&cleaned));
+    let one = with_threads(1, || karst_mesher::polygonize_terrain(&field, 1.0));
+    assert_eq!((one.vertices, one.triangles), (coarse.vertices, coarse.triangles));
+}

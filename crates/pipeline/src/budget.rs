@@ -55,9 +55,11 @@ pub fn check_mesher(job: &Job, budget: OutputBudget) -> Result<String, StageErro
     let view = MesherView::of(job.scene);
     let work = Work::of(&view, &model);
     let estimate = format!(
-        "about {:.2e} surface cells, {:.2e} triangles, {} of meshes at mesher.cell_size = {} m",
+        "about {:.2e} surface cells, {:.2e} triangles ({:.2e} of the terrain), {} of meshes at \
+         mesher.cell_size = {} m",
         work.cells,
         work.triangles,
+        work.terrain_triangles,
         bytes(work.bytes),
         view.mesher.cell_size
     );

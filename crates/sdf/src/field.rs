@@ -172,6 +172,27 @@ impl CarvedTerrain {
         near
     }
 
+    /// Whether the caves or the surface water may carve the rock within `margin` of the box
+    /// [lo, hi]: a leaf node of the karst or the horizontal box of a riverbed, basin or
+    /// overhang comes that close (the blend of cave entrances added). False means that the
+    /// rock there is the plain terrain: the mesher meshes it coarsely.
+    pub fn may_carve(&self, lo: DVec3, hi: DVec3, margin: f64) -> bool {
+        let mut caves = Vec::new();
+        self.caves.near_box(lo, hi, margin + self.model.blend.max(0.0), &mut caves);
+        !caves.is_empty() || self.surface.carves_within(lo.truncate(), hi.truncate(), margin)
+    }
+
+    /// Whether the caves or the surface water carve the rock within `margin` of the box
+    /// [lo, hi], judged from the karst's value at its centre (exact up to the karst's cap, so
+    /// a box whose half diagonal and margin pass the cap is always said carved) and the surface
+    /// pieces' horizontal boxes: a finer test than [`CarvedTerrain::may_carve`] for small boxes.
+    pub fn carves(&self, lo: DVec3, hi: DVec3, margin: f64) -> bool {
+        let within = (hi - lo).length() * 0.5 + margin + self.model.blend.max(0.0);
+        self.cave((lo + hi) * 0.5) < within.min(REACH)
+            || within >= REACH
+            || self.surface.carves_within(lo.truncate(), hi.truncate(), margin)
+    }
+
     /// The karst volume alone: negative inside the conduits and chambers; 1-Lipschitz.
     pub fn cave(&self, p: DVec3) -> f64 {
         self.caves.min_value(p, REACH, &self.context())

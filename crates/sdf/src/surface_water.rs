@@ -448,6 +448,8 @@ impl Index {
 #[derive(Debug, Clone, Default)]
 pub struct SurfaceField {
     pieces: SurfacePieces,
+    /// The horizontal boxes of the pieces that carve the rock (beds, basins, alcoves).
+    carve_bounds: Vec<(DVec2, DVec2)>,
     carves: Index,
     waters: Index,
 }
@@ -471,12 +473,19 @@ impl SurfaceField {
         SurfaceField {
             pieces: pieces.clone(),
             carves: Index::of(&carve_bounds),
+            carve_bounds,
             waters: Index::of(&water_bounds),
         }
     }
 
     pub fn is_empty(&self) -> bool {
         self.carves.all.is_none() && self.waters.all.is_none()
+    }
+
+    /// Whether a piece that carves the rock has its horizontal box within `margin` of the
+    /// horizontal box [lo, hi].
+    pub fn carves_within(&self, lo: DVec2, hi: DVec2, margin: f64) -> bool {
+        self.carve_bounds.iter().any(|&(a, b)| (a - hi).max(lo - b).max(DVec2::ZERO).length() < margin)
     }
 
     /// The air the surface water opens in the rock: negative inside; min(REACH or farther, ·).

@@ -1,0 +1,212 @@
+//! The carved terrain's lattice: at the ground's own resolution away from the caves and the
+//! streams, at `mesher.cell_size` where they cut the rock.
+//!
+//! A heightfield of 30 m pixels holds no detail finer than 30 m, so a lattice of 2 m cells
+//! over it spends 225 times the triangles of its pixels on nothing but bilinear facets. The
+//! terrain lattice is therefore *rectilinear*: along each axis its planes are those of the
+//! uniform lattice of `mesher.cell_size` (the *fine* cell), kept every `k`-th one (the
+//! *coarse* cell, k fine cells: the raster's pixel, or for an analytic terrain a cell derived
+//! from the extent, [`coarse_cell`]) and every one inside the *fine windows*, the ranges along
+//! the axis where a karst leaf or a surface-water piece comes near the ground
+//! ([`CarvedTerrain::carves`]: openings, shafts, riverbeds, pools). A rectilinear lattice
+//! has the topology of a regular one, so marching cubes on it are as closed, manifold and
+//! oriented as on the regular lattice ([`crate::warp`] runs the polygonizer on it unchanged).
+//! The price of the windows being whole slabs: a window's fine planes cross the whole domain,
+//! where they only split the coarse cells (more, thinner triangles along the slab).
+
+use glam::DVec2;
+
+use karst_sdf::{CarvedTerrain, SdfModel, TerrainField};
+
+use crate::lattice::Lattice;
+
+/// An analytic terrain (plane, noise) has no pixel: its coarse cell is the horizontal extent
+/// divided by this many cells (2 m on a 2 km domain), so that the terrain's triangles do not
+/// grow with the extent.
+pub const ANALYTIC_CELLS: f64 = 1024.0;
+
+/// The coarse cell of the carved terrain for a fine cell `cell`: the raster's pixel for a
+/// heightfield, the extent over [`ANALYTIC_CELLS`] for an analytic terrain; never below `cell`.
+pub fn coarse_cell(model: &SdfModel, cell: f64) -> f64 {
+    let coarse = match &model.terrain {
+        TerrainField::Grid(grid) => grid.cell_size,
+        _ => {
+            let size = model.domain.size();
+            size.x.max(size.y) / ANALYTIC_CELLS
+        }
+    };
+    coarse.max(cell)
+}
+
+/// The planes of the terrain lattice along each axis, world coordinates, increasing: the first
+/// and the last are those of the uniform lattice of the fine cell ([`Lattice::around`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TerrainLattice {
+    pub planes: [Vec<f64>; 3],
+    /// The fine cell, metres.
+    pub fine: f64,
+    /// Fine cells per coarse cell.
+    pub ratio: u64,
+}
+
+impl TerrainLattice {
+    /// The terrain lattice of `field` at fine cell `cell`; None when the coarse cell is less
+    /// than two fine ones: the carved terrain is then meshed on the uniform lattice.
+    pub fn of(field: &CarvedTerrain, cell: f64) -> Option<TerrainLattice> {
+        let model = field.model();
+        let ratio = (coarse_cell(model, cell) / cell).floor();
+        if ratio < 2.0 {
+            return None;
+        }
+        let ratio = ratio as u64;
+        let fine = Lattice::around(model.domain.min(), model.domain.max(), cell);
+        let cells = fine.dims.map(|d| d - 1);
+        let mut windows = cells.map(|n| vec![false; n as usize]);
+        mark_windows(field, &fine, ratio, &mut windows);
+        let planes = [0, 1, 2].map(|a| {
+            (0..=cells[a])
+                .filter(|&i| keeps(i, cells[a], ratio, &windows[a]))
+                .map(|i| fine.origin[a] + i as f64 * cell)
+                .collect()
+        });
+        Some(TerrainLattice { planes, fine: cell, ratio })
+    }
+
+    /// Cells along each axis.
+    pub fn cells(&self) -> [usize; 3] {
+        [0, 1, 2].map(|a| self.planes[a].len() - 1)
+    }
+
+    /// The widest cell along any axis, metres.
+    pub fn widest(&self) -> f64 {
+        self.planes.iter().flat_map(|p| p.windows(2).map(|w| w[1] - w[0])).fold(0.0, f64::max)
+    }
+}
+
+/// Whether plane `i` of `n` fine cells is kept: the lattice's first three and last three, every
+/// `ratio`-th, and both planes of a fine window's cell. The domain's walls lie on or next to
+/// the second and the second to last, where the field is 0 (air), so the top of a wall is the
+/// highest z plane under the ground, joined to the ground at the next plane inwards: a fine
+/// cell away, not a coarse one (a chamfer of a coarse cell's height along every wall).
+fn keeps(i: u64, n: u64, ratio: u64, window: &[bool]) -> bool {
+    let fine_cell = |c: u64| window.get(c as usize).copied().unwrap_or(false);
+    i <= 2 || i + 2 >= n || i.is_multiple_of(ratio) || fine_cell(i) || (i > 0 && fine_cell(i - 1))
+}
+
+/// A fine cell of the ground that a cut reaches: its x and y cells, and the range of its
+/// ground's heights.
+struct Cut {
+    cell: [u64; 2],
+    ground: (f64, f64),
+}
+
+/// Marks, along each axis, the fine cells of the windows around the cuts ([`cuts`]): the cut's
+/// x and y cells and one more on either side, and its ground's heights, all grown by the
+/// margin of [`cuts`].
+fn mark_windows(field: &CarvedTerrain, fine: &Lattice, ratio: u64, windows: &mut [Vec<bool>; 3]) {
+    let margin = margin(field, fine.cell);
+    let grow = (margin / fine.cell).ceil() as u64;
+    for cut in cuts(field, fine, ratio, margin) {
+        for (window, at) in windows.iter_mut().zip(cut.cell) {
+            let n = window.len() as u64;
+            let (from, to) = (at.saturating_sub(grow), (at + grow + 1).min(n));
+            window[from as usize..to as usize].fill(true);
+        }
+        let n = windows[2].len() as f64;
+        let z = |h: f64| ((h - fine.origin.z) / fine.cell).floor().clamp(0.0, n) as usize;
+        windows[2][z(cut.ground.0 - margin)..z(cut.ground.1 + margin) + 1].fill(true);
+    }
+}
+
+/// How near the ground a cave or a stream cuts it: a fine cell and the blend of the cave
+/// entrances.
+fn margin(field: &CarvedTerrain, cell: f64) -> f64 {
+    cell + field.model().blend.max(0.0)
+}
+
+/// The fine cells of the ground within `margin` of a cave or a surface-water piece, in
+/// (y, x) order. Each coarse column (`ratio` fine cells square) is tested as a whole first
+/// ([`CarvedTerrain::may_carve`] over its ground's heights), then its fine cells one by one
+/// ([`CarvedTerrain::carves`]). A fine cell's ground lies within the heights at its corners
+/// less and plus the ground's Lipschitz bound times half a cell diagonal.
+fn cuts(field: &CarvedTerrain, fine: &Lattice, ratio: u64, margin: f64) -> Vec<Cut> {
+    use rayon::prelude::*;
+    let model = field.model();
+    let (terrain, cell) = (&model.terrain, fine.cell);
+    let slack = terrain.lipschitz() * cell * std::f64::consts::FRAC_1_SQRT_2;
+    let cells = [0, 1].map(|a| fine.dims[a] - 1);
+    let (floor, ceiling) = (model.domain.min[2], model.domain.max[2]);
+    let corner = |i: u64, j: u64| {
+        let (x, y) = (fine.origin.x + i as f64 * cell, fine.origin.y + j as f64 * cell);
+        (DVec2::new(x, y), terrain.height(x, y))
+    };
+    let column = |&[i0, j0]: &[u64; 2]| -> Vec<Cut> {
+        let (i1, j1) = ((i0 + ratio).min(cells[0]), (j0 + ratio).min(cells[1]));
+        let heights: Vec<f64> = (j0..=j1).flat_map(|j| (i0..=i1).map(move |i| corner(i, j).1)).collect();
+        let row = (i1 - i0 + 1) as usize;
+        let ground = |i: u64, j: u64| {
+            let at = |di: u64, dj: u64| heights[(j - j0 + dj) as usize * row + (i - i0 + di) as usize];
+            let h = [at(0, 0), at(1, 0), at(0, 1), at(1, 1)];
+            let (lo, hi) =
+                h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+            ((lo - slack).max(floor), (hi + slack).min(ceiling))
+        };
+        let boxed = |i: u64, j: u64, di: u64, dj: u64, (bottom, top): (f64, f64)| {
+            let lo = corner(i, j).0;
+            let hi = lo + DVec2::new(di as f64, dj as f64) * cell;
+            (lo.extend(bottom), hi.extend(top))
+        };
+        let subcells: Vec<([u64; 2], (f64, f64))> = (j0..j1)
+            .flat_map(|j| (i0..i1).map(move |i| [i, j]))
+            .map(|[i, j]| ([i, j], ground(i, j)))
+            .collect();
+        let whole = subcells
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(_, (lo, hi))| (a.min(lo), b.max(hi)));
+        if subcells.is_empty() || whole.0 > whole.1 {
+            return Vec::new();
+        }
+        let (lo, hi) = boxed(i0, j0, i1 - i0, j1 - j0, whole);
+        if !field.may_carve(lo, hi, margin) {
+            return Vec::new();
+        }
+        subcells
+            .into_iter()
+            .filter(|&([i, j], ground)| {
+                ground.0 <= ground.1 && {
+                    let (lo, hi) = boxed(i, j, 1, 1, ground);
+                    field.carves(lo, hi, margin)
+                }
+            })
+            .map(|(cell, ground)| Cut { cell, ground })
+            .collect()
+    };
+    let columns: Vec<[u64; 2]> = (0..cells[1])
+        .step_by(ratio as usize)
+        .flat_map(|j| (0..cells[0]).step_by(ratio as usize).map(move |i| [i, j]))
+        .collect();
+    columns.par_iter().flat_map_iter(column).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keeps_every_ratio_th_plane_and_the_windows() {
+        let mut window = vec![false; 20];
+        window[7] = true;
+        let kept: Vec<u64> = (0..=20).filter(|&i| keeps(i, 20, 5, &window)).collect();
+        assert_eq!(kept, vec![0, 1, 2, 5, 7, 8, 10, 15, 18, 19, 20]);
+    }
+
+    #[test]
+    fn an_analytic_terrain_takes_its_coarse_cell_from_the_extent() {
+        let model = SdfModel::new(
+            karst_geology::Domain { min: [0.0; 3], max: [4096.0, 1000.0, 50.0] },
+            TerrainField::Plane { elevation: 25.0, origin: [0.0, 0.0], gradient: [0.0, 0.0] },
+        );
+        assert_eq!(coarse_cell(&model, 1.0), 4.0);
+        assert_eq!(coarse_cell(&model, 8.0), 8.0);
+    }
+}
