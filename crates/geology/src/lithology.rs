@@ -140,7 +140,7 @@ impl Lithology {
             if self.origin.is_some() || self.spacing.is_some() {
                 return Err("a .vti file carries its origin and spacing: remove them from the scene".into());
             }
-            karst_geodata::vti::parse(bytes, self.array.as_deref())
+            karst_geodata::vti::parse(bytes, self.array.as_deref()).map_err(|e| e.to_string())
         } else if lower.ends_with(".npy") {
             let (Some(first_centre), Some(spacing)) = (self.origin, self.spacing) else {
                 return Err("a .npy array needs `origin` and `spacing` in the scene".into());
