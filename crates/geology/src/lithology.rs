@@ -148,7 +148,7 @@ impl Lithology {
             if self.array.is_some() {
                 return Err("`array` names a .vti file's array; a .npy file holds one".into());
             }
-            let (size, codes) = karst_geodata::npy::parse(bytes)?;
+            let (size, codes) = karst_geodata::npy::parse(bytes).map_err(|e| e.to_string())?;
             Ok(Voxels { lattice: Lattice { first_centre, spacing, size }, codes })
         } else {
             Err("is neither a VTK ImageData (.vti) nor a NumPy (.npy) file".into())

@@ -189,7 +189,7 @@ impl Loader<'_> {
     fn check_crs(&mut self, declared: Option<&str>) {
         let declared = match declared.map(Epsg::parse) {
             Some(Ok(code)) => Some(code),
-            Some(Err(message)) => return self.report("crs", message),
+            Some(Err(message)) => return self.report("crs", message.to_string()),
             None => None,
         };
         let files = std::mem::take(&mut self.crs);
