@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 use karst_geodata::voxels::{Lattice, Voxels};
 
 use crate::field::Layer;
+use crate::file_error::FileError;
 use crate::{Domain, Point};
 
 /// `[geology.lithology]`.
@@ -116,21 +117,20 @@ impl Lithology {
     }
 
     /// Reads the grid (relative to `folder`) and maps its codes over `domain`.
-    pub fn load(&self, folder: &Path, domain: &Domain) -> Result<LithologyGrid, String> {
+    pub fn load(&self, folder: &Path, domain: &Domain) -> Result<LithologyGrid, FileError> {
         let path = folder.join(&self.file);
-        let file = path.display().to_string();
-        let size = std::fs::metadata(&path).map_err(|e| format!("cannot read {file}: {e}"))?.len();
+        let file = path.display();
+        let size = std::fs::metadata(&path).map_err(|e| FileError::read(&file, e))?.len();
         if size > BUDGET_BYTES {
-            return Err(format!(
-                "{file}: {} MiB, more than the {} MiB lithology budget",
-                size >> 20,
-                BUDGET_BYTES >> 20
-            ));
+            let problem =
+                format!("{} MiB, more than the {} MiB lithology budget", size >> 20, BUDGET_BYTES >> 20);
+            return Err(FileError::content(&file, problem));
         }
-        let bytes = std::fs::read(&path).map_err(|e| format!("cannot read {file}: {e}"))?;
-        let voxels = self.voxels(&bytes).map_err(|e| format!("{file}: {e}"))?;
-        covers(&voxels.lattice, domain).map_err(|e| format!("{file}: {e}"))?;
-        let units = self.map_codes(&voxels, domain).map_err(|e| format!("{file}: {e}"))?;
+        let bytes = std::fs::read(&path).map_err(|e| FileError::read(&file, e))?;
+        let wrong = |problem: String| FileError::content(&file, problem);
+        let voxels = self.voxels(&bytes).map_err(wrong)?;
+        covers(&voxels.lattice, domain).map_err(wrong)?;
+        let units = self.map_codes(&voxels, domain).map_err(wrong)?;
         Ok(self.grid(voxels.lattice, units))
     }
 

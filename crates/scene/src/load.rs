@@ -167,7 +167,7 @@ impl Loader<'_> {
                 grid.content = hash_file(&path);
                 grid.values = Arc::new(values);
             }
-            Err(e) => self.report("geology.grid.file", e),
+            Err(e) => self.report("geology.grid.file", e.to_string()),
         }
     }
 
@@ -181,7 +181,7 @@ impl Loader<'_> {
                 lithology.content = hash_file(&self.folder.join(&lithology.file));
                 lithology.grid = Arc::new(grid);
             }
-            Err(e) => self.report("geology.lithology.file", e),
+            Err(e) => self.report("geology.lithology.file", e.to_string()),
         }
     }
 

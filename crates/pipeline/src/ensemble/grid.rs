@@ -35,7 +35,11 @@ impl Grid {
         let (min, max) = (scene.domain().min, scene.domain().max);
         let dims = [0, 1, 2].map(|a| ((max[a] - min[a]) / cell).ceil().max(1.0) as usize);
         if dims.iter().try_fold(1usize, |n, &d| n.checked_mul(d)).is_none_or(|n| n > MAX_CELLS) {
-            return Err(OptionError::new("--cell", cell, format!("makes a grid of {dims:?} cells; choose a larger cell")));
+            return Err(OptionError::new(
+                "--cell",
+                cell,
+                format!("makes a grid of {dims:?} cells; choose a larger cell"),
+            ));
         }
         Ok(Self { min, cell, dims })
     }

@@ -44,18 +44,18 @@ pub fn first_n(first: u64, n: usize) -> Result<Vec<u64>, OptionError> {
     let last = first.checked_add(n as u64 - 1).filter(|l| i64::try_from(*l).is_ok());
     match last {
         Some(last) => Ok((first..=last).collect()),
-        None => Err(OptionError::new("--n", n, format!("seeds from {first} on pass the largest seed {}", i64::MAX))),
+        None => Err(OptionError::new(
+            "--n",
+            n,
+            format!("seeds from {first} on pass the largest seed {}", i64::MAX),
+        )),
     }
 }
 
 fn number(text: &str, spec: &str) -> Result<u64, OptionError> {
-    text.trim()
-        .parse::<u64>()
-        .ok()
-        .filter(|v| i64::try_from(*v).is_ok())
-        .ok_or_else(|| {
-            OptionError::new("--seeds", spec, format!("\"{}\" is not a seed (0 … {})", text.trim(), i64::MAX))
-        })
+    text.trim().parse::<u64>().ok().filter(|v| i64::try_from(*v).is_ok()).ok_or_else(|| {
+        OptionError::new("--seeds", spec, format!("\"{}\" is not a seed (0 … {})", text.trim(), i64::MAX))
+    })
 }
 
 #[cfg(test)]
