@@ -196,7 +196,7 @@ mod tests {
         let run = scratch("view-ensemble-grid");
         std::fs::create_dir_all(run.join("probability")).unwrap();
         std::fs::write(run.join("probability/grid.json"), text).unwrap();
-        let message = load(&run, &skeleton).expect("a grid is there").expect_err("a bad grid");
+        let message = load(&run, &skeleton).expect("a grid is there").expect_err("a bad grid").to_string();
         std::fs::remove_dir_all(&run).unwrap();
         message
     }
