@@ -212,7 +212,7 @@ fn parse_stage(name: &str) -> Result<StageId, String> {
 fn parse_budget(megabytes: &str) -> Result<OutputBudget, String> {
     let value =
         megabytes.trim().parse::<f64>().map_err(|_| format!("\"{megabytes}\" is not a number of MB"))?;
-    OutputBudget::megabytes(value)
+    OutputBudget::megabytes(value).map_err(|e| e.to_string())
 }
 
 /// The `karstgen` process: parses the command line, runs the command, returns the exit code.

@@ -274,6 +274,7 @@ pub(crate) fn measure(mut command: Command, log: &Path) -> Result<(Usage, String
 }
 
 /// Waits for `pid` and returns how it failed (None: it exited with 0), and its resource usage.
+#[allow(unsafe_code)]
 fn reap(pid: libc::pid_t) -> std::io::Result<(Option<String>, libc::rusage)> {
     let mut status = 0;
     // SAFETY: an all-zero rusage is a valid value of this plain C struct.

@@ -106,6 +106,7 @@ fn writer_is_gone(name: &str) -> bool {
 
 /// Whether process `pid` exists (signal 0 probes without sending anything); elsewhere than
 /// Unix, assume it does, so that nothing in use is deleted.
+#[allow(unsafe_code)]
 fn process_runs(pid: u32) -> bool {
     #[cfg(unix)]
     {

@@ -54,6 +54,7 @@ pub fn serialize<T: Element, S: Serializer>(values: &[T], serializer: S) -> Resu
 
 /// The little-endian bytes of `values`: their own memory on little-endian machines.
 #[cfg(target_endian = "little")]
+#[allow(unsafe_code)]
 fn le_bytes<T: Element>(values: &[T]) -> std::borrow::Cow<'_, [u8]> {
     // SAFETY: `Element` is implemented only for u32, u64, f32 and f64: plain numbers without
     // padding whose every byte is initialised, so their memory may be read as bytes; on a
@@ -67,6 +68,7 @@ fn le_bytes<T: Element>(values: &[T]) -> std::borrow::Cow<'_, [u8]> {
 /// The memory of `values` as bytes to fill with their little-endian encoding (on
 /// little-endian machines, where that is their memory): bulk arrays are read straight into it.
 #[cfg(target_endian = "little")]
+#[allow(unsafe_code)]
 pub(crate) fn le_bytes_mut<T: Element>(values: &mut [T]) -> &mut [u8] {
     // SAFETY: as in `le_bytes`; moreover every bit pattern is a valid u32, u64, f32 or f64, so
     // any bytes written through the slice leave valid values. The slice borrows `values`
@@ -75,6 +77,7 @@ pub(crate) fn le_bytes_mut<T: Element>(values: &mut [T]) -> &mut [u8] {
 }
 
 #[cfg(not(target_endian = "little"))]
+#[allow(unsafe_code)]
 fn le_bytes<T: Element>(values: &[T]) -> std::borrow::Cow<'_, [u8]> {
     let mut out = Vec::with_capacity(values.len() * T::WIDTH);
     for &v in values {

@@ -24,7 +24,7 @@ use std::path::Path;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
-use crate::error::Error;
+use crate::error::{DecodeError, Error};
 use crate::frame::Frame;
 use crate::stages::{Encoding, StageId, stage_key};
 use crate::stream::PayloadReader;
@@ -112,7 +112,7 @@ pub trait Payload: Serialize + DeserializeOwned {
     /// counted, bounded by the header's length), for bulk payloads too large to hold twice in
     /// memory ([`crate::stream`]). None, the default, without reading anything: the payload is
     /// read whole, checked, then decoded.
-    fn read_streamed(_bytes: &mut PayloadReader) -> Option<Result<Self, String>> {
+    fn read_streamed(_bytes: &mut PayloadReader) -> Option<Result<Self, DecodeError>> {
         None
     }
 }
@@ -456,16 +456,16 @@ pub fn decode_payload<P: Payload>(path: &Path, encoding: Encoding, bytes: &[u8])
                 None => postcard_whole(bytes),
             }
         }
-        Encoding::Json => serde_json::from_slice(bytes).map_err(|e| e.to_string()),
+        Encoding::Json => serde_json::from_slice(bytes).map_err(|e| DecodeError::Format(e.to_string())),
     };
     validated(path, decoded.map_err(|e| decode_error::<P>(path, e))?)
 }
 
-fn decode_error<P: Payload>(path: &Path, detail: String) -> Error {
+fn decode_error<P: Payload>(path: &Path, detail: DecodeError) -> Error {
     Error::Decode {
         path: path.into(),
         kind: P::STAGE.row().kind.into(),
-        detail,
+        detail: detail.to_string(),
         stage: P::STAGE.name().into(),
     }
 }

@@ -61,3 +61,30 @@ impl Error {
         !matches!(self, Error::Write { .. } | Error::Encode { .. } | Error::Busy { .. })
     }
 }
+
+/// Why a payload's bytes do not decode (the detail of [`Error::Decode`]).
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum DecodeError {
+    #[error("{wanted} bytes wanted, {left} left in the payload")]
+    Short { wanted: u64, left: u64 },
+    #[error("after {at} bytes: {reason}")]
+    Io { at: u64, reason: String },
+    #[error("the payload ends after {0} bytes")]
+    Truncated(u64),
+    #[error("a varint longer than 10 bytes")]
+    LongVarint,
+    #[error("a length of {length} with {left} bytes left in the payload")]
+    Length { length: u64, left: u64 },
+    #[error("a bulk array of {width}-byte numbers has {bytes} bytes")]
+    BulkWidth { width: usize, bytes: usize },
+    /// postcard's or serde_json's reason.
+    #[error("{0}")]
+    Format(String),
+    #[error(
+        "the payload's fields end at byte {end} of its {len}: a length inside it or the header's payload_len is wrong"
+    )]
+    Leftover { end: u64, len: u64 },
+    /// A field that decodes but holds a value its type cannot (a payload's own check).
+    #[error("{field}: {problem}")]
+    Field { field: String, problem: String },
+}

@@ -81,6 +81,7 @@ mod tests {
     use super::*;
 
     #[test]
+    #[allow(unsafe_code)]
     fn devices_folders_and_oversized_files_are_refused() {
         let dir = karst_testkit::scratch("files");
         let err = read_regular(&dir, 10).unwrap_err();

@@ -30,7 +30,7 @@ pub use envelope::{
     Header, InputRef, Invalid, Payload, Provenance, check_frame, decode_payload, read_artifact, read_header,
     write_artifact, write_artifact_with,
 };
-pub use error::Error;
+pub use error::{DecodeError, Error};
 pub use frame::Frame;
 pub use lock::{OutputLock, lock_output};
 pub use stages::{Encoding, StageId, StageRow};

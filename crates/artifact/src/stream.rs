@@ -13,6 +13,7 @@
 use std::io::Read;
 
 use crate::bulk::Element;
+use crate::error::DecodeError;
 use crate::hash;
 
 /// Bytes read from the file at a time into a bulk array.
@@ -39,7 +40,7 @@ impl<'r> PayloadReader<'r> {
     }
 
     /// Reads the next `n` bytes (at most [`CHUNK`]) into the buffer and hashes them.
-    fn fill(&mut self, n: usize) -> Result<&[u8], String> {
+    fn fill(&mut self, n: usize) -> Result<&[u8], DecodeError> {
         let mut buffer = std::mem::take(&mut self.buffer);
         buffer.resize(n, 0);
         let read = self.read_into(&mut buffer);
@@ -48,10 +49,10 @@ impl<'r> PayloadReader<'r> {
     }
 
     /// Fills `out` with the next bytes of the payload and hashes them.
-    fn read_into(&mut self, out: &mut [u8]) -> Result<(), String> {
+    fn read_into(&mut self, out: &mut [u8]) -> Result<(), DecodeError> {
         let n = out.len();
         if n as u64 > self.left() {
-            return Err(format!("{n} bytes wanted, {} left in the payload", self.left()));
+            return Err(DecodeError::Short { wanted: n as u64, left: self.left() });
         }
         let mut got = 0;
         while got < n {
@@ -59,7 +60,7 @@ impl<'r> PayloadReader<'r> {
                 Ok(0) => break,
                 Ok(k) => got += k,
                 Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-                Err(e) => return Err(format!("after {} bytes: {e}", self.read + got as u64)),
+                Err(e) => return Err(DecodeError::Io { at: self.read + got as u64, reason: e.to_string() }),
             }
         }
         // What was read is hashed and counted even when it falls short, so that the envelope
@@ -67,18 +68,18 @@ impl<'r> PayloadReader<'r> {
         hash::update(&mut self.hasher, &out[..got]);
         self.read += got as u64;
         if got < n {
-            return Err(format!("the payload ends after {} bytes", self.read));
+            return Err(DecodeError::Truncated(self.read));
         }
         Ok(())
     }
 
     /// One byte.
-    pub fn byte(&mut self) -> Result<u8, String> {
+    pub fn byte(&mut self) -> Result<u8, DecodeError> {
         Ok(self.fill(1)?[0])
     }
 
     /// A postcard varint (LEB128, at most 10 bytes for 64 bits).
-    pub fn varint(&mut self) -> Result<u64, String> {
+    pub fn varint(&mut self) -> Result<u64, DecodeError> {
         let mut value = 0u64;
         for i in 0..10 {
             let b = self.byte()?;
@@ -87,22 +88,22 @@ impl<'r> PayloadReader<'r> {
                 return Ok(value);
             }
         }
-        Err("a varint longer than 10 bytes".into())
+        Err(DecodeError::LongVarint)
     }
 
     /// A length that must fit in what is left of the payload.
-    pub fn length(&mut self) -> Result<usize, String> {
+    pub fn length(&mut self) -> Result<usize, DecodeError> {
         let n = self.varint()?;
         if n > self.left() {
-            return Err(format!("a length of {n} with {} bytes left in the payload", self.left()));
+            return Err(DecodeError::Length { length: n, left: self.left() });
         }
         Ok(n as usize)
     }
 
     /// The next `n` bytes.
-    pub fn bytes(&mut self, n: usize) -> Result<Vec<u8>, String> {
+    pub fn bytes(&mut self, n: usize) -> Result<Vec<u8>, DecodeError> {
         if n as u64 > self.left() {
-            return Err(format!("{n} bytes wanted, {} left in the payload", self.left()));
+            return Err(DecodeError::Short { wanted: n as u64, left: self.left() });
         }
         let mut out = Vec::with_capacity(n);
         while out.len() < n {
@@ -113,10 +114,10 @@ impl<'r> PayloadReader<'r> {
     }
 
     /// A bulk array ([`crate::bulk::serialize`]): its byte length, then its values.
-    pub fn bulk<T: Element>(&mut self) -> Result<Vec<T>, String> {
+    pub fn bulk<T: Element>(&mut self) -> Result<Vec<T>, DecodeError> {
         let n = self.length()?;
         if !n.is_multiple_of(T::WIDTH) {
-            return Err(format!("a bulk array of {}-byte numbers has {n} bytes", T::WIDTH));
+            return Err(DecodeError::BulkWidth { width: T::WIDTH, bytes: n });
         }
         self.bulk_values(n / T::WIDTH)
     }
@@ -125,7 +126,7 @@ impl<'r> PayloadReader<'r> {
     /// the file's bytes are the values' memory, so no copy through the buffer), a chunk at a
     /// time so that each is hashed while it is in cache.
     #[cfg(target_endian = "little")]
-    fn bulk_values<T: Element>(&mut self, count: usize) -> Result<Vec<T>, String> {
+    fn bulk_values<T: Element>(&mut self, count: usize) -> Result<Vec<T>, DecodeError> {
         let mut values = vec![T::ZERO; count];
         for piece in crate::bulk::le_bytes_mut(&mut values).chunks_mut(CHUNK) {
             self.read_into(piece)?;
@@ -134,7 +135,7 @@ impl<'r> PayloadReader<'r> {
     }
 
     #[cfg(not(target_endian = "little"))]
-    fn bulk_values<T: Element>(&mut self, count: usize) -> Result<Vec<T>, String> {
+    fn bulk_values<T: Element>(&mut self, count: usize) -> Result<Vec<T>, DecodeError> {
         let mut values = Vec::with_capacity(count);
         let mut left = count * T::WIDTH;
         while left > 0 {
@@ -146,7 +147,7 @@ impl<'r> PayloadReader<'r> {
     }
 
     /// The rest of the payload, a small tail, decoded with postcard to its last byte.
-    pub fn tail<T: serde::de::DeserializeOwned>(&mut self) -> Result<T, String> {
+    pub fn tail<T: serde::de::DeserializeOwned>(&mut self) -> Result<T, DecodeError> {
         let rest = self.bytes(self.left() as usize)?;
         crate::whole::postcard_whole(&rest)
     }

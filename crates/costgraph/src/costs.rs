@@ -132,6 +132,7 @@ impl Costs {
 
     /// The costs of set `set` at `range`, the row of `node` (made first if need be).
     #[inline]
+    #[allow(unsafe_code)]
     pub(crate) fn row(&self, rows: RowsOf, node: usize, set: usize, range: std::ops::Range<usize>) -> &[f32] {
         self.ensure(rows, node);
         let cells = &self.sets[set][range];
@@ -143,6 +144,7 @@ impl Costs {
     }
 
     /// [`Costs::row`], to change them.
+    #[allow(unsafe_code)]
     pub(crate) fn row_mut(
         &mut self,
         rows: RowsOf,
@@ -270,6 +272,7 @@ impl Drop for Busy<'_> {
 }
 
 /// `n` atomics at zero, from zeroed memory: pages no row touches are never faulted in.
+#[allow(unsafe_code)]
 fn zeroed<T: Zeroable>(n: usize) -> Box<[T]> {
     let plain: Box<[T::Plain]> = vec![T::Plain::default(); n].into_boxed_slice();
     // SAFETY: T is an atomic of the same size and alignment as T::Plain, and zero is a valid
@@ -281,15 +284,18 @@ fn zeroed<T: Zeroable>(n: usize) -> Box<[T]> {
 ///
 /// # Safety
 /// `Self` and `Self::Plain` must have the same size and alignment.
+#[allow(unsafe_code)]
 unsafe trait Zeroable {
     type Plain: Default + Clone;
 }
 
 // SAFETY: the standard library documents both atomics as having their integer's layout.
+#[allow(unsafe_code)]
 unsafe impl Zeroable for AtomicU32 {
     type Plain = u32;
 }
 // SAFETY: as above.
+#[allow(unsafe_code)]
 unsafe impl Zeroable for AtomicU8 {
     type Plain = u8;
 }

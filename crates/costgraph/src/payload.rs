@@ -21,7 +21,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use karst_artifact::check::{self, ensure};
-use karst_artifact::{Invalid, Payload, PayloadReader, StageId};
+use karst_artifact::{DecodeError, Invalid, Payload, PayloadReader, StageId};
 use karst_scene::SceneView;
 
 use crate::cost::CostModel;
@@ -123,13 +123,13 @@ impl Payload for CostGraph {
 
     /// Decoded as the file is read: the arrays, most of a large graph's payload, go straight
     /// into their vectors instead of being held twice.
-    fn read_streamed(bytes: &mut PayloadReader) -> Option<Result<Self, String>> {
+    fn read_streamed(bytes: &mut PayloadReader) -> Option<Result<Self, DecodeError>> {
         Some(read_graph(bytes))
     }
 }
 
 /// The payload's fields in postcard's order (as serde derives them: the round trip is tested).
-fn read_graph(bytes: &mut PayloadReader) -> Result<CostGraph, String> {
+fn read_graph(bytes: &mut PayloadReader) -> Result<CostGraph, DecodeError> {
     let offsets = bytes.bulk()?;
     let targets = bytes.bulk()?;
     let own_rows = bytes.bulk()?;
@@ -161,9 +161,10 @@ fn read_graph(bytes: &mut PayloadReader) -> Result<CostGraph, String> {
 }
 
 /// A postcard string: its length, then its UTF-8 bytes.
-fn string(bytes: &mut PayloadReader, field: &str) -> Result<String, String> {
+fn string(bytes: &mut PayloadReader, field: &str) -> Result<String, DecodeError> {
     let n = bytes.length()?;
-    String::from_utf8(bytes.bytes(n)?).map_err(|e| format!("{field}: {e}"))
+    String::from_utf8(bytes.bytes(n)?)
+        .map_err(|e| DecodeError::Field { field: field.into(), problem: e.to_string() })
 }
 
 /// The index of the first element of `values` for which `bad` holds, scanning blocks of them
@@ -176,11 +177,14 @@ fn first_where<T: Sync>(values: &[T], bad: impl Fn(&T) -> bool + Sync) -> Option
 }
 
 /// Whether an option of cost set `s` holds a value (postcard: a byte 0 or 1).
-fn option_tag(bytes: &mut PayloadReader, s: usize) -> Result<bool, String> {
+fn option_tag(bytes: &mut PayloadReader, s: usize) -> Result<bool, DecodeError> {
     match bytes.byte()? {
         0 => Ok(false),
         1 => Ok(true),
-        tag => Err(format!("cost_sets[{s}]: an option tagged {tag}")),
+        tag => Err(DecodeError::Field {
+            field: format!("cost_sets[{s}]"),
+            problem: format!("an option tagged {tag}"),
+        }),
     }
 }
 

@@ -19,15 +19,20 @@ impl fmt::Display for Epsg {
     }
 }
 
+/// A CRS name that is not `EPSG:NNNN`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("\"{0}\" is not of the form \"EPSG:NNNN\"")]
+pub struct NotEpsg(pub String);
+
 impl Epsg {
     /// Parses `EPSG:NNNN` (any case), as a scene writes it.
-    pub fn parse(text: &str) -> Result<Epsg, String> {
+    pub fn parse(text: &str) -> Result<Epsg, NotEpsg> {
         let code = text
             .split_once(':')
             .filter(|(authority, _)| authority.trim().eq_ignore_ascii_case("epsg"))
             .and_then(|(_, code)| code.trim().parse::<u32>().ok())
             .filter(|code| *code > 0);
-        code.map(Epsg).ok_or_else(|| format!("\"{text}\" is not of the form \"EPSG:NNNN\""))
+        code.map(Epsg).ok_or_else(|| NotEpsg(text.into()))
     }
 
     /// The code of an OGC URN or a plain name as GeoJSON writes it: `urn:ogc:def:crs:EPSG::2154`,
@@ -81,7 +86,7 @@ mod tests {
     fn parses_scene_codes_and_geojson_names() {
         assert_eq!(Epsg::parse("EPSG:2154"), Ok(Epsg(2154)));
         assert_eq!(Epsg::parse("epsg: 32631"), Ok(Epsg(32631)));
-        assert!(Epsg::parse("2154").unwrap_err().contains("\"2154\" is not of the form"));
+        assert!(Epsg::parse("2154").unwrap_err().to_string().contains("\"2154\" is not of the form"));
         assert!(Epsg::parse("ESRI:102110").is_err() && Epsg::parse("EPSG:0").is_err());
         assert_eq!(Epsg::from_name("urn:ogc:def:crs:EPSG::2154"), Some(Epsg(2154)));
         assert_eq!(Epsg::from_name("urn:ogc:def:crs:EPSG:9.9.1:2056"), Some(Epsg(2056)));

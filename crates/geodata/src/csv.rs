@@ -1,8 +1,11 @@
-//! A small reader of delimited text tables (RFC 4180 CSV as spreadsheets and GIS export it):
-//! a header row, then one record per line; fields separated by `,`, `;` or tabs (whichever the
-//! header uses), optionally quoted with `"` (a doubled `""` inside quotes is one quote). A byte
-//! order mark, blank lines and lines starting with `#` are skipped. Quoted fields may not span
-//! lines (field tables never need it, and it keeps every record on its own line number).
+//! Delimited text tables (RFC 4180 CSV as spreadsheets and GIS export it), read with the `csv`
+//! crate: a header row, then one record per line; fields separated by `,`, `;` or tabs
+//! (whichever the header uses), optionally quoted with `"` (a doubled `""` inside quotes is one
+//! quote), CRLF or LF line ends. A byte order mark, blank lines and lines starting with `#` are
+//! skipped; fields are trimmed. A quoted field may not span lines (field tables never
+//! need it, and it keeps every record on its own line number, which the errors name).
+
+use csv::{ReaderBuilder, StringRecord};
 
 /// One record: its 1-based line in the file and its fields.
 #[derive(Debug, Clone, PartialEq)]
@@ -18,27 +21,35 @@ pub struct Table {
     pub records: Vec<Record>,
 }
 
+/// Why a table was refused: each names the line and, where one field is at fault, its 1-based
+/// column; the caller puts the file's name in front.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum CsvError {
+    #[error("is empty: it needs a header row")]
+    Empty,
+    #[error("{line}: has {fields} fields, the header {header}")]
+    Ragged { line: usize, fields: usize, header: usize },
+    #[error("{line}: column {column}: a quoted field is not closed on its line")]
+    OpenQuote { line: usize, column: usize },
+    #[error("{line}: {reason}")]
+    Unreadable { line: usize, reason: String },
+}
+
 impl Table {
-    /// Parses `text`; errors name the line.
-    pub fn parse(text: &str) -> Result<Table, String> {
-        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-        let mut lines = text
-            .lines()
+    /// Parses `text`; errors name the line and column.
+    pub fn parse(text: &str) -> Result<Table, CsvError> {
+        let delimiter = delimiter(text);
+        let mut rows = text
+            .split_inclusive('\n')
             .enumerate()
-            .map(|(i, l)| (i + 1, l.trim_end_matches('\r')))
-            .filter(|(_, l)| !l.trim().is_empty() && !l.starts_with('#'));
-        let (header_line, header) = lines.next().ok_or("is empty: it needs a header row")?;
-        let delimiter = [';', '\t', ','].into_iter().find(|d| header.contains(*d)).unwrap_or(',');
-        let header: Vec<String> = split(header, delimiter)
-            .map_err(|e| format!("{header_line}: {e}"))?
-            .into_iter()
-            .map(|h| h.trim().to_string())
-            .collect();
+            .filter(|(_, l)| !l.trim_start_matches('\u{feff}').trim().is_empty())
+            .filter_map(|(i, l)| Row::read(i + 1, l, delimiter).transpose());
+        let header = rows.next().ok_or(CsvError::Empty)??.fields;
         let mut records = Vec::new();
-        for (line, text) in lines {
-            let fields = split(text, delimiter).map_err(|e| format!("{line}: {e}"))?;
+        for row in rows {
+            let Row { line, fields } = row?;
             if fields.len() != header.len() {
-                return Err(format!("{line}: has {} fields, the header {}", fields.len(), header.len()));
+                return Err(CsvError::Ragged { line, fields: fields.len(), header: header.len() });
             }
             records.push(Record { line, fields });
         }
@@ -51,43 +62,43 @@ impl Table {
     }
 }
 
-/// The fields of one line.
-fn split(line: &str, delimiter: char) -> Result<Vec<String>, String> {
-    let mut fields = Vec::new();
-    let mut field = String::new();
-    let mut chars = line.chars().peekable();
-    let mut quoted = false;
-    let mut was_quoted = false;
-    while let Some(c) = chars.next() {
-        match (quoted, c) {
-            (true, '"') if chars.peek() == Some(&'"') => {
-                field.push('"');
-                chars.next();
-            }
-            (true, '"') => quoted = false,
-            (true, c) => field.push(c),
-            (false, '"') if field.trim().is_empty() && !was_quoted => {
-                field.clear();
-                quoted = true;
-                was_quoted = true;
-            }
-            (false, c) if c == delimiter => {
-                fields.push(finish(&field, was_quoted));
-                field.clear();
-                was_quoted = false;
-            }
-            (false, c) => field.push(c),
-        }
-    }
-    if quoted {
-        return Err("a quoted field is not closed".into());
-    }
-    fields.push(finish(&field, was_quoted));
-    Ok(fields)
+/// The delimiter the header row uses: `;`, else a tab, else `,`.
+fn delimiter(text: &str) -> u8 {
+    let header = text
+        .trim_start_matches('\u{feff}')
+        .lines()
+        .find(|l| !l.trim().is_empty() && !l.starts_with('#'))
+        .unwrap_or_default();
+    [b';', b'\t', b','].into_iter().find(|d| header.as_bytes().contains(d)).unwrap_or(b',')
 }
 
-fn finish(field: &str, quoted: bool) -> String {
-    if quoted { field.to_string() } else { field.trim().to_string() }
+/// One row of fields, with its line.
+struct Row {
+    line: usize,
+    fields: Vec<String>,
+}
+
+impl Row {
+    /// The fields of `text`, one line with its line end (none for a comment line). Each line is
+    /// read on its own so that records and line numbers agree, and a quote still open at the
+    /// line end shows as a field holding the line end.
+    fn read(line: usize, text: &str, delimiter: u8) -> Result<Option<Row>, CsvError> {
+        let mut reader = ReaderBuilder::new()
+            .delimiter(delimiter)
+            .has_headers(false)
+            .flexible(true)
+            .comment(Some(b'#'))
+            .from_reader(text.as_bytes());
+        let mut record = StringRecord::new();
+        let read = reader.read_record(&mut record);
+        if !read.map_err(|e| CsvError::Unreadable { line, reason: e.to_string() })? {
+            return Ok(None);
+        }
+        if let Some(at) = record.iter().position(|f| f.contains(['\n', '\r'])) {
+            return Err(CsvError::OpenQuote { line, column: at + 1 });
+        }
+        Ok(Some(Row { line, fields: record.iter().map(|f| f.trim().to_string()).collect() }))
+    }
 }
 
 #[cfg(test)]
@@ -111,8 +122,11 @@ mod tests {
 
     #[test]
     fn ragged_rows_and_open_quotes_name_their_line() {
-        assert_eq!(Table::parse("a,b\n1,2\n3\n").unwrap_err(), "3: has 1 fields, the header 2");
-        assert_eq!(Table::parse("a,b\n\"1,2\n").unwrap_err(), "2: a quoted field is not closed");
-        assert!(Table::parse("\n# only a comment\n").unwrap_err().contains("is empty"));
+        assert_eq!(Table::parse("a,b\n1,2\n3\n").unwrap_err().to_string(), "3: has 1 fields, the header 2");
+        assert_eq!(
+            Table::parse("a,b\n\"1,2\n").unwrap_err().to_string(),
+            "2: column 1: a quoted field is not closed on its line"
+        );
+        assert!(Table::parse("\n# only a comment\n").unwrap_err().to_string().contains("is empty"));
     }
 }

@@ -24,6 +24,21 @@ pub struct GeoKeys {
     pub vertical_units: Option<u16>,
 }
 
+/// A GeoKeyDirectory that cannot be read.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum GeoKeyError {
+    #[error("GeoKeyDirectory has {0} values, fewer than its 4-value header")]
+    NoHeader(usize),
+    #[error("GeoKeyDirectory version {0}, expected 1")]
+    Version(u16),
+    #[error("GeoKeyDirectory announces {announced} keys but holds {held}")]
+    Truncated { announced: u16, held: usize },
+    #[error("GeoKey {key} points at value {index} beyond the GeoKeyDirectory's {values} values")]
+    OutOfBounds { key: u16, index: u16, values: usize },
+    #[error("GeoKey {key} is stored in tag {tag}, not as a short")]
+    NotAShort { key: u16, tag: u16 },
+}
+
 /// EPSG's code of the metre (unit of measure).
 pub const METRE: u16 = 9001;
 /// The GeoKey value meaning "user-defined" (no EPSG code).
@@ -34,26 +49,29 @@ const GEO_KEY_DIRECTORY: u16 = 34735;
 impl GeoKeys {
     /// Reads the keys from the directory's shorts; a directory that ends early or names a key
     /// stored out of its bounds is an error naming the key.
-    pub fn parse(directory: &[u16]) -> Result<GeoKeys, String> {
-        let [version, _, _, count] = *directory.get(..4).and_then(|h| <&[u16; 4]>::try_from(h).ok()).ok_or(
-            format!("GeoKeyDirectory has {} values, fewer than its 4-value header", directory.len()),
-        )?;
+    pub fn parse(directory: &[u16]) -> Result<GeoKeys, GeoKeyError> {
+        let [version, _, _, count] = *directory
+            .get(..4)
+            .and_then(|h| <&[u16; 4]>::try_from(h).ok())
+            .ok_or(GeoKeyError::NoHeader(directory.len()))?;
         if version != 1 {
-            return Err(format!("GeoKeyDirectory version {version}, expected 1"));
+            return Err(GeoKeyError::Version(version));
         }
         let mut keys = GeoKeys::default();
         for k in 0..count as usize {
-            let entry = directory.get(4 + 4 * k..8 + 4 * k).ok_or(format!(
-                "GeoKeyDirectory announces {count} keys but holds {}",
-                (directory.len() - 4) / 4
-            ))?;
+            let entry = directory
+                .get(4 + 4 * k..8 + 4 * k)
+                .ok_or(GeoKeyError::Truncated { announced: count, held: (directory.len() - 4) / 4 })?;
             let (id, location, value) = (entry[0], entry[1], entry[3]);
             let short = match location {
                 0 => Some(value),
-                GEO_KEY_DIRECTORY => Some(*directory.get(value as usize).ok_or(format!(
-                    "GeoKey {id} points at value {value} beyond the GeoKeyDirectory's {} values",
-                    directory.len()
-                ))?),
+                GEO_KEY_DIRECTORY => {
+                    Some(*directory.get(value as usize).ok_or(GeoKeyError::OutOfBounds {
+                        key: id,
+                        index: value,
+                        values: directory.len(),
+                    })?)
+                }
                 _ => None,
             };
             let slot = match id {
@@ -65,7 +83,7 @@ impl GeoKeys {
                 4099 => &mut keys.vertical_units,
                 _ => continue,
             };
-            *slot = Some(short.ok_or(format!("GeoKey {id} is stored in tag {location}, not as a short"))?);
+            *slot = Some(short.ok_or(GeoKeyError::NotAShort { key: id, tag: location })?);
         }
         Ok(keys)
     }
@@ -94,10 +112,17 @@ mod tests {
 
     #[test]
     fn short_directories_are_errors() {
-        assert!(GeoKeys::parse(&[1, 1]).unwrap_err().contains("fewer than its 4-value header"));
-        assert!(GeoKeys::parse(&[1, 1, 0, 2, 1024, 0, 1, 1]).unwrap_err().contains("announces 2 keys"));
-        assert!(GeoKeys::parse(&[2, 1, 0, 0]).unwrap_err().contains("version 2"));
+        assert!(GeoKeys::parse(&[1, 1]).unwrap_err().to_string().contains("fewer than its 4-value header"));
+        assert!(
+            GeoKeys::parse(&[1, 1, 0, 2, 1024, 0, 1, 1])
+                .unwrap_err()
+                .to_string()
+                .contains("announces 2 keys")
+        );
+        assert!(GeoKeys::parse(&[2, 1, 0, 0]).unwrap_err().to_string().contains("version 2"));
         let doubles = [1, 1, 0, 1, 3072, 34736, 1, 0];
-        assert!(GeoKeys::parse(&doubles).unwrap_err().contains("GeoKey 3072 is stored in tag 34736"));
+        assert!(
+            GeoKeys::parse(&doubles).unwrap_err().to_string().contains("GeoKey 3072 is stored in tag 34736")
+        );
     }
 }

@@ -145,7 +145,7 @@ impl GeoRaster {
         let layout = layout(&mut decoder, &file)?;
         let keys = match tag_shorts(&mut decoder, Tag::GeoKeyDirectoryTag, &file)? {
             Some(directory) => GeoKeys::parse(&directory)
-                .map_err(|message| GeoTiffError::Georeferencing { file: file.clone(), message })?,
+                .map_err(|e| GeoTiffError::Georeferencing { file: file.clone(), message: e.to_string() })?,
             None => GeoKeys::default(),
         };
         let crs = crs_of(&keys, &file)?;

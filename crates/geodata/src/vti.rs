@@ -16,42 +16,88 @@
 
 use std::io::Read;
 
+use base64::Engine;
+use base64::engine::DecodePaddingMode;
+use base64::engine::general_purpose::{GeneralPurpose, GeneralPurposeConfig};
+use quick_xml::XmlVersion;
+use quick_xml::events::{BytesStart, Event};
+
 use crate::voxels::{Lattice, Voxels};
 
+/// Why a `.vti` file was refused; the caller puts the file's name in front.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum VtiError {
+    #[error("is not well-formed XML at byte {position}: {reason}")]
+    Xml { position: u64, reason: String },
+    #[error("has no <VTKFile> element: not a VTK XML file")]
+    NotVtk,
+    #[error("is a VTK {0} file, not ImageData (.vti)")]
+    NotImageData(String),
+    #[error("has no <{0}> element")]
+    MissingElement(&'static str),
+    #[error("has no {0}")]
+    MissingAttribute(&'static str),
+    #[error("{field} \"{value}\" is not {count} numbers")]
+    NotNumbers { field: &'static str, value: String, count: usize },
+    #[error("{field} \"{value}\" is neither {allowed}")]
+    Choice { field: &'static str, value: String, allowed: &'static str },
+    #[error("compressor {0} is not supported: write the file with zlib or no compression")]
+    Compressor(String),
+    #[error("is rotated (Direction {0:?}): karstgen reads axis-aligned grids")]
+    Rotated([f64; 9]),
+    #[error("Spacing {spacing:?} must be > 0 and Origin {origin:?} finite")]
+    Placement { spacing: [f64; 3], origin: [f64; 3] },
+    #[error("has {0} pieces: karstgen reads single-piece ImageData")]
+    Pieces(usize),
+    #[error("WholeExtent {extent:?} holds no {what}")]
+    EmptyExtent { extent: [i64; 6], what: &'static str },
+    #[error("<AppendedData> {0}")]
+    Appended(&'static str),
+    #[error("has no array \"{name}\" (its arrays: {arrays})")]
+    NoSuchArray { name: String, arrays: String },
+    #[error("has {count} arrays ({arrays}): name the lithology's with `array`")]
+    AmbiguousArray { count: usize, arrays: String },
+    #[error("array \"{array}\": {reason}")]
+    Array { array: String, reason: String },
+}
+
 /// Reads the array `name` (or the only array, or the `Scalars` one) of a `.vti` file's bytes.
-pub fn parse(bytes: &[u8], name: Option<&str>) -> Result<Voxels, String> {
+pub fn parse(bytes: &[u8], name: Option<&str>) -> Result<Voxels, VtiError> {
     let (xml, appended) = split_appended(bytes)?;
-    let root = element(xml, "VTKFile").ok_or("has no <VTKFile> element: not a VTK XML file")?;
-    let kind = attribute(root.attributes, "type").unwrap_or_default();
+    let tree = Node::parse(xml)?;
+    let root = tree.find("VTKFile").ok_or(VtiError::NotVtk)?;
+    let kind = root.attribute("type").unwrap_or_default();
     if kind != "ImageData" {
-        return Err(format!("is a VTK {kind} file, not ImageData (.vti)"));
+        return Err(VtiError::NotImageData(kind.to_string()));
     }
-    let encoding = Encoding::of(root.attributes)?;
-    let image = element(xml, "ImageData").ok_or("has no <ImageData> element")?;
-    let extent: [i64; 6] = numbers(image.attributes, "WholeExtent")?;
-    let origin: [f64; 3] = numbers(image.attributes, "Origin")?;
-    let spacing: [f64; 3] = numbers(image.attributes, "Spacing")?;
-    if let Ok(direction) = numbers::<f64, 9>(image.attributes, "Direction")
+    let encoding = Encoding::of(root)?;
+    let image = root.find("ImageData").ok_or(VtiError::MissingElement("ImageData"))?;
+    let extent: [i64; 6] = numbers(image, "WholeExtent")?;
+    let origin: [f64; 3] = numbers(image, "Origin")?;
+    let spacing: [f64; 3] = numbers(image, "Spacing")?;
+    if let Ok(direction) = numbers::<f64, 9>(image, "Direction")
         && direction != [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
     {
-        return Err(format!("is rotated (Direction {direction:?}): karstgen reads axis-aligned grids"));
+        return Err(VtiError::Rotated(direction));
     }
     if spacing.iter().any(|s| !(s.is_finite() && *s > 0.0)) || origin.iter().any(|o| !o.is_finite()) {
-        return Err(format!("Spacing {spacing:?} must be > 0 and Origin {origin:?} finite"));
+        return Err(VtiError::Placement { spacing, origin });
     }
-    let pieces = xml.matches("<Piece").count();
+    let pieces = tree.count("Piece");
     if pieces != 1 {
-        return Err(format!("has {pieces} pieces: karstgen reads single-piece ImageData"));
+        return Err(VtiError::Pieces(pieces));
     }
-    let (array, cells) = pick_array(xml, name)?;
+    let (array, cells) = pick_array(&tree, name)?;
     let points: Vec<usize> =
         (0..3).map(|a| (extent[2 * a + 1] - extent[2 * a] + 1).max(0) as usize).collect();
     if points.contains(&0) || (cells && points.iter().any(|n| *n < 2)) {
-        return Err(format!("WholeExtent {extent:?} holds no {}", if cells { "cell" } else { "point" }));
+        return Err(VtiError::EmptyExtent { extent, what: if cells { "cell" } else { "point" } });
     }
     let size: [usize; 3] = std::array::from_fn(|a| if cells { points[a] - 1 } else { points[a] });
     let count = size.iter().product::<usize>();
-    let codes = array.codes(appended, &encoding, count)?;
+    let codes = array
+        .codes(appended, &encoding, count)
+        .map_err(|reason| VtiError::Array { array: array.name.to_string(), reason })?;
     let shift = if cells { 0.5 } else { 0.0 };
     let first_centre = std::array::from_fn(|a| origin[a] + (extent[2 * a] as f64 + shift) * spacing[a]);
     Ok(Voxels { lattice: Lattice { first_centre, spacing, size }, codes })
@@ -60,91 +106,140 @@ pub fn parse(bytes: &[u8], name: Option<&str>) -> Result<Voxels, String> {
 /// The bytes after the `_` marker of `<AppendedData>`, and whether they are base64.
 type Appended<'a> = (&'a [u8], bool);
 
-/// The XML text before `<AppendedData`, and the bytes after its `_` marker.
-fn split_appended(bytes: &[u8]) -> Result<(&str, Option<Appended<'_>>), String> {
+/// The XML text before `<AppendedData` (raw appended data are not XML), and the bytes after its
+/// `_` marker.
+fn split_appended(bytes: &[u8]) -> Result<(&str, Option<Appended<'_>>), VtiError> {
     let marker = b"<AppendedData";
     let at = bytes.windows(marker.len()).position(|w| w == marker);
     let head = &bytes[..at.unwrap_or(bytes.len())];
-    let xml = std::str::from_utf8(head).map_err(|e| format!("is not text before its appended data: {e}"))?;
+    let xml = std::str::from_utf8(head).map_err(|e| VtiError::Xml {
+        position: e.valid_up_to() as u64,
+        reason: format!("not UTF-8 text before the appended data: {e}"),
+    })?;
     let Some(at) = at else { return Ok((xml, None)) };
     let rest = &bytes[at..];
-    let close = rest.iter().position(|b| *b == b'>').ok_or("<AppendedData is not closed")?;
-    let attributes =
-        std::str::from_utf8(&rest[..close]).map_err(|_| "<AppendedData has non-text attributes")?;
-    let base64 = match attribute(attributes, "encoding").as_deref() {
+    let close = rest.iter().position(|b| *b == b'>').ok_or(VtiError::Appended("is not closed"))?;
+    let tag =
+        std::str::from_utf8(&rest[..=close]).map_err(|_| VtiError::Appended("has non-text attributes"))?;
+    let element = Node::parse(tag)?;
+    let encoding = element.find("AppendedData").and_then(|e| e.attribute("encoding"));
+    let base64 = match encoding {
         Some("raw") => false,
         Some("base64") => true,
-        other => return Err(format!("AppendedData encoding {other:?} is neither raw nor base64")),
+        other => {
+            return Err(VtiError::Choice {
+                field: "AppendedData encoding",
+                value: other.unwrap_or_default().to_string(),
+                allowed: "raw nor base64",
+            });
+        }
     };
-    let underscore = rest[close..].iter().position(|b| *b == b'_').ok_or("AppendedData has no `_` marker")?;
+    let underscore =
+        rest[close..].iter().position(|b| *b == b'_').ok_or(VtiError::Appended("has no `_` marker"))?;
     Ok((xml, Some((&rest[close + underscore + 1..], base64))))
 }
 
-/// An element's attribute text and, unless it closes itself, its content.
-struct Element<'a> {
-    attributes: &'a str,
-    body: &'a str,
+/// One XML element: its name, attributes, text and child elements.
+#[derive(Default)]
+struct Node {
+    name: String,
+    attributes: Vec<(String, String)>,
+    text: String,
+    children: Vec<Node>,
 }
 
-/// The first `<name ...>` element in `xml`.
-fn element<'a>(xml: &'a str, name: &str) -> Option<Element<'a>> {
-    elements(xml, name).next()
-}
-
-/// Every `<name ...>` element of `xml`, in order.
-fn elements<'a>(xml: &'a str, name: &str) -> impl Iterator<Item = Element<'a>> + use<'a> {
-    let open = format!("<{name}");
-    let close = format!("</{name}>");
-    let mut rest = xml;
-    std::iter::from_fn(move || {
+impl Node {
+    /// The elements of `xml` under a nameless root. Elements still open at the end (the text
+    /// stops where the appended data start) are closed there.
+    fn parse(xml: &str) -> Result<Node, VtiError> {
+        let mut reader = quick_xml::Reader::from_str(xml);
+        let mut open = vec![Node::default()];
         loop {
-            let at = rest.find(&open)?;
-            let after = &rest[at + open.len()..];
-            if !after.starts_with(|c: char| c.is_whitespace() || c == '>' || c == '/') {
-                rest = after;
-                continue;
+            let malformed = |reason: String, reader: &quick_xml::Reader<&[u8]>| VtiError::Xml {
+                position: reader.error_position(),
+                reason,
+            };
+            let event = reader.read_event().map_err(|e| malformed(e.to_string(), &reader))?;
+            match event {
+                Event::Start(start) => open.push(Node::of(&start).map_err(|e| malformed(e, &reader))?),
+                Event::Empty(start) => {
+                    let node = Node::of(&start).map_err(|e| malformed(e, &reader))?;
+                    open.last_mut().expect("the root stays open").children.push(node);
+                }
+                Event::Text(text) => {
+                    open.last_mut().expect("the root stays open").text.push_str(&text.xml10_content())
+                }
+                Event::CData(data) => {
+                    open.last_mut().expect("the root stays open").text.push_str(&data.xml10_content())
+                }
+                Event::End(_) => close_last(&mut open),
+                Event::Eof => break,
+                _ => {}
             }
-            let end = after.find('>')?;
-            let attributes = after[..end].trim_end_matches('/');
-            let self_closing = after[..end].ends_with('/');
-            let content = &after[end + 1..];
-            let body =
-                if self_closing { "" } else { content.find(&close).map_or(content, |c| &content[..c]) };
-            rest = &content[body.len()..];
-            return Some(Element { attributes, body });
         }
-    })
+        while open.len() > 1 {
+            close_last(&mut open);
+        }
+        Ok(open.pop().expect("the root stays open"))
+    }
+
+    /// A node for an opening tag, with its attributes unescaped.
+    fn of(start: &BytesStart) -> Result<Node, String> {
+        let name = start.name().as_ref().to_string();
+        let attributes = start
+            .attributes()
+            .map(|a| {
+                let a = a.map_err(|e| e.to_string())?;
+                let value = a.normalized_value(XmlVersion::Implicit1_0).map_err(|e| e.to_string())?;
+                Ok((a.key.as_ref().to_string(), value.into_owned()))
+            })
+            .collect::<Result<_, String>>()?;
+        Ok(Node { name, attributes, ..Node::default() })
+    }
+
+    fn attribute(&self, key: &str) -> Option<&str> {
+        self.attributes.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
+    }
+
+    /// The first element named `name` below this one, depth first.
+    fn find(&self, name: &str) -> Option<&Node> {
+        self.children.iter().find_map(|c| if c.name == name { Some(c) } else { c.find(name) })
+    }
+
+    /// Every element named `name` below this one, depth first.
+    fn all<'a>(&'a self, name: &str, out: &mut Vec<&'a Node>) {
+        for c in &self.children {
+            if c.name == name {
+                out.push(c);
+            }
+            c.all(name, out);
+        }
+    }
+
+    fn count(&self, name: &str) -> usize {
+        let mut found = Vec::new();
+        self.all(name, &mut found);
+        found.len()
+    }
 }
 
-/// The value of `key="..."` (or single quotes) in an element's attribute text.
-fn attribute(attributes: &str, key: &str) -> Option<String> {
-    let mut rest = attributes;
-    while let Some(at) = rest.find(key) {
-        let before_ok = at == 0 || rest[..at].ends_with(char::is_whitespace);
-        let after = rest[at + key.len()..].trim_start();
-        if let Some(value) = after.strip_prefix('=').map(str::trim_start)
-            && before_ok
-        {
-            let quote = value.chars().next()?;
-            let value = &value[1..];
-            return value.find(quote).map(|end| value[..end].to_string());
-        }
-        rest = &rest[at + key.len()..];
+/// Closes the innermost open element into its parent.
+fn close_last(open: &mut Vec<Node>) {
+    if open.len() > 1 {
+        let node = open.pop().expect("more than the root is open");
+        open.last_mut().expect("the root stays open").children.push(node);
     }
-    None
 }
 
 fn numbers<T: std::str::FromStr + Copy + Default, const N: usize>(
-    attributes: &str,
-    key: &str,
-) -> Result<[T; N], String> {
-    let text = attribute(attributes, key).ok_or(format!("has no {key}"))?;
-    let values: Vec<T> = text
-        .split_whitespace()
-        .map(str::parse)
-        .collect::<Result<_, _>>()
-        .map_err(|_| format!("{key} \"{text}\" is not {N} numbers"))?;
-    <[T; N]>::try_from(values).map_err(|_| format!("{key} \"{text}\" is not {N} numbers"))
+    element: &Node,
+    field: &'static str,
+) -> Result<[T; N], VtiError> {
+    let text = element.attribute(field).ok_or(VtiError::MissingAttribute(field))?;
+    let wrong = || VtiError::NotNumbers { field, value: text.to_string(), count: N };
+    let values: Vec<T> =
+        text.split_whitespace().map(str::parse).collect::<Result<_, _>>().map_err(|_| wrong())?;
+    <[T; N]>::try_from(values).map_err(|_| wrong())
 }
 
 /// How binary data are laid out in this file.
@@ -156,21 +251,23 @@ struct Encoding {
 }
 
 impl Encoding {
-    fn of(root: &str) -> Result<Encoding, String> {
-        let little_endian = attribute(root, "byte_order").as_deref() != Some("BigEndian");
-        let header = match attribute(root, "header_type").as_deref() {
+    fn of(root: &Node) -> Result<Encoding, VtiError> {
+        let little_endian = root.attribute("byte_order") != Some("BigEndian");
+        let header = match root.attribute("header_type") {
             None | Some("UInt32") => 4,
             Some("UInt64") => 8,
-            Some(other) => return Err(format!("header_type \"{other}\" is neither UInt32 nor UInt64")),
+            Some(other) => {
+                return Err(VtiError::Choice {
+                    field: "header_type",
+                    value: other.to_string(),
+                    allowed: "UInt32 nor UInt64",
+                });
+            }
         };
-        let zlib = match attribute(root, "compressor").as_deref() {
+        let zlib = match root.attribute("compressor") {
             None | Some("") => false,
             Some("vtkZLibDataCompressor") => true,
-            Some(other) => {
-                return Err(format!(
-                    "compressor {other} is not supported: write the file with zlib or no compression"
-                ));
-            }
+            Some(other) => return Err(VtiError::Compressor(other.to_string())),
         };
         Ok(Encoding { little_endian, header, zlib })
     }
@@ -187,100 +284,93 @@ impl Encoding {
 
 /// One `<DataArray>`.
 struct DataArray<'a> {
-    name: String,
-    kind: String,
-    format: String,
+    name: &'a str,
+    kind: &'a str,
+    format: &'a str,
     offset: Option<usize>,
     body: &'a str,
 }
 
 /// The array to read and whether it is cell data.
-fn pick_array<'a>(xml: &'a str, name: Option<&str>) -> Result<(DataArray<'a>, bool), String> {
+fn pick_array<'a>(tree: &'a Node, name: Option<&str>) -> Result<(DataArray<'a>, bool), VtiError> {
     let mut found = Vec::new();
     for (section, cells) in [("PointData", false), ("CellData", true)] {
-        let Some(data) = element(xml, section) else { continue };
-        let scalars = attribute(data.attributes, "Scalars");
-        for a in elements(data.body, "DataArray") {
-            let components = attribute(a.attributes, "NumberOfComponents").unwrap_or("1".into());
+        let Some(data) = tree.find(section) else { continue };
+        let scalars = data.attribute("Scalars");
+        let mut arrays = Vec::new();
+        data.all("DataArray", &mut arrays);
+        for a in arrays {
+            let components = a.attribute("NumberOfComponents").unwrap_or("1");
             let array = DataArray {
-                name: attribute(a.attributes, "Name").unwrap_or_default(),
-                kind: attribute(a.attributes, "type").unwrap_or_default(),
-                format: attribute(a.attributes, "format").unwrap_or("ascii".into()),
-                offset: attribute(a.attributes, "offset").and_then(|o| o.trim().parse().ok()),
-                body: a.body,
+                name: a.attribute("Name").unwrap_or_default(),
+                kind: a.attribute("type").unwrap_or_default(),
+                format: a.attribute("format").unwrap_or("ascii"),
+                offset: a.attribute("offset").and_then(|o| o.trim().parse().ok()),
+                body: &a.text,
             };
-            let is_scalars = scalars.as_deref() == Some(array.name.as_str());
+            let is_scalars = scalars == Some(array.name);
             found.push((array, cells, components, is_scalars));
         }
     }
-    let names = found.iter().map(|(a, ..)| format!("\"{}\"", a.name)).collect::<Vec<_>>().join(", ");
+    let arrays = found.iter().map(|(a, ..)| format!("\"{}\"", a.name)).collect::<Vec<_>>().join(", ");
     let index = match name {
         Some(n) => found
             .iter()
             .position(|(a, ..)| a.name == n)
-            .ok_or(format!("has no array \"{n}\" (its arrays: {names})"))?,
+            .ok_or(VtiError::NoSuchArray { name: n.to_string(), arrays })?,
         None if found.len() == 1 => 0,
-        None => found
-            .iter()
-            .position(|f| f.3)
-            .ok_or(format!("has {} arrays ({names}): name the lithology's with `array`", found.len()))?,
+        None => {
+            found.iter().position(|f| f.3).ok_or(VtiError::AmbiguousArray { count: found.len(), arrays })?
+        }
     };
     let (array, cells, components, _) = found.swap_remove(index);
     if components.trim() != "1" {
-        return Err(format!("array \"{}\" has {components} components, not 1", array.name));
+        return Err(VtiError::Array {
+            array: array.name.to_string(),
+            reason: format!("has {components} components, not 1"),
+        });
     }
     Ok((array, cells))
 }
 
 impl DataArray<'_> {
-    /// The array's `count` values as integer codes.
+    /// The array's `count` values as integer codes; errors say what is wrong with the array.
     fn codes(
         &self,
-        appended: Option<(&[u8], bool)>,
+        appended: Option<Appended>,
         encoding: &Encoding,
         count: usize,
     ) -> Result<Vec<i32>, String> {
-        let width = match self.kind.as_str() {
+        let width = match self.kind {
             "Int8" | "UInt8" => 1,
             "Int16" | "UInt16" => 2,
             "Int32" | "UInt32" | "Float32" => 4,
             "Int64" | "UInt64" | "Float64" => 8,
-            other => {
-                return Err(format!(
-                    "array \"{}\" has type {other}: lithology codes need integers or floats",
-                    self.name
-                ));
-            }
+            other => return Err(format!("has type {other}: lithology codes need integers or floats")),
         };
-        let values: Vec<f64> = match self.format.as_str() {
+        let values: Vec<f64> = match self.format {
             "ascii" => self
                 .body
                 .split_whitespace()
                 .enumerate()
-                .map(|(i, w)| {
-                    w.parse::<f64>()
-                        .map_err(|_| format!("array \"{}\": value {i} \"{w}\" is not a number", self.name))
-                })
+                .map(|(i, w)| w.parse::<f64>().map_err(|_| format!("value {i} \"{w}\" is not a number")))
                 .collect::<Result<_, _>>()?,
             "binary" => {
                 let chars: Vec<u8> = self.body.bytes().filter(|b| !b.is_ascii_whitespace()).collect();
                 self.numbers(&block(Source::Base64(&chars), encoding)?, width, encoding)
             }
             "appended" => {
-                let (data, base64) = appended
-                    .ok_or(format!("array \"{}\" is appended but the file has no AppendedData", self.name))?;
-                let offset =
-                    self.offset.ok_or(format!("array \"{}\" is appended without an offset", self.name))?;
-                let data = data
-                    .get(offset..)
-                    .ok_or(format!("array \"{}\": offset {offset} is beyond the appended data", self.name))?;
+                let (data, base64) = appended.ok_or("is appended but the file has no AppendedData")?;
+                let offset = self.offset.ok_or("is appended without an offset")?;
+                let data =
+                    data.get(offset..).ok_or(format!("offset {offset} is beyond the appended data"))?;
                 let source = if base64 { Source::Base64(data) } else { Source::Raw(data) };
                 self.numbers(&block(source, encoding)?, width, encoding)
             }
-            other => return Err(format!("array \"{}\" has format \"{other}\"", self.name)),
+            other => return Err(format!("has format \"{other}\"")),
         };
         if values.len() != count {
-            return Err(format!("array \"{}\" has {} values, its extent {count}", self.name, values.len()));
+            return Err(format!("has {} values, its extent {count}", values.len()));
         }
         values
             .iter()
@@ -289,7 +379,7 @@ impl DataArray<'_> {
                 if v.fract() == 0.0 && *v >= i32::MIN as f64 && *v <= i32::MAX as f64 {
                     Ok(*v as i32)
                 } else {
-                    Err(format!("array \"{}\": value {i} = {v} is not an integer code", self.name))
+                    Err(format!("value {i} = {v} is not an integer code"))
                 }
             })
             .collect()
@@ -305,7 +395,7 @@ impl DataArray<'_> {
                 if !encoding.little_endian {
                     b[..width].reverse();
                 }
-                match self.kind.as_str() {
+                match self.kind {
                     "Int8" => b[0] as i8 as f64,
                     "UInt8" => b[0] as f64,
                     "Int16" => i16::from_le_bytes([b[0], b[1]]) as f64,
@@ -322,6 +412,20 @@ impl DataArray<'_> {
     }
 }
 
+/// Standard base64 as VTK writes it: `=` padding where a group ends early (also inside the
+/// data, where the header was encoded apart), trailing bits tolerated.
+const BASE64: GeneralPurpose = GeneralPurpose::new(
+    &base64::alphabet::STANDARD,
+    GeneralPurposeConfig::new()
+        .with_decode_padding_mode(DecodePaddingMode::Indifferent)
+        .with_decode_allow_trailing_bits(true),
+);
+
+/// Decodes base64 characters (without whitespace).
+fn decode_base64(chars: &[u8]) -> Result<Vec<u8>, String> {
+    BASE64.decode(chars).map_err(|e| format!("bad base64 data: {e}"))
+}
+
 /// Where a binary block's bytes come from.
 enum Source<'a> {
     Raw(&'a [u8]),
@@ -335,7 +439,8 @@ impl Source<'_> {
         match self {
             Source::Raw(b) => b.get(..n).map(<[u8]>::to_vec).ok_or("the binary data end early".into()),
             Source::Base64(chars) => {
-                let bytes = base64(chars.get(..4 * n.div_ceil(3)).ok_or("the base64 data end early")?)?;
+                let bytes =
+                    decode_base64(chars.get(..4 * n.div_ceil(3)).ok_or("the base64 data end early")?)?;
                 bytes.get(..n).map(<[u8]>::to_vec).ok_or("the base64 data end early".into())
             }
         }
@@ -390,50 +495,12 @@ fn block(source: Source, e: &Encoding) -> Result<Vec<u8>, String> {
     Ok(out)
 }
 
-/// Decodes standard base64 (`=` padding).
-fn base64(chars: &[u8]) -> Result<Vec<u8>, String> {
-    let value = |c: u8| match c {
-        b'A'..=b'Z' => Some(c - b'A'),
-        b'a'..=b'z' => Some(c - b'a' + 26),
-        b'0'..=b'9' => Some(c - b'0' + 52),
-        b'+' => Some(62),
-        b'/' => Some(63),
-        _ => None,
-    };
-    let mut out = Vec::with_capacity(chars.len() / 4 * 3);
-    for group in chars.chunks(4) {
-        let data: Vec<u8> = group
-            .iter()
-            .take_while(|c| **c != b'=')
-            .map(|c| value(*c).ok_or(format!("'{}' is not base64", *c as char)))
-            .collect::<Result<_, _>>()?;
-        let bits = data.iter().fold(0u32, |acc, v| (acc << 6) | *v as u32) << (6 * (4 - data.len()));
-        let bytes = bits.to_be_bytes();
-        out.extend_from_slice(&bytes[1..data.len().max(1)]);
-    }
-    Ok(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn b64(bytes: &[u8]) -> String {
-        const ALPHABET: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-        let mut out = String::new();
-        for chunk in bytes.chunks(3) {
-            let mut b = [0u8; 3];
-            b[..chunk.len()].copy_from_slice(chunk);
-            let n = u32::from_be_bytes([0, b[0], b[1], b[2]]);
-            for k in 0..4 {
-                out.push(if k <= chunk.len() {
-                    ALPHABET[(n >> (18 - 6 * k) & 63) as usize] as char
-                } else {
-                    '='
-                });
-            }
-        }
-        out
+        base64::engine::general_purpose::STANDARD.encode(bytes)
     }
 
     fn file(data_array: &str, appended: &str, root: &str) -> String {
@@ -448,14 +515,6 @@ mod tests {
   </ImageData>{appended}
 </VTKFile>"#
         )
-    }
-
-    #[test]
-    fn base64_round_trips() {
-        for n in 0..10 {
-            let bytes: Vec<u8> = (0..n).map(|i| (i * 37 + 5) as u8).collect();
-            assert_eq!(base64(b64(&bytes).as_bytes()).unwrap(), bytes);
-        }
     }
 
     #[test]
@@ -518,28 +577,58 @@ mod tests {
                 "",
             )
         };
-        assert!(parse(ascii("1 2 3").as_bytes(), None).unwrap_err().contains("has 3 values, its extent 6"));
+        assert!(
+            parse(ascii("1 2 3").as_bytes(), None)
+                .unwrap_err()
+                .to_string()
+                .contains("has 3 values, its extent 6")
+        );
         assert!(
             parse(ascii("1 2 3 4 5 6.5").as_bytes(), None)
                 .unwrap_err()
+                .to_string()
                 .contains("value 5 = 6.5 is not an integer code")
         );
         assert!(
             parse(ascii("1 2 3 4 5 6").as_bytes(), Some("rock"))
                 .unwrap_err()
+                .to_string()
                 .contains("has no array \"rock\" (its arrays: \"lith\")")
         );
         let poly = ascii("1 2 3 4 5 6").replace("type=\"ImageData\"", "type=\"PolyData\"");
-        assert!(parse(poly.as_bytes(), None).unwrap_err().contains("is a VTK PolyData file, not ImageData"));
+        assert!(
+            parse(poly.as_bytes(), None)
+                .unwrap_err()
+                .to_string()
+                .contains("is a VTK PolyData file, not ImageData")
+        );
         let rotated = ascii("1 2 3 4 5 6")
             .replace("Spacing=\"10 20 5\"", "Spacing=\"10 20 5\" Direction=\"0 1 0 -1 0 0 0 0 1\"");
-        assert!(parse(rotated.as_bytes(), None).unwrap_err().contains("is rotated"));
+        assert!(parse(rotated.as_bytes(), None).unwrap_err().to_string().contains("is rotated"));
         let lz4 = file("", "", r#"compressor="vtkLZ4DataCompressor""#);
         assert!(
             parse(lz4.as_bytes(), None)
                 .unwrap_err()
+                .to_string()
                 .contains("compressor vtkLZ4DataCompressor is not supported")
         );
-        assert!(parse(b"not xml", None).unwrap_err().contains("not a VTK XML file"));
+        assert!(parse(b"not xml", None).unwrap_err().to_string().contains("not a VTK XML file"));
+    }
+
+    #[test]
+    fn malformed_xml_and_bad_base64_are_named() {
+        let ascii = r#"<DataArray type="Int32" Name="lith" format="ascii">1 2 3 4 5 6</DataArray>"#;
+        let mismatched = file(ascii, "", "").replace("</PointData>", "</CellData>");
+        let error = parse(mismatched.as_bytes(), None).unwrap_err();
+        assert!(matches!(error, VtiError::Xml { .. }), "{error}");
+        assert!(error.to_string().contains("is not well-formed XML at byte"), "{error}");
+        let unquoted = file(ascii, "", "").replace("Name=\"lith\"", "Name=lith");
+        assert!(matches!(parse(unquoted.as_bytes(), None).unwrap_err(), VtiError::Xml { .. }));
+
+        let data: Vec<u8> = [1i16, 2, 3, 4, 5, 6].iter().flat_map(|v| v.to_le_bytes()).collect();
+        let body = format!("{}{}", b64(&(data.len() as u32).to_le_bytes()), b64(&data)).replace('C', "*");
+        let array = format!(r#"<DataArray type="Int16" Name="lith" format="binary">{body}</DataArray>"#);
+        let error = parse(file(&array, "", "").as_bytes(), None).unwrap_err().to_string();
+        assert!(error.starts_with("array \"lith\": bad base64 data: Invalid symbol 42"), "{error}");
     }
 }

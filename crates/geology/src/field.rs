@@ -19,6 +19,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::file_error::FileError;
 use crate::{Point, Surface};
 
 /// A stratum's bound: an elevation or a named surface (horizon, fault or water table).
@@ -243,20 +244,21 @@ fn node_value(nodes: &[FieldNode], i: usize, p: Point, surfaces: &impl Surfaces)
 impl ValueGrid {
     /// Reads the text format: `origin x y z`, `cell dx dy dz`, `size nx ny nz`, then
     /// nx·ny·nz values, x fastest, then y, then z; `#` starts a comment.
-    pub fn read(path: &Path) -> Result<ValueGrid, String> {
-        let text = karst_artifact::files::read_regular_text(path, karst_artifact::files::MAX_DATA_BYTES)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    pub fn read(path: &Path) -> Result<ValueGrid, FileError> {
         let file = path.display();
+        let text = karst_artifact::files::read_regular_text(path, karst_artifact::files::MAX_DATA_BYTES)
+            .map_err(|e| FileError::read(&file, e))?;
+        let wrong = |problem: String| FileError::content(&file, problem);
         let mut words = text.lines().flat_map(|l| l.split('#').next().unwrap_or("").split_whitespace());
-        let mut header = |key: &str| -> Result<[f64; 3], String> {
+        let mut header = |key: &str| -> Result<[f64; 3], FileError> {
             match words.next() {
                 Some(w) if w == key => {}
-                other => return Err(format!("{file}: expected \"{key}\", found {other:?}")),
+                other => return Err(wrong(format!("expected \"{key}\", found {other:?}"))),
             }
             let mut v = [0.0; 3];
             for x in &mut v {
-                let w = words.next().ok_or_else(|| format!("{file}: {key} needs 3 numbers"))?;
-                *x = w.parse().map_err(|_| format!("{file}: {key}: \"{w}\" is not a number"))?;
+                let w = words.next().ok_or_else(|| wrong(format!("{key} needs 3 numbers")))?;
+                *x = w.parse().map_err(|_| wrong(format!("{key}: \"{w}\" is not a number")))?;
             }
             Ok(v)
         };
@@ -264,24 +266,24 @@ impl ValueGrid {
         let cell = header("cell")?;
         let size = header("size")?;
         if origin.iter().chain(&cell).any(|v| !v.is_finite()) || cell.iter().any(|c| *c <= 0.0) {
-            return Err(format!(
-                "{file}: origin must be finite and cell sizes > 0, got {origin:?} and {cell:?}"
-            ));
+            return Err(wrong(format!(
+                "origin must be finite and cell sizes > 0, got {origin:?} and {cell:?}"
+            )));
         }
         if size.iter().any(|n| *n < 1.0 || n.fract() != 0.0) {
-            return Err(format!("{file}: size must be three integers ≥ 1, got {size:?}"));
+            return Err(wrong(format!("size must be three integers ≥ 1, got {size:?}")));
         }
         let size = size.map(|n| n as usize);
         let values: Vec<f64> = words
             .enumerate()
             .map(|(i, w)| match w.parse::<f64>() {
                 Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
-                _ => Err(format!("{file}: value {i} = \"{w}\" is not a number in [0, 1]")),
+                _ => Err(wrong(format!("value {i} = \"{w}\" is not a number in [0, 1]"))),
             })
             .collect::<Result<_, _>>()?;
         let expected = size.iter().try_fold(1usize, |n, &s| n.checked_mul(s));
         if expected != Some(values.len()) {
-            return Err(format!("{file}: size {size:?} does not match the {} values found", values.len()));
+            return Err(wrong(format!("size {size:?} does not match the {} values found", values.len())));
         }
         Ok(ValueGrid { origin, cell, size, values })
     }

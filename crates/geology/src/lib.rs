@@ -13,6 +13,7 @@
 
 pub mod domain;
 pub mod field;
+pub mod file_error;
 pub mod fracture;
 pub mod grids;
 pub mod heightfield;

@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 use karst_geodata::voxels::{Lattice, Voxels};
 
 use crate::field::Layer;
+use crate::file_error::FileError;
 use crate::{Domain, Point};
 
 /// `[geology.lithology]`.
@@ -116,21 +117,20 @@ impl Lithology {
     }
 
     /// Reads the grid (relative to `folder`) and maps its codes over `domain`.
-    pub fn load(&self, folder: &Path, domain: &Domain) -> Result<LithologyGrid, String> {
+    pub fn load(&self, folder: &Path, domain: &Domain) -> Result<LithologyGrid, FileError> {
         let path = folder.join(&self.file);
-        let file = path.display().to_string();
-        let size = std::fs::metadata(&path).map_err(|e| format!("cannot read {file}: {e}"))?.len();
+        let file = path.display();
+        let size = std::fs::metadata(&path).map_err(|e| FileError::read(&file, e))?.len();
         if size > BUDGET_BYTES {
-            return Err(format!(
-                "{file}: {} MiB, more than the {} MiB lithology budget",
-                size >> 20,
-                BUDGET_BYTES >> 20
-            ));
+            let problem =
+                format!("{} MiB, more than the {} MiB lithology budget", size >> 20, BUDGET_BYTES >> 20);
+            return Err(FileError::content(&file, problem));
         }
-        let bytes = std::fs::read(&path).map_err(|e| format!("cannot read {file}: {e}"))?;
-        let voxels = self.voxels(&bytes).map_err(|e| format!("{file}: {e}"))?;
-        covers(&voxels.lattice, domain).map_err(|e| format!("{file}: {e}"))?;
-        let units = self.map_codes(&voxels, domain).map_err(|e| format!("{file}: {e}"))?;
+        let bytes = std::fs::read(&path).map_err(|e| FileError::read(&file, e))?;
+        let wrong = |problem: String| FileError::content(&file, problem);
+        let voxels = self.voxels(&bytes).map_err(wrong)?;
+        covers(&voxels.lattice, domain).map_err(wrong)?;
+        let units = self.map_codes(&voxels, domain).map_err(wrong)?;
         Ok(self.grid(voxels.lattice, units))
     }
 
@@ -140,7 +140,7 @@ impl Lithology {
             if self.origin.is_some() || self.spacing.is_some() {
                 return Err("a .vti file carries its origin and spacing: remove them from the scene".into());
             }
-            karst_geodata::vti::parse(bytes, self.array.as_deref())
+            karst_geodata::vti::parse(bytes, self.array.as_deref()).map_err(|e| e.to_string())
         } else if lower.ends_with(".npy") {
             let (Some(first_centre), Some(spacing)) = (self.origin, self.spacing) else {
                 return Err("a .npy array needs `origin` and `spacing` in the scene".into());
@@ -148,7 +148,7 @@ impl Lithology {
             if self.array.is_some() {
                 return Err("`array` names a .vti file's array; a .npy file holds one".into());
             }
-            let (size, codes) = karst_geodata::npy::parse(bytes)?;
+            let (size, codes) = karst_geodata::npy::parse(bytes).map_err(|e| e.to_string())?;
             Ok(Voxels { lattice: Lattice { first_centre, spacing, size }, codes })
         } else {
             Err("is neither a VTK ImageData (.vti) nor a NumPy (.npy) file".into())

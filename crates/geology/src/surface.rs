@@ -101,10 +101,21 @@ struct SurfaceEntry {
     content: Option<String>,
 }
 
-impl TryFrom<SurfaceEntry> for Surface {
-    type Error = String;
+/// A `[[geology.surfaces]]` entry that is neither a plane nor a TIN file; names the surface.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SurfaceError {
+    #[error("surface \"{0}\" is read from a file: origin, dip and dip_direction belong to planes")]
+    PlaneFieldsOnFile(String),
+    #[error("surface \"{0}\" has both an elevation (plane) and a file (TIN)")]
+    PlaneAndFile(String),
+    #[error("surface \"{0}\" needs an elevation (plane) or a file (TIN)")]
+    NoGeometry(String),
+}
 
-    fn try_from(e: SurfaceEntry) -> Result<Self, String> {
+impl TryFrom<SurfaceEntry> for Surface {
+    type Error = SurfaceError;
+
+    fn try_from(e: SurfaceEntry) -> Result<Self, SurfaceError> {
         let geometry = match (e.elevation, e.file) {
             (Some(elevation), None) => {
                 let (dip, dip_direction) = (e.dip.unwrap_or_default(), e.dip_direction.unwrap_or_default());
@@ -118,18 +129,15 @@ impl TryFrom<SurfaceEntry> for Surface {
             }
             (None, Some(file)) => {
                 if e.origin.is_some() || e.dip.is_some() || e.dip_direction.is_some() {
-                    return Err(format!(
-                        "surface \"{}\" is read from a file: origin, dip and dip_direction belong to planes",
-                        e.name
-                    ));
+                    return Err(SurfaceError::PlaneFieldsOnFile(e.name));
                 }
                 Geometry::Tin { file, content: String::new(), mesh: Arc::default() }
             }
             (Some(_), Some(_)) => {
-                return Err(format!("surface \"{}\" has both an elevation (plane) and a file (TIN)", e.name));
+                return Err(SurfaceError::PlaneAndFile(e.name));
             }
             (None, None) => {
-                return Err(format!("surface \"{}\" needs an elevation (plane) or a file (TIN)", e.name));
+                return Err(SurfaceError::NoGeometry(e.name));
             }
         };
         Ok(Surface { name: e.name, geometry })

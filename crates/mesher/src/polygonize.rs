@@ -758,7 +758,7 @@ fn brick<V: Volume>(
         slots: positions_by_slot.iter().map(|&(s, _)| s).collect(),
         positions: positions_by_slot.iter().map(|&(_, p)| p).collect(),
         // Exactly sized: the parts of two slabs are alive together.
-        triangles: triangles.to_vec(),
+        triangles: triangles.clone(),
         neighbours: ctx.up[b],
         base: 0,
         evaluations,

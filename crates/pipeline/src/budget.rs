@@ -20,6 +20,8 @@ use karst_skeleton::Skeleton;
 use karst_stage::{Job, StageError};
 use karst_streams::Streams;
 
+use crate::options::OptionError;
+
 /// The default budget of the meshes and the exports, MB (MiB).
 pub const DEFAULT_MESH_MB: f64 = 300.0;
 
@@ -38,9 +40,9 @@ impl Default for OutputBudget {
 
 impl OutputBudget {
     /// A budget of `megabytes` MB (MiB) for the meshes; refused unless finite and > 0.
-    pub fn megabytes(megabytes: f64) -> Result<OutputBudget, String> {
+    pub fn megabytes(megabytes: f64) -> Result<OutputBudget, OptionError> {
         if !(megabytes.is_finite() && megabytes > 0.0) {
-            return Err(format!("--budget {megabytes}: a budget is a number of MB above 0"));
+            return Err(OptionError::new("--budget", megabytes, "a budget is a number of MB above 0"));
         }
         Ok(OutputBudget { mesh_bytes: megabytes * MB })
     }

@@ -17,6 +17,7 @@ pub mod calibrate;
 pub mod diff;
 pub mod ensemble;
 pub mod make;
+pub mod options;
 pub mod registry;
 pub mod scene;
 pub mod verdict;

@@ -32,16 +32,26 @@ impl fmt::Display for Budget {
     }
 }
 
+/// A memory size that cannot be read (`--max-memory`).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SizeError {
+    #[error("\"{0}\" is not a size such as 16G or 512M")]
+    NotASize(String),
+    #[error("\"{0}\": unknown unit (use K, M, G or T)")]
+    Unit(String),
+    #[error("\"{0}\" is not a usable memory size")]
+    Unusable(String),
+}
+
 impl std::str::FromStr for Budget {
-    type Err = String;
+    type Err = SizeError;
 
     /// `16G`, `512M`, `1.5GiB`, `2 GB` or plain bytes; K, M, G, T are powers of 1024.
-    fn from_str(text: &str) -> Result<Budget, String> {
+    fn from_str(text: &str) -> Result<Budget, SizeError> {
         let t = text.trim();
         let split = t.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(t.len());
         let (number, unit) = t.split_at(split);
-        let value: f64 =
-            number.parse().map_err(|_| format!("\"{text}\" is not a size such as 16G or 512M"))?;
+        let value: f64 = number.parse().map_err(|_| SizeError::NotASize(text.into()))?;
         let unit = unit.trim().trim_end_matches("iB").trim_end_matches('B').to_ascii_uppercase();
         let scale = match unit.as_str() {
             "" => 1.0,
@@ -49,11 +59,11 @@ impl std::str::FromStr for Budget {
             "M" => 1024f64.powi(2),
             "G" => 1024f64.powi(3),
             "T" => 1024f64.powi(4),
-            _ => return Err(format!("\"{text}\": unknown unit (use K, M, G or T)")),
+            _ => return Err(SizeError::Unit(text.into())),
         };
         let bytes = value * scale;
         if !(bytes >= 1.0 && bytes < 2f64.powi(63)) {
-            return Err(format!("\"{text}\" is not a usable memory size"));
+            return Err(SizeError::Unusable(text.into()));
         }
         Ok(Budget { bytes: bytes as u64 })
     }

@@ -167,7 +167,7 @@ impl Loader<'_> {
                 grid.content = hash_file(&path);
                 grid.values = Arc::new(values);
             }
-            Err(e) => self.report("geology.grid.file", e),
+            Err(e) => self.report("geology.grid.file", e.to_string()),
         }
     }
 
@@ -181,7 +181,7 @@ impl Loader<'_> {
                 lithology.content = hash_file(&self.folder.join(&lithology.file));
                 lithology.grid = Arc::new(grid);
             }
-            Err(e) => self.report("geology.lithology.file", e),
+            Err(e) => self.report("geology.lithology.file", e.to_string()),
         }
     }
 
@@ -189,7 +189,7 @@ impl Loader<'_> {
     fn check_crs(&mut self, declared: Option<&str>) {
         let declared = match declared.map(Epsg::parse) {
             Some(Ok(code)) => Some(code),
-            Some(Err(message)) => return self.report("crs", message),
+            Some(Err(message)) => return self.report("crs", message.to_string()),
             None => None,
         };
         let files = std::mem::take(&mut self.crs);

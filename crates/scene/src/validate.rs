@@ -857,7 +857,7 @@ kind = "box"
 min = [0, 0, 0]
 max = [5, 100, 50]
 "#;
-        let text = format!("{}\n[[geology.horizons]]\nname = \"bed\"\nelevation = 20\n{model}", GOOD);
+        let text = format!("{GOOD}\n[[geology.horizons]]\nname = \"bed\"\nelevation = 20\n{model}");
         let scene = Scene::parse(&text, Path::new("s.toml")).unwrap();
         let g = &scene.geology;
         assert_eq!(g.potential(karst_geology::Point::new(50.0, 50.0, 30.0)), 1.0);

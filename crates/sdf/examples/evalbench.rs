@@ -37,7 +37,7 @@ fn main() {
         if only.is_some_and(|o| o != name) {
             continue;
         }
-        for &p in pts.iter() {
+        for &p in pts {
             hash = (hash ^ field.eval(p).to_bits()).wrapping_mul(0x100000001b3);
         }
         let mut t: Vec<f64> = (0..runs)

@@ -82,6 +82,7 @@ pub fn print_json<P: Payload>(path: &Path) -> Result<(), StageError> {
 /// head`), as command-line tools do, instead of panicking in `println!` on a broken pipe:
 /// Rust ignores SIGPIPE by default, so a write to a closed pipe is an error that `println!`
 /// turns into a panic. Call it first in `main`.
+#[allow(unsafe_code)]
 pub fn default_sigpipe() {
     #[cfg(unix)]
     // SAFETY: restoring a signal's default disposition at start-up, before any thread exists.

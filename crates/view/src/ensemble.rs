@@ -7,7 +7,7 @@
 //! quarter cell as the ensemble itself marks a conduit's cells; so when the ensemble's seeds
 //! include the scene's own (the default `--n` does), each segment of the run gets at least 1/n.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
@@ -38,9 +38,24 @@ pub const MAX_CELLS: usize = 1 << 28;
 /// colouring, bounded whatever `cell` says.
 pub const MAX_PROBES: f64 = 1e8;
 
+/// A file of the ensemble folder that cannot be used, and why (a field of grid.json and its value
+/// where one is wrong).
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {problem}", file.display())]
+pub struct EnsembleError {
+    pub file: PathBuf,
+    pub problem: String,
+}
+
+impl EnsembleError {
+    fn new(file: &Path, problem: impl std::fmt::Display) -> Self {
+        EnsembleError { file: file.to_path_buf(), problem: problem.to_string() }
+    }
+}
+
 /// The ensemble colouring of `skeleton` from `run_dir/probability/`, None when the folder has no
 /// ensemble, an error message when it has a broken one.
-pub fn load(run_dir: &Path, skeleton: &Skeleton) -> Option<Result<EnsembleView, String>> {
+pub fn load(run_dir: &Path, skeleton: &Skeleton) -> Option<Result<EnsembleView, EnsembleError>> {
     let folder = run_dir.join("probability");
     let placement = folder.join("grid.json");
     if !placement.is_file() {
@@ -67,39 +82,38 @@ pub fn load(run_dir: &Path, skeleton: &Skeleton) -> Option<Result<EnsembleView, 
 /// The placement and every cell's probability (x fastest, then y, then z), once the placement
 /// is checked: a finite corner, a cell > 0 fine enough for at most [`MAX_PROBES`] probes along
 /// `skeleton`, at most [`MAX_CELLS`] cells, at least one realization.
-fn read_grid(folder: &Path, skeleton: &Skeleton) -> Result<(Placement, Vec<f32>), String> {
+fn read_grid(folder: &Path, skeleton: &Skeleton) -> Result<(Placement, Vec<f32>), EnsembleError> {
     let path = folder.join("grid.json");
     let text = karst_artifact::files::read_regular_text(&path, karst_artifact::files::MAX_SCENE_BYTES)
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    let p: Placement = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    check_placement(&p, skeleton).map_err(|problem| format!("{}: {problem}", path.display()))?;
+        .map_err(|e| EnsembleError::new(&path, e))?;
+    let p: Placement = serde_json::from_str(&text).map_err(|e| EnsembleError::new(&path, e))?;
+    check_placement(&p, skeleton).map_err(|problem| EnsembleError::new(&path, problem))?;
     let [nx, ny, nz] = p.dims;
     let mut values = Vec::with_capacity(nx * ny * nz);
     for z in 0..nz {
         let slice = folder.join(format!("z-{z:03}.exr"));
         karst_artifact::files::open_regular(&slice, karst_artifact::files::MAX_DATA_BYTES)
-            .map_err(|e| format!("{}: {e}", slice.display()))?;
+            .map_err(|e| EnsembleError::new(&slice, e))?;
         let image = exr::prelude::read_first_flat_layer_from_file(&slice)
-            .map_err(|e| format!("{}: {e}", slice.display()))?;
+            .map_err(|e| EnsembleError::new(&slice, e))?;
         let layer = &image.layer_data;
         let channel = layer
             .channel_data
             .list
             .iter()
             .find(|c| c.name.to_string() == "P")
-            .ok_or_else(|| format!("{}: no channel P", slice.display()))?;
+            .ok_or_else(|| EnsembleError::new(&slice, "no channel P"))?;
         if (layer.size.width(), layer.size.height()) != (nx, ny) {
-            return Err(format!(
-                "{}: {}×{} pixels, grid.json says {nx}×{ny}",
-                slice.display(),
-                layer.size.width(),
-                layer.size.height()
+            let (width, height) = (layer.size.width(), layer.size.height());
+            return Err(EnsembleError::new(
+                &slice,
+                format!("{width}×{height} pixels, grid.json says {nx}×{ny}"),
             ));
         }
         values.extend(channel.sample_data.values_as_f32());
     }
     if values.len() != nx * ny * nz {
-        return Err(format!("{}: {} values for {nx}×{ny}×{nz} cells", folder.display(), values.len()));
+        return Err(EnsembleError::new(folder, format!("{} values for {nx}×{ny}×{nz} cells", values.len())));
     }
     Ok((p, values))
 }
@@ -182,7 +196,7 @@ mod tests {
         let run = scratch("view-ensemble-grid");
         std::fs::create_dir_all(run.join("probability")).unwrap();
         std::fs::write(run.join("probability/grid.json"), text).unwrap();
-        let message = load(&run, &skeleton).expect("a grid is there").expect_err("a bad grid");
+        let message = load(&run, &skeleton).expect("a grid is there").expect_err("a bad grid").to_string();
         std::fs::remove_dir_all(&run).unwrap();
         message
     }

@@ -10,6 +10,8 @@ use serde::{Deserialize, Serialize};
 use karst_scene::Scene;
 use karst_skeleton::Skeleton;
 
+use crate::options::OptionError;
+
 /// Grids larger than this are refused (a `u32` count per cell).
 const MAX_CELLS: usize = 50_000_000;
 
@@ -26,14 +28,18 @@ pub struct Grid {
 
 impl Grid {
     /// The grid of `cell`-metre cells covering the scene's domain.
-    pub fn new(scene: &Scene, cell: f64) -> Result<Self, String> {
+    pub fn new(scene: &Scene, cell: f64) -> Result<Self, OptionError> {
         if !(cell.is_finite() && cell > 0.0) {
-            return Err(format!("--cell must be a length > 0 m (got {cell})"));
+            return Err(OptionError::new("--cell", cell, "must be a length > 0 m"));
         }
         let (min, max) = (scene.domain().min, scene.domain().max);
         let dims = [0, 1, 2].map(|a| ((max[a] - min[a]) / cell).ceil().max(1.0) as usize);
         if dims.iter().try_fold(1usize, |n, &d| n.checked_mul(d)).is_none_or(|n| n > MAX_CELLS) {
-            return Err(format!("--cell {cell} m makes a grid of {dims:?} cells; choose a larger cell"));
+            return Err(OptionError::new(
+                "--cell",
+                cell,
+                format!("makes a grid of {dims:?} cells; choose a larger cell"),
+            ));
         }
         Ok(Self { min, cell, dims })
     }

@@ -17,6 +17,7 @@ use karst_stage::{Handoff, Job, StageError};
 
 use super::Plan;
 use super::record::{Figures, Outcome, Record, SpringDischarge, realization_dir};
+use crate::options::OptionError;
 use crate::{make, registry};
 
 /// Which artifacts a realization keeps beside its record.
@@ -30,7 +31,7 @@ pub enum Keep {
 
 impl Keep {
     /// `all`, `none` or stage names separated by commas.
-    pub fn parse(text: &str) -> Result<Keep, String> {
+    pub fn parse(text: &str) -> Result<Keep, OptionError> {
         match text.trim() {
             "all" => Ok(Keep::All),
             "none" | "" => Ok(Keep::Stages(Vec::new())),
@@ -38,7 +39,11 @@ impl Keep {
                 .split(',')
                 .map(|name| {
                     StageId::from_name(name.trim()).ok_or_else(|| {
-                        format!("--keep: unknown stage \"{}\" (stage names, all or none)", name.trim())
+                        OptionError::new(
+                            "--keep",
+                            text,
+                            format!("unknown stage \"{}\" (stage names, all or none)", name.trim()),
+                        )
                     })
                 })
                 .collect::<Result<_, _>>()
@@ -167,6 +172,6 @@ mod tests {
             Keep::parse("skeleton, metrics"),
             Ok(Keep::Stages(vec![StageId::Skeleton, StageId::Metrics]))
         );
-        assert!(Keep::parse("skeleton,bones").unwrap_err().contains("\"bones\""));
+        assert!(Keep::parse("skeleton,bones").unwrap_err().to_string().contains("\"bones\""));
     }
 }
