@@ -160,12 +160,12 @@ struct EnsembleRunArgs {
 
 /// `karstgen calibrate`.
 #[derive(Debug, Clone, clap::Args)]
-#[command(group = clap::ArgGroup::new("aim").required(true).args(["target", "like"]))]
+#[command(group = clap::ArgGroup::new("aim").required(false).args(["target", "like"]))]
 pub struct CalibrateArgs {
     /// The scene, with a [calibrate] box (not needed by `--like list`).
     scene: Option<PathBuf>,
     /// The surveyed cave: karstnet's BASE_nodes.dat (or BASE), a GOCAD PLine .pl, or two CSV
-    /// files NODES EDGES.
+    /// files NODES EDGES. Without --target or --like: the one the scene's [calibrate] names.
     #[arg(long, num_args = 1..=2, value_name = "CAVE")]
     target: Vec<PathBuf>,
     /// A published network (KNdata-public, any case), `surveyed` for the median of its 25
@@ -327,8 +327,9 @@ fn calibrate_command(args: CalibrateArgs) -> Result<(), StageError> {
             calibrate::like_names()?.iter().for_each(|line| println!("{line}"));
             return Ok(());
         }
-        Some(name) => calibrate::Aim::Like(name),
-        None => calibrate::Aim::Cave(args.target),
+        Some(name) => Some(calibrate::Aim::Like(name)),
+        None if args.target.is_empty() => None,
+        None => Some(calibrate::Aim::Cave(args.target)),
     };
     let scene = args.scene.ok_or_else(|| StageError::input("calibrate: give the SCENE to calibrate"))?;
     let name = SceneFile::load(&scene)?.scene.name().to_string();
@@ -358,14 +359,13 @@ mod tests {
     }
 
     #[test]
-    fn calibrate_takes_like_or_target_not_both_nor_neither() {
+    fn calibrate_takes_like_or_target_not_both() {
         let both = refused(&["karstgen", "calibrate", "s.toml", "--like", "Sakany", "--target", "c.pl"]);
         assert_eq!(both.kind(), ErrorKind::ArgumentConflict);
         assert_eq!(both.exit_code(), 2);
         assert!(both.to_string().contains("--like"), "{both}");
-        let neither = refused(&["karstgen", "calibrate", "s.toml"]);
-        assert_eq!(neither.kind(), ErrorKind::MissingRequiredArgument);
-        assert_eq!(neither.exit_code(), 2);
+        // Neither: the scene's `[calibrate]` must name one (checked when the scene is read).
+        assert!(Cli::try_parse_from(["karstgen", "calibrate", "s.toml"]).is_ok());
         assert!(Cli::try_parse_from(["karstgen", "calibrate", "s.toml", "--like", "surveyed"]).is_ok());
         assert!(Cli::try_parse_from(["karstgen", "calibrate", "--like", "list"]).is_ok());
     }

@@ -11,11 +11,13 @@
 //! - `run.rs`: the pipeline in a worker thread, the GIL released, Ctrl-C honoured;
 //! - `artifacts.rs`: a run's network, meshes, JSON payloads and figures;
 //! - `metrics.rs`: karstnet's statistics of any network;
-//! - `ensemble.rs`: one realization (a Dask task), the folder's plan and its summary.
+//! - `ensemble.rs`: one realization (a Dask task), the folder's plan and its summary;
+//! - `calibrate.rs`: the calibration's search steps, and one candidate on one seed (a Dask task).
 
 use pyo3::prelude::*;
 
 mod artifacts;
+mod calibrate;
 mod ensemble;
 mod errors;
 mod metrics;
@@ -44,5 +46,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ensemble::record_failure, m)?)?;
     m.add_function(wrap_pyfunction!(ensemble::ensemble_summarize, m)?)?;
     m.add_function(wrap_pyfunction!(ensemble::parse_seeds, m)?)?;
+    m.add_class::<calibrate::Calibration>()?;
+    m.add_function(wrap_pyfunction!(calibrate::calibrate_evaluate, m)?)?;
     Ok(())
 }

@@ -81,7 +81,8 @@ enum Task {
         /// Only the network statistics of mazes (grids of 40k and 250k nodes).
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "peer"])]
         mazes: bool,
-        /// Only the calibration budget: the default scene's [calibrate] box to the Sakany cave.
+        /// Only the calibration budgets: the default scene's [calibrate] box to the Sakany cave, the
+        /// surveyed median and two published caves, each re-run on three fresh seeds.
         #[arg(long, conflicts_with_all = ["costgraph", "sdf", "mesher", "export", "peer", "mazes"])]
         calibrate: bool,
     },

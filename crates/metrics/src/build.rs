@@ -77,6 +77,7 @@ pub fn report(skeleton: &Skeleton) -> Result<MetricsReport, crate::MetricsError>
         passages: BTreeMap::new(),
         void_volume: None,
         hints: Vec::new(),
+        target: None,
     })
 }
 

@@ -15,12 +15,16 @@ pub enum ReportError {
     ConduitCounts { hydro: usize, skeleton: usize },
     #[error("conduit {conduit} has {segments} water segments, which does not match skeleton.json")]
     Segments { conduit: usize, segments: usize },
+    /// The scene's calibration target cannot be resolved.
+    #[error("calibrate.{field} = \"{value}\": {message}")]
+    Aim { field: &'static str, value: String, message: String },
 }
 
 impl Failure for ReportError {
     fn blame(&self) -> Blame {
         match self {
             ReportError::Network(_) => Blame::Artifact(StageId::Skeleton),
+            ReportError::Aim { .. } => Blame::Scene,
             ReportError::ConduitCounts { .. } | ReportError::Segments { .. } => {
                 Blame::Artifact(StageId::Hydro)
             }

@@ -3,6 +3,11 @@
 //! parameter that moves it and that parameter's value in this run (the scene's, or the default
 //! the skeleton derived from the scene, `skeleton.json`'s `derived`).
 //!
+//! When the scene's `[calibrate]` names a target (`like` or `target`), the verdict and the hints
+//! are relative to it instead: how many metrics lie within [`ON_TARGET`] of a real-cave range of
+//! the target's value, the distance the calibration minimises, and for each metric off target
+//! how far (in real-cave ranges) and which way, with the same parameter and advice.
+//!
 //! Each hint names the mechanism of docs/skeleton.md that moves the metric ("Networks that pass
 //! for real caves"): tributaries for the branch lengths and the degrees, meanders for the
 //! tortuosity and the azimuths, cohesion for the trunks.
@@ -11,7 +16,10 @@ use std::collections::BTreeMap;
 
 use karst_scene::params::{SamplingParams, SkeletonParams};
 
-use crate::ranges::Compared;
+use serde::{Deserialize, Serialize};
+
+use crate::aim::{self, ON_TARGET, Target};
+use crate::ranges::{CHARACTERIZE_KEYS, Compared};
 
 /// The run's parameters a hint may cite: the scene's `[skeleton]` and `[sampling]`, and the
 /// values the skeleton derived for what they left out.
@@ -72,6 +80,15 @@ pub fn verdict(karstnet: &BTreeMap<String, Compared>) -> String {
     format!("{inside}/{} inside real-cave ranges", karstnet.len())
 }
 
+/// The verdict of a report: against its target when it has one (with the real-cave count
+/// after it), else against the real-cave ranges.
+pub fn verdict_of(report: &crate::MetricsReport) -> String {
+    match &report.target {
+        Some(target) => format!("{}; {}", target_line(target), verdict(&report.karstnet)),
+        None => verdict(&report.karstnet),
+    }
+}
+
 /// One hint per metric outside its range, in the ranges' order.
 pub fn hints(karstnet: &BTreeMap<String, Compared>, parameters: &Parameters) -> Vec<String> {
     karstnet.iter().filter(|(_, c)| !c.inside).map(|(key, c)| hint(key, c, parameters)).collect()
@@ -82,8 +99,17 @@ fn hint(key: &str, c: &Compared, p: &Parameters) -> String {
     let high = c.value > r.max;
     let (bound, sign) = if high { (r.max, ">") } else { (r.min, "<") };
     if !c.value.is_finite() {
-        return format!("{key} undefined: the network has too few branches for it; add sinks or tributaries");
+        return undefined(key);
     }
+    format!("{key} {} {sign} {}: {}", short(c.value), short(bound), remedy(key, high, p))
+}
+
+fn undefined(key: &str) -> String {
+    format!("{key} undefined: the network has too few branches for it; add sinks or tributaries")
+}
+
+/// What the metric says, the parameter that moves it, its value and which way to move it.
+fn remedy(key: &str, high: bool, p: &Parameters) -> String {
     let (words, field, raise) = advice(key, high);
     let action = if p.at_limit(field, raise) {
         "as far as it goes: the sinks, the springs and the cost graph shape this, not the tributaries"
@@ -92,12 +118,84 @@ fn hint(key: &str, c: &Compared, p: &Parameters) -> String {
     } else {
         "lower it"
     };
+    format!("{words} — {field} is {}, {action}", p.value(field))
+}
+
+/// A run against its calibration target (`metrics.json`'s `target`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TargetVerdict {
+    /// The target's name (the published network, or the cave's file as the scene names it).
+    pub name: String,
+    /// The calibration's distance of this network to the target.
+    pub distance: f64,
+    /// Metrics within [`ON_TARGET`] of a real-cave range of the target's value.
+    pub on_target: usize,
+    /// Metrics the target defines (the others are left out).
+    pub defined: usize,
+    /// The target's value of each metric (null: undefined).
+    pub values: BTreeMap<String, Option<f64>>,
+}
+
+/// The run's metrics against `target`.
+pub fn against(karstnet: &BTreeMap<String, Compared>, target: &Target) -> TargetVerdict {
+    let statistics: [f64; CHARACTERIZE_KEYS.len()] =
+        CHARACTERIZE_KEYS.map(|key| karstnet.get(key).map_or(f64::NAN, |c| c.value));
+    let widths = aim::widths();
+    let offsets: Vec<f64> = (0..statistics.len())
+        .filter_map(|i| aim::normalised(statistics[i], target.statistics[i], widths[i]))
+        .collect();
+    TargetVerdict {
+        name: target.name.clone(),
+        distance: aim::distance(&statistics, &target.statistics, &widths),
+        on_target: offsets.iter().filter(|d| d.abs() <= ON_TARGET).count(),
+        defined: offsets.len(),
+        values: CHARACTERIZE_KEYS
+            .iter()
+            .zip(target.statistics)
+            .map(|(k, v)| (k.to_string(), v.is_finite().then_some(v)))
+            .collect(),
+    }
+}
+
+/// `"6/10 on target (Sakany), distance 0.171"`.
+pub fn target_line(verdict: &TargetVerdict) -> String {
     format!(
-        "{key} {} {sign} {}: {words} — {field} is {}, {action}",
-        short(c.value),
-        short(bound),
-        p.value(field)
+        "{}/{} on target ({}), distance {:.3}",
+        verdict.on_target, verdict.defined, verdict.name, verdict.distance
     )
+}
+
+/// One hint per metric farther than [`ON_TARGET`] of a real-cave range from the target's value,
+/// in the ranges' order: how far and which way, and the parameter that moves it.
+pub fn target_hints(
+    karstnet: &BTreeMap<String, Compared>,
+    verdict: &TargetVerdict,
+    parameters: &Parameters,
+) -> Vec<String> {
+    let widths = aim::widths();
+    karstnet
+        .iter()
+        .filter_map(|(key, c)| {
+            let i = CHARACTERIZE_KEYS.iter().position(|k| k == key)?;
+            let goal = (*verdict.values.get(key.as_str())?)?;
+            let offset = aim::normalised(c.value, goal, widths[i])?;
+            if offset.abs() <= ON_TARGET {
+                return None;
+            }
+            if !c.value.is_finite() {
+                return Some(undefined(key));
+            }
+            let high = c.value > goal;
+            let sign = if high { ">" } else { "<" };
+            Some(format!(
+                "{key} {} {sign} {} of {} ({offset:+.2} ranges): {}",
+                short(c.value),
+                short(goal),
+                verdict.name,
+                remedy(key, high, parameters)
+            ))
+        })
+        .collect()
 }
 
 /// What a metric outside on that side says about the network, the parameter that moves it, and
@@ -211,5 +309,82 @@ mod tests {
         let karstnet = compared("tortuosity", 1.3);
         assert_eq!(verdict(&karstnet), "10/10 inside real-cave ranges");
         assert!(hints(&karstnet, &p).is_empty());
+    }
+
+    /// A target whose every metric is the middle of its real-cave range, but `key` at `value`.
+    fn target_with(key: &str, value: f64) -> Target {
+        let ranges = real_cave_ranges();
+        let statistics =
+            CHARACTERIZE_KEYS.map(|k| if k == key { value } else { 0.5 * (ranges[k].min + ranges[k].max) });
+        Target { name: "Somecave".into(), statistics }
+    }
+
+    #[test]
+    fn against_a_target_the_hint_says_how_far_which_way_and_what_moves_it() {
+        let skeleton = SkeletonParams::default();
+        let sampling = SamplingParams::default();
+        let derived = BTreeMap::from([("skeleton.amplification_points".to_string(), serde_json::json!(12))]);
+        let p = Parameters { skeleton: &skeleton, sampling: &sampling, derived: &derived };
+        // Inside the real-cave range, but well above the target's: a hint all the same.
+        let karstnet = compared("mean length", 300.0);
+        let range = &karstnet["mean length"].real_caves;
+        assert!(karstnet["mean length"].inside);
+        let target = target_with("mean length", 60.0);
+        let verdict = against(&karstnet, &target);
+        assert_eq!((verdict.on_target, verdict.defined), (9, 10));
+        let offset = (300.0 - 60.0) / (range.max - range.min);
+        assert!((verdict.distance - (offset * offset / 10.0).sqrt()).abs() < 1e-12);
+        let hints = target_hints(&karstnet, &verdict, &p);
+        assert_eq!(hints.len(), 1, "{hints:?}");
+        assert_eq!(
+            hints[0],
+            format!(
+                "mean length 300 m > 60.000 of Somecave ({offset:+.2} ranges): branches too long and too \
+                 few — skeleton.amplification_points is 12 (derived from the scene), raise it"
+            )
+        );
+        assert!(target_line(&verdict).starts_with("9/10 on target (Somecave), distance "));
+    }
+
+    #[test]
+    fn below_the_target_the_advice_turns_round() {
+        let skeleton = SkeletonParams { sinuosity: 1.4, ..SkeletonParams::default() };
+        let sampling = SamplingParams::default();
+        let derived = BTreeMap::new();
+        let p = Parameters { skeleton: &skeleton, sampling: &sampling, derived: &derived };
+        let karstnet = compared("tortuosity", 1.2);
+        let above = against(&karstnet, &target_with("tortuosity", 1.0));
+        let high = target_hints(&karstnet, &above, &p);
+        assert_eq!(high.len(), 1, "{high:?}");
+        assert!(high[0].starts_with("tortuosity 1.200 > 1.000 of Somecave (+"), "{}", high[0]);
+        assert!(
+            high[0].ends_with("passages wind too much — skeleton.sinuosity is 1.4, lower it"),
+            "{}",
+            high[0]
+        );
+        let below = against(&karstnet, &target_with("tortuosity", 1.5));
+        let low = target_hints(&karstnet, &below, &p);
+        assert!(low[0].starts_with("tortuosity 1.200 < 1.500 of Somecave (-"), "{}", low[0]);
+        assert!(
+            low[0].ends_with("passages too straight — skeleton.sinuosity is 1.4, raise it"),
+            "{}",
+            low[0]
+        );
+    }
+
+    #[test]
+    fn on_target_outside_the_ranges_gives_no_hint_and_undefined_targets_are_left_out() {
+        let skeleton = SkeletonParams::default();
+        let sampling = SamplingParams::default();
+        let derived = BTreeMap::new();
+        let p = Parameters { skeleton: &skeleton, sampling: &sampling, derived: &derived };
+        let karstnet = compared("mean length", 2832.0);
+        assert!(!karstnet["mean length"].inside);
+        let mut target = target_with("mean length", 2832.0);
+        target.statistics[0] = f64::NAN;
+        let verdict = against(&karstnet, &target);
+        assert_eq!((verdict.on_target, verdict.defined), (9, 9));
+        assert!(target_hints(&karstnet, &verdict, &p).is_empty());
+        assert_eq!(verdict.values[CHARACTERIZE_KEYS[0]], None);
     }
 }

@@ -19,6 +19,7 @@
 //!
 //! [`readers`] load karstnet `_nodes.dat`/`_links.dat` pairs, GOCAD PLines and CSV tables.
 
+pub mod aim;
 mod bitbfs;
 mod branches;
 mod build;

@@ -46,6 +46,10 @@ pub struct MetricsReport {
     /// from a skeleton alone.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub hints: Vec<String>,
+    /// The run against the scene's calibration target (`[calibrate] like` or `target`), when it
+    /// names one; the hints are then relative to it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target: Option<crate::hints::TargetVerdict>,
 }
 
 /// The surface streams fed by the springs (streams.json).

@@ -19,7 +19,8 @@ use crate::payload::MetricsReport;
 use crate::ranges::Compared;
 use crate::readers::{self, ReadError};
 use crate::view::MetricsView;
-use crate::{Metrics, Network, characterize, distributions, hints, plots, ranges};
+use crate::{Metrics, Network, aim, characterize, distributions, hints, plots, ranges};
+use karst_scene::params::Aim;
 
 /// Stage 8: karstnet's statistics of the network against real caves.
 pub struct MetricsStage;
@@ -41,7 +42,14 @@ impl Stage for MetricsStage {
             sampling: view.sampling,
             derived: &skeleton.derived,
         };
-        report.hints = hints::hints(&report.karstnet, &parameters);
+        match view.aim.map(resolve).transpose()? {
+            Some(target) => {
+                let verdict = hints::against(&report.karstnet, &target);
+                report.hints = hints::target_hints(&report.karstnet, &verdict, &parameters);
+                report.target = Some(verdict);
+            }
+            None => report.hints = hints::hints(&report.karstnet, &parameters),
+        }
         Ok(report)
     }
 
@@ -52,7 +60,7 @@ impl Stage for MetricsStage {
             m.n_nodes_full,
             m.n_branches,
             m.total_length,
-            hints::verdict(&report.karstnet)
+            hints::verdict_of(report)
         )
     }
 
@@ -106,6 +114,20 @@ impl Stage for MetricsStage {
         report: &mut MetricsReport,
     ) -> std::io::Result<()> {
         write_plots(&out.join("preview"), &network_of(skeleton), &report.network)
+    }
+}
+
+/// The network the scene's `[calibrate]` aims at, its statistics.
+pub fn resolve(aim: Aim) -> Result<aim::Target, ReportError> {
+    match aim {
+        Aim::Like(name) => aim::like(name).map_err(|e| ReportError::Aim {
+            field: "like",
+            value: name.into(),
+            message: e.to_string(),
+        }),
+        Aim::Target { file, path, .. } => aim::cave(&[path.to_path_buf()])
+            .map(|target| aim::Target { name: file.to_string(), ..target })
+            .map_err(|e| ReportError::Aim { field: "target", value: file.into(), message: e.to_string() }),
     }
 }
 

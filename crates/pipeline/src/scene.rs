@@ -23,9 +23,29 @@ pub struct SceneFile {
 }
 
 impl SceneFile {
-    /// Reads and validates the scene at `path`.
+    /// Reads and validates the scene at `path`, and the calibration target its `[calibrate]`
+    /// names (an unknown `like` or an unreadable `target` is refused now, not at the metrics).
     pub fn load(path: &Path) -> Result<SceneFile, StageError> {
-        Ok(SceneFile { path: path.to_path_buf(), scene: Scene::load(path)? })
+        let file = SceneFile { path: path.to_path_buf(), scene: Scene::load(path)? };
+        file.check_aim()?;
+        Ok(file)
+    }
+
+    /// Parses scene text named `path` (data files are read relative to its folder), as
+    /// [`SceneFile::load`] reads a file.
+    pub fn parse(text: &str, path: &Path) -> Result<SceneFile, StageError> {
+        let scene = Scene::parse(text, path).map_err(StageError::from)?;
+        let file = SceneFile { path: path.to_path_buf(), scene };
+        file.check_aim()?;
+        Ok(file)
+    }
+
+    /// Resolves the calibration target the scene names, if any: a bad one is bad input.
+    fn check_aim(&self) -> Result<(), StageError> {
+        let Some(aim) = self.scene.calibrate().as_ref().and_then(|c| c.aim()) else { return Ok(()) };
+        karst_metrics::stage::resolve(aim)
+            .map(|_| ())
+            .map_err(|e| StageError::input(format!("{}: {e}", self.path.display())))
     }
 
     /// The embedded default scene, written (with its data files) into `out` when they differ,

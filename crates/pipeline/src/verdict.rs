@@ -23,8 +23,10 @@ pub fn verdict(out: &Path, reports: &[StageReport]) -> Result<Vec<String>, Stage
     Ok(lines(&report))
 }
 
-/// `verdict: N/10 inside real-cave ranges`, then one `hint:` line per metric outside.
+/// `verdict: N/10 inside real-cave ranges` (preceded by `M/10 on target (NAME), distance D; `
+/// when the scene names a calibration target), then one `hint:` line per metric outside the
+/// ranges, or off the target.
 fn lines(report: &MetricsReport) -> Vec<String> {
-    let head = format!("verdict: {}", hints::verdict(&report.karstnet));
+    let head = format!("verdict: {}", hints::verdict_of(report));
     std::iter::once(head).chain(report.hints.iter().map(|h| format!("  hint: {h}"))).collect()
 }

@@ -42,7 +42,7 @@ fn tiny_with(dir: &Path, calibrate: &str) -> PathBuf {
 fn calibrate(scene: &Path, target: &[PathBuf], out: &Path) -> Result<String, StageError> {
     run(&CalibrateArgs {
         scene: scene.to_path_buf(),
-        target: Aim::Cave(target.to_vec()),
+        target: Some(Aim::Cave(target.to_vec())),
         out: out.to_path_buf(),
     })
 }
@@ -132,7 +132,7 @@ fn sakany_reduction(name: &str, calibrate: impl FnOnce(&CalibrateArgs) -> Result
     let scene = tiny_with(&dir, SAKANY_BOX);
     let target = [fixture("fixtures/caves/Sakany_nodes.dat")];
     let out = dir.join("out");
-    let args = CalibrateArgs { scene, target: Aim::Cave(target.to_vec()), out: out.clone() };
+    let args = CalibrateArgs { scene, target: Some(Aim::Cave(target.to_vec())), out: out.clone() };
     calibrate(&args).unwrap();
     let report: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
@@ -252,7 +252,7 @@ fn like_aims_at_a_published_network_by_name() {
     let like = |name: &str, out: &Path| {
         run(&CalibrateArgs {
             scene: scene.clone(),
-            target: Aim::Like(name.to_string()),
+            target: Some(Aim::Like(name.to_string())),
             out: out.to_path_buf(),
         })
     };
@@ -270,5 +270,20 @@ fn like_aims_at_a_published_network_by_name() {
     let (before, after) =
         (report["distance"]["before"].as_f64().unwrap(), report["distance"]["after"].as_f64().unwrap());
     assert!(after <= before && after > 0.0, "{before} → {after}");
+    // The summary ends with the calibrated scene's verdict against the target, and the
+    // calibrated scene records its target, so that its runs report against it.
+    let verdict = summary.lines().nth(1).unwrap_or_default();
+    assert!(verdict.starts_with("verdict of the calibrated scene: "), "{summary}");
+    assert!(verdict.contains("on target (median of 25 surveyed caves)"), "{summary}");
+    let calibrated = std::fs::read_to_string(out.join("calibrated.toml")).unwrap();
+    assert!(calibrated.contains("like = \"SURVEYED\""), "{calibrated}");
+    // Without --like or --target, the scene's own target.
+    let own = tiny_with(&dir, &BOX.replace("[calibrate]\n", "[calibrate]\nlike = \"Sakany\"\n"));
+    let summary = run(&CalibrateArgs { scene: own, target: None, out: dir.join("out-own") }).unwrap();
+    assert!(summary.contains(" to Sakany: ") && summary.contains("on target (Sakany)"), "{summary}");
+    let none = tiny_with(&dir, BOX);
+    let e = run(&CalibrateArgs { scene: none, target: None, out: dir.join("out-none") }).unwrap_err();
+    assert_eq!(e.exit_code(), 2, "{e}");
+    assert!(e.to_string().contains("no calibration target"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -65,6 +65,11 @@ fn edited(scene: &Scene, section: Section) -> (Scene, Vec<Section>) {
             if formats.is_empty() { formats.push(ExportFormat::Csv) } else { formats.clear() }
         }
         Section::Calibrate => *s.calibrate_mut() = Some(CalibrateParams::default()),
+        Section::CalibrationAim => {
+            *s.calibrate_mut() =
+                Some(CalibrateParams { like: Some("Sakany".into()), ..CalibrateParams::default() });
+            changed.push(Section::Calibrate);
+        }
     }
     (s, changed)
 }

@@ -49,3 +49,78 @@ fn a_run_ends_with_the_count_inside_and_a_hint_per_metric_outside() {
     assert_eq!(verdict(&out, &again).unwrap(), lines, "the same verdict when up to date");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// tiny with `[calibrate] like = NAME` and the even branches of [`EVEN`].
+fn tiny_like(dir: &std::path::Path, like: &str) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(fixture("fixtures/scenes/tiny.toml")).unwrap();
+    let path = dir.join("scene.toml");
+    std::fs::write(
+        &path,
+        format!("{}\n[calibrate]\nlike = \"{like}\"\n", text.replacen("[skeleton]\n", EVEN, 1)),
+    )
+    .unwrap();
+    path
+}
+
+#[test]
+fn a_calibrated_scene_reports_against_its_target() {
+    let dir = scratch("verdict-target");
+    let scene = SceneFile::load(&tiny_like(&dir, "Sakany")).unwrap();
+    let out = dir.join("out");
+    let to = Selection { to: Some(StageId::Metrics), ..Selection::default() };
+    let reports = make::run(&scene, &out, &to, &mut |_| {}).unwrap();
+    let lines = verdict(&out, &reports).unwrap();
+    assert!(
+        lines[0].starts_with("verdict: ") && lines[0].contains(" on target (Sakany), distance "),
+        "{lines:?}"
+    );
+    assert!(lines[0].ends_with(" inside real-cave ranges"), "{lines:?}");
+    let (_, report) = karst_artifact::read_artifact::<karst_metrics::MetricsReport>(
+        &out.join(StageId::Metrics.file_name()),
+    )
+    .unwrap();
+    let target = report.target.as_ref().expect("the report holds the target");
+    let sakany = karst_metrics::aim::like("Sakany").unwrap();
+    assert_eq!(target.name, "Sakany");
+    assert_eq!(
+        lines.len() - 1,
+        target.defined - target.on_target,
+        "one hint per metric off target: {lines:?}"
+    );
+    // Every hint points from the run's value towards Sakany's, by the sign of the difference.
+    for line in &lines[1..] {
+        let hint = line.strip_prefix("  hint: ").unwrap();
+        let (i, key) = karst_metrics::ranges::CHARACTERIZE_KEYS
+            .iter()
+            .enumerate()
+            .find(|(_, k)| hint.starts_with(&format!("{k} ")))
+            .unwrap_or_else(|| panic!("{hint}"));
+        let value = report.karstnet[*key].value;
+        let sign = if value > sakany.statistics[i] { ">" } else { "<" };
+        assert!(hint.contains(&format!(" {sign} ")) && hint.contains(" of Sakany ("), "{hint}");
+        assert!(
+            hint.contains(" — skeleton.") || hint.contains(" — sampling."),
+            "names the parameter: {hint}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn an_unknown_like_in_the_scene_exits_2_naming_the_field() {
+    let dir = scratch("verdict-unknown");
+    let path = tiny_like(&dir, "Lascaux");
+    let e = SceneFile::load(&path).unwrap_err();
+    assert_eq!(e.exit_code(), 2, "{e}");
+    let message = e.to_string();
+    assert!(message.contains("scene.toml") && message.contains("calibrate.like = \"Lascaux\""), "{message}");
+    assert!(message.contains("Sakany"), "lists the names: {message}");
+    let both = dir.join("both.toml");
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("like = \"Lascaux\"", "like = \"Sakany\"\ntarget = \"x.pl\"");
+    std::fs::write(&both, text).unwrap();
+    let message = SceneFile::load(&both).unwrap_err().to_string();
+    assert!(message.contains("calibrate.target") && message.contains("not both"), "{message}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -33,6 +33,7 @@ pub(crate) fn attach_files(scene: &mut Scene, folder: &Path, text: &str) -> Vec<
     loader.potential_grid(scene);
     loader.lithology(scene);
     attach_tables(scene, &mut loader);
+    loader.calibration_target(scene);
     crate::links::resolve(scene, &mut |field, message| loader.report(field, message));
     loader.check_crs(scene.crs.as_deref());
     loader.problems
@@ -185,6 +186,29 @@ impl Loader<'_> {
         }
     }
 
+    /// `calibrate.target`: resolved against the scene's folder and hashed (both files of a
+    /// karstnet pair); a missing file is reported here, its contents are read by the metrics
+    /// crate.
+    fn calibration_target(&mut self, scene: &mut Scene) {
+        let Some(calibrate) = &mut scene.calibrate else { return };
+        let Some(file) = &calibrate.target else { return };
+        let path = self.folder.join(file);
+        let mut hasher = blake3::Hasher::new();
+        for part in target_files(&path) {
+            match std::fs::read(&part) {
+                Ok(bytes) => {
+                    hasher.update(&bytes);
+                }
+                Err(e) => {
+                    self.report("calibrate.target", format!("{}: cannot read: {e}", part.display()));
+                    return;
+                }
+            }
+        }
+        calibrate.target_content = hasher.finalize().to_hex().to_string();
+        calibrate.target_path = Some(path);
+    }
+
     /// The scene's `crs` against every file's.
     fn check_crs(&mut self, declared: Option<&str>) {
         let declared = match declared.map(Epsg::parse) {
@@ -196,6 +220,20 @@ impl Loader<'_> {
         for (field, message) in crs::disagreements(declared, &files) {
             self.report(&field, message);
         }
+    }
+}
+
+/// The files of a calibration target: a GOCAD PLine or CSV file itself, a karstnet network's
+/// two files (`BASE_nodes.dat`, `BASE_links.dat`) whether given by its base or either file.
+fn target_files(path: &Path) -> Vec<std::path::PathBuf> {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let base = ["_nodes.dat", "_links.dat"].iter().find_map(|suffix| name.strip_suffix(suffix));
+    match (base, path.extension()) {
+        (Some(base), _) if !base.is_empty() => {
+            ["_nodes.dat", "_links.dat"].map(|s| path.with_file_name(format!("{base}{s}"))).to_vec()
+        }
+        (_, None) => ["_nodes.dat", "_links.dat"].map(|s| path.with_file_name(format!("{name}{s}"))).to_vec(),
+        _ => vec![path.to_path_buf()],
     }
 }
 

@@ -59,7 +59,8 @@ pub struct Scene {
     pub(crate) mesher: MesherParams,
     #[serde(default)]
     pub(crate) export: ExportParams,
-    /// `[calibrate]`: the box `karstgen calibrate` searches; read by no stage.
+    /// `[calibrate]`: the box `karstgen calibrate` searches (read by no stage) and its target
+    /// (`like` or `target`, read by the metrics stage).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub(crate) calibrate: Option<CalibrateParams>,
     /// The local frame: the world position of its origin (the domain's `min` as written in the

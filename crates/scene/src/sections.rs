@@ -2,7 +2,8 @@
 //! stage's view holds ([`crate::view`]) and its artifact key hashes.
 
 /// A top-level section of the scene file (or one field of one: `skeleton.forced_links`,
-/// `hydro.total_discharge`, `sdf.passage_detail`).
+/// `hydro.total_discharge`, `sdf.passage_detail`; `calibrate.aim` is `calibrate.like` or
+/// `calibrate.target`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Section {
     Seed,
@@ -24,11 +25,12 @@ pub enum Section {
     Mesher,
     Export,
     Calibrate,
+    CalibrationAim,
 }
 
 impl Section {
     /// Every section.
-    pub const ALL: [Section; 19] = [
+    pub const ALL: [Section; 20] = [
         Section::Seed,
         Section::Domain,
         Section::Terrain,
@@ -48,6 +50,7 @@ impl Section {
         Section::Mesher,
         Section::Export,
         Section::Calibrate,
+        Section::CalibrationAim,
     ];
 
     /// The section's name in the scene file (a dotted name is one field of a section).
@@ -72,6 +75,7 @@ impl Section {
             Section::Mesher => "mesher",
             Section::Export => "export",
             Section::Calibrate => "calibrate",
+            Section::CalibrationAim => "calibrate.aim",
         }
     }
 

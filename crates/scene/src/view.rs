@@ -58,11 +58,14 @@ fn to_json(value: &impl Serialize) -> serde_json::Value {
 
 /// The hash of sections given with their values ([`Part::json`]), for artifact keys. A part
 /// added after keys were first written hashes as absent (null) at the value that reproduces the
-/// artifacts written before it existed (`sdf.passage_detail = "off"`), so that their keys stay.
+/// artifacts written before it existed (`sdf.passage_detail = "off"`, no `calibrate.like` nor
+/// `target`), so that their keys stay.
 pub fn hash(values: &[(Section, serde_json::Value)]) -> String {
     let texts: Vec<String> = values
         .iter()
-        .filter(|(section, value)| !(*section == Section::PassageDetail && value.is_null()))
+        .filter(|(section, value)| {
+            !(matches!(section, Section::PassageDetail | Section::CalibrationAim) && value.is_null())
+        })
         .map(|(section, value)| format!("{}={value}", section.key()))
         .collect();
     karst_artifact::hash::hex_of_parts(texts.iter().map(|t| t.as_bytes()))
@@ -160,6 +163,17 @@ pub mod part {
         Export: &'s ExportParams = |scene| &scene.export;
         /// `[calibrate]`: the parameter box of `karstgen calibrate`, when the scene has one.
         Calibrate: Option<&'s CalibrateParams> = |scene| scene.calibrate.as_ref();
+        /// `calibrate.like` or `calibrate.target` (with its file's BLAKE3), read on its own by
+        /// the metrics stage; none hashes as absent (see [`hash`](super::hash)).
+        CalibrationAim: Option<crate::params::Aim<'s>> = |scene| scene.calibrate.as_ref().and_then(|c| c.aim()), json |aim| {
+            match aim {
+                None => serde_json::Value::Null,
+                Some(crate::params::Aim::Like(name)) => serde_json::json!({ "like": name }),
+                Some(crate::params::Aim::Target { file, content, .. }) => {
+                    serde_json::json!({ "target": file, "content": content })
+                }
+            }
+        };
     }
 }
 

@@ -26,4 +26,13 @@ impl CalibrateError {
     pub fn stage(stage: &'static str, error: impl std::fmt::Display) -> CalibrateError {
         CalibrateError::Stage { stage, message: error.to_string() }
     }
+
+    /// The stage called `name` failed with `message` (a failure reported from another process).
+    pub fn stage_named(name: &str, message: String) -> CalibrateError {
+        let stage = ["sampling", "costgraph", "skeleton", "metrics"]
+            .into_iter()
+            .find(|s| *s == name)
+            .unwrap_or("candidate");
+        CalibrateError::Stage { stage, message }
+    }
 }

@@ -8,6 +8,7 @@
 //! in parallel and are gathered in order, so the results do not depend on the number of
 //! threads.
 
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use rayon::prelude::*;
@@ -93,7 +94,24 @@ impl Runner {
         (0..candidates.len()).map(|_| results.by_ref().take(self.seeds.len()).collect()).collect()
     }
 
+    /// The defaults the skeleton derives for `scene` on the first seed (what the hints cite).
+    pub fn derived(&self, scene: &Scene) -> Result<BTreeMap<String, serde_json::Value>, CalibrateError> {
+        let scene = with_seed(scene, self.seeds[0]);
+        Ok(self.skeleton(&scene, &self.shared[0])?.derived)
+    }
+
     fn network_metrics(&self, scene: &Scene, upstream: &Upstream) -> Result<MetricVector, CalibrateError> {
+        let skeleton = self.skeleton(scene, upstream)?;
+        let metrics = karst_metrics::characterize(&karst_metrics::network_of(&skeleton))
+            .map_err(|e| CalibrateError::stage("metrics", e))?;
+        Ok(metric_vector(&metrics))
+    }
+
+    fn skeleton(
+        &self,
+        scene: &Scene,
+        upstream: &Upstream,
+    ) -> Result<karst_skeleton::Skeleton, CalibrateError> {
         let samples = match &upstream.samples {
             Some(samples) => Arc::clone(samples),
             None => Arc::new(
@@ -108,18 +126,14 @@ impl Runner {
                     .map_err(|e| CalibrateError::stage("costgraph", e))?,
             ),
         };
-        let skeleton = karst_skeleton::build(&SkeletonView::of(scene), &samples, &graph)
-            .map_err(|e| CalibrateError::stage("skeleton", e))?;
-        let metrics = karst_metrics::characterize(&karst_metrics::network_of(&skeleton))
-            .map_err(|e| CalibrateError::stage("metrics", e))?;
-        Ok(metric_vector(&metrics))
+        karst_skeleton::build(&SkeletonView::of(scene), &samples, &graph)
+            .map_err(|e| CalibrateError::stage("skeleton", e))
     }
 }
 
 /// The `characterize_graph()` metrics of `metrics`, in karstnet's order.
 pub fn metric_vector(metrics: &karst_metrics::Metrics) -> MetricVector {
-    let pairs = metrics.to_pairs();
-    CHARACTERIZE_KEYS.map(|key| pairs.iter().find(|(k, _)| *k == key).map_or(f64::NAN, |(_, v)| *v))
+    karst_metrics::aim::statistics_of(metrics)
 }
 
 fn with_seed(scene: &Scene, seed: u64) -> Scene {

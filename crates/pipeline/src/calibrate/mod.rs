@@ -28,34 +28,30 @@ mod objective;
 pub mod optimiser;
 mod outputs;
 mod scene_edit;
+mod search;
 mod space;
 mod target;
+mod verdict;
 
 pub use error::CalibrateError;
+pub use evaluate::{MetricVector, Runner};
+pub use search::Search;
 pub use target::{Aim, SURVEYED, like_names};
 
 use std::path::PathBuf;
-use std::time::Instant;
 
-use karst_scene::Scene;
-use karst_scene::params::CalibrateParams;
-use karst_scene::rng::Random;
 use karst_stage::StageError;
 
 use crate::scene::SceneFile;
 use cmaes::Cmaes;
-use evaluate::{MetricVector, Runner};
-use objective::{Objective, median};
 use optimiser::{Optimiser, Start};
-use outputs::{Candidate, Outcome};
-use space::Space;
 
 /// What to run.
 #[derive(Debug, Clone)]
 pub struct CalibrateArgs {
     pub scene: PathBuf,
-    /// The cave, or the published network.
-    pub target: Aim,
+    /// The cave, or the published network; None: the one the scene's `[calibrate]` names.
+    pub target: Option<Aim>,
     pub out: PathBuf,
 }
 
@@ -70,7 +66,8 @@ pub struct Evaluated {
     pub failure: Option<CalibrateError>,
 }
 
-/// Runs the calibration with CMA-ES and writes its outputs; returns a one-line summary.
+/// Runs the calibration with CMA-ES and writes its outputs; returns a summary: one line, then
+/// the best scene's verdict against the target.
 pub fn run(args: &CalibrateArgs) -> Result<String, StageError> {
     run_with(args, Cmaes::from_start)
 }
@@ -80,114 +77,21 @@ pub fn run_with<O: Optimiser>(
     args: &CalibrateArgs,
     search: impl FnOnce(Start) -> O,
 ) -> Result<String, StageError> {
-    let start = Instant::now();
     let scene = SceneFile::load(&args.scene)?;
-    let config = scene.scene.calibrate().clone().ok_or_else(|| {
-        StageError::input(format!(
-            "{}: no [calibrate] section: declare the parameters to search and their box (docs/calibrate.md)",
-            args.scene.display()
-        ))
-    })?;
-    let target = target::read(&args.target)?;
-    let objective = Objective::new(target.metrics);
-    let space = Space::new(&config);
-    let runner = Runner::new(&scene.scene, seeds(&scene, &config)?, &space.sections())
-        .map_err(|e| StageError::input(format!("{}: {e}", args.scene.display())))?;
-    let budget = config.evaluation_budget();
+    let text = std::fs::read_to_string(&args.scene)
+        .map_err(|e| StageError::input(format!("{}: cannot read: {e}", args.scene.display())))?;
+    let mut calibration = Search::with(scene, text, args.target.clone(), search)?;
+    let bar = karst_stage::progress::bar(calibration.progress_length(), "calibrate");
+    let (budget, started) = (calibration.evaluation_budget(), std::time::Instant::now());
     // The bar counts runs (candidate × seed) against an evaluation budget, seconds otherwise.
-    let length = match budget {
-        Some(b) => (b * config.seeds) as u64,
-        None => (config.minutes.unwrap_or(0.0) * 60.0).ceil() as u64,
-    };
-    let bar = karst_stage::progress::bar(length, "calibrate");
     let progress = || match budget {
         Some(_) => bar.inc(1),
-        None => bar.set_position(start.elapsed().as_secs()),
+        None => bar.set_position(started.elapsed().as_secs()),
     };
-    let evaluate = |scenes: &[Scene]| -> Vec<Evaluated> {
-        runner.run(scenes, &progress).into_iter().map(|runs| summarise(&objective, runs)).collect()
-    };
-    let before = evaluate(std::slice::from_ref(&scene.scene)).remove(0);
-    if let Some(why) = &before.failure {
-        return Err(StageError::input(format!("{}: the scene itself fails: {why}", args.scene.display())));
+    while let Some(scenes) = calibration.ask() {
+        let runs = calibration.runner()?.run(&scenes, &progress);
+        calibration.tell(runs)?;
     }
-    let current = space.current(&scene.scene);
-    let mut candidates =
-        vec![Candidate { generation: 0, index: 0, sigma: config.step, values: current, evaluated: before }];
-    let mut es = search(Start {
-        mean: space.start(&scene.scene),
-        sigma: config.step,
-        population: config.population,
-        random: Random::stream(scene.scene.seed(), "calibrate", "cmaes"),
-    });
-    let mut generation = 0;
-    let stopped_by = loop {
-        if budget.is_some_and(|b| candidates.len() + es.lambda() > b) {
-            break "evaluations";
-        }
-        if config.minutes.is_some_and(|m| start.elapsed().as_secs_f64() >= m * 60.0) {
-            break "minutes";
-        }
-        generation += 1;
-        let sigma = es.sigma();
-        let drawn = es.ask();
-        let values: Vec<Vec<f64>> = drawn.iter().map(|p| space.values(p)).collect();
-        let scenes: Vec<Scene> = values.iter().map(|v| space.apply(&scene.scene, v)).collect();
-        let results = evaluate(&scenes);
-        es.tell(&results.iter().map(|r| r.distance).collect::<Vec<_>>());
-        for (index, (values, evaluated)) in values.into_iter().zip(results).enumerate() {
-            let values = values.into_iter().map(Some).collect();
-            candidates.push(Candidate { generation, index, sigma, values, evaluated });
-        }
-    };
     bar.finish_and_clear();
-    let outcome = Outcome {
-        scene: &scene,
-        config: &config,
-        space: &space,
-        target: &target,
-        seeds: runner.seeds(),
-        candidates: &candidates,
-        generations: generation,
-        population: es.lambda(),
-        stopped_by,
-    };
-    outputs::write(&args.out, &outcome)?;
-    let (before, after) = (outcome.before().evaluated.distance, outcome.best().evaluated.distance);
-    Ok(format!(
-        "calibrated {} to {}: distance {before:.4} → {after:.4} ({:.0} % less), {} candidates × {} seeds in {:.0} s → {}",
-        args.scene.display(),
-        target.name,
-        100.0 * (1.0 - after / before),
-        candidates.len(),
-        config.seeds,
-        start.elapsed().as_secs_f64(),
-        args.out.display()
-    ))
-}
-
-/// The calibration seeds: the scene's seed and the next ones.
-fn seeds(scene: &SceneFile, config: &CalibrateParams) -> Result<Vec<u64>, StageError> {
-    let first = scene.scene.seed();
-    (0..config.seeds as u64)
-        .map(|k| {
-            first.checked_add(k).filter(|s| i64::try_from(*s).is_ok()).ok_or_else(|| {
-                StageError::input(format!("{}: seed {first} + {k} is too large", scene.path.display()))
-            })
-        })
-        .collect()
-}
-
-/// A candidate's distance and metrics: medians over its seeds, or +∞ and the reason when a seed
-/// failed.
-fn summarise(objective: &Objective, runs: Vec<Result<MetricVector, CalibrateError>>) -> Evaluated {
-    let runs = match runs.into_iter().collect::<Result<Vec<_>, CalibrateError>>() {
-        Ok(runs) => runs,
-        Err(why) => {
-            return Evaluated { distance: f64::INFINITY, metrics: [f64::NAN; 10], failure: Some(why) };
-        }
-    };
-    let metrics = std::array::from_fn(|i| median(runs.iter().map(|m| m[i])));
-    let distance = median(runs.iter().map(|m| objective.distance(m)));
-    Evaluated { distance, metrics, failure: None }
+    calibration.finish(&args.out)
 }

@@ -3,15 +3,15 @@
 //! width of that metric's range over real caves (Collon et al. 2017), so that a metric counts by
 //! how far it moves across real caves, not by its unit; the distance is the root mean square of
 //! these normalised differences. A metric the network leaves undefined (NaN, e.g. the
-//! tortuosity of a network made only of loops) counts as [`UNDEFINED`]; a metric the target
+//! tortuosity of a network made only of loops) counts as
+//! [`karst_metrics::aim::UNDEFINED`]; a metric the target
 //! leaves undefined is left out. A candidate's distance is the median over its seeds.
 
-use karst_metrics::ranges::{CHARACTERIZE_KEYS, real_cave_ranges};
+use karst_metrics::aim;
 
 use super::evaluate::MetricVector;
 
-/// The normalised difference of a metric the network leaves undefined: a whole real-cave range.
-pub const UNDEFINED: f64 = 1.0;
+pub use karst_metrics::aim::median;
 
 /// The target and the width of each metric's real-cave range.
 pub struct Objective {
@@ -21,33 +21,12 @@ pub struct Objective {
 
 impl Objective {
     pub fn new(target: MetricVector) -> Objective {
-        let ranges = real_cave_ranges();
-        let width = CHARACTERIZE_KEYS.map(|key| ranges[key].max - ranges[key].min);
-        Objective { target, width }
+        Objective { target, width: aim::widths() }
     }
 
-    /// The distance of a network with `metrics` to the target.
+    /// The distance of a network with `metrics` to the target (`karst_metrics::aim::distance`).
     pub fn distance(&self, metrics: &MetricVector) -> f64 {
-        let terms: Vec<f64> = (0..metrics.len())
-            .filter(|&i| self.target[i].is_finite())
-            .map(|i| {
-                let d = (metrics[i] - self.target[i]) / self.width[i];
-                if d.is_finite() { d } else { UNDEFINED }
-            })
-            .collect();
-        (terms.iter().map(|d| d * d).sum::<f64>() / terms.len().max(1) as f64).sqrt()
-    }
-}
-
-/// The median of the finite values (the mean of the middle two for an even count); NaN when
-/// none is finite.
-pub fn median(values: impl IntoIterator<Item = f64>) -> f64 {
-    let mut v: Vec<f64> = values.into_iter().filter(|x| x.is_finite()).collect();
-    v.sort_by(f64::total_cmp);
-    match v.len() {
-        0 => f64::NAN,
-        n if n % 2 == 1 => v[n / 2],
-        n => (v[n / 2 - 1] + v[n / 2]) / 2.0,
+        aim::distance(metrics, &self.target, &self.width)
     }
 }
 

@@ -23,7 +23,7 @@ use super::chart;
 use super::evaluate::MetricVector;
 use super::scene_edit::{Setting, calibrated_text};
 use super::space::Space;
-use super::target::Target;
+use super::target::{Aim, Target};
 use crate::scene::SceneFile;
 
 /// One candidate evaluated.
@@ -41,6 +41,11 @@ pub struct Candidate {
 /// A finished calibration.
 pub struct Outcome<'a> {
     pub scene: &'a SceneFile,
+    /// The scene's text, which the calibrated scene edits.
+    pub scene_text: &'a str,
+    /// The aim given on the command line (None: the scene's own), recorded in the calibrated
+    /// scene's `[calibrate]` so that its runs report against it.
+    pub aim: Option<&'a Aim>,
     pub config: &'a CalibrateParams,
     pub space: &'a Space,
     pub target: &'a Target,
@@ -77,10 +82,14 @@ pub fn write(out: &Path, outcome: &Outcome) -> Result<(), StageError> {
         let path = out.join(name);
         karst_artifact::atomic::write_bytes(&path, bytes).map_err(|e| failure(&path, &e))
     };
-    let scene_text =
-        std::fs::read_to_string(&outcome.scene.path).map_err(|e| failure(&outcome.scene.path, &e))?;
-    let calibrated = calibrated_text(&scene_text, &outcome.scene.path, &settings(outcome), &header(outcome))
-        .map_err(|e| failure(&out.join("calibrated.toml"), &e))?;
+    let calibrated = calibrated_text(
+        outcome.scene_text,
+        &outcome.scene.path,
+        &settings(outcome),
+        aim_setting(outcome.aim).as_ref(),
+        &header(outcome),
+    )
+    .map_err(|e| failure(&out.join("calibrated.toml"), &e))?;
     write("calibrated.toml", calibrated.as_bytes())?;
     let report = serde_json::to_string_pretty(&report(outcome)).map_err(|e| failure(out, &e))? + "\n";
     write("report.json", report.as_bytes())?;
@@ -115,6 +124,20 @@ fn settings<'a>(outcome: &'a Outcome) -> Vec<Setting<'a>> {
         .zip(&outcome.best().values)
         .filter_map(|(d, v)| v.map(|value| Setting { name: d.parameter.name, value, integer: d.integer }))
         .collect()
+}
+
+/// The `[calibrate]` field that records `aim` and its value: `like`, or `target` made absolute
+/// (a pair of CSV files has no place in the scene: None).
+fn aim_setting(aim: Option<&Aim>) -> Option<(&'static str, String)> {
+    match aim? {
+        Aim::Like(name) => Some(("like", name.clone())),
+        Aim::Cave(files) => match files.as_slice() {
+            [file] => {
+                Some(("target", std::path::absolute(file).unwrap_or(file.clone()).display().to_string()))
+            }
+            _ => None,
+        },
+    }
 }
 
 fn header(outcome: &Outcome) -> String {

@@ -19,11 +19,14 @@ pub struct Setting<'a> {
     pub integer: bool,
 }
 
-/// The scene text `text` (read from `scene_path`) with `settings` applied, headed by `comment`.
+/// The scene text `text` (read from `scene_path`) with `settings` applied and, when given, the
+/// aim (`like` or `target` and its value) recorded in `[calibrate]` in place of the scene's own,
+/// headed by `comment`.
 pub fn calibrated_text(
     text: &str,
     scene_path: &Path,
     settings: &[Setting],
+    aim: Option<&(&str, String)>,
     comment: &str,
 ) -> Result<String, CalibrateError> {
     let mut doc: DocumentMut = text.parse().map_err(|e| CalibrateError::Toml(format!("{e}")))?;
@@ -47,6 +50,13 @@ pub fn calibrated_text(
             _ => return Err(CalibrateError::NotATable(section.to_string())),
         }
     }
+    if let Some((field, aim)) = aim
+        && let Some(table) = doc.get_mut("calibrate").and_then(Item::as_table_like_mut)
+    {
+        table.remove("like");
+        table.remove("target");
+        table.insert(field, value(aim.as_str()));
+    }
     let folder = scene_path.parent().unwrap_or(Path::new(""));
     absolute_data_files(&mut doc, folder);
     let out = format!("{comment}{doc}");
@@ -54,7 +64,8 @@ pub fn calibrated_text(
     Ok(out)
 }
 
-/// Makes the data files the scene names (`terrain.file`, surfaces' `file`, `geology.grid.file`)
+/// Makes the data files the scene names (`terrain.file`, surfaces' `file`, `geology.grid.file`,
+/// `calibrate.target`)
 /// absolute, relative to `folder`.
 fn absolute_data_files(doc: &mut DocumentMut, folder: &Path) {
     let absolute = |item: &mut Item| {
@@ -65,6 +76,11 @@ fn absolute_data_files(doc: &mut DocumentMut, folder: &Path) {
     };
     if let Some(terrain) = doc.get_mut("terrain").and_then(Item::as_table_like_mut)
         && let Some(file) = terrain.get_mut("file")
+    {
+        absolute(file);
+    }
+    if let Some(calibrate) = doc.get_mut("calibrate").and_then(Item::as_table_like_mut)
+        && let Some(file) = calibrate.get_mut("target")
     {
         absolute(file);
     }

@@ -1,8 +1,11 @@
-//! `[calibrate]`: the box of network parameters that `karstgen calibrate` searches, and its
-//! budget. No stage reads it; a scene that has it runs as if it had not.
+//! `[calibrate]`: the box of network parameters that `karstgen calibrate` searches, its budget,
+//! and the network it aims at (`like`, a published network, or `target`, a surveyed cave's
+//! file). Only the aim is read by a stage: the metrics stage reports a run's statistics against
+//! it ([`CalibrateParams::aim`]); the box and the budget are read by no stage.
 //!
 //! ```toml
 //! [calibrate]
+//! like = "Sakany"      # or target = "caves/mine_nodes.dat"
 //! seeds = 3            # realizations per candidate (seeds scene seed .. + 2); the median counts
 //! evaluations = 200    # budget in candidates (each run on every seed)
 //! minutes = 10         # and/or in wall-clock minutes
@@ -27,6 +30,20 @@ use crate::{Scene, Section};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct CalibrateParams {
+    /// The published network the calibration aims at, by name (`karstgen calibrate --like`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub like: Option<String>,
+    /// The surveyed cave the calibration aims at: a karstnet `BASE_nodes.dat` (or `BASE`) or a
+    /// GOCAD PLine `.pl`, relative to the scene's folder (`karstgen calibrate --target`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub target: Option<String>,
+    /// BLAKE3 of the target's file(s), filled when the scene is loaded, so that editing the
+    /// cave makes the verdict stale.
+    #[serde(default, skip_deserializing, skip_serializing_if = "String::is_empty")]
+    pub target_content: String,
+    /// `target` resolved against the scene's folder, filled when the scene is loaded.
+    #[serde(skip)]
+    pub target_path: Option<std::path::PathBuf>,
     /// Realizations per candidate (seeds scene seed, +1, …); the candidate's distance is the
     /// median over them.
     pub seeds: usize,
@@ -48,6 +65,10 @@ pub struct CalibrateParams {
 impl Default for CalibrateParams {
     fn default() -> Self {
         CalibrateParams {
+            like: None,
+            target: None,
+            target_content: String::new(),
+            target_path: None,
             seeds: 3,
             evaluations: None,
             minutes: None,
@@ -251,7 +272,26 @@ impl Bounds {
     }
 }
 
+/// What a scene's `[calibrate]` aims at, as the metrics stage reads it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Aim<'s> {
+    /// `like = "NAME"`.
+    Like(&'s str),
+    /// `target = "FILE"`: the file as written, its path from the scene's folder and its BLAKE3.
+    Target { file: &'s str, path: &'s std::path::Path, content: &'s str },
+}
+
 impl CalibrateParams {
+    /// The network the section aims at, when it names one.
+    pub fn aim(&self) -> Option<Aim<'_>> {
+        if let Some(name) = &self.like {
+            return Some(Aim::Like(name));
+        }
+        let file = self.target.as_deref()?;
+        let path = self.target_path.as_deref().unwrap_or(std::path::Path::new(file));
+        Some(Aim::Target { file, path, content: &self.target_content })
+    }
+
     /// The budget in candidates, when one is set or neither budget is.
     pub fn evaluation_budget(&self) -> Option<usize> {
         match (self.evaluations, self.minutes) {
@@ -278,8 +318,17 @@ impl CalibrateParams {
         if c.finite("calibrate.step", &[self.step]) && !(self.step > 0.0 && self.step <= 1.0) {
             c.report("calibrate.step", format!("must be in (0, 1], got {}", self.step));
         }
-        if self.parameters.is_empty() {
-            c.report("calibrate.parameters", "the box is empty: list at least one parameter".into());
+        if self.like.is_some() && self.target.is_some() {
+            c.report("calibrate.target", "give `like` or `target`, not both".into());
+        }
+        if self.like.as_deref().is_some_and(|l| l.trim().is_empty()) {
+            c.report("calibrate.like", "is empty: name a published network or `surveyed`".into());
+        }
+        if self.parameters.is_empty() && self.aim().is_none() {
+            c.report(
+                "calibrate.parameters",
+                "the box is empty: list at least one parameter (or name a `like` or `target` only)".into(),
+            );
         }
         for (i, bounds) in self.parameters.iter().enumerate() {
             self.check_bounds(scene, i, bounds, c);

@@ -15,7 +15,7 @@ mod streams;
 mod test_scene;
 
 pub use calibrate::{
-    Bounds, CalibrateParams, DEFAULT_EVALUATIONS, MAX_SEEDS, PARAMETERS, Parameter, parameter,
+    Aim, Bounds, CalibrateParams, DEFAULT_EVALUATIONS, MAX_SEEDS, PARAMETERS, Parameter, parameter,
 };
 
 pub use costgraph::{CostModelKind, CostgraphParams};
