@@ -37,7 +37,7 @@ impl Parameters<'_> {
         }
         match field {
             "sampling.radius" => self.sampling.radius.map_or("derived".into(), |r| r.to_string()),
-            _ => self.number(field).map_or("?".into(), |v| v.to_string()),
+            _ => self.number(field).map_or("?".into(), plain),
         }
     }
 
@@ -235,6 +235,14 @@ fn advice(key: &str, high: bool) -> (&'static str, &'static str, bool) {
         ),
         (_, _) => ("dead ends hang off hubs", "skeleton.amplification_points", false),
     }
+}
+
+/// A parameter's value with at most four decimals, trailing zeros dropped (`0.8818`, `1.05`,
+/// `12`): a calibrated value carries all of a float's digits.
+fn plain(v: f64) -> String {
+    let text = format!("{v:.4}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" { "0".into() } else { text.to_string() }
 }
 
 fn short(v: f64) -> String {
