@@ -12,8 +12,11 @@
 //! **The rule.** A vadose node breaks down when the largest radius of the conduits meeting
 //! there (times `radius_scale`) is at least `breakdown_radius` and it is a junction (three or
 //! more conduit ends) or its roof is thin (overburden above the passage less than twice that
-//! radius). The chamber is [`crate::chamber`]'s noise-walled capsule from 0.3 R to 1.2 R above
-//! the node, of radius 0.9 R (R the largest radius); `breakdown_blocks` blocks lie on the floor
+//! radius). The chamber is a dome of three stacked balls over the node (centres 0.2 R, 0.7 R and
+//! 1.1 R above it, radii 0.9 R, 0.75 R and 0.5 R; R the largest radius), roughened like every
+//! sphere leaf by the chamber type's detail and the wall relief (the noise-walled chamber leaf
+//! of crate::chamber is not 1-Lipschitz across its foundation's wall, where its value jumps
+//! from the noise's to the foundation's); `breakdown_blocks` blocks lie on the floor
 //! within 0.8 R of the node: rounded boxes of edge 0.1 R to 0.5 R (at most 3 m), flattened as
 //! bedded slabs are, turned about the vertical at random and tilted by up to 25°, sunk by a
 //! third of their thickness into the floor (found by sphere tracing the walls downwards).
@@ -21,12 +24,12 @@
 use glam::{DQuat, DVec3};
 use karst_scene::params::SdfParams;
 use karst_scene::rng::Random;
-use karst_skeleton::{Skeleton, Zone};
+use karst_skeleton::{ConduitType, Skeleton, Zone};
 
 use super::rock::{Piece, PieceKind, Shape};
 use super::speleothems::trace;
-use crate::chamber::ChamberSpec;
 use crate::field::CarvedTerrain;
+use crate::payload::SphereGroup;
 
 /// A node that breaks down: its position and the largest radius meeting there.
 pub struct Collapse {
@@ -61,10 +64,14 @@ pub fn collapses(field: &CarvedTerrain, skeleton: &Skeleton, p: &SdfParams) -> V
         .collect()
 }
 
-/// The chamber of a collapse, enlarged upwards.
-pub fn chamber(c: &Collapse) -> ChamberSpec {
-    let f = |h: f64| (c.at + DVec3::Z * h * c.radius).as_vec3().to_array();
-    ChamberSpec { a: f(0.3), b: f(1.2), radius: (0.9 * c.radius) as f32 }
+/// The chamber of a collapse, enlarged upwards: a dome of three stacked balls, each with the
+/// relief and the chamber type's detail of a sphere leaf.
+pub fn chamber(c: &Collapse) -> SphereGroup {
+    let ball = |h: f64, r: f64| {
+        let at = (c.at + DVec3::Z * h * c.radius).as_vec3();
+        [at.x, at.y, at.z, (r * c.radius) as f32]
+    };
+    SphereGroup { kind: ConduitType::Chamber, spheres: vec![ball(0.2, 0.9), ball(0.7, 0.75), ball(1.1, 0.5)] }
 }
 
 /// The blocks on the floor of a collapse, drawn from `random`; none where the floor is not

@@ -35,7 +35,7 @@ pub fn add(model: &mut SdfModel, p: &SdfParams, seed: u64, skeleton: &Skeleton, 
     let relief = Relief { fraction: p.wall_relief, max: p.wall_relief_max, noise };
     model.full = FullDetail(Some(Features { relief, pieces: Vec::new() }));
     let collapses = breakdown::collapses(&CarvedTerrain::new(model.clone()), skeleton, p);
-    model.chambers.extend(collapses.iter().map(breakdown::chamber));
+    model.spheres.extend(collapses.iter().map(breakdown::chamber));
     let field = CarvedTerrain::new(model.clone());
     let mut random = Random::stream(seed, "sdf", "breakdown");
     let mut pieces: Vec<Piece> = collapses
