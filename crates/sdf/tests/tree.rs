@@ -213,14 +213,21 @@ fn check_gradient(field: &CarvedTerrain, n: usize) {
     assert!(steepest > 0.5, "the estimates found no slope at all ({steepest})");
 }
 
-/// The default preset with full detail has speleothems and breakdown blocks in its tree.
+/// The default preset with full detail has speleothems, breakdown blocks and sediment fills in
+/// its tree.
 #[test]
 fn default_tree_with_full_detail_has_speleothems_and_blocks() {
     use karst_sdf::detail::rock::PieceKind;
     let field = detailed_preset_field("default");
     let pieces = field.model().full.pieces();
     let count = |k: PieceKind| pieces.iter().filter(|p| p.kind == k).count();
-    for kind in [PieceKind::Stalactite, PieceKind::Stalagmite, PieceKind::Flowstone] {
+    for kind in [
+        PieceKind::Stalactite,
+        PieceKind::Stalagmite,
+        PieceKind::Flowstone,
+        PieceKind::Block,
+        PieceKind::Sediment,
+    ] {
         assert!(count(kind) > 0, "no {}", kind.name());
     }
 }

@@ -81,7 +81,7 @@ pub enum PassageDetail {
     Off,
     /// Cross-sections whose size and shape vary along each conduit (docs/skeleton.md).
     Passages,
-    /// `passages` with rough walls, speleothems and breakdown (docs/sdf.md).
+    /// `passages` with rough walls, speleothems, breakdown and sediment floors (docs/sdf.md).
     Full,
 }
 

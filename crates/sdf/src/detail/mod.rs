@@ -1,6 +1,6 @@
 //! What `[sdf] passage_detail = "full"` adds to the passages (docs/sdf.md): rough walls
-//! ([`walls`]), speleothems ([`speleothems`]) and breakdown ([`breakdown`]), the last two as
-//! rock put back into the void ([`rock`]).
+//! ([`walls`]), speleothems ([`speleothems`]), breakdown ([`breakdown`]) and sediment floors
+//! ([`sediment`]), the last three as rock put back into the void ([`rock`]).
 //!
 //! In the artifact these are one trailing field of [`crate::SdfModel`], [`FullDetail`], which
 //! postcard writes as nothing at all when it is empty (below `full`), so that `off` and
@@ -9,6 +9,7 @@
 
 pub mod breakdown;
 pub mod rock;
+pub mod sediment;
 pub mod speleothems;
 pub mod walls;
 
@@ -44,6 +45,7 @@ pub fn add(model: &mut SdfModel, p: &SdfParams, seed: u64, skeleton: &Skeleton, 
         .collect();
     let mut random = Random::stream(seed, "sdf", "speleothems");
     pieces.extend(speleothems::place(&field, skeleton, hydro, p, &mut random));
+    pieces.extend(sediment::fills(&field, skeleton, p));
     if let Some(features) = &mut model.full.0 {
         features.pieces = pieces;
     }
@@ -129,8 +131,12 @@ mod tests {
         let flooded: Vec<_> = model.water.iter().filter(|w| w.level.is_none()).collect();
         assert!(!flooded.is_empty() && model.water.iter().any(|w| w.level.is_some()), "both water types");
         let bare = CarvedTerrain::new(SdfModel { full: FullDetail::default(), ..model.clone() });
-        let speleothems: Vec<&Piece> =
-            model.full.pieces().iter().filter(|p| p.kind != rock::PieceKind::Block).collect();
+        let speleothems: Vec<&Piece> = model
+            .full
+            .pieces()
+            .iter()
+            .filter(|p| !matches!(p.kind, rock::PieceKind::Block | rock::PieceKind::Sediment))
+            .collect();
         assert!(speleothems.len() > 50, "{} speleothems", speleothems.len());
         for piece in speleothems {
             let rock::Shape::Cone { a, b, .. } = piece.shape else { panic!("{piece:?}") };

@@ -27,6 +27,8 @@ pub enum PieceKind {
     Column,
     Flowstone,
     Block,
+    /// A flat fill of sediment on a low-gradient passage's floor.
+    Sediment,
 }
 
 impl PieceKind {
@@ -45,6 +47,7 @@ impl PieceKind {
             PieceKind::Column => "column",
             PieceKind::Flowstone => "flowstone",
             PieceKind::Block => "block",
+            PieceKind::Sediment => "sediment",
         }
     }
 }
@@ -96,8 +99,12 @@ impl Piece {
                 let (ra, rb) = (DVec3::splat(ra as f64), DVec3::splat(rb as f64));
                 ((a - ra).min(b - rb), (a + ra).max(b + rb))
             }
-            Shape::Block { centre, half, round, .. } => {
-                let r = DVec3::splat(to_dvec(half).length() + round as f64);
+            Shape::Block { centre, half, rotation, round } => {
+                // The rotated box's extent along each axis: Σ_j |R_ij| h_j, plus the rounding.
+                let m = glam::DMat3::from_quat(DQuat::from_array(rotation.map(|c| c as f64)).normalize());
+                let h = to_dvec(half);
+                let abs = glam::DMat3::from_cols(m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs());
+                let r = abs * h + DVec3::splat(round as f64 + 1e-4);
                 (to_dvec(centre) - r, to_dvec(centre) + r)
             }
         }
