@@ -142,13 +142,19 @@ pub mod part {
         TotalDischarge: f64 = |scene| scene.hydro.total_discharge;
         /// `[streams]`: the surface streams and their controller curves.
         Streams: &'s StreamsParams = |scene| &scene.streams;
-        /// `[sdf]`; `passage_detail = "off"` hashes as absent (see [`hash`](super::hash)).
+        /// `[sdf]`; `passage_detail = "off"` hashes as absent (see [`hash`](super::hash)), and
+        /// the fields only `full` reads are left out below `full`.
         Sdf: &'s SdfParams = |scene| &scene.sdf, json |sdf| {
             let mut value = super::to_json(sdf);
-            if !sdf.passage_detail.varies()
-                && let Some(fields) = value.as_object_mut()
-            {
-                fields.remove("passage_detail");
+            if let Some(fields) = value.as_object_mut() {
+                if !sdf.passage_detail.varies() {
+                    fields.remove("passage_detail");
+                }
+                if !sdf.passage_detail.features() {
+                    for name in crate::params::FULL_DETAIL_FIELDS {
+                        fields.remove(name);
+                    }
+                }
             }
             value
         };

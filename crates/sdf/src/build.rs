@@ -99,6 +99,9 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
         progress.inc(1);
     }
     progress.finish_and_clear();
+    if p.passage_detail.features() {
+        crate::detail::add(&mut model, p, view.seed, skeleton, hydro);
+    }
     Ok(model)
 }
 

@@ -313,14 +313,14 @@ impl Bvh {
         match kind {
             SPHERE => {
                 for (s, &t) in self.spheres[range.clone()].iter().zip(&self.sphere_types[range]) {
-                    best = best.min(sphere_value(p, s, ctx.amplitude[t as usize], best, ctx));
+                    best = best.min(sphere_value(p, s, ctx.amp(t, s[3]), best, ctx));
                 }
             }
             SWEEP => {
                 // Nearest first by a cheap lower bound, so that the exact sections are only
                 // computed for sweeps that can still lower the minimum.
                 let (sweeps, types) = (&self.sweeps[range.clone()], &self.sweep_types[range]);
-                let amplitude = |k: usize| ctx.amplitude[types[k] as usize];
+                let amplitude = |k: usize| ctx.amp(types[k], sweeps[k].extent);
                 let mut order = [(0.0f64, 0usize); LEAF];
                 for (k, s) in sweeps.iter().enumerate() {
                     order[k] = (sweep_floor(p, s, amplitude(k), ctx), k);
@@ -434,15 +434,18 @@ impl Bvh {
             let kind = (count >> 16) as u8;
             let range = first as usize..first as usize + (count & 0xffff) as usize;
             let inf = f64::INFINITY;
-            let a = |types: &[u8], k: usize| ctx.amplitude[types[range.start + k] as usize];
             let values: Vec<f64> = match kind {
                 SPHERE => (range.clone())
                     .map(|k| {
-                        sphere_value(p, &self.spheres[k], a(&self.sphere_types, k - range.start), inf, ctx)
+                        let s = &self.spheres[k];
+                        sphere_value(p, s, ctx.amp(self.sphere_types[k], s[3]), inf, ctx)
                     })
                     .collect(),
                 SWEEP => (range.clone())
-                    .map(|k| sweep_value(p, &self.sweeps[k], a(&self.sweep_types, k - range.start), inf, ctx))
+                    .map(|k| {
+                        let s = &self.sweeps[k];
+                        sweep_value(p, s, ctx.amp(self.sweep_types[k], s.extent), inf, ctx)
+                    })
                     .collect(),
                 WATER => self.water[range].iter().map(|w| water_value(p, w, inf, ctx)).collect(),
                 CHAMBER => self.chambers[range].iter().map(|c| chamber_value(p, c, inf, ctx)).collect(),

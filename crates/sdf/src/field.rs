@@ -16,6 +16,7 @@ use glam::DVec3;
 
 use crate::bvh::{Bvh, Candidate};
 use crate::chamber::Chamber;
+use crate::detail::rock::RockField;
 use crate::ops::REACH;
 use crate::payload::detail_factor;
 use crate::primitive::{Context, Leaf, WaterLeaf};
@@ -48,6 +49,10 @@ pub struct CarvedTerrain {
     detail_gradient: f64,
     /// The streams' riverbeds, basins, overhangs and water.
     surface: SurfaceField,
+    /// The rough-wall relief's gradient bound (`full` passage detail; 0 without).
+    relief_gradient: f64,
+    /// Speleothems and breakdown blocks, taken out of the karst (`full` passage detail).
+    rock_pieces: RockField,
 }
 
 impl CarvedTerrain {
@@ -60,14 +65,28 @@ impl CarvedTerrain {
         let karst = karst_leaves(&model, &mut sweeps);
         let water = water_leaves(&model, &mut sweeps);
         let detail_gradient = model.detail_noise.gradient_bound();
+        let relief_gradient = model.full.relief().map_or(0.0, |r| r.noise.gradient_bound());
         let (m, gradient) = (&model, detail_gradient);
         let ctx =
-            Context::new(&m.detail_noise, gradient, &m.chamber_noise, m.chamber_bias, &sweeps, &amplitude);
+            Context::new(&m.detail_noise, gradient, &m.chamber_noise, m.chamber_bias, &sweeps, &amplitude)
+                .with_relief(m.full.relief(), relief_gradient);
         let caves = Bvh::build(karst, &ctx);
         let water = Bvh::build(water, &ctx);
         let terrain_scale = model.terrain.scale();
         let surface = SurfaceField::new(&model.surface);
-        CarvedTerrain { model, caves, water, sweeps, amplitude, terrain_scale, detail_gradient, surface }
+        let rock_pieces = RockField::new(model.full.pieces());
+        CarvedTerrain {
+            model,
+            caves,
+            water,
+            sweeps,
+            amplitude,
+            terrain_scale,
+            detail_gradient,
+            surface,
+            relief_gradient,
+            rock_pieces,
+        }
     }
 
     pub fn model(&self) -> &SdfModel {
@@ -84,6 +103,18 @@ impl CarvedTerrain {
             &self.sweeps,
             &self.amplitude,
         )
+        .with_relief(m.full.relief(), self.relief_gradient)
+    }
+
+    /// min(limit, the karst leaves) (any value ≥ limit when the karst is), less the rock
+    /// pieces put back into it: the karst volume K of every evaluation.
+    fn karst(&self, p: DVec3, limit: f64) -> f64 {
+        self.rock_pieces.carve(self.caves.min_value(p, limit, &self.context()), p)
+    }
+
+    /// [`CarvedTerrain::karst`] over the leaf nodes of `near` only.
+    fn karst_among(&self, near: &Near, p: DVec3, limit: f64) -> f64 {
+        self.rock_pieces.carve(self.caves.min_value_among(&near.caves, p, limit, &self.context()), p)
     }
 
     /// Rock before the caves: below the terrain and inside the domain, less the riverbeds,
@@ -105,7 +136,7 @@ impl CarvedTerrain {
         let rock = self.rock(p);
         let blend = self.model.blend;
         // The smooth union equals −rock wherever the caves stay above −rock + blend.
-        let caves = self.caves.min_value(p, (-rock + blend).min(REACH), &self.context());
+        let caves = self.karst(p, (-rock + blend).min(REACH));
         -ops::smooth_union(-rock, caves, blend)
     }
 
@@ -124,14 +155,14 @@ impl CarvedTerrain {
     /// reach + d − d²/(4 blend) ≥ reach whether the true or the clamped value is used, so both
     /// results are ≤ −reach.
     pub fn eval_within(&self, p: DVec3, reach: f64) -> f64 {
-        self.carved(p, reach, |limit| self.caves.min_value(p, limit, &self.context()))
+        self.carved(p, reach, |limit| self.karst(p, limit))
     }
 
     /// [`CarvedTerrain::eval_within`] for a point of the box `near` was gathered for, with a
     /// reach at most its reach: the same value, bit for bit, without walking the hierarchy.
     pub fn eval_near(&self, near: &Near, p: DVec3, reach: f64) -> f64 {
         debug_assert!(reach <= near.reach);
-        self.carved(p, reach, |limit| self.caves.min_value_among(&near.caves, p, limit, &self.context()))
+        self.carved(p, reach, |limit| self.karst_among(near, p, limit))
     }
 
     fn carved(&self, p: DVec3, reach: f64, caves: impl FnOnce(f64) -> f64) -> f64 {
@@ -195,13 +226,13 @@ impl CarvedTerrain {
 
     /// The karst volume alone: negative inside the conduits and chambers; 1-Lipschitz.
     pub fn cave(&self, p: DVec3) -> f64 {
-        self.caves.min_value(p, REACH, &self.context())
+        self.karst(p, REACH)
     }
 
     /// [`CarvedTerrain::cave`] by visiting every leaf, without the BVH: the reference the
     /// hierarchy's pruning is tested against.
     pub fn cave_without_bvh(&self, p: DVec3) -> f64 {
-        self.caves.min_without_bvh(p, REACH, &self.context())
+        self.rock_pieces.carve(self.caves.min_without_bvh(p, REACH, &self.context()), p)
     }
 
     /// The water volume: negative in the water inside the conduits, under the ground and in the
@@ -220,7 +251,7 @@ impl CarvedTerrain {
         if rock >= reach {
             return rock;
         }
-        self.caves.min_value(p, reach.min(REACH), &self.context()).max(rock)
+        self.karst(p, reach.min(REACH)).max(rock)
     }
 
     /// [`CarvedTerrain::cave_below_ground`] for a point of the box `near` was gathered for.
@@ -230,7 +261,7 @@ impl CarvedTerrain {
         if rock >= reach {
             return rock;
         }
-        self.caves.min_value_among(&near.caves, p, reach.min(REACH), &self.context()).max(rock)
+        self.karst_among(near, p, reach.min(REACH)).max(rock)
     }
 
     /// [`CarvedTerrain::water`] where |w(p)| < `reach`; elsewhere a value of the same sign and
@@ -268,7 +299,7 @@ impl CarvedTerrain {
     /// nodes and sections, water pieces and their BVH]. The model's own copy (kept for
     /// [`CarvedTerrain::model`]) is not counted.
     pub fn memory(&self) -> [usize; 2] {
-        [self.caves.memory() + self.sweeps.memory(), self.water.memory()]
+        [self.caves.memory() + self.sweeps.memory() + self.rock_pieces.memory(), self.water.memory()]
     }
 
     /// Number of karst leaves.

@@ -16,6 +16,7 @@ mod build;
 mod bvh;
 mod capsule;
 mod chamber;
+pub mod detail;
 mod error;
 mod estimate;
 mod field;

@@ -12,6 +12,7 @@ use karst_skeleton::ConduitType;
 
 use crate::Capsule;
 use crate::chamber::ChamberSpec;
+use crate::detail::FullDetail;
 use crate::noise::WaveNoise;
 use crate::surface_water::SurfacePieces;
 use crate::sweep::{SweepSpec, to_dvec};
@@ -114,6 +115,9 @@ pub struct SdfModel {
     /// Riverbeds, plunge basins, overhangs and surface water from the streams stage
     /// ([`crate::surface_water`]); empty without streams.
     pub surface: SurfacePieces,
+    /// Rough walls, speleothems and breakdown (`passage_detail = "full"`); no bytes at all
+    /// when empty, so it must stay the last field ([`crate::detail`]).
+    pub full: FullDetail,
 }
 
 impl Payload for SdfModel {
@@ -165,7 +169,8 @@ impl Payload for SdfModel {
         self.detail_noise.validate("detail_noise")?;
         self.chamber_noise.validate("chamber_noise")?;
         check::within(|| "chamber_bias".into(), self.chamber_bias, f64::MIN_POSITIVE, 0.5)?;
-        self.surface.validate()
+        self.surface.validate()?;
+        self.full.validate()
     }
 }
 
@@ -231,6 +236,7 @@ impl SdfModel {
             chamber_noise: WaveNoise { wavelength: 1.0, waves: Vec::new() },
             chamber_bias: 0.5,
             surface: SurfacePieces::default(),
+            full: FullDetail::default(),
         }
     }
 

@@ -20,6 +20,7 @@ use karst_skeleton::ConduitType;
 
 use crate::Capsule;
 use crate::chamber::Chamber;
+use crate::detail::walls::Relief;
 use crate::noise::WaveNoise;
 use crate::ops;
 use crate::sweep::{SweepLeaf, SweepTable, to_dvec};
@@ -62,17 +63,19 @@ impl Leaf {
         }
     }
 
-    /// Detail amplitude, metres: spheres and sweeps by their conduit type, others none.
-    pub fn amplitude(&self, ctx: &Context) -> f64 {
+    /// Detail amplitudes, metres: spheres and sweeps by their conduit type and size, others
+    /// none.
+    pub fn amplitude(&self, ctx: &Context) -> Amp {
         match self {
-            Leaf::Sphere(_, t) | Leaf::Sweep(_, t) => ctx.amplitude[*t as usize],
-            _ => 0.0,
+            Leaf::Sphere(s, t) => ctx.amp(*t as u8, s[3]),
+            Leaf::Sweep(s, t) => ctx.amp(*t as u8, s.extent),
+            _ => Amp::NONE,
         }
     }
 
     /// Axis-aligned box containing the detailed leaf.
     pub fn bounds(&self, ctx: &Context) -> (DVec3, DVec3) {
-        let a = self.amplitude(ctx);
+        let a = self.amplitude(ctx).total();
         let (lo, hi) = match self {
             Leaf::Sphere(s, _) => sphere_bounds(s),
             Leaf::Sweep(s, _) => ctx.sweeps.bounds(s),
@@ -89,8 +92,25 @@ fn sphere_bounds(s: &[f32; 4]) -> (DVec3, DVec3) {
     (c - DVec3::splat(s[3] as f64), c + DVec3::splat(s[3] as f64))
 }
 
+/// A leaf's two noise amplitudes, metres: the per-type detail and the rough-wall relief
+/// (`passage_detail = "full"`, relative to the leaf's size; 0 otherwise).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Amp {
+    pub detail: f64,
+    pub relief: f64,
+}
+
+impl Amp {
+    pub const NONE: Amp = Amp { detail: 0.0, relief: 0.0 };
+
+    /// The largest displacement of the wall: the sum of both amplitudes.
+    pub fn total(self) -> f64 {
+        self.detail + self.relief
+    }
+}
+
 /// What leaves share during the evaluation of one point: the noises, the sweep table, the
-/// amplitudes, and the detail noise at that point, computed at most once (a context serves one
+/// amplitudes, and the detail noises at that point, computed at most once (a context serves one
 /// point only).
 pub struct Context<'a> {
     pub detail: &'a WaveNoise,
@@ -101,6 +121,9 @@ pub struct Context<'a> {
     /// Detail amplitude of each conduit type (index: the type's discriminant).
     pub amplitude: &'a [f64; 8],
     noise_at: Cell<Option<f64>>,
+    /// The rough-wall relief and its gradient bound, with `full` passage detail.
+    relief: Option<(&'a Relief, f64)>,
+    relief_at: Cell<Option<f64>>,
 }
 
 impl<'a> Context<'a> {
@@ -114,7 +137,39 @@ impl<'a> Context<'a> {
         sweeps: &'a SweepTable,
         amplitude: &'a [f64; 8],
     ) -> Self {
-        Context { detail, detail_gradient, chamber, bias, sweeps, amplitude, noise_at: Cell::new(None) }
+        Context {
+            detail,
+            detail_gradient,
+            chamber,
+            bias,
+            sweeps,
+            amplitude,
+            noise_at: Cell::new(None),
+            relief: None,
+            relief_at: Cell::new(None),
+        }
+    }
+
+    /// The context with rough-wall relief; `gradient` is `relief.gradient_bound()`.
+    pub fn with_relief(mut self, relief: Option<&'a Relief>, gradient: f64) -> Self {
+        self.relief = relief.map(|r| (r, gradient));
+        self
+    }
+
+    /// The amplitudes of a leaf of conduit type `kind` (its discriminant) and size `size`
+    /// (a sphere's radius, a sweep's extent), metres.
+    pub fn amp(&self, kind: u8, size: f32) -> Amp {
+        let relief = self.relief.map_or(0.0, |(r, _)| r.amplitude(size as f64));
+        Amp { detail: self.amplitude[kind as usize], relief }
+    }
+
+    fn relief_noise(&self, relief: &Relief, p: DVec3) -> f64 {
+        if let Some(n) = self.relief_at.get() {
+            return n;
+        }
+        let n = relief.noise.value(p);
+        self.relief_at.set(Some(n));
+        n
     }
 
     fn noise(&self, p: DVec3) -> f64 {
@@ -126,12 +181,24 @@ impl<'a> Context<'a> {
         n
     }
 
-    fn detail(&self, f: f64, p: DVec3, amplitude: f64) -> f64 {
+    /// detail(f) = (f + A·n + R·r)/(1 + A·G + R·G_r): both noises added, each bounded by its
+    /// gradient (crate::ops::detail with the relief's term; without relief, exactly it).
+    fn detail(&self, f: f64, p: DVec3, a: Amp) -> f64 {
+        if let (Some((relief, gradient)), true) = (self.relief, a.relief > 0.0) {
+            let n = if a.detail > 0.0 { a.detail * self.noise(p) } else { 0.0 };
+            let r = a.relief * self.relief_noise(relief, p);
+            return (f + n + r) / (1.0 + a.detail * self.detail_gradient + a.relief * gradient);
+        }
+        let amplitude = a.detail;
         if amplitude > 0.0 { ops::detail(f, self.noise(p), amplitude, self.detail_gradient) } else { f }
     }
 
-    /// The smallest value detail(f) can take for any noise: (f − A)/(1 + A·G).
-    fn detail_floor(&self, f: f64, amplitude: f64) -> f64 {
+    /// The smallest value detail(f) can take for any noise: (f − A − R)/(1 + A·G + R·G_r).
+    fn detail_floor(&self, f: f64, a: Amp) -> f64 {
+        if let (Some((_, gradient)), true) = (self.relief, a.relief > 0.0) {
+            return (f - a.detail - a.relief) / (1.0 + a.detail * self.detail_gradient + a.relief * gradient);
+        }
+        let amplitude = a.detail;
         if amplitude > 0.0 { (f - amplitude) / (1.0 + amplitude * self.detail_gradient) } else { f }
     }
 }
@@ -140,17 +207,19 @@ impl<'a> Context<'a> {
 /// the grown sphere's distance f − A is at least its box's signed distance (so the BVH's
 /// pruning stays exact), and inside it (f ≤ A) detail(f) ≥ f − A, so the clamp changes nothing.
 /// Any value ≥ `limit` when v(p) ≥ `limit`.
-pub fn sphere_value(p: DVec3, s: &[f32; 4], a: f64, limit: f64, ctx: &Context) -> f64 {
+pub fn sphere_value(p: DVec3, s: &[f32; 4], amp: Amp, limit: f64, ctx: &Context) -> f64 {
     let f = p.distance(to_dvec([s[0], s[1], s[2]])) - s[3] as f64;
+    let a = amp.total();
     if f - a >= limit {
         return f - a;
     }
-    ctx.detail(f, p, a).max(f - a)
+    ctx.detail(f, p, amp).max(f - a)
 }
 
 /// A sweep's value, or any value ≥ `limit` when it is ≥ `limit`: the box, then the sweep's
 /// lower bound with the smallest detail, before the section's distance.
-pub fn sweep_value(p: DVec3, leaf: &SweepLeaf, a: f64, limit: f64, ctx: &Context) -> f64 {
+pub fn sweep_value(p: DVec3, leaf: &SweepLeaf, amp: Amp, limit: f64, ctx: &Context) -> f64 {
+    let a = amp.total();
     let (lo, hi) = ctx.sweeps.bounds(leaf);
     let outside = signed_box_distance(lo - DVec3::splat(a), hi + DVec3::splat(a), p);
     if outside >= limit {
@@ -158,23 +227,24 @@ pub fn sweep_value(p: DVec3, leaf: &SweepLeaf, a: f64, limit: f64, ctx: &Context
     }
     let sweep = ctx.sweeps.sweep(leaf);
     let (l, q) = sweep.local(p);
-    let bound = ctx.detail_floor(sweep.lower_bound_local(l, q), a);
+    let bound = ctx.detail_floor(sweep.lower_bound_local(l, q), amp);
     if bound >= limit {
         return bound.max(outside);
     }
-    ctx.detail(sweep.distance_local(l, q), p, a).max(outside)
+    ctx.detail(sweep.distance_local(l, q), p, amp).max(outside)
 }
 
 /// A cheap lower bound of [`sweep_value`]: the larger of the box's signed distance and the
 /// detailed capsule bound (distance to the axis segment minus the extent, times the factor).
-pub fn sweep_floor(p: DVec3, leaf: &SweepLeaf, a: f64, ctx: &Context) -> f64 {
+pub fn sweep_floor(p: DVec3, leaf: &SweepLeaf, amp: Amp, ctx: &Context) -> f64 {
+    let a = amp.total();
     let (s0, s1) = ctx.sweeps.ends(leaf);
     let r = leaf.extent as f64;
     let outside = signed_box_distance(s0.min(s1) - DVec3::splat(r + a), s0.max(s1) + DVec3::splat(r + a), p);
     let ab = s1 - s0;
     let t = ((p - s0).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
     let capsule = (p - s0 - ab * t).length() - r;
-    ctx.detail_floor(capsule * leaf.scale as f64, a).max(outside)
+    ctx.detail_floor(capsule * leaf.scale as f64, amp).max(outside)
 }
 
 /// A water piece's value: its sweep below its level.

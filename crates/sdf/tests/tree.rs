@@ -63,6 +63,7 @@ fn points(field: &CarvedTerrain, n: usize, seed: u64) -> Vec<DVec3> {
         .chain(model.surface.beds.iter().map(|b| DVec3::from_array(b.a)))
         .chain(model.surface.alcoves.iter().map(|c| DVec3::from_array(c.a)))
         .chain(model.surface.sheets.iter().map(|s| DVec3::from_array(s.a)))
+        .chain(model.full.pieces().iter().map(|p| p.centre()))
         .collect();
     let (lo, hi) = (DVec3::from_array(model.domain.min), DVec3::from_array(model.domain.max));
     let mut rng = Lcg(seed);
@@ -152,12 +153,17 @@ fn stages_field(scene: &Path, out: &Path) -> CarvedTerrain {
 /// The tree of a preset scene with `[sdf] passage_detail = "full"`: the scene is copied into a
 /// scratch folder with its data files named from the presets' folder.
 fn detailed_preset_field(name: &str) -> CarvedTerrain {
+    preset_field_at(name, "full")
+}
+
+/// The tree of a preset scene at passage detail `level`.
+fn preset_field_at(name: &str, level: &str) -> CarvedTerrain {
     let scenes = root().join("fixtures/scenes");
     let text = std::fs::read_to_string(scenes.join(format!("{name}.toml"))).unwrap();
     assert!(!text.contains("\n[sdf]"), "{name} has an [sdf] section: add the level to it");
     let text = text.replace("file = \"data/", &format!("file = \"{}/data/", scenes.display()))
-        + "\n[sdf]\npassage_detail = \"full\"\n";
-    let out = scratch(&format!("sdf-{name}-full"));
+        + &format!("\n[sdf]\npassage_detail = \"{level}\"\n");
+    let out = scratch(&format!("sdf-{name}-{level}"));
     let scene = out.join(format!("{name}.toml"));
     std::fs::write(&scene, text).unwrap();
     stages_field(&scene, &out)
@@ -172,13 +178,58 @@ fn check_preset(name: &str, pairs: usize, brute: usize) {
     check_sign(&field, brute, name);
 }
 
-/// The same with passage detail: the runs of profile pieces (one leaf per segment) and the
-/// profiles' sphere stations keep the tree 1-Lipschitz and the BVH exact.
+/// The same with full passage detail: the runs of profile pieces (one leaf per segment), the
+/// profiles' sphere stations, the rough walls' relief, the speleothems and breakdown blocks
+/// keep the tree 1-Lipschitz (on pairs and by its gradient) and the BVH exact.
 fn check_detailed_preset(name: &str, pairs: usize, brute: usize) {
     let field = detailed_preset_field(name);
     assert!(field.model().sweeps.iter().any(|s| s.continues), "{name}: no passage profile was swept");
+    assert!(field.model().full.relief().is_some(), "{name}: no wall relief");
     check_tree(&field, pairs);
+    check_gradient(&field, pairs / 4);
     check_sign(&field, brute, name);
+}
+
+/// Central-difference estimates of |∇f| (eval and cave) at points near the leaves and the
+/// rock pieces: at most 1 up to the estimate's error, where the relief is steepest.
+fn check_gradient(field: &CarvedTerrain, n: usize) {
+    let h = 1e-4;
+    let mut steepest: f64 = 0.0;
+    for p in points(field, n, 41) {
+        for (name, f) in
+            [("eval", &(|q| field.eval(q)) as &dyn Fn(DVec3) -> f64), ("cave", &|q| field.cave(q))]
+        {
+            let g = DVec3::new(
+                f(p + DVec3::X * h) - f(p - DVec3::X * h),
+                f(p + DVec3::Y * h) - f(p - DVec3::Y * h),
+                f(p + DVec3::Z * h) - f(p - DVec3::Z * h),
+            ) / (2.0 * h);
+            // Central differences of a 1-Lipschitz function may exceed 1 by a little where a min or
+            // a max switches between the axes' samples.
+            assert!(g.length() <= 1.0 + 1e-2, "{name}: |∇f({p})| ≈ {}", g.length());
+            steepest = steepest.max(g.length());
+        }
+    }
+    assert!(steepest > 0.5, "the estimates found no slope at all ({steepest})");
+}
+
+/// The default preset with full detail has speleothems, breakdown blocks and sediment fills in
+/// its tree.
+#[test]
+fn default_tree_with_full_detail_has_speleothems_and_blocks() {
+    use karst_sdf::detail::rock::PieceKind;
+    let field = detailed_preset_field("default");
+    let pieces = field.model().full.pieces();
+    let count = |k: PieceKind| pieces.iter().filter(|p| p.kind == k).count();
+    for kind in [
+        PieceKind::Stalactite,
+        PieceKind::Stalagmite,
+        PieceKind::Flowstone,
+        PieceKind::Block,
+        PieceKind::Sediment,
+    ] {
+        assert!(count(kind) > 0, "no {}", kind.name());
+    }
 }
 
 macro_rules! detailed_preset_tests {

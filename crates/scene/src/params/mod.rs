@@ -23,7 +23,7 @@ pub use export::{ExportFormat, ExportParams, MeshSurface};
 pub use hydro::{HydroParams, PoolOutlet, PoolWeights, Recharge};
 pub use mesher::MesherParams;
 pub use sampling::{RadiusUnit, SamplingParams};
-pub use sdf::{PassageDetail, SdfParams};
+pub use sdf::{FULL_DETAIL_FIELDS, MAX_BREAKDOWN_BLOCKS, PassageDetail, SdfParams};
 pub use skeleton::{Mode as SkeletonMode, SkeletonParams};
 pub use streams::{Curve, CurveKind, StreamsParams};
 

@@ -33,7 +33,43 @@ pub struct SdfParams {
     /// as the radius process gives them; `passages` and `full` vary
     /// the cross-sections along each conduit as surveyed passages do.
     pub passage_detail: PassageDetail,
+    /// `full` only: amplitude of the rough-wall relief, as a fraction of the local passage
+    /// radius (docs/sdf.md, "Rough walls").
+    pub wall_relief: f64,
+    /// `full` only: the largest wall-relief amplitude, metres.
+    pub wall_relief_max: f64,
+    /// `full` only: the longest wavelength of the wall relief, metres; its octaves halve it
+    /// four times (a 4 m relief reaches 0.25 m).
+    pub wall_wavelength: f64,
+    /// `full` only: speleothems per metre of air-filled passage where the roof is at the
+    /// ground (drip density at zero overburden; docs/sdf.md, "Speleothems").
+    pub speleothem_density: f64,
+    /// `full` only: the overburden over which the drip density falls by a factor e, metres.
+    pub drip_depth: f64,
+    /// `full` only: the median length of a stalactite or stalagmite, metres.
+    pub speleothem_length: f64,
+    /// `full` only: junctions whose largest passage radius is at least this many metres
+    /// collapse into breakdown chambers (docs/sdf.md, "Breakdown").
+    pub breakdown_radius: f64,
+    /// `full` only: blocks on the floor of each breakdown chamber.
+    pub breakdown_blocks: u32,
 }
+
+/// The `[sdf]` fields that only `passage_detail = "full"` reads: left out of the stage's key
+/// at the other levels, whose artifacts they do not change.
+pub const FULL_DETAIL_FIELDS: [&str; 8] = [
+    "wall_relief",
+    "wall_relief_max",
+    "wall_wavelength",
+    "speleothem_density",
+    "drip_depth",
+    "speleothem_length",
+    "breakdown_radius",
+    "breakdown_blocks",
+];
+
+/// Most blocks a breakdown chamber may hold.
+pub const MAX_BREAKDOWN_BLOCKS: u32 = 200;
 
 /// The level of passage detail, `[sdf] passage_detail`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -45,8 +81,7 @@ pub enum PassageDetail {
     Off,
     /// Cross-sections whose size and shape vary along each conduit (docs/skeleton.md).
     Passages,
-    /// Everything karstgen knows of passages; today the same as `passages` (rough walls,
-    /// breakdown and speleothems will add to it).
+    /// `passages` with rough walls, speleothems, breakdown and sediment floors (docs/sdf.md).
     Full,
 }
 
@@ -54,6 +89,11 @@ impl PassageDetail {
     /// Whether the cross-sections vary along the conduits.
     pub fn varies(self) -> bool {
         self != PassageDetail::Off
+    }
+
+    /// Whether the caves get rough walls, speleothems and breakdown.
+    pub fn features(self) -> bool {
+        self == PassageDetail::Full
     }
 
     /// The scene file's name of the level.
@@ -80,6 +120,14 @@ impl Default for SdfParams {
             chamber_scale: 2.0,
             chamber_bias: 0.2,
             passage_detail: PassageDetail::Off,
+            wall_relief: 0.12,
+            wall_relief_max: 0.5,
+            wall_wavelength: 4.0,
+            speleothem_density: 0.6,
+            drip_depth: 40.0,
+            speleothem_length: 0.8,
+            breakdown_radius: 4.0,
+            breakdown_blocks: 24,
         }
     }
 }
@@ -108,6 +156,19 @@ impl SdfParams {
             && !(self.chamber_bias > 0.0 && self.chamber_bias <= 0.5)
         {
             c.report("sdf.chamber_bias", format!("must be within (0, 0.5], got {}", self.chamber_bias));
+        }
+        c.within("sdf.wall_relief", self.wall_relief, 0.0, 0.5);
+        c.within("sdf.wall_relief_max", self.wall_relief_max, 0.0, 10.0);
+        c.within("sdf.wall_wavelength", self.wall_wavelength, 0.1, 100.0);
+        c.within("sdf.speleothem_density", self.speleothem_density, 0.0, 10.0);
+        c.within("sdf.drip_depth", self.drip_depth, 0.1, 1e4);
+        c.within("sdf.speleothem_length", self.speleothem_length, 0.05, 20.0);
+        c.within("sdf.breakdown_radius", self.breakdown_radius, 0.1, 1e3);
+        if self.breakdown_blocks > MAX_BREAKDOWN_BLOCKS {
+            c.report(
+                "sdf.breakdown_blocks",
+                format!("must be at most {MAX_BREAKDOWN_BLOCKS}, got {}", self.breakdown_blocks),
+            );
         }
     }
 }

@@ -1,0 +1,143 @@
+//! Rough walls: band-limited relief from decimetres to metres on every conduit wall, its
+//! amplitude a fraction of the local passage size (bounded), added to each sweep and sphere
+//! leaf beside the per-type detail noise (crate::primitive::Context::detail).
+//!
+//! The relief is a fractal sum of plane waves like [`crate::noise::WaveNoise`], with more
+//! octaves: the longest wavelength λ halves [`OCTAVES`] − 1 times (4 m reaches 0.25 m), and
+//! each octave's amplitude is [`GAIN`] times the one before, a spectrum flatter than Brownian
+//! relief so that the decimetre scallops and blades stay visible beside metre-scale alcoves.
+//! Values lie in [−1, 1] and the gradient is at most Σ_o g^o 2^o ω / W (ω = 2π/λ, W = Σ_o g^o),
+//! [`ReliefNoise::gradient_bound`]. A leaf of size s (a sphere's radius, a sweep's extent) gets
+//! the amplitude R = min(fraction·s, max); its value (f + A·n + R·r)/(1 + A·G + R·G_r) stays
+//! 1-Lipschitz (docs/sdf.md, "Rough walls").
+
+use glam::DVec3;
+use karst_scene::rng::Random;
+use serde::{Deserialize, Serialize};
+
+use crate::noise::Wave;
+
+/// Waves per octave.
+const WAVES: usize = 3;
+/// Octaves: the longest wavelength and four halvings.
+pub const OCTAVES: usize = 5;
+/// Amplitude ratio between consecutive octaves.
+const GAIN: f64 = 0.6;
+
+/// The relief noise: `OCTAVES × WAVES` waves, longest wavelength `wavelength` metres.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReliefNoise {
+    pub wavelength: f64,
+    pub waves: Vec<Wave>,
+}
+
+/// The rough-wall relief: its noise and how its amplitude follows the passage size.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Relief {
+    /// Amplitude as a fraction of the leaf's size.
+    pub fraction: f64,
+    /// Largest amplitude, metres.
+    pub max: f64,
+    pub noise: ReliefNoise,
+}
+
+impl Relief {
+    /// The relief amplitude of a leaf of size `size` metres: min(fraction·size, max).
+    pub fn amplitude(&self, size: f64) -> f64 {
+        (self.fraction * size).min(self.max)
+    }
+
+    /// Checks a decoded relief (what its Lipschitz bound assumes).
+    pub fn validate(&self, field: &str) -> Result<(), karst_artifact::Invalid> {
+        use karst_artifact::check;
+        check::within(|| format!("{field}.fraction"), self.fraction, 0.0, 0.5)?;
+        check::within(|| format!("{field}.max"), self.max, 0.0, 10.0)?;
+        self.noise.validate(&format!("{field}.noise"))
+    }
+}
+
+impl ReliefNoise {
+    /// A relief of longest wavelength `wavelength` metres drawn from `random`.
+    pub fn draw(random: &mut Random, wavelength: f64) -> Self {
+        let waves = (0..OCTAVES * WAVES)
+            .map(|_| {
+                let z = random.range(-1.0, 1.0);
+                let a = random.range(0.0, std::f64::consts::TAU);
+                let s = (1.0 - z * z).sqrt();
+                let direction = [(s * a.cos()) as f32, (s * a.sin()) as f32, z as f32];
+                Wave { direction, phase: random.range(0.0, std::f64::consts::TAU) as f32 }
+            })
+            .collect();
+        ReliefNoise { wavelength, waves }
+    }
+
+    fn weight() -> f64 {
+        (0..OCTAVES).map(|o| GAIN.powi(o as i32)).sum()
+    }
+
+    /// r(p) ∈ [−1, 1].
+    pub fn value(&self, p: DVec3) -> f64 {
+        let mut sum = 0.0;
+        let mut frequency = std::f64::consts::TAU / self.wavelength;
+        let mut amplitude = 1.0 / (Self::weight() * WAVES as f64);
+        for octave in self.waves.chunks(WAVES) {
+            for w in octave {
+                let d = DVec3::new(w.direction[0] as f64, w.direction[1] as f64, w.direction[2] as f64);
+                sum += amplitude * (frequency * d.dot(p) + w.phase as f64).sin();
+            }
+            frequency *= 2.0;
+            amplitude *= GAIN;
+        }
+        sum
+    }
+
+    /// Upper bound of |∇r| (direction norms are rounded to f32, hence the small margin).
+    pub fn gradient_bound(&self) -> f64 {
+        let sum: f64 = (0..OCTAVES).map(|o| (GAIN * 2.0).powi(o as i32)).sum();
+        sum * std::f64::consts::TAU / self.wavelength / Self::weight() * (1.0 + 1e-6)
+    }
+
+    fn validate(&self, field: &str) -> Result<(), karst_artifact::Invalid> {
+        use karst_artifact::check;
+        check::within(|| format!("{field}.wavelength"), self.wavelength, 0.1, 100.0)?;
+        check::count(|| format!("{field}.waves"), self.waves.len(), OCTAVES * WAVES)?;
+        for (i, w) in self.waves.iter().enumerate() {
+            let norm = w.direction.iter().map(|c| (*c as f64).powi(2)).sum::<f64>().sqrt();
+            check::within(|| format!("{field}.waves[{i}].direction"), norm, 1.0 - 1e-6, 1.0 + 1e-6)?;
+            check::within(|| format!("{field}.waves[{i}].phase"), w.phase as f64, -1e3, 1e3)?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::Pairs;
+
+    #[test]
+    fn values_and_gradient_are_bounded() {
+        let noise = ReliefNoise::draw(&mut Random::stream(5, "sdf", "test"), 4.0);
+        let g = noise.gradient_bound();
+        let mut steepest: f64 = 0.0;
+        for (p, q) in Pairs::new(13, 30.0, 0.3).take(20_000) {
+            assert!(noise.value(p).abs() <= 1.0);
+            let slope = (noise.value(p) - noise.value(q)).abs() / p.distance(q);
+            assert!(slope <= g * (1.0 + 1e-9), "{slope} > {g}");
+            steepest = steepest.max(slope);
+        }
+        // The bound is not vacuous: the finest octaves are steep.
+        assert!(steepest > 0.25 * g, "{steepest} vs {g}");
+    }
+
+    #[test]
+    fn the_amplitude_follows_the_size_up_to_its_bound() {
+        let relief = Relief {
+            fraction: 0.1,
+            max: 0.5,
+            noise: ReliefNoise::draw(&mut Random::stream(1, "a", "b"), 4.0),
+        };
+        assert_eq!(relief.amplitude(2.0), 0.2);
+        assert_eq!(relief.amplitude(50.0), 0.5);
+    }
+}
