@@ -1,10 +1,10 @@
 //! A pinch never closes the cave mesh: the automatic cave cell (the thinnest leaf's
-//! half-thickness) keeps a passage at the passage profiles' smallest half-width
-//! (`karst_skeleton::passages::MIN_HALF_WIDTH`, 0.5 m) open between two larger passages,
+//! half-thickness, never coarser than [`SMALLEST_PASSAGE`] when a leaf is that thin) keeps a
+//! passage at the passage profiles' smallest half-width open between two larger passages,
 //! wherever the pinch lies relative to the lattice.
 
 use karst_geology::Domain;
-use karst_mesher::{Cave, cave_cell, components, polygonize, watertight};
+use karst_mesher::{Cave, SMALLEST_PASSAGE, cave_cell, components, polygonize, watertight};
 use karst_sdf::{Capsule, CarvedTerrain, SdfModel, TerrainField};
 
 /// A 2 m passage, a 10 m long pinch of half-width `pinch`, and another 2 m passage, the axis at
@@ -26,8 +26,8 @@ fn pinched(pinch: f64, offset: f64) -> SdfModel {
 
 #[test]
 fn the_smallest_passage_stays_open_at_the_automatic_cave_cell() {
-    let half_width = 0.5;
-    for cell_size in [2.0, 3.0, 4.0, 6.0] {
+    let half_width = SMALLEST_PASSAGE;
+    for cell_size in [2.0, 3.0, 4.0, 6.0, 10.0] {
         for offset in [0.0, 0.13, 0.29, 0.41] {
             let model = pinched(half_width, offset);
             let cave_cell = cave_cell(&model, cell_size, 0.0);
