@@ -38,7 +38,7 @@ mod warp;
 pub mod watertight;
 
 pub use build::{anchors, build, mesh, mesh_simplified, mesh_with};
-pub use cell::{CAVE_REFINE, cave_cell};
+pub use cell::{CAVE_REFINE, SMALLEST_PASSAGE, cave_cell};
 pub use cleanup::{Solid, clean};
 pub use error::MesherError;
 pub use estimate::Work;

@@ -34,9 +34,14 @@
 //!   wider span enlarge them: 1 + [`JUNCTION_WIDENING`]·exp(−d / r) within a few radii r of a
 //!   junction, d the distance along the conduit.
 //!
+//! Each point's half-width and half-height are then capped at [`ROOM`] times the conduit's size
+//! there, and their change along the passage is limited to [`SLOPE`] metres per metre
+//! ([`limit_slopes`]): a room opens and a pinch closes over metres.
+//!
 //! The size factor is divided by the root mean square of exp(σ h(z)) so that the mean
-//! cross-section area, and with it the void volume and the flow capacity the radius process
-//! stands for, stays that of the radius process (keeping the mean linear size instead would
+//! cross-section area of the drawn sizes, and with it the void volume and the flow capacity the
+//! radius process stands for, stays that of the radius process (the room cap and the slope
+//! limit then take some of it out of the largest rooms) (keeping the mean linear size instead would
 //! inflate the mean area by E[exp(2σh)] / E[exp(σh)]², about half as much again). The profile is deterministic from the seed: one random stream, conduits in order.
 
 use std::collections::HashMap;
@@ -67,6 +72,19 @@ pub const JUNCTION_WIDENING: f64 = 0.6;
 /// the mesher's automatic cave cell (the thinnest section's half-size) keeps open without
 /// refining the whole cave.
 pub const MIN_HALF_WIDTH: f64 = 0.5;
+/// Fastest change of the half-width and of the half-height along a passage, metres per metre: a
+/// wall opens or closes at up to 45° to the passage. Rooms open and pinches close over metres,
+/// not within one profile spacing (breakdown and dissolution widen a passage gradually); at
+/// this slope a passage up to 4 m wide can still triple between survey stations 4 m apart, as
+/// surveyed passages do, and larger ones change more slowly in proportion. It also bounds how
+/// fast the swept section moves, and with it the sweep's Lipschitz factor 1/√(1 + k²)
+/// (docs/sdf.md "Passage detail").
+pub const SLOPE: f64 = 1.0;
+/// Largest half-width or half-height of a room, as a multiple of the conduit's size there (the
+/// radius process's value times the flow and junction factors): the tail of the size process
+/// reaches factors of several tens, but a room is an enlargement of its passage by breakdown
+/// and dissolution of the walls, a few times its span, not tens.
+pub const ROOM: f64 = 6.0;
 /// Range of the shape factor height / width on the type's own proportions.
 pub const RATIO_LIMITS: [f64; 2] = [0.08, 12.0];
 
@@ -134,7 +152,7 @@ impl PassageProfiles {
         };
         let flow = 0.6 + 0.5 * c.flow_share.clamp(0.0, 1.0).sqrt();
         let mut profile = Vec::new();
-        let mut at_nodes = Vec::with_capacity(c.chain.len());
+        let mut node_points = Vec::with_capacity(c.chain.len());
         let mut last = 0.0;
         for (i, &length) in lengths.iter().enumerate() {
             let steps = (length / SPACING).ceil().max(1.0) as usize;
@@ -152,10 +170,10 @@ impl PassageProfiles {
                 } else {
                     shape_bias(c.types[i])
                 };
-                profile.push(point(s, base, state, bias, flow * widening(s, &junctions, base)));
                 if k == 0 {
-                    at_nodes.push(profile[profile.len() - 1].radius);
+                    node_points.push(profile.len());
                 }
+                profile.push(point(s, base, state, bias, flow * widening(s, &junctions, base)));
             }
         }
         let end = c.chain.len() - 1;
@@ -164,8 +182,10 @@ impl PassageProfiles {
         let bias = shape_bias(c.types[end - 1]);
         let last_point =
             point(total, c.radius[end], state, bias, flow * widening(total, &junctions, c.radius[end]));
-        at_nodes.push(last_point.radius);
+        node_points.push(profile.len());
         profile.push(last_point);
+        limit_slopes(&mut profile);
+        let at_nodes = node_points.iter().map(|&i| profile[i].radius).collect();
         (profile, at_nodes)
     }
 
@@ -191,9 +211,42 @@ impl PassageProfiles {
 fn point(at: f64, base: f64, state: State, bias: f64, factor: f64) -> ProfilePoint {
     let size = (SIZE_SPREAD * heavy(state.size)).exp() / rms_size_factor();
     let ratio = (SHAPE_SPREAD * heavy(state.shape) + bias).exp().clamp(RATIO_LIMITS[0], RATIO_LIMITS[1]);
-    let radius = (base * size * factor / ratio.sqrt()).max(MIN_HALF_WIDTH);
-    let ratio = ratio.max(MIN_HALF_WIDTH / radius);
-    ProfilePoint { at, radius, ratio }
+    let room = (ROOM * base * factor).max(MIN_HALF_WIDTH);
+    let radius = (base * size * factor / ratio.sqrt()).clamp(MIN_HALF_WIDTH, room);
+    let height = (radius * ratio).clamp(MIN_HALF_WIDTH, room);
+    ProfilePoint { at, radius, ratio: height / radius }
+}
+
+/// Limits how fast the half-width and the half-height change along the profile to [`SLOPE`]
+/// metres per metre: each becomes the middle of its largest [`SLOPE`]-Lipschitz minorant and
+/// its smallest [`SLOPE`]-Lipschitz majorant (a forward and a backward pass each), the
+/// [`SLOPE`]-Lipschitz profile nearest the drawn one in the largest difference. Rooms then open
+/// and pinches close over several metres; both stay at least [`MIN_HALF_WIDTH`].
+fn limit_slopes(profile: &mut [ProfilePoint]) {
+    let at: Vec<f64> = profile.iter().map(|p| p.at).collect();
+    let width = lipschitz_middle(&at, profile.iter().map(|p| p.radius).collect());
+    let height = lipschitz_middle(&at, profile.iter().map(|p| p.radius * p.ratio).collect());
+    for ((p, w), h) in profile.iter_mut().zip(width).zip(height) {
+        p.radius = w;
+        p.ratio = h / w;
+    }
+}
+
+/// The middle of the largest [`SLOPE`]-Lipschitz function below `values` and the smallest
+/// above them, at the increasing abscissae `at`.
+fn lipschitz_middle(at: &[f64], values: Vec<f64>) -> Vec<f64> {
+    let envelope = |mut v: Vec<f64>, pick: fn(f64, f64) -> f64, sign: f64| {
+        for i in 1..v.len() {
+            v[i] = pick(v[i], v[i - 1] + sign * SLOPE * (at[i] - at[i - 1]));
+        }
+        for i in (0..v.len().saturating_sub(1)).rev() {
+            v[i] = pick(v[i], v[i + 1] + sign * SLOPE * (at[i + 1] - at[i]));
+        }
+        v
+    };
+    let below = envelope(values.clone(), f64::min, 1.0);
+    let above = envelope(values, f64::max, -1.0);
+    below.iter().zip(&above).map(|(b, a)| 0.5 * (a + b)).collect()
 }
 
 /// 1 + [`JUNCTION_WIDENING`]·exp(−d / r), d the distance to the nearest junction along the
@@ -314,11 +367,39 @@ mod tests {
         let near = lag_correlation(&ln_width, 2);
         assert!((0.3..0.75).contains(&near), "correlation at 4 m {near}");
         assert!(lag_correlation(&ln_width, 25).abs() < 0.15);
-        // The size factor keeps the mean area (half-width times half-height) that of the radius
-        // process.
+        // The size factor keeps the mean area (half-width times half-height) of the drawn sizes
+        // that of the radius process; the room cap and the slope limit take area out of the
+        // largest rooms, but not most of it.
         let mean_area: f64 = p.iter().map(|q| q.radius * q.radius * q.ratio).sum::<f64>() / p.len() as f64;
         let expected = (2.0 * 1.1f64).powi(2);
-        assert!((mean_area / expected - 1.0).abs() < 0.15, "{mean_area}");
+        assert!((0.5..1.0).contains(&(mean_area / expected)), "{mean_area}");
+    }
+
+    #[test]
+    fn sizes_change_by_at_most_the_slope_and_rooms_are_capped() {
+        let p = profile(ConduitType::Canyon, 2001, 10.0, 11);
+        let height = |q: &ProfilePoint| q.radius * q.ratio;
+        for w in p.windows(2) {
+            let ds = w[1].at - w[0].at;
+            assert!((w[1].radius - w[0].radius).abs() <= SLOPE * ds + 1e-9, "{w:?}");
+            assert!((height(&w[1]) - height(&w[0])).abs() <= SLOPE * ds + 1e-9, "{w:?}");
+        }
+        // The profile's radius is 2 m and its flow factor 1.1.
+        let room = ROOM * 2.0 * 1.1;
+        assert!(p.iter().all(|q| q.radius <= room + 1e-9 && height(q) <= room + 1e-9));
+        assert!(p.iter().all(|q| q.radius >= MIN_HALF_WIDTH - 1e-12 && height(q) >= MIN_HALF_WIDTH - 1e-12));
+    }
+
+    #[test]
+    fn the_limiter_is_the_middle_of_the_two_envelopes() {
+        let at = [0.0, 2.0, 4.0, 6.0, 8.0];
+        // A single-point room of 20 m between 2 m sections: the minorant rises to 4 m there,
+        // the majorant keeps the 20 m and falls 2 m per point around it.
+        let limited = lipschitz_middle(&at, vec![2.0, 2.0, 20.0, 2.0, 2.0]);
+        assert_eq!(limited, vec![9.0, 10.0, 12.0, 10.0, 9.0]);
+        // A profile already within the slope is left as it is.
+        let gentle = vec![1.0, 2.0, 3.0, 2.5, 0.5];
+        assert_eq!(lipschitz_middle(&at, gentle.clone()), gentle);
     }
 
     #[test]
