@@ -29,7 +29,7 @@ pub const CAVE_REFINE: f64 = 8.0;
 /// The share of the passages' length (0..1) thinner than the automatic cave cell: the cell
 /// follows the common passages, not the thinnest pinch, whose cost would grow as the inverse
 /// square of its size over the whole cave.
-pub const CAVE_PERCENTILE: f64 = 0.1;
+pub const CAVE_PERCENTILE: f64 = 0.5;
 
 /// Each karst leaf's half-thickness, metres, with the length of passage it stands for:
 /// a sweep's or a capsule's axis (each end section half of a sweep), a sphere's or a

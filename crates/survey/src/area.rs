@@ -107,8 +107,7 @@ mod tests {
         let cell = 12.0 / CELLS as f64;
         let at = |i: usize, j: usize| ((i as f64 + 0.5) * cell - 6.0, (j as f64 + 0.5) * cell - 6.0);
         let value = |i: usize, j: usize| cave(DVec3::new(0.0, at(i, j).0, at(i, j).1));
-        let every: Vec<bool> =
-            (0..CELLS * CELLS).map(|k| value(k % CELLS, k / CELLS) < 0.0).collect();
+        let every: Vec<bool> = (0..CELLS * CELLS).map(|k| value(k % CELLS, k / CELLS) < 0.0).collect();
         assert_eq!(signs(&value, cell), every);
     }
 }
