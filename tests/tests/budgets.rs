@@ -136,3 +136,26 @@ fn exports_beyond_the_budget_are_refused_before_a_file_is_written() {
     );
     fs::remove_dir_all(&out).unwrap();
 }
+
+#[test]
+fn the_6_km_real_terrain_case_is_estimated_within_the_default_budget_before_the_mesher_runs() {
+    // fixtures/bench/jacksboro-6km.toml (a 30 m DEM, 64 km of conduits, defaults): the estimate
+    // the run prints before the mesher, with the automatic cave cell, under the default budget;
+    // the cave cell is the passages' median half-thickness, not the 0.25 m floor its thinnest
+    // pinch would give (issue 40).
+    let out = scratch("jacksboro-estimate");
+    let scene_path = root().join("fixtures/bench/jacksboro-6km.toml");
+    run(&scene_path, &out, &Selection { to: Some(StageId::Sdf), ..Selection::default() }).unwrap();
+    let scene = Scene::load(&scene_path).unwrap();
+    let (_, model) = karst_artifact::read_artifact::<karst_sdf::SdfModel>(&out.join("sdf.bin")).unwrap();
+    let view = karst_mesher::MesherView::of(&scene);
+    let cell = view.mesher.cell_size;
+    let cave = karst_mesher::cave_cell(&model, cell, view.mesher.cave_cell_size);
+    assert!(cave > cell / karst_mesher::CAVE_REFINE, "cave cell {cave} m at its floor");
+    let work = karst_mesher::Work::of(&view, &model);
+    let budget = karst_pipeline::budget::OutputBudget::default();
+    assert!(work.bytes < budget.mesh_bytes, "{work:?} beyond {budget:?}");
+    // Its mesh and its glb (at most the gltf bound) leave room in the budget for the rest.
+    assert!(work.bytes < budget.mesh_bytes / 2.0, "{work:?}");
+    fs::remove_dir_all(&out).unwrap();
+}

@@ -12,7 +12,7 @@ use std::io::Write;
 use karst_artifact::check::{self, MAX_COORDINATE};
 use karst_stage::ArtifactOut;
 
-use crate::cell::cave_cell;
+use crate::cell::{cave_cell, thickened};
 use crate::cleanup::{Solid, clean};
 use crate::error::MesherError;
 use crate::payload::{Mesh, SurfaceCounts};
@@ -27,7 +27,7 @@ use crate::warp::{polygonize_terrain, polygonize_terrain_into};
 pub fn build(view: &MesherView, model: &SdfModel) -> Result<Mesh, MesherError> {
     let cave_cell = checked_cells(view, model)?;
     let params = view.mesher;
-    let field = CarvedTerrain::new(model.clone());
+    let field = meshed_field(model, cave_cell);
     let mesh = mesh_simplified(
         &field,
         params.cell_size,
@@ -41,6 +41,12 @@ pub fn build(view: &MesherView, model: &SdfModel) -> Result<Mesh, MesherError> {
         [mesh.terrain.triangles.len(), mesh.cave.triangles.len()],
     )?;
     Ok(mesh)
+}
+
+/// The field the mesher polygonizes: `model` with its conduits at least `cave_cell` thick on
+/// each side ([`thickened`]), so that none falls between the cave lattice's points.
+pub fn meshed_field(model: &SdfModel, cave_cell: f64) -> CarvedTerrain {
+    CarvedTerrain::new(thickened(model, cave_cell).unwrap_or_else(|| model.clone()))
 }
 
 /// The cave cell of the scene's `[mesher]`, once both cells and the work they make are checked.
@@ -80,7 +86,8 @@ pub fn write_streamed(
 ) -> Result<[SurfaceCounts; 3], MesherError> {
     let cave_cell = checked_cells(view, model)?;
     let cell = view.mesher.cell_size;
-    let field = CarvedTerrain::new(model.clone());
+    let field = meshed_field(model, cave_cell);
+    let model = field.model();
     let anchors = anchors(view.keypoints);
     let failed = |e: std::io::Error| MesherError::Write(e.to_string());
     let dir = artifact.path().parent().map_or_else(|| std::path::PathBuf::from("."), |d| d.to_path_buf());

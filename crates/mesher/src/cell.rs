@@ -1,38 +1,125 @@
-//! The cell the cave and the water are meshed at, chosen from the karst's thinnest leaf; read
-//! by the mesher's build and by its work estimate before any cell is evaluated.
+//! The cell the cave and the water are meshed at, chosen from the sizes of the karst's passages,
+//! and the floor on the conduits' half-thickness that keeps the thinner ones open at that cell
+//! ([`thickened`]); read by the mesher's build and by its work estimate before any cell is
+//! evaluated.
 
-use karst_sdf::SdfModel;
+use karst_sdf::{SdfModel, SectionSpec};
 
-/// The cell of the cave alone and the water: `requested` when positive, else the half-thickness
-/// of the thinnest karst leaf (capsule or sphere radius, half the smaller side of a sweep's
-/// section, chamber radius), at most `cell_size` and at least `cell_size` / [`CAVE_REFINE`] or
-/// [`SMALLEST_PASSAGE`],
-/// whichever is smaller. Every point of space is within √3/2 cells of a lattice point, so a
-/// conduit at least a cell thick always holds lattice points: it cannot fall between them, and a
-/// pinch of a passage profile never closes the mesh.
+/// The cell of the cave alone and the water: `requested` when positive, else the
+/// [`CAVE_PERCENTILE`] of the karst leaves' half-thicknesses (capsule or sphere radius, half the
+/// smaller side of a sweep's section, chamber radius) weighted by the length of passage each
+/// stands for ([`half_thicknesses`]), at most `cell_size` and at least `cell_size` /
+/// [`CAVE_REFINE`]. The leaves thinner than the cell are meshed at the cell's half-thickness
+/// ([`thickened`]), so that every conduit is at least a cell thick: every point of space is
+/// within √3/2 cells of a lattice point, so such a conduit always holds lattice points and
+/// cannot fall between them.
 pub fn cave_cell(model: &SdfModel, cell_size: f64, requested: f64) -> f64 {
     if requested > 0.0 {
         return requested;
     }
-    let section = |s: &karst_sdf::SectionSpec| (s.shape.radius * s.shape.ratio.min(1.0)) as f64;
-    let thinnest = model
-        .capsules
-        .iter()
-        .map(|c| c.radius)
-        .chain(model.spheres.iter().flat_map(|g| g.spheres.iter().map(|s| s[3] as f64)))
-        .chain(model.sweeps.iter().flat_map(|s| [section(&s.sweep.start), section(&s.sweep.end)]))
-        .chain(model.chambers.iter().map(|c| c.radius as f64))
-        .filter(|r| *r > 0.0)
-        .fold(f64::INFINITY, f64::min);
-    let finest = (cell_size / CAVE_REFINE).min(SMALLEST_PASSAGE);
-    thinnest.clamp(finest, cell_size)
+    let mut sizes = half_thicknesses(model);
+    let size = weighted_percentile(&mut sizes, CAVE_PERCENTILE).unwrap_or(cell_size);
+    size.clamp(cell_size / CAVE_REFINE, cell_size)
 }
 
 /// The automatic cave cell is at most this many times finer than the terrain's (the cost grows
 /// as its square).
 pub const CAVE_REFINE: f64 = 8.0;
 
-/// The smallest half-width and half-height of a passage profile, metres (the skeleton's
-/// `passages::MIN_HALF_WIDTH`, docs/skeleton.md "Passages"): the automatic cave cell is never
-/// coarser than it when a leaf is that thin, whatever `cell_size`, so that a pinch stays open.
-pub const SMALLEST_PASSAGE: f64 = 0.5;
+/// The share of the passages' length (0..1) thinner than the automatic cave cell: the cell
+/// follows the common passages, not the thinnest pinch, whose cost would grow as the inverse
+/// square of its size over the whole cave.
+pub const CAVE_PERCENTILE: f64 = 0.5;
+
+/// Each karst leaf's half-thickness, metres, with the length of passage it stands for:
+/// a sweep's or a capsule's axis (each end section half of a sweep), a sphere's or a
+/// chamber's diameter.
+pub fn half_thicknesses(model: &SdfModel) -> Vec<(f64, f64)> {
+    let length = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
+    let f = |p: [f32; 3]| p.map(f64::from);
+    let mut sizes = Vec::new();
+    sizes.extend(model.capsules.iter().map(|c| (c.radius, length(c.a, c.b).max(2.0 * c.radius))));
+    for s in &model.sweeps {
+        let half = length(f(s.sweep.a), f(s.sweep.b)) / 2.0;
+        sizes.push((section_half_thickness(&s.sweep.start), half));
+        sizes.push((section_half_thickness(&s.sweep.end), half));
+    }
+    for group in &model.spheres {
+        sizes.extend(group.spheres.iter().map(|s| (s[3] as f64, 2.0 * s[3] as f64)));
+    }
+    sizes.extend(model.chambers.iter().map(|c| (c.radius as f64, 2.0 * c.radius as f64)));
+    sizes.retain(|&(r, w)| r > 0.0 && r.is_finite() && w.is_finite());
+    sizes
+}
+
+/// Half the smaller side of a section.
+fn section_half_thickness(s: &SectionSpec) -> f64 {
+    (s.shape.radius * s.shape.ratio.min(1.0)) as f64
+}
+
+/// The smallest value v of `(value, weight)` pairs such that the values ≤ v weigh at least
+/// `share` of the total (None when there are none or they weigh nothing).
+pub fn weighted_percentile(pairs: &mut [(f64, f64)], share: f64) -> Option<f64> {
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: f64 = pairs.iter().map(|p| p.1).sum();
+    if pairs.is_empty() || total <= 0.0 {
+        return pairs.first().map(|p| p.0);
+    }
+    let mut below = 0.0;
+    for &(value, weight) in pairs.iter() {
+        below += weight;
+        if below >= share * total {
+            return Some(value);
+        }
+    }
+    pairs.last().map(|p| p.0)
+}
+
+/// `model` with every karst leaf at least `floor` thick on each side: capsule, sphere and
+/// chamber radii raised to `floor`, each section's half-width and half-height raised to
+/// `floor` (the other kept, its asymmetry kept). The mesher meshes this model, so that a
+/// conduit thinner than the cave cell is drawn one cell thick (its true size stays in sdf.bin
+/// and in the survey); the model is unchanged when no leaf is thinner.
+pub fn thickened(model: &SdfModel, floor: f64) -> Option<SdfModel> {
+    let thin = half_thicknesses(model).iter().any(|&(r, _)| r < floor);
+    if !thin {
+        return None;
+    }
+    let floor32 = floor as f32;
+    let mut out = model.clone();
+    for c in &mut out.capsules {
+        c.radius = c.radius.max(floor);
+    }
+    for s in &mut out.sweeps {
+        for section in [&mut s.sweep.start, &mut s.sweep.end] {
+            let shape = &mut section.shape;
+            let height = (shape.radius * shape.ratio).max(floor32);
+            shape.radius = shape.radius.max(floor32);
+            shape.ratio = height / shape.radius;
+        }
+    }
+    for group in &mut out.spheres {
+        for s in &mut group.spheres {
+            s[3] = s[3].max(floor32);
+        }
+    }
+    for c in &mut out.chambers {
+        c.radius = c.radius.max(floor32);
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_weighted_percentile_counts_the_length_each_value_stands_for() {
+        let mut pairs = vec![(3.0, 10.0), (0.5, 1.0), (1.0, 9.0)];
+        assert_eq!(weighted_percentile(&mut pairs, 0.05), Some(0.5));
+        assert_eq!(weighted_percentile(&mut pairs, 0.1), Some(1.0));
+        assert_eq!(weighted_percentile(&mut pairs, 0.5), Some(1.0));
+        assert_eq!(weighted_percentile(&mut pairs, 0.51), Some(3.0));
+        assert_eq!(weighted_percentile(&mut [], 0.1), None);
+    }
+}

@@ -77,11 +77,6 @@ impl Areas {
         let cave_alone = self.cave / (cave * cave);
         [(self.outside + self.cave) / (cell * cell), cave_alone, cave_alone / 2.0]
     }
-
-    /// Bytes of the three meshes at terrain cell `cell` and cave cell `cave`.
-    fn bytes(&self, cell: f64, cave: f64) -> f64 {
-        self.cells(cell, cave).iter().sum::<f64>() * TRIANGLES_PER_CELL * BYTES_PER_TRIANGLE
-    }
 }
 
 /// Directions at which each sphere's surface is probed by [`union_area`].
@@ -221,25 +216,30 @@ fn lattice_cells(lattice: &TerrainLattice, model: &SdfModel) -> f64 {
 }
 
 /// Refuses lattices whose meshes would not fit in the memory budget, naming the cell that
-/// drives the estimate; `cave_of` gives the cave cell of a terrain cell.
+/// drives the estimate; `cave_of` gives the cave cell of a terrain cell. The triangles are
+/// [`Work::at`]'s (the carved terrain counted on its terrain lattice when it has one), each
+/// [`BYTES_PER_TRIANGLE`] at the peak.
 pub fn check(
     budget: Budget,
     model: &SdfModel,
     cell: f64,
     cave_of: impl Fn(f64) -> f64,
 ) -> Result<(), OverBudget> {
-    let areas = Areas::of(model);
     let cave = cave_of(cell);
-    let bytes = areas.bytes(cell, cave);
-    let terrain_share = (areas.outside + areas.cave) / (cell * cell);
-    let cave_share = 2.0 * areas.cave / (cave * cave);
-    let triangles = format!("{:.2e} triangles", (terrain_share + cave_share) * TRIANGLES_PER_CELL);
-    if terrain_share >= cave_share {
-        let estimate = Estimate { what: triangles, bytes, field: "mesher.cell_size".into(), value: cell };
-        budget.check(estimate, Cheaper::Larger, false, |c| areas.bytes(c, cave_of(c)))
-    } else {
+    let work = Work::at(model, cell, cave);
+    let peak = |w: Work| w.triangles * BYTES_PER_TRIANGLE;
+    let triangles = format!("{:.2e} triangles", work.triangles);
+    if work.terrain_triangles >= work.triangles - work.terrain_triangles {
         let estimate =
-            Estimate { what: triangles, bytes, field: "mesher.cave_cell_size".into(), value: cave };
-        budget.check(estimate, Cheaper::Larger, false, |c| areas.bytes(cell, c))
+            Estimate { what: triangles, bytes: peak(work), field: "mesher.cell_size".into(), value: cell };
+        budget.check(estimate, Cheaper::Larger, false, |c| peak(Work::at(model, c, cave_of(c))))
+    } else {
+        let estimate = Estimate {
+            what: triangles,
+            bytes: peak(work),
+            field: "mesher.cave_cell_size".into(),
+            value: cave,
+        };
+        budget.check(estimate, Cheaper::Larger, false, |c| peak(Work::at(model, cell, c)))
     }
 }

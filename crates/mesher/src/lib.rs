@@ -37,8 +37,8 @@ mod volume;
 mod warp;
 pub mod watertight;
 
-pub use build::{anchors, build, mesh, mesh_simplified, mesh_with};
-pub use cell::{CAVE_REFINE, SMALLEST_PASSAGE, cave_cell};
+pub use build::{anchors, build, mesh, mesh_simplified, mesh_with, meshed_field};
+pub use cell::{CAVE_PERCENTILE, CAVE_REFINE, cave_cell, thickened};
 pub use cleanup::{Solid, clean};
 pub use error::MesherError;
 pub use estimate::Work;

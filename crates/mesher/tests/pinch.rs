@@ -1,11 +1,15 @@
-//! A pinch never closes the cave mesh: the automatic cave cell (the thinnest leaf's
-//! half-thickness, never coarser than [`SMALLEST_PASSAGE`] when a leaf is that thin) keeps a
-//! passage at the passage profiles' smallest half-width open between two larger passages,
+//! A pinch never closes the cave mesh: the mesher meshes its field with every conduit at least
+//! a cave cell thick on each side ([`meshed_field`]), so a passage at the passage profiles'
+//! smallest half-width stays open between two larger passages at the automatic cave cell,
 //! wherever the pinch lies relative to the lattice.
 
 use karst_geology::Domain;
-use karst_mesher::{Cave, SMALLEST_PASSAGE, cave_cell, components, polygonize, watertight};
+use karst_mesher::{Cave, cave_cell, components, meshed_field, polygonize, watertight};
 use karst_sdf::{Capsule, CarvedTerrain, SdfModel, TerrainField};
+
+/// The passage profiles' smallest half-width and half-height, metres (docs/skeleton.md,
+/// "Passages").
+const SMALLEST_PASSAGE: f64 = 0.5;
 
 /// A 2 m passage, a 10 m long pinch of half-width `pinch`, and another 2 m passage, the axis at
 /// `offset` from the lattice's planes.
@@ -31,7 +35,7 @@ fn the_smallest_passage_stays_open_at_the_automatic_cave_cell() {
         for offset in [0.0, 0.13, 0.29, 0.41] {
             let model = pinched(half_width, offset);
             let cave_cell = cave_cell(&model, cell_size, 0.0);
-            let cave = polygonize(&Cave(&CarvedTerrain::new(model)), cave_cell);
+            let cave = polygonize(&Cave(&meshed_field(&model, cave_cell)), cave_cell);
             assert!(watertight::check(&cave).is_ok(), "cell {cell_size}, offset {offset}");
             assert_eq!(
                 components::count(&cave),
@@ -45,8 +49,8 @@ fn the_smallest_passage_stays_open_at_the_automatic_cave_cell() {
 
 #[test]
 fn a_pinch_thinner_than_the_cave_cell_can_close() {
-    // The check above can fail: at a fixed cell four times the pinch's half-width, some
-    // offset splits the passage in two.
+    // The check above can fail: unthickened, at a fixed cell four times the pinch's
+    // half-width, some offset splits the passage in two.
     let closed = [0.0, 0.13, 0.29, 0.41, 0.5, 0.77, 1.0].iter().any(|&offset| {
         let cave = polygonize(&Cave(&CarvedTerrain::new(pinched(0.25, offset))), 1.0);
         components::count(&cave) > 1

@@ -313,6 +313,39 @@ fn thin_conduits_are_meshed_whole_at_the_automatic_cave_cell() {
     assert!(ratio > 0.7 && ratio < 1.0, "{} vs {volume}", mesh.cave.enclosed_volume());
 }
 
+#[test]
+fn a_conduit_thinner_than_the_automatic_cave_cell_is_meshed_one_cell_thick_and_whole() {
+    // 150 m of 2 m passages and 40 m of a 0.3 m one joining them: the cell follows the
+    // passages (the length-weighted median, 2 m), not the thin one; the thin one, which a 2 m
+    // lattice misses, is meshed a cell thick and the cave is one closed surface.
+    let wide = 2.0;
+    let (a, b, c, d) = ([5.0, 20.0, 10.0], [80.0, 20.0, 10.0], [155.0, 20.0, 10.0], [80.0, 60.3, 11.1]);
+    let model = SdfModel {
+        capsules: vec![
+            Capsule { a, b, radius: wide },
+            Capsule { a: b, b: c, radius: wide },
+            Capsule { a: b, b: d, radius: 0.3 },
+        ],
+        ..SdfModel::new(
+            Domain { min: [0.0, 0.0, 0.0], max: [160.0, 70.0, 20.0] },
+            TerrainField::Plane { elevation: 18.0, origin: [0.0, 0.0], gradient: [0.0, 0.0] },
+        )
+    };
+    let cave_cell = karst_mesher::cave_cell(&model, 4.0, 0.0);
+    assert_eq!(cave_cell, wide);
+    let true_size = CarvedTerrain::new(model.clone());
+    let missed = polygonize(&Cave(&true_size), cave_cell);
+    let field = karst_mesher::meshed_field(&model, cave_cell);
+    let mesh = karst_mesher::mesh_with(&field, 4.0, cave_cell, &[DVec3::from_array(a)]);
+    assert_watertight("cave", &mesh.cave);
+    assert_eq!(components::count(&mesh.cave), 1);
+    // The thin conduit's end, 40 m from the junction, is in the cave mesh: its box reaches it.
+    let reach = mesh.cave.vertices.iter().map(|v| v[1] as f64).fold(f64::MIN, f64::max);
+    assert!(reach > d[1] + 0.5 * cave_cell, "{reach}");
+    let missed_reach = missed.vertices.iter().map(|v| v[1] as f64).fold(f64::MIN, f64::max);
+    assert!(missed_reach < d[1], "a 2 m lattice should miss most of the 0.3 m conduit: {missed_reach}");
+}
+
 /// A 120 × 100 m heightfield of 8 m pixels (two hills and a valley), a conduit that opens in
 /// the valley floor and a sealed one deep below.
 fn raster_model() -> SdfModel {

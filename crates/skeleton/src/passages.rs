@@ -69,8 +69,8 @@ pub const Z_MAX: f64 = 3.5;
 /// How much wider a passage is at a junction (a fraction of its size).
 pub const JUNCTION_WIDENING: f64 = 0.6;
 /// Smallest half-width and half-height, metres: a crawl a caver still passes, and a passage
-/// the mesher's automatic cave cell (the thinnest section's half-size) keeps open without
-/// refining the whole cave.
+/// the mesher keeps open at a cave cell of half a metre or more (it meshes the conduits
+/// thinner than its cave cell one cell thick).
 pub const MIN_HALF_WIDTH: f64 = 0.5;
 /// Fastest change of the half-width and of the half-height along a passage, metres per metre: a
 /// wall opens or closes at up to 45° to the passage. Rooms open and pinches close over metres,

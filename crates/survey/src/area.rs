@@ -8,7 +8,8 @@ use glam::DVec3;
 const CELLS: usize = 40;
 
 /// Area, m², of the open region of the plane spanned by the unit vectors `u`, `v` that holds
-/// `centre`, within a square of side `side` centred on it; `cave` is negative inside.
+/// `centre`, within a square of side `side` centred on it; `cave` is negative inside and
+/// 1-Lipschitz (its magnitude may be less than the distance to its zero set, never more).
 pub fn open_area(cave: &impl Fn(DVec3) -> f64, centre: DVec3, [u, v]: [DVec3; 2], side: f64) -> f64 {
     let cell = side / CELLS as f64;
     let at = |i: usize, j: usize| {
@@ -16,7 +17,7 @@ pub fn open_area(cave: &impl Fn(DVec3) -> f64, centre: DVec3, [u, v]: [DVec3; 2]
         let y = (j as f64 + 0.5) * cell - side / 2.0;
         centre + u * x + v * y
     };
-    let open: Vec<bool> = (0..CELLS * CELLS).map(|k| cave(at(k % CELLS, k / CELLS)) < 0.0).collect();
+    let open = signs(&|i, j| cave(at(i, j)), cell);
     let start = (CELLS / 2) * CELLS + CELLS / 2;
     if !open[start] {
         return 0.0;
@@ -44,6 +45,49 @@ pub fn open_area(cave: &impl Fn(DVec3) -> f64, centre: DVec3, [u, v]: [DVec3; 2]
     count as f64 * cell * cell
 }
 
+/// Coarsest spacing, in cells, of the points evaluated first by [`signs`].
+const COARSEST: usize = 16;
+
+/// Whether each cell's centre is open (`value(i, j)` < 0), from as few values as the bound
+/// allows: a value v at a point decides the sign of every point nearer than |v| (the field is
+/// 1-Lipschitz), so the points are visited coarse to fine (every [`COARSEST`]-th, then every
+/// half as many...) and each value read marks the disc it decides. The result is the sign of
+/// every point's own value.
+fn signs(value: &impl Fn(usize, usize) -> f64, cell: f64) -> Vec<bool> {
+    let mut known: Vec<Option<bool>> = vec![None; CELLS * CELLS];
+    let mut step = COARSEST;
+    while step >= 1 {
+        for j in (0..CELLS).step_by(step) {
+            for i in (0..CELLS).step_by(step) {
+                if known[j * CELLS + i].is_none() {
+                    let v = value(i, j);
+                    mark(&mut known, [i, j], v < 0.0, v.abs() * DECIDED / cell);
+                }
+            }
+        }
+        step /= 2;
+    }
+    known.into_iter().map(|k| k == Some(true)).collect()
+}
+
+/// The share of a value's magnitude trusted as the radius it decides (a margin for the
+/// rounding of the points' positions).
+const DECIDED: f64 = 0.999;
+
+/// Sets `open` at (i, j) and at every cell centre nearer to it than `radius` cells.
+fn mark(known: &mut [Option<bool>], [i, j]: [usize; 2], open: bool, radius: f64) {
+    known[j * CELLS + i] = Some(open);
+    let reach = radius.ceil().min(CELLS as f64) as usize;
+    for b in j.saturating_sub(reach)..(j + reach + 1).min(CELLS) {
+        for a in i.saturating_sub(reach)..(i + reach + 1).min(CELLS) {
+            let (di, dj) = (a.abs_diff(i) as f64, b.abs_diff(j) as f64);
+            if di * di + dj * dj < radius * radius {
+                known[b * CELLS + a] = Some(open);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -59,5 +103,11 @@ mod tests {
         let area = open_area(&cave, DVec3::ZERO, [u, v], 12.0);
         let disc = std::f64::consts::PI * 4.0;
         assert!((area / disc - 1.0).abs() < 0.05, "{area} vs {disc}");
+        // The signs decided by the bound are those of every point's own value.
+        let cell = 12.0 / CELLS as f64;
+        let at = |i: usize, j: usize| ((i as f64 + 0.5) * cell - 6.0, (j as f64 + 0.5) * cell - 6.0);
+        let value = |i: usize, j: usize| cave(DVec3::new(0.0, at(i, j).0, at(i, j).1));
+        let every: Vec<bool> = (0..CELLS * CELLS).map(|k| value(k % CELLS, k / CELLS) < 0.0).collect();
+        assert_eq!(signs(&value, cell), every);
     }
 }

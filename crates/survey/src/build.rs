@@ -12,7 +12,7 @@ use karst_skeleton::{ConduitType, Skeleton, Zone};
 
 use crate::area::open_area;
 use crate::error::SurveyError;
-use crate::measure::{is_shaft, measure, plane};
+use crate::measure::{TOLERANCE, is_shaft, measure, plane};
 use crate::payload::{Station, Survey, VoidVolume};
 use crate::ranges::passage_ranges;
 use crate::stations::{self, Placed, SPACING};
@@ -22,13 +22,22 @@ use crate::statistics::{counts, statistics};
 /// half-widths there (at least [`MIN_SEARCH`] metres).
 const SEARCH: f64 = 3.0;
 const MIN_SEARCH: f64 = 2.0;
+/// How far outside the cave its bound is searched, metres. The survey reads the cave's
+/// signed distance inside it (the steps of its chords) and its sign outside: with a reach
+/// just above 0 the karst leaves farther than that from a point in rock are not visited
+/// (`CarvedTerrain::cave_below_ground`), and every value read is the same as with no limit.
+const CAVE_REACH: f64 = TOLERANCE;
+/// How far outside the cave its bound is searched while a station's area is counted, in the
+/// lattice's side: the bound's value at a point in rock decides the points of the lattice
+/// nearer than it ([`open_area`]).
+const AREA_REACH: f64 = 0.25;
 /// Side of the lattice a station's area is counted on, in the larger of its two chords.
 const AREA_SIDE: f64 = 2.0;
 
 /// The survey of the cave `model` carved along `skeleton`.
 pub fn build(skeleton: &Skeleton, model: &SdfModel) -> Result<Survey, SurveyError> {
     let field = CarvedTerrain::new(model.clone());
-    let cave = |p: DVec3| field.cave_below_ground(p, f64::INFINITY);
+    let cave = |p: DVec3, reach: f64| field.cave_below_ground(p, reach);
     let placed = stations::place(skeleton);
     let junctions = stations::junctions(skeleton);
     let stations: Vec<Station> = placed.par_iter().map(|p| survey_station(&cave, p, &junctions)).collect();
@@ -51,12 +60,14 @@ fn search_radius(p: &Placed) -> f64 {
 }
 
 /// One station measured: chords, area, and whether it is near a junction.
-fn survey_station(cave: &(impl Fn(DVec3) -> f64 + Sync), p: &Placed, junctions: &[DVec3]) -> Station {
-    let chords = measure(cave, p.position, p.tangent, search_radius(p));
+/// `cave(p, reach)` is the cave's bound, searched up to `reach` outside it.
+fn survey_station(cave: &(impl Fn(DVec3, f64) -> f64 + Sync), p: &Placed, junctions: &[DVec3]) -> Station {
+    let chords = measure(&|q| cave(q, CAVE_REACH), p.position, p.tangent, search_radius(p));
     let (width, height, area, centre) = match chords {
         Some(c) => {
             let side = AREA_SIDE * c.width.max(c.height);
-            (c.width, c.height, open_area(cave, c.centre, plane(p.tangent), side), c.centre)
+            let reach = side * AREA_REACH;
+            (c.width, c.height, open_area(&|q| cave(q, reach), c.centre, plane(p.tangent), side), c.centre)
         }
         None => (0.0, 0.0, 0.0, p.position),
     };

@@ -12,8 +12,8 @@ pub struct MesherParams {
     /// Simplify each surface to at most this many triangles (0: no simplification).
     pub target_triangles: u64,
     /// Edge of the cells of the cave alone and the water, metres; 0 (the default): the
-    /// thinnest conduit's half-thickness, at most `cell_size`, so that no conduit falls between
-    /// lattice points.
+    /// length-weighted median of the conduits' half-thicknesses, at most `cell_size`; thinner
+    /// conduits are meshed one cave cell thick, so that none falls between lattice points.
     pub cave_cell_size: f64,
 }
 
