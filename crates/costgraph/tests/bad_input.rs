@@ -8,17 +8,31 @@ use karst_costgraph::{CostGraphError, build};
 use karst_sampling::SpacingField;
 use karst_sampling::{Samples, Tag};
 use karst_scene::{Scene, SceneError};
-use karst_testkit::SceneText;
 
-/// SceneText's box under a plane at 50 m, sink "doline" at [5, 5, 45] and spring "resurgence" at
-/// [95, 95, 10], with `extra` appended.
+const SCENE: &str = r#"
+name = "t"
+[domain]
+min = [0, 0, 0]
+max = [100, 100, 50]
+[terrain]
+kind = "plane"
+elevation = 50
+[[geology.water_tables]]
+name = "wt"
+elevation = 10
+[[keypoints]]
+name = "doline"
+kind = "sink"
+position = [5, 5, 45]
+[[keypoints]]
+name = "resurgence"
+kind = "spring"
+position = [95, 95, 10]
+water_table = "wt"
+"#;
+
 fn scene(extra: &str) -> Result<Scene, SceneError> {
-    let text = SceneText::new("t")
-        .plane(50.0)
-        .sink_and_spring(("doline", [5.0, 5.0, 45.0]), ("resurgence", [95.0, 95.0, 10.0]))
-        .with(extra)
-        .text();
-    Scene::parse(&text, Path::new("scene.toml"))
+    Scene::parse(&format!("{SCENE}{extra}"), Path::new("scene.toml"))
 }
 
 /// The two key points, then a grid of samples every `step` metres in x and y at z = 25 inside

@@ -10,18 +10,34 @@ use glam::DVec3;
 use karst_costgraph::{CostGraph, Costing, build_points};
 use karst_scene::Scene;
 use karst_scene::rng::Random;
-use karst_testkit::SceneText;
 
-/// A scene over `[0, size]` under a plane at its top, the water table far below, sink "a" and
-/// spring "s" near the origin, with `extra` appended (geology, [costgraph]).
+/// A scene over `[0, size]` with `extra` appended (geology, [costgraph]).
 fn scene(size: [f64; 3], extra: &str) -> Scene {
-    let text = SceneText::new("t")
-        .domain([0.0; 3], size)
-        .plane(size[2])
-        .water_table(-1000.0)
-        .sink_and_spring(("a", [1.0, 1.0, 1.0]), ("s", [2.0, 2.0, 1.0]))
-        .with(extra)
-        .text();
+    let text = format!(
+        r#"
+name = "t"
+[domain]
+min = [0, 0, 0]
+max = [{}, {}, {}]
+[terrain]
+kind = "plane"
+elevation = {}
+[[geology.water_tables]]
+name = "wt"
+elevation = -1000
+[[keypoints]]
+name = "a"
+kind = "sink"
+position = [1, 1, 1]
+[[keypoints]]
+name = "s"
+kind = "spring"
+position = [2, 2, 1]
+water_table = "wt"
+{extra}
+"#,
+        size[0], size[1], size[2], size[2]
+    );
     Scene::parse(&text, Path::new("t.toml")).unwrap()
 }
 

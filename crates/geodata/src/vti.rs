@@ -192,11 +192,9 @@ impl Node {
             };
             let event = reader.read_event().map_err(|e| malformed(e.to_string(), &reader))?;
             match event {
-                Event::Start(start) => {
-                    open.push(Node::of(&start).map_err(|e| malformed(e.to_string(), &reader))?);
-                }
+                Event::Start(start) => open.push(Node::of(&start).map_err(|e| malformed(e, &reader))?),
                 Event::Empty(start) => {
-                    let node = Node::of(&start).map_err(|e| malformed(e.to_string(), &reader))?;
+                    let node = Node::of(&start).map_err(|e| malformed(e, &reader))?;
                     open.last_mut().expect("the root stays open").children.push(node);
                 }
                 Event::Text(text) => {
@@ -217,16 +215,16 @@ impl Node {
     }
 
     /// A node for an opening tag, with its attributes unescaped.
-    fn of(start: &BytesStart) -> Result<Node, quick_xml::Error> {
+    fn of(start: &BytesStart) -> Result<Node, String> {
         let name = start.name().as_ref().to_string();
         let attributes = start
             .attributes()
             .map(|a| {
-                let a = a?;
-                let value = a.normalized_value(XmlVersion::Implicit1_0)?;
+                let a = a.map_err(|e| e.to_string())?;
+                let value = a.normalized_value(XmlVersion::Implicit1_0).map_err(|e| e.to_string())?;
                 Ok((a.key.as_ref().to_string(), value.into_owned()))
             })
-            .collect::<Result<_, quick_xml::Error>>()?;
+            .collect::<Result<_, String>>()?;
         Ok(Node { name, attributes, ..Node::default() })
     }
 

@@ -41,41 +41,6 @@ impl SceneText {
         self
     }
 
-    /// Sets the domain box.
-    pub fn domain(self, min: [f64; 3], max: [f64; 3]) -> Self {
-        let corner = |c: [f64; 3]| format!("[{}, {}, {}]", c[0], c[1], c[2]);
-        self.replace("[domain]", &format!("[domain]\nmin = {}\nmax = {}", corner(min), corner(max)))
-    }
-
-    /// Makes the terrain a horizontal plane at `elevation`.
-    pub fn plane(self, elevation: f64) -> Self {
-        self.replace("[terrain]", &format!("[terrain]\nkind = \"plane\"\nelevation = {elevation}"))
-    }
-
-    /// Puts the water table "wt" at `elevation`.
-    pub fn water_table(self, elevation: f64) -> Self {
-        self.replace(
-            "[[geology.water_tables]]",
-            &format!("[[geology.water_tables]]\nname = \"wt\"\nelevation = {elevation}"),
-        )
-    }
-
-    /// Replaces the sink and the spring by `sink` and `spring` (name, position); the spring
-    /// still drains to "wt".
-    pub fn sink_and_spring(mut self, sink: (&str, [f64; 3]), spring: (&str, [f64; 3])) -> Self {
-        let at = |p: [f64; 3]| format!("[{}, {}, {}]", p[0], p[1], p[2]);
-        let first = self.sections.iter().position(|s| s.starts_with("[[keypoints]]"));
-        let first = first.expect("SceneText starts with its sink and spring");
-        self.sections[first] =
-            format!("[[keypoints]]\nname = \"{}\"\nkind = \"sink\"\nposition = {}\n", sink.0, at(sink.1));
-        self.sections[first + 1] = format!(
-            "[[keypoints]]\nname = \"{}\"\nkind = \"spring\"\nposition = {}\nwater_table = \"wt\"\n",
-            spring.0,
-            at(spring.1)
-        );
-        self
-    }
-
     /// The TOML text.
     pub fn text(&self) -> String {
         let mut text = self.head.clone();

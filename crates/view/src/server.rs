@@ -1,30 +1,26 @@
-//! A small static file server for a view folder, on 127.0.0.1 only, on `tiny_http` (the HTTP/1.1
-//! parsing, keep-alive connections and response framing are that crate's).
+//! A small static file server for a view folder, on 127.0.0.1 only.
 //!
-//! It answers GET and HEAD for files under the view folder and nothing else (405): the request
-//! path is percent-decoded and split into segments; a segment that is empty, `.`, `..`, or holds
-//! a `\` or a NUL is refused (403), and the resolved file must still lie inside the folder once
+//! It answers GET and HEAD for files under the view folder and nothing else: the request path
+//! is percent-decoded and split into segments; a segment that is empty, `.`, `..`, or holds a
+//! `\` or a NUL is refused (403), and the resolved file must still lie inside the folder once
 //! symbolic links are resolved. So neither `/../x`, `/%2e%2e/x`, `/a/..%2f..%2fx` nor a link
-//! out of the folder reaches a file outside it. A missing file is a 404. Files are streamed
-//! with their length (no chunked encoding), typed by extension, never cached by the browser
-//! (`Cache-Control: no-cache`: a view rewritten by a new run is reloaded) nor sniffed. A few
-//! threads answer the page's few hundred requests from one browser on the same machine.
+//! out of the folder reaches a file outside it. One thread per connection, one request per
+//! connection (`Connection: close`): the page's few hundred requests come from one browser on
+//! the same machine.
 
-use std::net::{Ipv4Addr, SocketAddr, TcpListener};
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::{Ipv4Addr, SocketAddr, TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-
-use tiny_http::{Header, Method, Request, Response, StatusCode};
+use std::time::Duration;
 
 use crate::ViewError;
 
-/// Threads answering requests.
-const WORKERS: usize = 4;
+/// Longest request head accepted.
+const MAX_HEAD: usize = 16 * 1024;
 
 /// A bound, not yet serving, server.
 pub struct Server {
-    http: Arc<tiny_http::Server>,
-    address: SocketAddr,
+    listener: TcpListener,
     root: PathBuf,
 }
 
@@ -43,16 +39,12 @@ impl Server {
                 ViewError::Listen { port, source }
             }
         })?;
-        let listen = |source: std::io::Error| ViewError::Listen { port, source };
-        let address = listener.local_addr().map_err(listen)?;
-        let http =
-            tiny_http::Server::from_listener(listener, None).map_err(|e| listen(std::io::Error::other(e)))?;
-        Ok(Server { http: Arc::new(http), address, root })
+        Ok(Server { listener, root })
     }
 
     /// The address it listens on.
     pub fn address(&self) -> SocketAddr {
-        self.address
+        self.listener.local_addr().expect("a bound listener has an address")
     }
 
     /// The page's URL.
@@ -62,18 +54,11 @@ impl Server {
 
     /// Serves until the process ends.
     pub fn run(self) {
-        let workers: Vec<_> = (0..WORKERS)
-            .map(|_| {
-                let (http, root) = (Arc::clone(&self.http), self.root.clone());
-                std::thread::spawn(move || {
-                    for request in http.incoming_requests() {
-                        answer(&root, request);
-                    }
-                })
-            })
-            .collect();
-        for worker in workers {
-            let _ = worker.join();
+        for stream in self.listener.incoming().flatten() {
+            let root = self.root.clone();
+            std::thread::spawn(move || {
+                let _ = answer(&root, stream);
+            });
         }
     }
 }
@@ -86,55 +71,72 @@ pub fn serve(view_dir: &Path, port: u16) -> Result<(), ViewError> {
     Ok(())
 }
 
-/// Answers one request; a client that went away is no error of the server's.
-fn answer(root: &Path, request: Request) {
-    let response = match request.method() {
-        Method::Get | Method::Head => respond(root, request.url()),
-        _ => text(405, "only GET and HEAD"),
-    };
-    let _ = request.respond(response);
+/// An HTTP response: status line, type and body.
+struct Response {
+    status: &'static str,
+    content_type: &'static str,
+    body: Vec<u8>,
 }
 
-/// The response to a GET or HEAD of `target`: the file, 403 outside the folder, 404 missing.
-fn respond(root: &Path, target: &str) -> Response<Box<dyn std::io::Read + Send>> {
-    let Some(path) = resolve(root, target) else {
-        return text(403, "outside the view folder");
-    };
-    match karst_artifact::files::open_regular(&path, karst_artifact::files::MAX_DATA_BYTES) {
-        Ok((file, length)) => with_headers(
-            Response::new(StatusCode(200), Vec::new(), Box::new(file), usize::try_from(length).ok(), None),
-            content_type(&path),
-        ),
-        Err(_) => text(404, "no such file in the view"),
+impl Response {
+    fn text(status: &'static str, message: &str) -> Response {
+        Response {
+            status,
+            content_type: "text/plain; charset=utf-8",
+            body: format!("{message}\n").into_bytes(),
+        }
     }
 }
 
-/// A plain-text error page.
-fn text(status: u16, message: &str) -> Response<Box<dyn std::io::Read + Send>> {
-    let body = format!("{message}\n").into_bytes();
-    let length = body.len();
-    with_headers(
-        Response::new(
-            StatusCode(status),
-            Vec::new(),
-            Box::new(std::io::Cursor::new(body)),
-            Some(length),
-            None,
-        ),
-        "text/plain; charset=utf-8",
+fn answer(root: &Path, mut stream: TcpStream) -> std::io::Result<()> {
+    stream.set_read_timeout(Some(Duration::from_secs(10)))?;
+    let head = read_head(&stream)?;
+    let (method, target) = parse_request_line(&head);
+    let response = match method {
+        "GET" | "HEAD" => respond(root, target),
+        _ => Response::text("405 Method Not Allowed", "only GET and HEAD"),
+    };
+    let mut out = format!(
+        "HTTP/1.1 {}\r\nContent-Type: {}\r\nContent-Length: {}\r\nCache-Control: no-cache\r\n\
+         X-Content-Type-Options: nosniff\r\nConnection: close\r\n\r\n",
+        response.status,
+        response.content_type,
+        response.body.len()
     )
+    .into_bytes();
+    if method != "HEAD" {
+        out.extend_from_slice(&response.body);
+    }
+    stream.write_all(&out)?;
+    stream.flush()
 }
 
-/// The headers every response carries; the length is always sent, never chunked.
-fn with_headers<R: std::io::Read>(response: Response<R>, content_type: &str) -> Response<R> {
-    let header = |name: &str, value: &str| {
-        Header::from_bytes(name.as_bytes(), value.as_bytes()).expect("ASCII header names and values")
+fn read_head(stream: &TcpStream) -> std::io::Result<String> {
+    // At most MAX_HEAD bytes in all, however long a line the client sends.
+    let mut reader = BufReader::new(stream.take(MAX_HEAD as u64 + 1));
+    let mut head = String::new();
+    loop {
+        let mut line = String::new();
+        if reader.read_line(&mut line)? == 0 || line == "\r\n" || line == "\n" || head.len() > MAX_HEAD {
+            return Ok(head);
+        }
+        head.push_str(&line);
+    }
+}
+
+fn parse_request_line(head: &str) -> (&str, &str) {
+    let mut words = head.lines().next().unwrap_or("").split_whitespace();
+    (words.next().unwrap_or(""), words.next().unwrap_or(""))
+}
+
+fn respond(root: &Path, target: &str) -> Response {
+    let Some(path) = resolve(root, target) else {
+        return Response::text("403 Forbidden", "outside the view folder");
     };
-    response
-        .with_header(header("Content-Type", content_type))
-        .with_header(header("Cache-Control", "no-cache"))
-        .with_header(header("X-Content-Type-Options", "nosniff"))
-        .with_chunked_threshold(usize::MAX)
+    match karst_artifact::files::read_regular(&path, karst_artifact::files::MAX_DATA_BYTES) {
+        Ok(body) => Response { status: "200 OK", content_type: content_type(&path), body },
+        Err(_) => Response::text("404 Not Found", "no such file in the view"),
+    }
 }
 
 /// The file a request target names, if it lies inside `root` (which is canonical).
@@ -191,8 +193,7 @@ fn content_type(path: &Path) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::io::{Read, Write};
-    use std::net::TcpStream;
+    use std::io::Read;
 
     /// A view folder with index.html and data/a.json, beside a secret file.
     fn fixture(name: &str) -> karst_testkit::Scratch {
@@ -204,33 +205,14 @@ mod tests {
         dir
     }
 
-    /// Sends one raw request (its request line and headers, the head's end added) on its own
-    /// connection and returns the raw response.
-    fn exchange(address: SocketAddr, head: &str) -> String {
+    /// Sends one raw request and returns the status code and the body.
+    fn get(address: SocketAddr, request: &str) -> (u16, String) {
         let mut stream = TcpStream::connect(address).unwrap();
-        stream.set_read_timeout(Some(std::time::Duration::from_secs(20))).unwrap();
-        stream
-            .write_all(format!("{head}\r\nHost: localhost\r\nConnection: close\r\n\r\n").as_bytes())
-            .unwrap();
+        stream.write_all(request.as_bytes()).unwrap();
         let mut text = String::new();
         stream.read_to_string(&mut text).unwrap();
-        text
-    }
-
-    /// The status code and the body of the answer to a request line.
-    fn get(address: SocketAddr, request_line: &str) -> (u16, String) {
-        let text = exchange(address, request_line);
         let status = text.split_whitespace().nth(1).unwrap().parse().unwrap();
-        (status, text.split_once("\r\n\r\n").map_or("", |(_, body)| body).to_string())
-    }
-
-    /// The value of the response header `name`, if present.
-    fn header<'a>(response: &'a str, name: &str) -> Option<&'a str> {
-        let head = response.split("\r\n\r\n").next().unwrap_or("");
-        head.lines().find_map(|l| {
-            let (key, value) = l.split_once(':')?;
-            key.eq_ignore_ascii_case(name).then(|| value.trim())
-        })
+        (status, text.split("\r\n\r\n").nth(1).unwrap_or("").to_string())
     }
 
     fn spawn(view: &Path) -> SocketAddr {
@@ -245,55 +227,12 @@ mod tests {
         let dir = fixture("files");
         let address = spawn(&dir.join("view"));
         assert!(address.ip().is_loopback());
-        assert_eq!(get(address, "GET / HTTP/1.1"), (200, "<html>karst</html>".into()));
-        assert_eq!(get(address, "GET /data/a.json?x=1 HTTP/1.1"), (200, "{\"a\":1}".into()));
-        assert_eq!(get(address, "GET /data/%61.json HTTP/1.1").0, 200);
-        assert_eq!(get(address, "GET /data/none.json HTTP/1.1"), (404, "no such file in the view\n".into()));
-        assert_eq!(get(address, "HEAD / HTTP/1.1"), (200, String::new()));
-        assert_eq!(get(address, "POST / HTTP/1.1"), (405, "only GET and HEAD\n".into()));
-        assert_eq!(get(address, "DELETE /data/a.json HTTP/1.1").0, 405);
-        assert!(dir.join("view/data/a.json").is_file());
-    }
-
-    #[test]
-    fn files_carry_their_type_and_length_and_are_not_cached() {
-        let dir = fixture("headers");
-        // Larger than tiny_http's default threshold for chunked encoding: still sent with its length.
-        let big: String = (0..100_000).map(|i| char::from(b'a' + (i % 26) as u8)).collect();
-        std::fs::write(dir.join("view/data/big.glb"), &big).unwrap();
-        let address = spawn(&dir.join("view"));
-        for (target, kind, length) in [
-            ("/", "text/html; charset=utf-8", 18),
-            ("/data/a.json", "application/json", 7),
-            ("/data/big.glb", "model/gltf-binary", big.len()),
-        ] {
-            let response = exchange(address, &format!("GET {target} HTTP/1.1"));
-            assert_eq!(header(&response, "Content-Type"), Some(kind), "{target}");
-            assert_eq!(header(&response, "Content-Length"), Some(length.to_string().as_str()), "{target}");
-            assert_eq!(header(&response, "Transfer-Encoding"), None, "{target}");
-            assert_eq!(header(&response, "Cache-Control"), Some("no-cache"), "{target}");
-            assert_eq!(header(&response, "X-Content-Type-Options"), Some("nosniff"), "{target}");
-        }
-        let response = exchange(address, "HEAD /data/big.glb HTTP/1.1");
-        assert_eq!(header(&response, "Content-Length"), Some(big.len().to_string().as_str()));
-        assert!(response.ends_with("\r\n\r\n"), "a HEAD answer has no body");
-        assert!(get(address, "GET /data/big.glb HTTP/1.1").1 == big);
-    }
-
-    #[test]
-    fn one_connection_serves_several_requests() {
-        let dir = fixture("keepalive");
-        let address = spawn(&dir.join("view"));
-        let mut stream = TcpStream::connect(address).unwrap();
-        stream.set_read_timeout(Some(std::time::Duration::from_secs(20))).unwrap();
-        let request = "GET /data/a.json HTTP/1.1\r\nHost: localhost\r\n\r\n";
-        stream.write_all(format!("{request}{request}").as_bytes()).unwrap();
-        stream.write_all(b"GET / HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n").unwrap();
-        let mut text = String::new();
-        stream.read_to_string(&mut text).unwrap();
-        assert_eq!(text.matches("HTTP/1.1 200").count(), 3, "{text}");
-        assert_eq!(text.matches("{\"a\":1}").count(), 2, "{text}");
-        assert!(text.ends_with("<html>karst</html>"), "{text}");
+        assert_eq!(get(address, "GET / HTTP/1.1\r\n\r\n"), (200, "<html>karst</html>".into()));
+        assert_eq!(get(address, "GET /data/a.json?x=1 HTTP/1.1\r\n\r\n"), (200, "{\"a\":1}".into()));
+        assert_eq!(get(address, "GET /data/%61.json HTTP/1.1\r\n\r\n").0, 200);
+        assert_eq!(get(address, "GET /data/none.json HTTP/1.1\r\n\r\n").0, 404);
+        assert_eq!(get(address, "HEAD / HTTP/1.1\r\n\r\n"), (200, String::new()));
+        assert_eq!(get(address, "POST / HTTP/1.1\r\n\r\n").0, 405);
     }
 
     #[test]
@@ -315,7 +254,7 @@ mod tests {
             "/link.txt",
             "secret.txt",
         ] {
-            let (status, body) = get(address, &format!("GET {target} HTTP/1.1"));
+            let (status, body) = get(address, &format!("GET {target} HTTP/1.1\r\n\r\n"));
             assert_eq!(status, 403, "{target}");
             assert!(!body.contains("SECRET"), "{target}");
         }
