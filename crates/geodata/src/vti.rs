@@ -58,7 +58,38 @@ pub enum VtiError {
     #[error("has {count} arrays ({arrays}): name the lithology's with `array`")]
     AmbiguousArray { count: usize, arrays: String },
     #[error("array \"{array}\": {reason}")]
-    Array { array: String, reason: String },
+    Array { array: String, reason: ArrayError },
+}
+
+/// What is wrong with the lithology's data array: its type, format, encoding or values.
+#[derive(Debug, Clone, thiserror::Error, PartialEq)]
+pub enum ArrayError {
+    #[error("has {0} components, not 1")]
+    Components(String),
+    #[error("has type {0}: lithology codes need integers or floats")]
+    Type(String),
+    #[error("has format \"{0}\"")]
+    Format(String),
+    #[error("value {index} \"{word}\" is not a number")]
+    NotNumber { index: usize, word: String },
+    #[error("value {index} = {value} is not an integer code")]
+    NotCode { index: usize, value: f64 },
+    #[error("has {found} values, its extent {count}")]
+    Count { found: usize, count: usize },
+    #[error("is appended but the file has no AppendedData")]
+    NoAppendedData,
+    #[error("is appended without an offset")]
+    NoOffset,
+    #[error("offset {0} is beyond the appended data")]
+    Offset(usize),
+    #[error("bad base64 data: {0}")]
+    Base64(#[from] base64::DecodeError),
+    #[error("the {} data end early", if *.base64 { "base64" } else { "binary" })]
+    Truncated { base64: bool },
+    #[error("zlib block {block}: {reason}")]
+    Zlib { block: usize, reason: String },
+    #[error("zlib block {block} holds {found} bytes, its header says {expected}")]
+    BlockSize { block: usize, found: usize, expected: usize },
 }
 
 /// Reads the array `name` (or the only array, or the `Scalars` one) of a `.vti` file's bytes.
@@ -327,7 +358,7 @@ fn pick_array<'a>(tree: &'a Node, name: Option<&str>) -> Result<(DataArray<'a>, 
     if components.trim() != "1" {
         return Err(VtiError::Array {
             array: array.name.to_string(),
-            reason: format!("has {components} components, not 1"),
+            reason: ArrayError::Components(components.to_string()),
         });
     }
     Ok((array, cells))
@@ -340,46 +371,47 @@ impl DataArray<'_> {
         appended: Option<Appended>,
         encoding: &Encoding,
         count: usize,
-    ) -> Result<Vec<i32>, String> {
+    ) -> Result<Vec<i32>, ArrayError> {
         let width = match self.kind {
             "Int8" | "UInt8" => 1,
             "Int16" | "UInt16" => 2,
             "Int32" | "UInt32" | "Float32" => 4,
             "Int64" | "UInt64" | "Float64" => 8,
-            other => return Err(format!("has type {other}: lithology codes need integers or floats")),
+            other => return Err(ArrayError::Type(other.into())),
         };
         let values: Vec<f64> = match self.format {
             "ascii" => self
                 .body
                 .split_whitespace()
                 .enumerate()
-                .map(|(i, w)| w.parse::<f64>().map_err(|_| format!("value {i} \"{w}\" is not a number")))
+                .map(|(index, w)| {
+                    w.parse::<f64>().map_err(|_| ArrayError::NotNumber { index, word: w.into() })
+                })
                 .collect::<Result<_, _>>()?,
             "binary" => {
                 let chars: Vec<u8> = self.body.bytes().filter(|b| !b.is_ascii_whitespace()).collect();
                 self.numbers(&block(Source::Base64(&chars), encoding)?, width, encoding)
             }
             "appended" => {
-                let (data, base64) = appended.ok_or("is appended but the file has no AppendedData")?;
-                let offset = self.offset.ok_or("is appended without an offset")?;
-                let data =
-                    data.get(offset..).ok_or(format!("offset {offset} is beyond the appended data"))?;
+                let (data, base64) = appended.ok_or(ArrayError::NoAppendedData)?;
+                let offset = self.offset.ok_or(ArrayError::NoOffset)?;
+                let data = data.get(offset..).ok_or(ArrayError::Offset(offset))?;
                 let source = if base64 { Source::Base64(data) } else { Source::Raw(data) };
                 self.numbers(&block(source, encoding)?, width, encoding)
             }
-            other => return Err(format!("has format \"{other}\"")),
+            other => return Err(ArrayError::Format(other.into())),
         };
         if values.len() != count {
-            return Err(format!("has {} values, its extent {count}", values.len()));
+            return Err(ArrayError::Count { found: values.len(), count });
         }
         values
             .iter()
             .enumerate()
-            .map(|(i, v)| {
+            .map(|(index, v)| {
                 if v.fract() == 0.0 && *v >= i32::MIN as f64 && *v <= i32::MAX as f64 {
                     Ok(*v as i32)
                 } else {
-                    Err(format!("value {i} = {v} is not an integer code"))
+                    Err(ArrayError::NotCode { index, value: *v })
                 }
             })
             .collect()
@@ -422,8 +454,8 @@ const BASE64: GeneralPurpose = GeneralPurpose::new(
 );
 
 /// Decodes base64 characters (without whitespace).
-fn decode_base64(chars: &[u8]) -> Result<Vec<u8>, String> {
-    BASE64.decode(chars).map_err(|e| format!("bad base64 data: {e}"))
+fn decode_base64(chars: &[u8]) -> Result<Vec<u8>, ArrayError> {
+    Ok(BASE64.decode(chars)?)
 }
 
 /// Where a binary block's bytes come from.
@@ -435,28 +467,28 @@ enum Source<'a> {
 
 impl Source<'_> {
     /// The first `n` bytes.
-    fn prefix(&self, n: usize) -> Result<Vec<u8>, String> {
+    fn prefix(&self, n: usize) -> Result<Vec<u8>, ArrayError> {
+        let end = ArrayError::Truncated { base64: matches!(self, Source::Base64(_)) };
         match self {
-            Source::Raw(b) => b.get(..n).map(<[u8]>::to_vec).ok_or("the binary data end early".into()),
+            Source::Raw(b) => b.get(..n).map(<[u8]>::to_vec).ok_or(end),
             Source::Base64(chars) => {
-                let bytes =
-                    decode_base64(chars.get(..4 * n.div_ceil(3)).ok_or("the base64 data end early")?)?;
-                bytes.get(..n).map(<[u8]>::to_vec).ok_or("the base64 data end early".into())
+                let bytes = decode_base64(chars.get(..4 * n.div_ceil(3)).ok_or(end.clone())?)?;
+                bytes.get(..n).map(<[u8]>::to_vec).ok_or(end)
             }
         }
     }
 
     /// The `n` bytes after a header of `header` bytes: with base64, the header is encoded on
     /// its own when its last group is padded (VTK's way), else with the data.
-    fn after_header(&self, header: usize, n: usize) -> Result<Vec<u8>, String> {
+    fn after_header(&self, header: usize, n: usize) -> Result<Vec<u8>, ArrayError> {
         match self {
             Source::Raw(b) => {
-                b.get(header..header + n).map(<[u8]>::to_vec).ok_or("the binary data end early".into())
+                b.get(header..header + n).map(<[u8]>::to_vec).ok_or(ArrayError::Truncated { base64: false })
             }
             Source::Base64(chars) => {
                 let head = 4 * header.div_ceil(3);
                 if chars.get(head - 1) == Some(&b'=') || header.is_multiple_of(3) {
-                    let rest = chars.get(head..).ok_or("the base64 data end early")?;
+                    let rest = chars.get(head..).ok_or(ArrayError::Truncated { base64: true })?;
                     Source::Base64(rest).prefix(n)
                 } else {
                     Ok(self.prefix(header + n)?[header..].to_vec())
@@ -467,7 +499,7 @@ impl Source<'_> {
 }
 
 /// The data of one binary block: its header, then the data, inflated when compressed.
-fn block(source: Source, e: &Encoding) -> Result<Vec<u8>, String> {
+fn block(source: Source, e: &Encoding) -> Result<Vec<u8>, ArrayError> {
     let first = e.integer(&source.prefix(e.header)?) as usize;
     if !e.zlib {
         return source.after_header(e.header, first);
@@ -485,9 +517,9 @@ fn block(source: Source, e: &Encoding) -> Result<Vec<u8>, String> {
         let mut inflated = Vec::with_capacity(expected);
         flate2::read::ZlibDecoder::new(&packed[at..at + size])
             .read_to_end(&mut inflated)
-            .map_err(|e| format!("zlib block {k}: {e}"))?;
+            .map_err(|e| ArrayError::Zlib { block: k, reason: e.to_string() })?;
         if inflated.len() != expected {
-            return Err(format!("zlib block {k} holds {} bytes, its header says {expected}", inflated.len()));
+            return Err(ArrayError::BlockSize { block: k, found: inflated.len(), expected });
         }
         out.extend(inflated);
         at += size;

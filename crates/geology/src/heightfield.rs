@@ -1,5 +1,6 @@
 //! Heightfields: the terrain as a regular grid of elevations read from a 16-bit grayscale PNG
-//! or an OpenEXR image (`.exr`, float elevations), interpolated bilinearly.
+//! or an OpenEXR image (`.exr`, float elevations), interpolated bilinearly. The images' pixels
+//! are `karst-geodata`'s ([`karst_geodata::image`]); this module places and scales them.
 //!
 //! Georeferencing: pixel (column c, row r) of a W × H image stands at
 //! x = origin.x + c·cell_size, y = origin.y + (H − 1 − r)·cell_size (row 0 is the north edge, as
@@ -13,10 +14,10 @@
 
 use std::path::Path;
 
+use karst_geodata::image::{self, Image, ImageError};
 use serde::{Deserialize, Serialize};
 
-/// Most pixels of a heightfield image (16384 × 16384): its elevations take 8 bytes each.
-pub const MAX_PIXELS: u64 = 1 << 28;
+pub use karst_geodata::image::MAX_PIXELS;
 
 /// A regular grid of elevations, south row first.
 #[derive(Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -49,6 +50,17 @@ pub enum HeightfieldError {
     Content { file: String, message: String },
 }
 
+impl HeightfieldError {
+    /// The error of the image reader, with the file's name in front.
+    fn of(file: &str, error: ImageError) -> HeightfieldError {
+        let file = file.to_string();
+        match error {
+            ImageError::Unreadable(message) => HeightfieldError::Read { file, message },
+            ImageError::Content(message) => HeightfieldError::Content { file, message },
+        }
+    }
+}
+
 /// How to turn pixels into elevations and positions.
 #[derive(Debug, Clone, Copy)]
 pub struct Georeference {
@@ -63,90 +75,39 @@ impl HeightGrid {
     /// Reads a 16-bit (or 8-bit) grayscale PNG.
     pub fn read_png(path: &Path, geo: &Georeference) -> Result<HeightGrid, HeightfieldError> {
         let file = path.display().to_string();
-        let read = |message: String| HeightfieldError::Read { file: file.clone(), message };
         let bytes = karst_artifact::files::read_regular(path, karst_artifact::files::MAX_DATA_BYTES)
-            .map_err(|e| read(e.to_string()))?;
+            .map_err(|e| HeightfieldError::Read { file: file.clone(), message: e.to_string() })?;
         HeightGrid::decode_png(&bytes, &file, geo)
     }
 
     /// Decodes the bytes of a 16-bit (or 8-bit) grayscale PNG named `file` in messages; images
     /// of more than [`MAX_PIXELS`] are refused before their pixels are allocated.
     pub fn decode_png(bytes: &[u8], file: &str, geo: &Georeference) -> Result<HeightGrid, HeightfieldError> {
-        let file = file.to_string();
-        let read = |message: String| HeightfieldError::Read { file: file.clone(), message };
-        let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
-        let mut reader = decoder.read_info().map_err(|e| read(e.to_string()))?;
-        let (width, height) = (reader.info().width as u64, reader.info().height as u64);
-        if width * height > MAX_PIXELS {
-            return Err(read(format!(
-                "{width} × {height} pixels, more than the {MAX_PIXELS} a heightfield may have"
-            )));
-        }
-        let size = reader.output_buffer_size().ok_or_else(|| read("image too large".into()))?;
-        let mut buffer = vec![0u8; size];
-        let info = reader.next_frame(&mut buffer).map_err(|e| read(e.to_string()))?;
-        if info.color_type != png::ColorType::Grayscale {
-            return Err(HeightfieldError::Content {
-                file,
-                message: format!("must be a grayscale PNG, found {:?}", info.color_type),
-            });
-        }
-        let (w, h) = (info.width as usize, info.height as usize);
-        let value = |i: usize| -> f64 {
-            match info.bit_depth {
-                png::BitDepth::Sixteen => u16::from_be_bytes([buffer[2 * i], buffer[2 * i + 1]]) as f64,
-                _ => buffer[i] as f64,
-            }
-        };
-        if !matches!(info.bit_depth, png::BitDepth::Sixteen | png::BitDepth::Eight) {
-            return Err(HeightfieldError::Content {
-                file,
-                message: format!("must have 8 or 16 bits per pixel, found {:?}", info.bit_depth),
-            });
-        }
-        let mut heights = Vec::with_capacity(w * h);
-        for row in (0..h).rev() {
-            for col in 0..w {
-                let v = value(row * info.line_size / bytes_per(info.bit_depth) + col);
-                heights.push(if geo.nodata == Some(v) {
-                    f64::NAN
-                } else {
-                    geo.offset + geo.vertical_scale * v
-                });
-            }
-        }
-        Ok(HeightGrid::new(geo.origin, geo.cell_size, w as u32, h as u32, heights))
+        let image = image::decode_png(bytes).map_err(|e| HeightfieldError::of(file, e))?;
+        Ok(HeightGrid::from_image(&image, geo))
     }
 
     /// Reads the first layer of an OpenEXR image: its `Y` channel, else `Z`, else `R`, else its
-    /// first channel (values as f32, then elevation = offset + vertical_scale·value).
+    /// first channel (values as f32, then elevation = offset + vertical_scale·value; a
+    /// non-finite value has no elevation).
     pub fn read_exr(path: &Path, geo: &Georeference) -> Result<HeightGrid, HeightfieldError> {
         let file = path.display().to_string();
-        karst_artifact::files::open_regular(path, karst_artifact::files::MAX_DATA_BYTES)
-            .map_err(|e| HeightfieldError::Read { file: file.clone(), message: e.to_string() })?;
-        let image = exr::prelude::read_first_flat_layer_from_file(path)
-            .map_err(|e| HeightfieldError::Read { file: file.clone(), message: e.to_string() })?;
-        let layer = &image.layer_data;
-        let channels = &layer.channel_data.list;
-        let pick = ["Y", "Z", "R"]
-            .iter()
-            .find_map(|name| channels.iter().find(|c| c.name.to_string() == *name))
-            .or(channels.first())
-            .ok_or_else(|| HeightfieldError::Content {
-                file: file.clone(),
-                message: "has no channel".into(),
-            })?;
-        let (w, h) = (layer.size.width(), layer.size.height());
-        let values: Vec<f32> = pick.sample_data.values_as_f32().collect();
+        let image = image::read_exr(path).map_err(|e| HeightfieldError::of(&file, e))?;
+        Ok(HeightGrid::from_image(&image, geo))
+    }
+
+    /// The grid of an image's pixels placed by `geo`: rows flipped to south first, elevations
+    /// scaled and offset, the no-data value and non-finite values as `NaN`.
+    pub fn from_image(image: &Image, geo: &Georeference) -> HeightGrid {
+        let (w, h) = (image.width, image.height);
         let mut heights = Vec::with_capacity(w * h);
-        for row in (0..h).rev() {
-            for col in 0..w {
-                let v = values[row * w + col] as f64;
+        for row in image.values.chunks_exact(w.max(1)).rev() {
+            heights.extend(row.iter().map(|&v| {
                 let missing = !v.is_finite() || geo.nodata == Some(v);
-                heights.push(if missing { f64::NAN } else { geo.offset + geo.vertical_scale * v });
-            }
+                if missing { f64::NAN } else { geo.offset + geo.vertical_scale * v }
+            }));
         }
-        Ok(HeightGrid::new(geo.origin, geo.cell_size, w as u32, h as u32, heights))
+        HeightGrid::new(geo.origin, geo.cell_size, w as u32, h as u32, heights)
     }
 
     /// Reads a PNG or, for `.exr` files, an OpenEXR image.
@@ -235,26 +196,16 @@ impl HeightGrid {
     }
 }
 
-fn bytes_per(depth: png::BitDepth) -> usize {
-    if depth == png::BitDepth::Sixteen { 2 } else { 1 }
-}
-
 /// Writes `grid` as a 16-bit grayscale PNG with value = (h − offset)/vertical_scale, rounded.
 pub fn write_png(path: &Path, grid: &HeightGrid, offset: f64, vertical_scale: f64) -> std::io::Result<()> {
     let (w, h) = (grid.nx as usize, grid.ny as usize);
-    let mut data = Vec::with_capacity(2 * w * h);
+    let mut values = Vec::with_capacity(w * h);
     for row in (0..h).rev() {
         for col in 0..w {
-            let v = ((grid.at(col, row) - offset) / vertical_scale).round().clamp(0.0, 65535.0) as u16;
-            data.extend_from_slice(&v.to_be_bytes());
+            values.push(((grid.at(col, row) - offset) / vertical_scale).round().clamp(0.0, 65535.0) as u16);
         }
     }
-    let file = std::io::BufWriter::new(std::fs::File::create(path)?);
-    let mut encoder = png::Encoder::new(file, grid.nx, grid.ny);
-    encoder.set_color(png::ColorType::Grayscale);
-    encoder.set_depth(png::BitDepth::Sixteen);
-    let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
-    writer.write_image_data(&data).map_err(std::io::Error::other)
+    image::write_png16(path, grid.nx, grid.ny, &values)
 }
 
 #[cfg(test)]

@@ -127,31 +127,31 @@ impl Lithology {
             return Err(FileError::content(&file, problem));
         }
         let bytes = std::fs::read(&path).map_err(|e| FileError::read(&file, e))?;
-        let wrong = |problem: String| FileError::content(&file, problem);
+        let wrong = |problem: GridProblem| FileError::content(&file, problem);
         let voxels = self.voxels(&bytes).map_err(wrong)?;
         covers(&voxels.lattice, domain).map_err(wrong)?;
         let units = self.map_codes(&voxels, domain).map_err(wrong)?;
         Ok(self.grid(voxels.lattice, units))
     }
 
-    fn voxels(&self, bytes: &[u8]) -> Result<Voxels, String> {
+    fn voxels(&self, bytes: &[u8]) -> Result<Voxels, GridProblem> {
         let lower = self.file.to_ascii_lowercase();
         if lower.ends_with(".vti") {
             if self.origin.is_some() || self.spacing.is_some() {
-                return Err("a .vti file carries its origin and spacing: remove them from the scene".into());
+                return Err(GridProblem::PlacedVti);
             }
-            karst_geodata::vti::parse(bytes, self.array.as_deref()).map_err(|e| e.to_string())
+            Ok(karst_geodata::vti::parse(bytes, self.array.as_deref())?)
         } else if lower.ends_with(".npy") {
             let (Some(first_centre), Some(spacing)) = (self.origin, self.spacing) else {
-                return Err("a .npy array needs `origin` and `spacing` in the scene".into());
+                return Err(GridProblem::UnplacedNpy);
             };
             if self.array.is_some() {
-                return Err("`array` names a .vti file's array; a .npy file holds one".into());
+                return Err(GridProblem::ArrayInNpy);
             }
-            let (size, codes) = karst_geodata::npy::parse(bytes).map_err(|e| e.to_string())?;
+            let (size, codes) = karst_geodata::npy::parse(bytes)?;
             Ok(Voxels { lattice: Lattice { first_centre, spacing, size }, codes })
         } else {
-            Err("is neither a VTK ImageData (.vti) nor a NumPy (.npy) file".into())
+            Err(GridProblem::Format)
         }
     }
 
@@ -173,9 +173,9 @@ impl Lithology {
     }
 
     /// Each voxel's unit; a code without a unit in a voxel that meets the domain is an error.
-    fn map_codes(&self, voxels: &Voxels, domain: &Domain) -> Result<Vec<u16>, String> {
+    fn map_codes(&self, voxels: &Voxels, domain: &Domain) -> Result<Vec<u16>, GridProblem> {
         if self.units.len() >= UNMAPPED as usize {
-            return Err(format!("{} units, more than {}", self.units.len(), UNMAPPED - 1));
+            return Err(GridProblem::TooManyUnits { units: self.units.len() });
         }
         let by_code: std::collections::BTreeMap<i32, u16> =
             self.units.iter().enumerate().rev().map(|(u, unit)| (unit.code, u as u16)).collect();
@@ -188,11 +188,8 @@ impl Lithology {
             if unit == UNMAPPED && meets(lattice, index, domain) {
                 let centre: [f64; 3] =
                     std::array::from_fn(|a| lattice.first_centre[a] + index[a] as f64 * lattice.spacing[a]);
-                let count = voxels.codes.iter().filter(|c| *c == code).count();
-                return Err(format!(
-                    "code {code} (voxel {index:?} centred at {centre:?}, and {} more voxels) has no unit in geology.lithology.units",
-                    count - 1
-                ));
+                let more = voxels.codes.iter().filter(|c| *c == code).count() - 1;
+                return Err(GridProblem::NoUnit { code: *code, index, centre, more });
             }
             units.push(unit);
         }
@@ -210,27 +207,42 @@ fn meets(lattice: &Lattice, index: [usize; 3], domain: &Domain) -> bool {
 }
 
 /// The voxels' boxes must hold the domain.
-fn covers(lattice: &Lattice, domain: &Domain) -> Result<(), String> {
+fn covers(lattice: &Lattice, domain: &Domain) -> Result<(), GridProblem> {
     let b = lattice.bounds();
     let tolerance = |a: usize| 1e-9 * (domain.max[a] - domain.min[a]).abs().max(1.0);
     if (0..3).all(|a| b[a][0] <= domain.min[a] + tolerance(a) && b[a][1] >= domain.max[a] - tolerance(a)) {
         return Ok(());
     }
-    Err(format!(
+    Err(GridProblem::Uncovered { voxels: b, domain: std::array::from_fn(|a| [domain.min[a], domain.max[a]]) })
+}
+
+/// What is wrong with a lithology file or its units, in the file's or the scene's terms.
+#[derive(Debug, thiserror::Error)]
+enum GridProblem {
+    #[error(transparent)]
+    Vti(#[from] karst_geodata::vti::VtiError),
+    #[error(transparent)]
+    Npy(#[from] karst_geodata::npy::NpyError),
+    #[error("a .vti file carries its origin and spacing: remove them from the scene")]
+    PlacedVti,
+    #[error("a .npy array needs `origin` and `spacing` in the scene")]
+    UnplacedNpy,
+    #[error("`array` names a .vti file's array; a .npy file holds one")]
+    ArrayInNpy,
+    #[error("is neither a VTK ImageData (.vti) nor a NumPy (.npy) file")]
+    Format,
+    #[error("{units} units, more than {}", UNMAPPED - 1)]
+    TooManyUnits { units: usize },
+    #[error(
+        "code {code} (voxel {index:?} centred at {centre:?}, and {more} more voxels) has no unit in geology.lithology.units"
+    )]
+    NoUnit { code: i32, index: [usize; 3], centre: [f64; 3], more: usize },
+    #[error(
         "its voxels cover x [{}, {}], y [{}, {}], z [{}, {}], not the domain's x [{}, {}], y [{}, {}], z [{}, {}]",
-        b[0][0],
-        b[0][1],
-        b[1][0],
-        b[1][1],
-        b[2][0],
-        b[2][1],
-        domain.min[0],
-        domain.max[0],
-        domain.min[1],
-        domain.max[1],
-        domain.min[2],
-        domain.max[2]
-    ))
+        voxels[0][0], voxels[0][1], voxels[1][0], voxels[1][1], voxels[2][0], voxels[2][1],
+        domain[0][0], domain[0][1], domain[1][0], domain[1][1], domain[2][0], domain[2][1]
+    )]
+    Uncovered { voxels: [[f64; 2]; 3], domain: [[f64; 2]; 3] },
 }
 
 #[cfg(test)]
@@ -296,13 +308,16 @@ mod tests {
         let s = spec(&[(1, "limestone", 1.0, false), (2, "granite", 0.0, true)]);
         let domain = Domain { min: [0.0; 3], max: [30.0, 20.0, 20.0] };
         let e = s.map_codes(&voxels(), &domain).unwrap_err();
+        assert!(matches!(e, GridProblem::NoUnit { code: 9, index: [2, 0, 0], more: 0, .. }), "{e}");
         assert_eq!(
-            e,
+            e.to_string(),
             "code 9 (voxel [2, 0, 0] centred at [25.0, 5.0, 5.0], and 0 more voxels) has no unit in geology.lithology.units"
         );
         let away = Domain { min: [0.0; 3], max: [19.0, 20.0, 20.0] };
         assert!(s.map_codes(&voxels(), &away).is_ok(), "the unmapped voxel is outside the domain");
-        let e = covers(&voxels().lattice, &Domain { min: [0.0; 3], max: [30.0, 20.0, 25.0] }).unwrap_err();
+        let e = covers(&voxels().lattice, &Domain { min: [0.0; 3], max: [30.0, 20.0, 25.0] })
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("z [0, 20], not the domain's") && e.contains("z [0, 25]"), "{e}");
     }
 }

@@ -259,7 +259,7 @@ fn attach_tables(scene: &mut Scene, loader: &mut Loader) {
             }
             Err(problems) => {
                 for p in problems.iter().take(10) {
-                    loader.report(&field, p.clone());
+                    loader.report(&field, p.to_string());
                 }
                 if problems.len() > 10 {
                     loader.report(

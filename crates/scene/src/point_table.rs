@@ -15,8 +15,10 @@
 //! The points follow the scene's own `[[keypoints]]`, table after table, row after row, so
 //! they are key points like any other: validated the same way (inside the domain, under the
 //! terrain, unique names), named in `[connectivity]` and `[[phases]]`, hashed with the
-//! `keypoints` section. Problems name the scene's `keypoints_from[i].file`, the file, its line
-//! (CSV) or feature (GeoJSON), the column and the value.
+//! `keypoints` section. Problems ([`PointTableError`]) name the scene's `keypoints_from[i].file`,
+//! the file, its line (CSV) or feature (GeoJSON), the column and the value. The files' syntax is
+//! `karst-geodata`'s ([`karst_geodata::csv`], [`karst_geodata::geojson`]); this module gives
+//! their rows and properties the meaning of key points.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -25,7 +27,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::{KeyPoint, KeyPointKind, Scene};
 use karst_geodata::crs::Epsg;
-use karst_geodata::csv::Table;
+use karst_geodata::csv::{CsvError, Table};
+use karst_geodata::geojson::{FeatureError, GeoJsonError, PointCollection, PointFeature, Property};
 
 /// One `[[keypoints_from]]` entry.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -69,8 +72,61 @@ pub(crate) struct Row {
     pub(crate) phases: Vec<String>,
 }
 
+/// Why a table, or one of its rows, cannot be read: each names the file and, for a row, its line
+/// (CSV) or feature (GeoJSON), the column and the value.
+#[derive(Debug, thiserror::Error)]
+pub enum PointTableError {
+    /// `columns` renames a field karstgen does not read.
+    #[error("columns: \"{name}\" is not one of {}", FIELDS.join(", "))]
+    UnknownField { name: String },
+    /// The file cannot be opened or is not text.
+    #[error("cannot read {file}: {source}")]
+    Unreadable { file: String, source: std::io::Error },
+    /// Not a delimited table (the CSV error starts with its line).
+    #[error("{file}:{source}")]
+    Csv { file: String, source: CsvError },
+    /// Not a GeoJSON point collection.
+    #[error("{file}{}{source}", after_file(.source))]
+    GeoJson { file: String, source: GeoJsonError },
+    /// Both synonyms of the weight.
+    #[error("{file}: has both a weight and a recharge column; keep one")]
+    WeightAndRecharge { file: String },
+    /// A required column, or a renamed one, that the header lacks.
+    #[error("{file}: has no column \"{column}\" (its columns: {})", columns.join(", "))]
+    MissingColumn { file: String, column: String, columns: Vec<String> },
+    /// One bad row; `row` is `file:line` or `file: feature n`.
+    #[error("{row}: {problem}")]
+    Row { row: String, problem: RowError },
+}
+
+/// What is wrong with one row's cells, naming the column (as the file names it) and the value.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RowError {
+    /// The name is empty.
+    #[error("column {column}: the name is empty")]
+    NoName { column: String },
+    /// A kind karstgen does not know.
+    #[error("column {column}: \"{value}\" is not sink, spring, waypoint or dead_end")]
+    Kind { column: String, value: String },
+    /// No kind in the row nor in the table.
+    #[error("column {column}: no kind (give the table a `kind`, or the file a kind column)")]
+    NoKind { column: String },
+    /// A required number that is empty.
+    #[error("column {column}: the value is empty")]
+    Empty { column: String },
+    /// Text where a finite number belongs.
+    #[error("column {column}: \"{value}\" is not a number")]
+    NotNumber { column: String, value: String },
+    /// An order that is not an integer.
+    #[error("column {column}: {value} is not an integer")]
+    NotInteger { column: String, value: f64 },
+    /// A GeoJSON feature that is not a point.
+    #[error(transparent)]
+    Feature(#[from] FeatureError),
+}
+
 /// The CRS a file declares and its rows; or the problems that stop it being read.
-pub(crate) type Read = Result<(Option<Epsg>, Vec<Row>), Vec<String>>;
+pub(crate) type Read = Result<(Option<Epsg>, Vec<Row>), Vec<PointTableError>>;
 
 impl PointTable {
     /// The file's name for karstgen's `field` (the renamed column, or the field's own name).
@@ -78,13 +134,14 @@ impl PointTable {
         self.columns.get(field).map_or(field, String::as_str)
     }
 
-    /// Reads the rows of the file; problems are `file:line: message` texts.
+    /// Reads the rows of the file, or every problem found in it.
     pub(crate) fn read(&self, path: &Path) -> Read {
         let file = path.display().to_string();
         if let Some(bad) = self.columns.keys().find(|k| !FIELDS.contains(&k.as_str())) {
-            return Err(vec![format!("columns: \"{bad}\" is not one of {}", FIELDS.join(", "))]);
+            return Err(vec![PointTableError::UnknownField { name: bad.clone() }]);
         }
-        let text = std::fs::read_to_string(path).map_err(|e| vec![format!("cannot read {file}: {e}")])?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|source| vec![PointTableError::Unreadable { file: file.clone(), source }])?;
         let lower = file.to_ascii_lowercase();
         if lower.ends_with(".geojson") || lower.ends_with(".json") {
             self.read_geojson(&file, &text)
@@ -93,12 +150,13 @@ impl PointTable {
         }
     }
 
-    fn read_csv(&self, file: &str, text: &str) -> Result<Vec<Row>, Vec<String>> {
-        let table = Table::parse(text).map_err(|e| vec![format!("{file}:{e}")])?;
+    fn read_csv(&self, file: &str, text: &str) -> Result<Vec<Row>, Vec<PointTableError>> {
+        let table =
+            Table::parse(text).map_err(|source| vec![PointTableError::Csv { file: file.into(), source }])?;
         if table.column(self.column_of("weight")).is_some()
             && table.column(self.column_of("recharge")).is_some()
         {
-            return Err(vec![format!("{file}: has both a weight and a recharge column; keep one")]);
+            return Err(vec![PointTableError::WeightAndRecharge { file: file.into() }]);
         }
         let mut columns = BTreeMap::new();
         for field in FIELDS {
@@ -107,11 +165,11 @@ impl PointTable {
                     columns.insert(field, c);
                 }
                 None if ["name", "x", "y"].contains(&field) || self.columns.contains_key(field) => {
-                    return Err(vec![format!(
-                        "{file}: has no column \"{}\" (its columns: {})",
-                        self.column_of(field),
-                        table.header.join(", ")
-                    )]);
+                    return Err(vec![PointTableError::MissingColumn {
+                        file: file.into(),
+                        column: self.column_of(field).into(),
+                        columns: table.header.clone(),
+                    }]);
                 }
                 None => {}
             }
@@ -127,79 +185,37 @@ impl PointTable {
             let position = (|| Ok([required(self, &cell, "x")?, required(self, &cell, "y")?]))();
             match position.and_then(|xy| self.row(&label, &cell, xy, None)) {
                 Ok(row) => rows.push(row),
-                Err(e) => problems.push(format!("{label}: {e}")),
+                Err(problem) => problems.push(PointTableError::Row { row: label, problem }),
             }
         }
         if problems.is_empty() { Ok(rows) } else { Err(problems) }
     }
 
     fn read_geojson(&self, file: &str, text: &str) -> Read {
-        let json: serde_json::Value =
-            serde_json::from_str(text).map_err(|e| vec![format!("{file}:{}: {e}", e.line())])?;
-        if json["type"] != "FeatureCollection" {
-            return Err(vec![format!("{file}: is a {}, not a GeoJSON FeatureCollection", json["type"])]);
-        }
-        let crs = match &json["crs"]["properties"]["name"] {
-            serde_json::Value::Null => None,
-            name => {
-                let name = name.as_str().unwrap_or_default();
-                Some(Epsg::from_name(name).ok_or_else(|| {
-                    vec![format!("{file}: crs \"{name}\" is not an EPSG code (urn:ogc:def:crs:EPSG::NNNN)")]
-                })?)
-            }
-        };
-        let features =
-            json["features"].as_array().ok_or_else(|| vec![format!("{file}: has no \"features\" array")])?;
+        let collection = PointCollection::parse(text)
+            .map_err(|source| vec![PointTableError::GeoJson { file: file.into(), source }])?;
         let mut rows = Vec::new();
         let mut problems = Vec::new();
-        for (n, feature) in features.iter().enumerate() {
+        for (n, feature) in collection.features.iter().enumerate() {
             let label = format!("{file}: feature {n}");
-            match self.feature(&label, feature) {
+            match feature.clone().map_err(RowError::from).and_then(|f| self.feature(&label, &f)) {
                 Ok(row) => rows.push(row),
-                Err(e) => problems.push(format!("{label}: {e}")),
+                Err(problem) => problems.push(PointTableError::Row { row: label, problem }),
             }
         }
-        if problems.is_empty() { Ok((crs, rows)) } else { Err(problems) }
+        if problems.is_empty() { Ok((collection.crs, rows)) } else { Err(problems) }
     }
 
-    fn feature(&self, label: &str, feature: &serde_json::Value) -> Result<Row, String> {
-        let geometry = &feature["geometry"];
-        if geometry["type"] != "Point" {
-            let kind = geometry["type"].as_str().map_or("no geometry".to_string(), |t| format!("a {t}"));
-            return Err(format!("is {kind}: karstgen reads Point features only"));
-        }
-        let coordinates: Vec<f64> = geometry["coordinates"]
-            .as_array()
-            .map(|c| c.iter().filter_map(serde_json::Value::as_f64).collect())
-            .unwrap_or_default();
-        if !(2..=3).contains(&coordinates.len())
-            || geometry["coordinates"].as_array().map(Vec::len) != Some(coordinates.len())
-        {
-            return Err(format!(
-                "coordinates {} are not [x, y] or [x, y, z] numbers",
-                geometry["coordinates"]
-            ));
-        }
-        let properties = &feature["properties"];
-        let cell = |field: &str| match properties.get(self.column_of(field)).or_else(|| {
-            properties
-                .as_object()?
-                .iter()
-                .find(|(k, _)| k.eq_ignore_ascii_case(self.column_of(field)))
-                .map(|(_, v)| v)
-        }) {
-            Some(serde_json::Value::String(s)) if !s.is_empty() => Some(Cell::Text(s.clone())),
-            Some(serde_json::Value::Number(n)) => n.as_f64().map(Cell::Number),
-            Some(serde_json::Value::Array(items)) => Some(Cell::Text(
-                items
-                    .iter()
-                    .map(|v| v.as_str().map_or(v.to_string(), str::to_string))
-                    .collect::<Vec<_>>()
-                    .join("|"),
-            )),
-            _ => None,
+    /// A row from a Point feature: its coordinates, and its properties as the cells.
+    fn feature(&self, label: &str, feature: &PointFeature) -> Result<Row, RowError> {
+        let cell = |field: &str| {
+            feature.property(self.column_of(field)).map(|p| match p {
+                Property::Text(t) => Cell::Text(t),
+                Property::Number(n) => Cell::Number(n),
+                Property::List(items) => Cell::Text(items.join("|")),
+            })
         };
-        self.row(label, &cell, [coordinates[0], coordinates[1]], coordinates.get(2).copied())
+        self.row(label, &cell, feature.xy, feature.z)
     }
 
     /// A row from its cells; `z` from the geometry overrides a `z` cell.
@@ -209,26 +225,17 @@ impl PointTable {
         cell: &dyn Fn(&str) -> Option<Cell>,
         xy: [f64; 2],
         z: Option<f64>,
-    ) -> Result<Row, String> {
+    ) -> Result<Row, RowError> {
+        let column = |field: &str| self.column_of(field).to_string();
         let name = match cell("name") {
             Some(Cell::Text(t)) => t.trim().to_string(),
             Some(Cell::Number(n)) => n.to_string(),
-            None => return Err(format!("column {}: the name is empty", self.column_of("name"))),
+            None => return Err(RowError::NoName { column: column("name") }),
         };
         let kind = match cell("kind") {
-            Some(c) => parse_kind(&text(&c)).ok_or_else(|| {
-                format!(
-                    "column {}: \"{}\" is not sink, spring, waypoint or dead_end",
-                    self.column_of("kind"),
-                    text(&c)
-                )
-            })?,
-            None => self.kind.ok_or_else(|| {
-                format!(
-                    "column {}: no kind (give the table a `kind`, or the file a kind column)",
-                    self.column_of("kind")
-                )
-            })?,
+            Some(c) => parse_kind(&text(&c))
+                .ok_or_else(|| RowError::Kind { column: column("kind"), value: text(&c) })?,
+            None => self.kind.ok_or_else(|| RowError::NoKind { column: column("kind") })?,
         };
         let z = match z {
             Some(z) => Some(z),
@@ -240,7 +247,7 @@ impl PointTable {
         };
         let order = match optional(self, cell, "order")? {
             Some(o) if o.fract() != 0.0 || o.abs() > 1e15 => {
-                return Err(format!("column {}: {o} is not an integer", self.column_of("order")));
+                return Err(RowError::NotInteger { column: column("order"), value: o });
             }
             o => o.map_or(0, |o| o as i64),
         };
@@ -257,6 +264,11 @@ impl PointTable {
         };
         Ok(Row { label: label.into(), point, z, phases })
     }
+}
+
+/// A syntax error goes `file:line: …`, the others `file: …`.
+fn after_file(error: &GeoJsonError) -> &'static str {
+    if matches!(error, GeoJsonError::Syntax { .. }) { ":" } else { ": " }
 }
 
 fn text(cell: &Cell) -> String {
@@ -280,23 +292,20 @@ fn optional(
     table: &PointTable,
     cell: &dyn Fn(&str) -> Option<Cell>,
     field: &str,
-) -> Result<Option<f64>, String> {
+) -> Result<Option<f64>, RowError> {
     match cell(field) {
         None => Ok(None),
         Some(Cell::Number(n)) => Ok(Some(n)),
-        Some(Cell::Text(t)) => t
-            .trim()
-            .parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite())
-            .map(Some)
-            .ok_or_else(|| format!("column {}: \"{t}\" is not a number", table.column_of(field))),
+        Some(Cell::Text(t)) => {
+            t.trim().parse::<f64>().ok().filter(|v| v.is_finite()).map(Some).ok_or_else(|| {
+                RowError::NotNumber { column: table.column_of(field).into(), value: t.clone() }
+            })
+        }
     }
 }
 
-fn required(table: &PointTable, cell: &dyn Fn(&str) -> Option<Cell>, field: &str) -> Result<f64, String> {
-    optional(table, cell, field)?
-        .ok_or_else(|| format!("column {}: the value is empty", table.column_of(field)))
+fn required(table: &PointTable, cell: &dyn Fn(&str) -> Option<Cell>, field: &str) -> Result<f64, RowError> {
+    optional(table, cell, field)?.ok_or_else(|| RowError::Empty { column: table.column_of(field).into() })
 }
 
 /// Where key point `i` came from: None for the scene's own `[[keypoints]]`, else the index of

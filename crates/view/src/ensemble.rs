@@ -118,22 +118,41 @@ fn read_grid(folder: &Path, skeleton: &Skeleton) -> Result<(Placement, Vec<f32>)
     Ok((p, values))
 }
 
+/// A field of grid.json that cannot place the ensemble's grid, with its value.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+enum PlacementError {
+    #[error("min[{axis}] = {value} is not a finite coordinate")]
+    Min { axis: usize, value: f64 },
+    #[error("cell = {0} is not a finite length > 0")]
+    Cell(f64),
+    #[error("realizations = 0: an ensemble has at least one")]
+    NoRealization,
+    #[error("dims = {dims:?} is not a grid of 1 to {MAX_CELLS} cells")]
+    Dims { dims: [usize; 3] },
+    #[error(
+        "cell = {cell} m takes {probes:.1e} probes along the network's {length:.0} m; at most {MAX_PROBES:e}: \
+         cell ≥ {:.3e} m would fit",
+        4.0 * length / MAX_PROBES
+    )]
+    TooFine { cell: String, probes: f64, length: f64 },
+}
+
 /// What grid.json's fields must be, naming the field and its value when they are not.
-fn check_placement(p: &Placement, skeleton: &Skeleton) -> Result<(), String> {
-    if let Some(a) =
+fn check_placement(p: &Placement, skeleton: &Skeleton) -> Result<(), PlacementError> {
+    if let Some(axis) =
         (0..3).find(|&a| p.min[a].is_nan() || p.min[a].abs() > karst_artifact::check::MAX_COORDINATE)
     {
-        return Err(format!("min[{a}] = {} is not a finite coordinate", p.min[a]));
+        return Err(PlacementError::Min { axis, value: p.min[axis] });
     }
     if !(p.cell.is_finite() && p.cell > 0.0) {
-        return Err(format!("cell = {} is not a finite length > 0", p.cell));
+        return Err(PlacementError::Cell(p.cell));
     }
     if p.realizations == 0 {
-        return Err("realizations = 0: an ensemble has at least one".into());
+        return Err(PlacementError::NoRealization);
     }
     let cells = p.dims.iter().try_fold(1usize, |n, &d| n.checked_mul(d)).filter(|&n| n <= MAX_CELLS);
     if p.dims.contains(&0) || cells.is_none() {
-        return Err(format!("dims = {:?} is not a grid of 1 to {MAX_CELLS} cells", p.dims));
+        return Err(PlacementError::Dims { dims: p.dims });
     }
     let length: f64 = skeleton
         .conduits
@@ -144,11 +163,7 @@ fn check_placement(p: &Placement, skeleton: &Skeleton) -> Result<(), String> {
     let probes = length / (p.cell / 4.0);
     if probes > MAX_PROBES {
         let cell = if (1e-3..1e6).contains(&p.cell) { p.cell.to_string() } else { format!("{:e}", p.cell) };
-        return Err(format!(
-            "cell = {cell} m takes {probes:.1e} probes along the network's {length:.0} m; at most {MAX_PROBES:e}: \
-             cell ≥ {:.3e} m would fit",
-            4.0 * length / MAX_PROBES
-        ));
+        return Err(PlacementError::TooFine { cell, probes, length });
     }
     Ok(())
 }

@@ -24,8 +24,19 @@ use karst_gltf::{BYTE, Gltf, MESHOPT, QUANTIZATION, UNSIGNED_INT, UNSIGNED_SHORT
 
 use crate::chunks::Chunk;
 
+/// Why a chunk cannot be encoded: meshoptimizer's codecs or the glTF document refused it.
+#[derive(Debug, thiserror::Error)]
+pub enum GlbError {
+    /// A vertex or index stream meshoptimizer cannot encode.
+    #[error("meshoptimizer: {0}")]
+    Codec(#[from] meshopt::Error),
+    /// The glTF document or its binary container.
+    #[error(transparent)]
+    Gltf(#[from] karst_gltf::GltfError),
+}
+
 /// The .glb of one chunk level.
-pub fn encode(chunk: &Chunk, q: &Quantization) -> Result<Vec<u8>, String> {
+pub fn encode(chunk: &Chunk, q: &Quantization) -> Result<Vec<u8>, GlbError> {
     let grid: Vec<[u32; 3]> = chunk.vertices.iter().map(|v| q.grid(v.position)).collect();
     let low = grid.iter().fold([u32::MAX; 3], |m, g| [0, 1, 2].map(|a| m[a].min(g[a])));
     let positions: Vec<[u16; 4]> =
@@ -34,21 +45,20 @@ pub fn encode(chunk: &Chunk, q: &Quantization) -> Result<Vec<u8>, String> {
     let n = positions.len();
     let wide = n > usize::from(u16::MAX);
     let index_size = if wide { 4 } else { 2 };
-    let codec = |e: meshopt::Error| e.to_string();
     let (qmin, qmax) = positions.iter().fold(([u16::MAX; 3], [0u16; 3]), |(lo, hi), p| {
         ([0, 1, 2].map(|a| lo[a].min(p[a])), [0, 1, 2].map(|a| hi[a].max(p[a])))
     });
     let mut b = Gltf::new();
     b.require(&[MESHOPT, QUANTIZATION]);
-    let stream = meshopt::encode_vertex_buffer_level(&positions, 2, Some(0)).map_err(codec)?;
+    let stream = meshopt::encode_vertex_buffer_level(&positions, 2, Some(0))?;
     let view = b.compressed_view(stream, 8, n, "ATTRIBUTES");
     b.accessor(json!({ "bufferView": view, "componentType": UNSIGNED_SHORT, "count": n, "type": "VEC3", "min": qmin, "max": qmax }));
-    let stream = meshopt::encode_vertex_buffer_level(&normals, 2, Some(0)).map_err(codec)?;
+    let stream = meshopt::encode_vertex_buffer_level(&normals, 2, Some(0))?;
     let view = b.compressed_view(stream, 4, n, "ATTRIBUTES");
     b.accessor(
         json!({ "bufferView": view, "componentType": BYTE, "normalized": true, "count": n, "type": "VEC3" }),
     );
-    let stream = meshopt::encode_index_buffer(&chunk.indices, n).map_err(codec)?;
+    let stream = meshopt::encode_index_buffer(&chunk.indices, n)?;
     let view = b.compressed_view(stream, index_size, chunk.indices.len(), "TRIANGLES");
     b.accessor(
         json!({ "bufferView": view, "componentType": if wide { UNSIGNED_INT } else { UNSIGNED_SHORT },
@@ -61,7 +71,7 @@ pub fn encode(chunk: &Chunk, q: &Quantization) -> Result<Vec<u8>, String> {
     let translation = [corner[0], corner[2], -corner[1]];
     let scale = [q.step; 3];
     b.node(json!({ "mesh": 0, "translation": translation, "rotation": Z_UP_TO_Y_UP, "scale": scale }));
-    let glb = b.finish("karstgen karst-view", json!([{ "nodes": [0] }])).map_err(|e| e.to_string())?;
+    let glb = b.finish("karstgen karst-view", json!([{ "nodes": [0] }]))?;
     Ok(glb.to_vec())
 }
 

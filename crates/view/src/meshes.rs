@@ -97,10 +97,10 @@ fn write_chunk(
         .map(|(k, level)| {
             let file = format!("{stem}-l{k}.glb");
             let path = view_dir.join(&file);
-            let bytes = glb::encode(&level.chunk, q).map_err(|detail| ViewError::Encode {
+            let bytes = glb::encode(&level.chunk, q).map_err(|e| ViewError::Encode {
                 path: path.clone(),
                 what: "chunk".into(),
-                detail,
+                detail: e.to_string(),
             })?;
             std::fs::write(&path, &bytes).map_err(|source| ViewError::Write { path, source })?;
             Ok(LevelView {
