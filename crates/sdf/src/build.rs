@@ -100,7 +100,7 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
     }
     progress.finish_and_clear();
     if p.passage_detail.features() {
-        crate::detail::add(&mut model, p, view.seed, skeleton, hydro);
+        crate::detail::place::add(&mut model, p, view.seed, skeleton, hydro);
     }
     Ok(model)
 }
