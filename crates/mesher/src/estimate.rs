@@ -229,7 +229,10 @@ pub fn check(
     let work = Work::at(model, cell, cave);
     let peak = |w: Work| w.triangles * BYTES_PER_TRIANGLE;
     let triangles = format!("{:.2e} triangles", work.triangles);
-    if work.terrain_triangles >= work.triangles - work.terrain_triangles {
+    // The terrain's cell is to blame when its triangles dominate, or when the automatic cave
+    // cell is held at the terrain's (its clamp): then only a larger `cell_size` lowers both.
+    let cave_follows_cell = cave_of(2.0 * cell) != cave;
+    if cave_follows_cell || work.terrain_triangles >= work.triangles - work.terrain_triangles {
         let estimate =
             Estimate { what: triangles, bytes: peak(work), field: "mesher.cell_size".into(), value: cell };
         budget.check(estimate, Cheaper::Larger, false, |c| peak(Work::at(model, c, cave_of(c))))
