@@ -65,14 +65,21 @@ impl Serialize for FullDetail {
 }
 
 /// The payload's last field: when postcard has no byte left for its tag, the artifact was
-/// written without `full` detail (what the artifact reader's check that every byte was read
+/// written without `full` detail (an explicit `None` tag is refused: it is never written) (what the artifact reader's check that every byte was read
 /// then confirms), and a truncated one fails that check or the envelope's hash.
 impl<'de> Deserialize<'de> for FullDetail {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         if d.is_human_readable() {
             return Option::<Features>::deserialize(d).map(FullDetail);
         }
-        Ok(FullDetail(Option::<Features>::deserialize(d).unwrap_or(None)))
+        match Option::<Features>::deserialize(d) {
+            Ok(Some(features)) => Ok(FullDetail(Some(features))),
+            // A tag for `None` is never written: it is a byte after the payload's fields.
+            Ok(None) => Err(serde::de::Error::custom(
+                "a byte after the payload's fields (no full detail is written as no byte at all)",
+            )),
+            Err(_) => Ok(FullDetail(None)),
+        }
     }
 }
 
