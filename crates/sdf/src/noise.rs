@@ -12,12 +12,75 @@ use glam::DVec3;
 use karst_scene::rng::Random;
 use serde::{Deserialize, Serialize};
 
-/// Waves per octave.
-const WAVES: usize = 3;
-/// Octaves of the fractal sum.
-const OCTAVES: usize = 3;
-/// Amplitude ratio between consecutive octaves.
-const GAIN: f64 = 0.5;
+/// The detail noise's spectrum: three octaves of three waves, each octave half the amplitude of
+/// the one before.
+const SPECTRUM: Spectrum = Spectrum { octaves: 3, waves: 3, gain: 0.5 };
+
+/// The shape of a fractal sum of plane waves: `octaves` octaves of `waves` waves each, every
+/// octave twice the frequency and `gain` times the amplitude of the one before. Shared by the
+/// detail noise here and the rough-wall relief (crate::detail::walls).
+#[derive(Debug, Clone, Copy)]
+pub struct Spectrum {
+    pub octaves: usize,
+    pub waves: usize,
+    pub gain: f64,
+}
+
+impl Spectrum {
+    /// `octaves × waves` waves of uniformly random direction on the sphere and phase.
+    pub fn draw(self, random: &mut Random) -> Vec<Wave> {
+        (0..self.octaves * self.waves)
+            .map(|_| {
+                let z = random.range(-1.0, 1.0);
+                let a = random.range(0.0, std::f64::consts::TAU);
+                let s = (1.0 - z * z).sqrt();
+                let direction = [(s * a.cos()) as f32, (s * a.sin()) as f32, z as f32];
+                Wave { direction, phase: random.range(0.0, std::f64::consts::TAU) as f32 }
+            })
+            .collect()
+    }
+
+    /// W = Σ_o g^o, which normalises the amplitudes so that values lie in [−1, 1].
+    fn weight(self) -> f64 {
+        (0..self.octaves).map(|o| self.gain.powi(o as i32)).sum()
+    }
+
+    /// The sum at `p` of `waves` whose longest wavelength is `wavelength` metres, in [−1, 1].
+    pub fn value(self, waves: &[Wave], wavelength: f64, p: DVec3) -> f64 {
+        let mut sum = 0.0;
+        let mut frequency = std::f64::consts::TAU / wavelength;
+        let mut amplitude = 1.0 / (self.weight() * self.waves as f64);
+        for octave in waves.chunks(self.waves) {
+            for w in octave {
+                let d = DVec3::new(w.direction[0] as f64, w.direction[1] as f64, w.direction[2] as f64);
+                sum += amplitude * (frequency * d.dot(p) + w.phase as f64).sin();
+            }
+            frequency *= 2.0;
+            amplitude *= self.gain;
+        }
+        sum
+    }
+
+    /// Upper bound of the sum's gradient norm at longest wavelength `wavelength` (direction
+    /// norms are rounded to f32, hence the small margin).
+    pub fn gradient_bound(self, wavelength: f64) -> f64 {
+        let sum: f64 = (0..self.octaves).map(|o| (self.gain * 2.0).powi(o as i32)).sum();
+        sum * (std::f64::consts::TAU / wavelength) / self.weight() * (1.0 + 1e-6)
+    }
+
+    /// Checks decoded waves: the `octaves × waves` waves of unit direction the gradient bound
+    /// assumes, with phases of sane size.
+    pub fn validate(self, field: &str, waves: &[Wave]) -> Result<(), karst_artifact::Invalid> {
+        use karst_artifact::check;
+        check::count(|| format!("{field}.waves"), waves.len(), self.octaves * self.waves)?;
+        for (i, w) in waves.iter().enumerate() {
+            let norm = w.direction.iter().map(|c| (*c as f64).powi(2)).sum::<f64>().sqrt();
+            check::within(|| format!("{field}.waves[{i}].direction"), norm, 1.0 - 1e-6, 1.0 + 1e-6)?;
+            check::within(|| format!("{field}.waves[{i}].phase"), w.phase as f64, -1e3, 1e3)?;
+        }
+        Ok(())
+    }
+}
 
 /// One plane wave of an octave: unit direction and phase.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -26,7 +89,7 @@ pub struct Wave {
     pub phase: f32,
 }
 
-/// The noise: `OCTAVES × WAVES` waves at base wavelength `wavelength` metres.
+/// The noise: the waves of [`SPECTRUM`] at base wavelength `wavelength` metres.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct WaveNoise {
     pub wavelength: f64,
@@ -36,41 +99,12 @@ pub struct WaveNoise {
 impl WaveNoise {
     /// A noise of base wavelength `wavelength` (metres) drawn from `random`.
     pub fn draw(random: &mut Random, wavelength: f64) -> Self {
-        let waves = (0..OCTAVES * WAVES)
-            .map(|_| {
-                // Uniform direction on the sphere.
-                let z = random.range(-1.0, 1.0);
-                let a = random.range(0.0, std::f64::consts::TAU);
-                let s = (1.0 - z * z).sqrt();
-                let direction = [(s * a.cos()) as f32, (s * a.sin()) as f32, z as f32];
-                Wave { direction, phase: random.range(0.0, std::f64::consts::TAU) as f32 }
-            })
-            .collect();
-        WaveNoise { wavelength, waves }
-    }
-
-    fn omega(&self) -> f64 {
-        std::f64::consts::TAU / self.wavelength
-    }
-
-    fn weight() -> f64 {
-        (0..OCTAVES).map(|o| GAIN.powi(o as i32)).sum()
+        WaveNoise { wavelength, waves: SPECTRUM.draw(random) }
     }
 
     /// n(p) ∈ [−1, 1].
     pub fn value(&self, p: DVec3) -> f64 {
-        let mut sum = 0.0;
-        let mut frequency = self.omega();
-        let mut amplitude = 1.0 / (Self::weight() * WAVES as f64);
-        for octave in self.waves.chunks(WAVES) {
-            for w in octave {
-                let d = DVec3::new(w.direction[0] as f64, w.direction[1] as f64, w.direction[2] as f64);
-                sum += amplitude * (frequency * d.dot(p) + w.phase as f64).sin();
-            }
-            frequency *= 2.0;
-            amplitude *= GAIN;
-        }
-        sum
+        SPECTRUM.value(&self.waves, self.wavelength, p)
     }
 
     /// A displacement vector field with components in [−1, 1]: the noise at three offsets.
@@ -85,24 +119,17 @@ impl WaveNoise {
         )
     }
 
-    /// Checks a decoded noise: a finite base wavelength > 0 and the `OCTAVES × WAVES` waves
-    /// of unit direction its gradient bound (hence the field's 1-Lipschitz bound) assumes.
+    /// Checks a decoded noise: a finite base wavelength > 0 and the waves of unit direction
+    /// its gradient bound (hence the field's 1-Lipschitz bound) assumes.
     pub fn validate(&self, field: &str) -> Result<(), karst_artifact::Invalid> {
         use karst_artifact::check::{self, MAX_COORDINATE};
         check::positive(|| format!("{field}.wavelength"), self.wavelength, MAX_COORDINATE)?;
-        check::count(|| format!("{field}.waves"), self.waves.len(), OCTAVES * WAVES)?;
-        for (i, w) in self.waves.iter().enumerate() {
-            let norm = w.direction.iter().map(|c| (*c as f64).powi(2)).sum::<f64>().sqrt();
-            check::within(|| format!("{field}.waves[{i}].direction"), norm, 1.0 - 1e-6, 1.0 + 1e-6)?;
-            check::within(|| format!("{field}.waves[{i}].phase"), w.phase as f64, -1e3, 1e3)?;
-        }
-        Ok(())
+        SPECTRUM.validate(field, &self.waves)
     }
 
-    /// Upper bound of |∇n| (direction norms are rounded to f32, hence the small margin).
+    /// Upper bound of |∇n|.
     pub fn gradient_bound(&self) -> f64 {
-        let sum: f64 = (0..OCTAVES).map(|o| (GAIN * 2.0).powi(o as i32)).sum();
-        sum * self.omega() / Self::weight() * (1.0 + 1e-6)
+        SPECTRUM.gradient_bound(self.wavelength)
     }
 }
 

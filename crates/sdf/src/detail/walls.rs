@@ -3,8 +3,8 @@
 //! leaf beside the per-type detail noise (crate::primitive::Context::detail).
 //!
 //! The relief is a fractal sum of plane waves like [`crate::noise::WaveNoise`], with more
-//! octaves: the longest wavelength λ halves [`OCTAVES`] − 1 times (4 m reaches 0.25 m), and
-//! each octave's amplitude is [`GAIN`] times the one before, a spectrum flatter than Brownian
+//! octaves: the longest wavelength λ halves four times (4 m reaches 0.25 m), and
+//! each octave's amplitude is 0.6 times the one before ([`SPECTRUM`]), a spectrum flatter than Brownian
 //! relief so that the decimetre scallops and blades stay visible beside metre-scale alcoves.
 //! Values lie in [−1, 1] and the gradient is at most Σ_o g^o 2^o ω / W (ω = 2π/λ, W = Σ_o g^o),
 //! [`ReliefNoise::gradient_bound`]. A leaf of size s (a sphere's radius, a sweep's extent) gets
@@ -15,16 +15,13 @@ use glam::DVec3;
 use karst_scene::rng::Random;
 use serde::{Deserialize, Serialize};
 
-use crate::noise::Wave;
+use crate::noise::{Spectrum, Wave};
 
-/// Waves per octave.
-const WAVES: usize = 3;
-/// Octaves: the longest wavelength and four halvings.
-pub const OCTAVES: usize = 5;
-/// Amplitude ratio between consecutive octaves.
-const GAIN: f64 = 0.6;
+/// The relief's spectrum: the longest wavelength and four halvings, three waves each, each
+/// octave 0.6 times the amplitude of the one before.
+const SPECTRUM: Spectrum = Spectrum { octaves: 5, waves: 3, gain: 0.6 };
 
-/// The relief noise: `OCTAVES × WAVES` waves, longest wavelength `wavelength` metres.
+/// The relief noise: the waves of [`SPECTRUM`], longest wavelength `wavelength` metres.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ReliefNoise {
     pub wavelength: f64,
@@ -59,54 +56,22 @@ impl Relief {
 impl ReliefNoise {
     /// A relief of longest wavelength `wavelength` metres drawn from `random`.
     pub fn draw(random: &mut Random, wavelength: f64) -> Self {
-        let waves = (0..OCTAVES * WAVES)
-            .map(|_| {
-                let z = random.range(-1.0, 1.0);
-                let a = random.range(0.0, std::f64::consts::TAU);
-                let s = (1.0 - z * z).sqrt();
-                let direction = [(s * a.cos()) as f32, (s * a.sin()) as f32, z as f32];
-                Wave { direction, phase: random.range(0.0, std::f64::consts::TAU) as f32 }
-            })
-            .collect();
-        ReliefNoise { wavelength, waves }
-    }
-
-    fn weight() -> f64 {
-        (0..OCTAVES).map(|o| GAIN.powi(o as i32)).sum()
+        ReliefNoise { wavelength, waves: SPECTRUM.draw(random) }
     }
 
     /// r(p) ∈ [−1, 1].
     pub fn value(&self, p: DVec3) -> f64 {
-        let mut sum = 0.0;
-        let mut frequency = std::f64::consts::TAU / self.wavelength;
-        let mut amplitude = 1.0 / (Self::weight() * WAVES as f64);
-        for octave in self.waves.chunks(WAVES) {
-            for w in octave {
-                let d = DVec3::new(w.direction[0] as f64, w.direction[1] as f64, w.direction[2] as f64);
-                sum += amplitude * (frequency * d.dot(p) + w.phase as f64).sin();
-            }
-            frequency *= 2.0;
-            amplitude *= GAIN;
-        }
-        sum
+        SPECTRUM.value(&self.waves, self.wavelength, p)
     }
 
-    /// Upper bound of |∇r| (direction norms are rounded to f32, hence the small margin).
+    /// Upper bound of |∇r|.
     pub fn gradient_bound(&self) -> f64 {
-        let sum: f64 = (0..OCTAVES).map(|o| (GAIN * 2.0).powi(o as i32)).sum();
-        sum * std::f64::consts::TAU / self.wavelength / Self::weight() * (1.0 + 1e-6)
+        SPECTRUM.gradient_bound(self.wavelength)
     }
 
     fn validate(&self, field: &str) -> Result<(), karst_artifact::Invalid> {
-        use karst_artifact::check;
-        check::within(|| format!("{field}.wavelength"), self.wavelength, 0.1, 100.0)?;
-        check::count(|| format!("{field}.waves"), self.waves.len(), OCTAVES * WAVES)?;
-        for (i, w) in self.waves.iter().enumerate() {
-            let norm = w.direction.iter().map(|c| (*c as f64).powi(2)).sum::<f64>().sqrt();
-            check::within(|| format!("{field}.waves[{i}].direction"), norm, 1.0 - 1e-6, 1.0 + 1e-6)?;
-            check::within(|| format!("{field}.waves[{i}].phase"), w.phase as f64, -1e3, 1e3)?;
-        }
-        Ok(())
+        karst_artifact::check::within(|| format!("{field}.wavelength"), self.wavelength, 0.1, 100.0)?;
+        SPECTRUM.validate(field, &self.waves)
     }
 }
 
