@@ -1,26 +1,30 @@
-//! A small static file server for a view folder, on 127.0.0.1 only.
+//! A static file server for a view folder, on 127.0.0.1 only, built on tiny_http.
 //!
-//! It answers GET and HEAD for files under the view folder and nothing else: the request path
-//! is percent-decoded and split into segments; a segment that is empty, `.`, `..`, or holds a
-//! `\` or a NUL is refused (403), and the resolved file must still lie inside the folder once
-//! symbolic links are resolved. So neither `/../x`, `/%2e%2e/x`, `/a/..%2f..%2fx` nor a link
-//! out of the folder reaches a file outside it. One thread per connection, one request per
-//! connection (`Connection: close`): the page's few hundred requests come from one browser on
-//! the same machine.
+//! tiny_http speaks HTTP/1.1 (request heads, keep-alive, pipelined requests answered in order,
+//! HEAD answered without a body); this module decides what is served. It answers GET and HEAD
+//! for files under the view folder and nothing else (405, `Allow: GET, HEAD`): the request
+//! path is percent-decoded and split into segments; a segment that is empty, `.`, `..`, or
+//! holds a `\` or a NUL is refused (403), as is a malformed escape, and the resolved file must
+//! still lie inside the folder once symbolic links are resolved. So neither `/../x`,
+//! `/%2e%2e/x`, `/a/..%2f..%2fx` nor a link out of the folder reaches a file outside it.
+//! Every response carries its `Content-Type` (from the file's extension), `Content-Length`,
+//! `Cache-Control: no-cache` and `X-Content-Type-Options: nosniff`. Each request is answered on
+//! a thread of its own: the page's few hundred requests come from one browser on the same
+//! machine.
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::net::{Ipv4Addr, SocketAddr, TcpListener, TcpStream};
+use std::io::Cursor;
+use std::net::{Ipv4Addr, SocketAddr, TcpListener};
 use std::path::{Path, PathBuf};
-use std::time::Duration;
+use std::sync::Arc;
+
+use tiny_http::{Header, Method, Request, Response};
 
 use crate::ViewError;
 
-/// Longest request head accepted.
-const MAX_HEAD: usize = 16 * 1024;
-
 /// A bound, not yet serving, server.
 pub struct Server {
-    listener: TcpListener,
+    http: tiny_http::Server,
+    address: SocketAddr,
     root: PathBuf,
 }
 
@@ -32,6 +36,7 @@ impl Server {
             let run = view_dir.parent().unwrap_or(Path::new(".")).display().to_string();
             return Err(ViewError::NoView { dir: view_dir.into(), run });
         }
+        // Bound here rather than by tiny_http, whose error does not say the port is in use.
         let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, port)).map_err(|source| {
             if source.kind() == std::io::ErrorKind::AddrInUse {
                 ViewError::PortInUse { port, suggestion: port.wrapping_add(1).max(1024) }
@@ -39,26 +44,29 @@ impl Server {
                 ViewError::Listen { port, source }
             }
         })?;
-        Ok(Server { listener, root })
+        let listen = |source| ViewError::Listen { port, source };
+        let address = listener.local_addr().map_err(listen)?;
+        let http =
+            tiny_http::Server::from_listener(listener, None).map_err(|e| listen(std::io::Error::other(e)))?;
+        Ok(Server { http, address, root })
     }
 
     /// The address it listens on.
     pub fn address(&self) -> SocketAddr {
-        self.listener.local_addr().expect("a bound listener has an address")
+        self.address
     }
 
     /// The page's URL.
     pub fn url(&self) -> String {
-        format!("http://{}/", self.address())
+        format!("http://{}/", self.address)
     }
 
     /// Serves until the process ends.
     pub fn run(self) {
-        for stream in self.listener.incoming().flatten() {
-            let root = self.root.clone();
-            std::thread::spawn(move || {
-                let _ = answer(&root, stream);
-            });
+        let root: Arc<Path> = self.root.into();
+        for request in self.http.incoming_requests() {
+            let root = Arc::clone(&root);
+            std::thread::spawn(move || answer(&root, request));
         }
     }
 }
@@ -71,71 +79,58 @@ pub fn serve(view_dir: &Path, port: u16) -> Result<(), ViewError> {
     Ok(())
 }
 
-/// An HTTP response: status line, type and body.
-struct Response {
-    status: &'static str,
+/// What a request is answered with: status, type and body.
+struct Reply {
+    status: u16,
     content_type: &'static str,
     body: Vec<u8>,
 }
 
-impl Response {
-    fn text(status: &'static str, message: &str) -> Response {
-        Response {
-            status,
-            content_type: "text/plain; charset=utf-8",
-            body: format!("{message}\n").into_bytes(),
+impl Reply {
+    fn text(status: u16, message: &str) -> Reply {
+        Reply { status, content_type: "text/plain; charset=utf-8", body: format!("{message}\n").into_bytes() }
+    }
+
+    fn into_response(self) -> Response<Cursor<Vec<u8>>> {
+        let mut response = Response::from_data(self.body)
+            .with_status_code(self.status)
+            // The length is known: always a Content-Length, never chunks.
+            .with_chunked_threshold(usize::MAX);
+        for (field, value) in [
+            ("Content-Type", self.content_type),
+            ("Cache-Control", "no-cache"),
+            ("X-Content-Type-Options", "nosniff"),
+        ] {
+            response.add_header(header(field, value));
         }
+        if self.status == 405 {
+            response.add_header(header("Allow", "GET, HEAD"));
+        }
+        response
     }
 }
 
-fn answer(root: &Path, mut stream: TcpStream) -> std::io::Result<()> {
-    stream.set_read_timeout(Some(Duration::from_secs(10)))?;
-    let head = read_head(&stream)?;
-    let (method, target) = parse_request_line(&head);
-    let response = match method {
-        "GET" | "HEAD" => respond(root, target),
-        _ => Response::text("405 Method Not Allowed", "only GET and HEAD"),
+/// A header of this module (names and values are ASCII constants).
+fn header(field: &str, value: &str) -> Header {
+    Header::from_bytes(field, value).expect("an ASCII header")
+}
+
+fn answer(root: &Path, request: Request) {
+    let reply = match request.method() {
+        Method::Get | Method::Head => respond(root, request.url()),
+        _ => Reply::text(405, "only GET and HEAD"),
     };
-    let mut out = format!(
-        "HTTP/1.1 {}\r\nContent-Type: {}\r\nContent-Length: {}\r\nCache-Control: no-cache\r\n\
-         X-Content-Type-Options: nosniff\r\nConnection: close\r\n\r\n",
-        response.status,
-        response.content_type,
-        response.body.len()
-    )
-    .into_bytes();
-    if method != "HEAD" {
-        out.extend_from_slice(&response.body);
-    }
-    stream.write_all(&out)?;
-    stream.flush()
+    // A client gone meanwhile is no error of the server.
+    let _ = request.respond(reply.into_response());
 }
 
-fn read_head(stream: &TcpStream) -> std::io::Result<String> {
-    // At most MAX_HEAD bytes in all, however long a line the client sends.
-    let mut reader = BufReader::new(stream.take(MAX_HEAD as u64 + 1));
-    let mut head = String::new();
-    loop {
-        let mut line = String::new();
-        if reader.read_line(&mut line)? == 0 || line == "\r\n" || line == "\n" || head.len() > MAX_HEAD {
-            return Ok(head);
-        }
-        head.push_str(&line);
-    }
-}
-
-fn parse_request_line(head: &str) -> (&str, &str) {
-    let mut words = head.lines().next().unwrap_or("").split_whitespace();
-    (words.next().unwrap_or(""), words.next().unwrap_or(""))
-}
-
-fn respond(root: &Path, target: &str) -> Response {
+fn respond(root: &Path, target: &str) -> Reply {
     let Some(path) = resolve(root, target) else {
-        return Response::text("403 Forbidden", "outside the view folder");
+        return Reply::text(403, "outside the view folder");
     };
     match karst_artifact::files::read_regular(&path, karst_artifact::files::MAX_DATA_BYTES) {
-        Ok(body) => Response { status: "200 OK", content_type: content_type(&path), body },
-        Err(_) => Response::text("404 Not Found", "no such file in the view"),
+        Ok(body) => Reply { status: 200, content_type: content_type(&path), body },
+        Err(_) => Reply::text(404, "no such file in the view"),
     }
 }
 
@@ -193,7 +188,8 @@ fn content_type(path: &Path) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::io::Read;
+    use std::io::{Read, Write};
+    use std::net::TcpStream;
 
     /// A view folder with index.html and data/a.json, beside a secret file.
     fn fixture(name: &str) -> karst_testkit::Scratch {
@@ -205,14 +201,44 @@ mod tests {
         dir
     }
 
-    /// Sends one raw request and returns the status code and the body.
-    fn get(address: SocketAddr, request: &str) -> (u16, String) {
+    /// Sends raw bytes on one connection and returns everything the server sent back until it
+    /// closed the connection.
+    fn exchange(address: SocketAddr, raw: &str) -> String {
         let mut stream = TcpStream::connect(address).unwrap();
-        stream.write_all(request.as_bytes()).unwrap();
+        stream.write_all(raw.as_bytes()).unwrap();
         let mut text = String::new();
         stream.read_to_string(&mut text).unwrap();
-        let status = text.split_whitespace().nth(1).unwrap().parse().unwrap();
-        (status, text.split("\r\n\r\n").nth(1).unwrap_or("").to_string())
+        text
+    }
+
+    /// One response: status code, head (status line and headers) and body.
+    struct Answer {
+        status: u16,
+        head: String,
+        body: String,
+    }
+
+    impl Answer {
+        fn header(&self, field: &str) -> Option<&str> {
+            self.head.lines().find_map(|line| {
+                let (name, value) = line.split_once(':')?;
+                name.eq_ignore_ascii_case(field).then(|| value.trim())
+            })
+        }
+    }
+
+    /// Sends `METHOD TARGET` (closing the connection after it) and parses the response.
+    fn ask(address: SocketAddr, method: &str, target: &str) -> Answer {
+        let text =
+            exchange(address, &format!("{method} {target} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n"));
+        let (head, body) = text.split_once("\r\n\r\n").unwrap_or((&text, ""));
+        let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
+        Answer { status, head: head.to_string(), body: body.to_string() }
+    }
+
+    fn get(address: SocketAddr, target: &str) -> (u16, String) {
+        let answer = ask(address, "GET", target);
+        (answer.status, answer.body)
     }
 
     fn spawn(view: &Path) -> SocketAddr {
@@ -227,18 +253,53 @@ mod tests {
         let dir = fixture("files");
         let address = spawn(&dir.join("view"));
         assert!(address.ip().is_loopback());
-        assert_eq!(get(address, "GET / HTTP/1.1\r\n\r\n"), (200, "<html>karst</html>".into()));
-        assert_eq!(get(address, "GET /data/a.json?x=1 HTTP/1.1\r\n\r\n"), (200, "{\"a\":1}".into()));
-        assert_eq!(get(address, "GET /data/%61.json HTTP/1.1\r\n\r\n").0, 200);
-        assert_eq!(get(address, "GET /data/none.json HTTP/1.1\r\n\r\n").0, 404);
-        assert_eq!(get(address, "HEAD / HTTP/1.1\r\n\r\n"), (200, String::new()));
-        assert_eq!(get(address, "POST / HTTP/1.1\r\n\r\n").0, 405);
+        assert_eq!(get(address, "/"), (200, "<html>karst</html>".into()));
+        assert_eq!(get(address, "/data/a.json?x=1"), (200, "{\"a\":1}".into()));
+        assert_eq!(get(address, "/data/%61.json").0, 200);
+        assert_eq!(get(address, "/data/none.json").0, 404);
+
+        let page = ask(address, "GET", "/index.html");
+        assert_eq!(page.header("Content-Type"), Some("text/html; charset=utf-8"));
+        assert_eq!(page.header("Content-Length"), Some("18"));
+        assert_eq!(page.header("Cache-Control"), Some("no-cache"));
+        assert_eq!(page.header("X-Content-Type-Options"), Some("nosniff"));
+        assert_eq!(ask(address, "GET", "/data/a.json").header("Content-Type"), Some("application/json"));
+
+        let head = ask(address, "HEAD", "/data/a.json");
+        assert_eq!((head.status, head.body.as_str()), (200, ""));
+        assert_eq!(head.header("Content-Length"), Some("7"));
+
+        for method in ["POST", "PUT", "DELETE", "OPTIONS"] {
+            let refused = ask(address, method, "/");
+            assert_eq!(refused.status, 405, "{method}");
+            assert_eq!(refused.header("Allow"), Some("GET, HEAD"), "{method}");
+        }
+    }
+
+    #[test]
+    fn answers_requests_on_one_connection_in_order() {
+        let dir = fixture("keepalive");
+        let address = spawn(&dir.join("view"));
+        let text = exchange(
+            address,
+            "GET /data/a.json HTTP/1.1\r\nHost: x\r\n\r\n\
+             GET /../secret.txt HTTP/1.1\r\nHost: x\r\n\r\n\
+             GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n",
+        );
+        // A body without a final newline runs straight into the next status line.
+        let statuses: Vec<&str> =
+            text.match_indices("HTTP/1.1 ").map(|(i, _)| &text[i + 9..i + 12]).collect();
+        assert_eq!(statuses, ["200", "403", "200"], "{text}");
+        let (json, page) = (text.find("{\"a\":1}").unwrap(), text.find("<html>karst</html>").unwrap());
+        assert!(json < page, "{text}");
+        assert!(!text.contains("SECRET"), "{text}");
     }
 
     #[test]
     fn refuses_every_way_out_of_the_view() {
         let dir = fixture("traversal");
         std::os::unix::fs::symlink(dir.join("secret.txt"), dir.join("view/link.txt")).unwrap();
+        std::os::unix::fs::symlink(&*dir, dir.join("view/up")).unwrap();
         let address = spawn(&dir.join("view"));
         for target in [
             "/../secret.txt",
@@ -248,16 +309,26 @@ mod tests {
             "/data/..%2f..%2fsecret.txt",
             "/data/%2e%2e%2f%2e%2e%2fsecret.txt",
             "/..%5csecret.txt",
+            "/.%2e/secret.txt",
+            "/./index.html",
             "//etc/passwd",
             "/%00",
+            "/index.html%00",
             "/%zz",
+            "/%2",
             "/link.txt",
+            "/up/secret.txt",
             "secret.txt",
+            "http://127.0.0.1/../secret.txt",
         ] {
-            let (status, body) = get(address, &format!("GET {target} HTTP/1.1\r\n\r\n"));
-            assert_eq!(status, 403, "{target}");
-            assert!(!body.contains("SECRET"), "{target}");
+            for method in ["GET", "HEAD"] {
+                let answer = ask(address, method, target);
+                assert_eq!(answer.status, 403, "{method} {target}");
+                assert!(!answer.body.contains("SECRET"), "{method} {target}");
+            }
         }
+        // The same folder is served: the refusals are not a server that serves nothing.
+        assert_eq!(get(address, "/data/a.json").0, 200);
     }
 
     #[test]
