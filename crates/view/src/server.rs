@@ -1,31 +1,45 @@
-//! A static file server for a view folder, on 127.0.0.1 only, built on tiny_http.
+//! A static file server for a view folder, on 127.0.0.1 only, built on hyper's HTTP/1.1 server.
 //!
-//! tiny_http speaks HTTP/1.1 (request heads, keep-alive, pipelined requests answered in order,
-//! HEAD answered without a body); this module decides what is served. It answers GET and HEAD
-//! for files under the view folder and nothing else (405, `Allow: GET, HEAD`): the request
-//! path is percent-decoded and split into segments; a segment that is empty, `.`, `..`, or
-//! holds a `\` or a NUL is refused (403), as is a malformed escape, and the resolved file must
-//! still lie inside the folder once symbolic links are resolved. So neither `/../x`,
-//! `/%2e%2e/x`, `/a/..%2f..%2fx` nor a link out of the folder reaches a file outside it.
-//! Every response carries its `Content-Type` (from the file's extension), `Content-Length`,
-//! `Cache-Control: no-cache` and `X-Content-Type-Options: nosniff`. Each request is answered on
-//! a thread of its own: the page's few hundred requests come from one browser on the same
-//! machine.
+//! hyper speaks HTTP/1.1 (request heads, keep-alive, pipelined requests answered in order, HEAD
+//! answered without a body, `Content-Length` and `Date`); each connection is a task on one tokio
+//! thread, each file is read on tokio's blocking pool, so a browser's parallel connections are
+//! all served. A request head is at most [`MAX_HEAD`] bytes (a longer one is answered 431) and
+//! must arrive within [`HEAD_TIMEOUT`] (else the connection is closed).
+//!
+//! This module decides what is served. It answers GET and HEAD for files under the view folder
+//! and nothing else (405, `Allow: GET, HEAD`): the request path is percent-decoded and split into
+//! segments; a segment that is empty, `.`, `..`, or holds a `\` or a NUL is refused (403), as is
+//! a malformed escape, and the resolved file must still lie inside the folder once symbolic
+//! links are resolved. So neither `/../x`, `/%2e%2e/x`, `/a/..%2f..%2fx` nor a link out of the
+//! folder reaches a file outside it. Every response carries its `Content-Type` (from the file's
+//! extension), `Cache-Control: no-cache` and `X-Content-Type-Options: nosniff`.
 
-use std::io::Cursor;
+use std::convert::Infallible;
 use std::net::{Ipv4Addr, SocketAddr, TcpListener};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::time::Duration;
 
-use tiny_http::{Header, Method, Request, Response};
+use http_body_util::Full;
+use hyper::body::{Bytes, Incoming};
+use hyper::header::{ALLOW, CACHE_CONTROL, CONTENT_TYPE, HeaderValue, X_CONTENT_TYPE_OPTIONS};
+use hyper::{Method, Request, Response, StatusCode};
+use hyper_util::rt::{TokioIo, TokioTimer};
 
 use crate::ViewError;
 
+/// Longest request head accepted, request line included.
+pub const MAX_HEAD: usize = 16 * 1024;
+/// Longest wait for a whole request head, from when the connection is ready for one (so an idle
+/// kept-alive connection is closed after it too; browsers then open a new one).
+pub const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
+
 /// A bound, not yet serving, server.
 pub struct Server {
-    http: tiny_http::Server,
+    listener: TcpListener,
     address: SocketAddr,
     root: PathBuf,
+    runtime: tokio::runtime::Runtime,
 }
 
 impl Server {
@@ -36,7 +50,6 @@ impl Server {
             let run = view_dir.parent().unwrap_or(Path::new(".")).display().to_string();
             return Err(ViewError::NoView { dir: view_dir.into(), run });
         }
-        // Bound here rather than by tiny_http, whose error does not say the port is in use.
         let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, port)).map_err(|source| {
             if source.kind() == std::io::ErrorKind::AddrInUse {
                 ViewError::PortInUse { port, suggestion: port.wrapping_add(1).max(1024) }
@@ -46,9 +59,9 @@ impl Server {
         })?;
         let listen = |source| ViewError::Listen { port, source };
         let address = listener.local_addr().map_err(listen)?;
-        let http =
-            tiny_http::Server::from_listener(listener, None).map_err(|e| listen(std::io::Error::other(e)))?;
-        Ok(Server { http, address, root })
+        listener.set_nonblocking(true).map_err(listen)?;
+        let runtime = tokio::runtime::Builder::new_current_thread().enable_all().build().map_err(listen)?;
+        Ok(Server { listener, address, root, runtime })
     }
 
     /// The address it listens on.
@@ -63,11 +76,27 @@ impl Server {
 
     /// Serves until the process ends.
     pub fn run(self) {
-        let root: Arc<Path> = self.root.into();
-        for request in self.http.incoming_requests() {
-            let root = Arc::clone(&root);
-            std::thread::spawn(move || answer(&root, request));
-        }
+        let Server { listener, root, runtime, .. } = self;
+        let root: Arc<Path> = root.into();
+        runtime.block_on(async move {
+            let Ok(listener) = tokio::net::TcpListener::from_std(listener) else { return };
+            loop {
+                // A failed accept (a client gone, no file descriptor left) loses that client only.
+                let Ok((stream, _)) = listener.accept().await else { continue };
+                let root = Arc::clone(&root);
+                tokio::spawn(async move {
+                    let service =
+                        hyper::service::service_fn(move |request| answer(Arc::clone(&root), request));
+                    // A connection's end, orderly or not, concerns that client only.
+                    let _ = hyper::server::conn::http1::Builder::new()
+                        .timer(TokioTimer::new())
+                        .header_read_timeout(HEAD_TIMEOUT)
+                        .max_header_size(MAX_HEAD)
+                        .serve_connection(TokioIo::new(stream), service)
+                        .await;
+                });
+            }
+        });
     }
 }
 
@@ -81,56 +110,49 @@ pub fn serve(view_dir: &Path, port: u16) -> Result<(), ViewError> {
 
 /// What a request is answered with: status, type and body.
 struct Reply {
-    status: u16,
+    status: StatusCode,
     content_type: &'static str,
     body: Vec<u8>,
 }
 
 impl Reply {
-    fn text(status: u16, message: &str) -> Reply {
+    fn text(status: StatusCode, message: &str) -> Reply {
         Reply { status, content_type: "text/plain; charset=utf-8", body: format!("{message}\n").into_bytes() }
     }
 
-    fn into_response(self) -> Response<Cursor<Vec<u8>>> {
-        let mut response = Response::from_data(self.body)
-            .with_status_code(self.status)
-            // The length is known: always a Content-Length, never chunks.
-            .with_chunked_threshold(usize::MAX);
-        for (field, value) in [
-            ("Content-Type", self.content_type),
-            ("Cache-Control", "no-cache"),
-            ("X-Content-Type-Options", "nosniff"),
-        ] {
-            response.add_header(header(field, value));
-        }
-        if self.status == 405 {
-            response.add_header(header("Allow", "GET, HEAD"));
+    fn into_response(self) -> Response<Full<Bytes>> {
+        let mut response = Response::new(Full::new(Bytes::from(self.body)));
+        *response.status_mut() = self.status;
+        let headers = response.headers_mut();
+        headers.insert(CONTENT_TYPE, HeaderValue::from_static(self.content_type));
+        headers.insert(CACHE_CONTROL, HeaderValue::from_static("no-cache"));
+        headers.insert(X_CONTENT_TYPE_OPTIONS, HeaderValue::from_static("nosniff"));
+        if self.status == StatusCode::METHOD_NOT_ALLOWED {
+            headers.insert(ALLOW, HeaderValue::from_static("GET, HEAD"));
         }
         response
     }
 }
 
-/// A header of this module (names and values are ASCII constants).
-fn header(field: &str, value: &str) -> Header {
-    Header::from_bytes(field, value).expect("an ASCII header")
-}
-
-fn answer(root: &Path, request: Request) {
-    let reply = match request.method() {
-        Method::Get | Method::Head => respond(root, request.url()),
-        _ => Reply::text(405, "only GET and HEAD"),
+async fn answer(root: Arc<Path>, request: Request<Incoming>) -> Result<Response<Full<Bytes>>, Infallible> {
+    let reply = if matches!(*request.method(), Method::GET | Method::HEAD) {
+        let target = request.uri().to_string();
+        tokio::task::spawn_blocking(move || respond(&root, &target))
+            .await
+            .unwrap_or_else(|_| Reply::text(StatusCode::INTERNAL_SERVER_ERROR, "the file could not be read"))
+    } else {
+        Reply::text(StatusCode::METHOD_NOT_ALLOWED, "only GET and HEAD")
     };
-    // A client gone meanwhile is no error of the server.
-    let _ = request.respond(reply.into_response());
+    Ok(reply.into_response())
 }
 
 fn respond(root: &Path, target: &str) -> Reply {
     let Some(path) = resolve(root, target) else {
-        return Reply::text(403, "outside the view folder");
+        return Reply::text(StatusCode::FORBIDDEN, "outside the view folder");
     };
     match karst_artifact::files::read_regular(&path, karst_artifact::files::MAX_DATA_BYTES) {
-        Ok(body) => Reply { status: 200, content_type: content_type(&path), body },
-        Err(_) => Reply::text(404, "no such file in the view"),
+        Ok(body) => Reply { status: StatusCode::OK, content_type: content_type(&path), body },
+        Err(_) => Reply::text(StatusCode::NOT_FOUND, "no such file in the view"),
     }
 }
 
@@ -206,9 +228,13 @@ mod tests {
     fn exchange(address: SocketAddr, raw: &str) -> String {
         let mut stream = TcpStream::connect(address).unwrap();
         stream.write_all(raw.as_bytes()).unwrap();
-        let mut text = String::new();
-        stream.read_to_string(&mut text).unwrap();
-        text
+        let mut bytes = Vec::new();
+        // A server that refuses a request before reading all of it may reset the connection
+        // after its answer: what came before the reset is the answer.
+        if let Err(e) = stream.read_to_end(&mut bytes) {
+            assert_eq!(e.kind(), std::io::ErrorKind::ConnectionReset, "{e}");
+        }
+        String::from_utf8_lossy(&bytes).into_owned()
     }
 
     /// One response: status code, head (status line and headers) and body.
@@ -293,6 +319,45 @@ mod tests {
         let (json, page) = (text.find("{\"a\":1}").unwrap(), text.find("<html>karst</html>").unwrap());
         assert!(json < page, "{text}");
         assert!(!text.contains("SECRET"), "{text}");
+    }
+
+    #[test]
+    fn serves_a_browser_s_parallel_connections_all_at_once() {
+        let dir = fixture("parallel");
+        let address = spawn(&dir.join("view"));
+        // Kept-alive connections, opened together: each must be answered while the others stay
+        // open (a server with a fixed pool of connection threads leaves the last ones waiting).
+        let connections: Vec<TcpStream> = (0..16).map(|_| TcpStream::connect(address).unwrap()).collect();
+        for mut connection in &connections {
+            connection.write_all(b"GET /data/a.json HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+        }
+        for (i, mut connection) in connections.iter().enumerate() {
+            // Not a timing assertion: a hang guard, so that a starved connection fails the test.
+            connection.set_read_timeout(Some(std::time::Duration::from_secs(60))).unwrap();
+            let mut answer = Vec::new();
+            let mut chunk = [0; 256];
+            while !String::from_utf8_lossy(&answer).ends_with("{\"a\":1}") {
+                let n = connection.read(&mut chunk).unwrap_or_else(|e| panic!("connection {i}: {e}"));
+                assert!(n > 0, "connection {i} closed without an answer");
+                answer.extend_from_slice(&chunk[..n]);
+            }
+            assert!(answer.starts_with(b"HTTP/1.1 200"), "connection {i}");
+        }
+    }
+
+    #[test]
+    fn a_request_head_longer_than_the_bound_is_refused() {
+        let dir = fixture("head");
+        let address = spawn(&dir.join("view"));
+        let long = format!("GET / HTTP/1.1\r\nHost: x\r\nX-Long: {}\r\n\r\n", "a".repeat(MAX_HEAD));
+        let text = exchange(address, &long);
+        assert!(text.starts_with("HTTP/1.1 431"), "{text}");
+        assert!(!text.contains("karst"), "{text}");
+        let short = format!(
+            "GET / HTTP/1.1\r\nHost: x\r\nX-Long: {}\r\nConnection: close\r\n\r\n",
+            "a".repeat(MAX_HEAD / 2)
+        );
+        assert!(exchange(address, &short).starts_with("HTTP/1.1 200"));
     }
 
     #[test]
