@@ -36,7 +36,7 @@ pub const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
 
 /// A bound, not yet serving, server.
 pub struct Server {
-    listener: TcpListener,
+    listener: tokio::net::TcpListener,
     address: SocketAddr,
     root: PathBuf,
     runtime: tokio::runtime::Runtime,
@@ -61,6 +61,10 @@ impl Server {
         let address = listener.local_addr().map_err(listen)?;
         listener.set_nonblocking(true).map_err(listen)?;
         let runtime = tokio::runtime::Builder::new_current_thread().enable_all().build().map_err(listen)?;
+        let listener = {
+            let _context = runtime.enter();
+            tokio::net::TcpListener::from_std(listener).map_err(listen)?
+        };
         Ok(Server { listener, address, root, runtime })
     }
 
@@ -79,7 +83,6 @@ impl Server {
         let Server { listener, root, runtime, .. } = self;
         let root: Arc<Path> = root.into();
         runtime.block_on(async move {
-            let Ok(listener) = tokio::net::TcpListener::from_std(listener) else { return };
             loop {
                 // A failed accept (a client gone, no file descriptor left) loses that client only.
                 let Ok((stream, _)) = listener.accept().await else { continue };
