@@ -24,7 +24,7 @@ mod stats;
 mod view;
 
 pub use build::{build, build_points};
-pub use cost::CostModel;
+pub use cost::{CostModel, fracture_families};
 pub use costs::{Costing, SHARED_ROW};
 pub use error::CostGraphError;
 pub use joints::{assumed as assumed_joints, lineament_azimuth};
