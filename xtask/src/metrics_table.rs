@@ -41,6 +41,8 @@ pub fn scene_report(scene: &Path, out: &Path) -> Result<MetricsReport, StageErro
         StageId::Skeleton,
         StageId::Hydro,
         StageId::Streams,
+        StageId::Sdf,
+        StageId::Survey,
         StageId::Metrics,
     ];
     for stage in stages {

@@ -39,7 +39,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use karst_geology::{Geology, Surface};
+use karst_geology::{FractureFamily, Geology, Surface};
 use karst_scene::params::{CostModelKind, CostgraphParams};
 use karst_scene::{KeyPoint, KeyPointKind, keypoints_of};
 
@@ -134,10 +134,9 @@ pub struct EdgeTerms {
 impl CostModel {
     /// The cost model of the scene's geology, key points, forced links and `[costgraph]`.
     pub fn new(view: &CostgraphView) -> Self {
-        let max_weight = view.geology.fractures.iter().map(|f| f.weight).fold(0.0, f64::max);
-        let families = view
-            .geology
-            .fractures
+        let fractures = fracture_families(view);
+        let max_weight = fractures.iter().map(|f| f.weight).fold(0.0, f64::max);
+        let families = fractures
             .iter()
             .filter(|f| f.weight > 0.0)
             .map(|f| Family {
@@ -469,6 +468,16 @@ fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
     let t =
         if ab.length_squared() > 0.0 { ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
     p.distance(a + ab * t)
+}
+
+/// The scene's fracture families, or the joint sets assumed when it has none and
+/// `costgraph.assumed_joints` holds ([`crate::joints`]).
+pub fn fracture_families(view: &CostgraphView) -> Vec<FractureFamily> {
+    if view.geology.fractures.is_empty() && view.costgraph.assumed_joints {
+        crate::joints::assumed(view.domain, view.terrain).to_vec()
+    } else {
+        view.geology.fractures.clone()
+    }
 }
 
 /// Water tables named by springs, in [geology.water_tables] order.

@@ -11,7 +11,10 @@
 //!   branches a few radii long at every scale;
 //! - the meander wavelength (`meander_wavelength`) from the passage scale: ten passage widths
 //!   (Leopold & Wolman 1960 for rivers, Deike & White 1969 for cave streams), the passage width
-//!   being twice `skeleton.radius`.
+//!   being twice `skeleton.radius`;
+//! - the joint sets the cost model assumes when the scene has no fracture family
+//!   (`costgraph.assumed_joints`, [`karst_costgraph::assumed_joints`]), recorded as the
+//!   `[[geology.fractures]]` a scene would give.
 //!
 //! The resolved values are what the rest of the stage reads (a copy of `[skeleton]` with every
 //! derived field filled in) and are recorded in `skeleton.json` and `resolved.toml`.
@@ -63,6 +66,11 @@ pub fn resolve(view: &SkeletonView) -> Resolved {
         let range = [lo, hi.max(lo)];
         params.meander_wavelength = Some(range);
         derived.insert("skeleton.meander_wavelength".into(), range.to_vec().into());
+    }
+    if view.geology.fractures.is_empty() && view.costgraph.assumed_joints {
+        let families = karst_costgraph::assumed_joints(view.domain, view.terrain);
+        let tables = families.iter().map(|f| serde_json::to_value(f).expect("a family serializes"));
+        derived.insert("geology.fractures".into(), tables.collect::<Vec<_>>().into());
     }
     Resolved { params, derived }
 }

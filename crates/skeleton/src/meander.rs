@@ -76,7 +76,7 @@ pub fn bend(
     let p = view.skeleton;
     let ak = amplitude_ratio(sinuosity);
     let mut rng = Random::stream(view.seed, "skeleton", "meanders");
-    let planes = WeaknessPlanes::of(view.geology);
+    let planes = WeaknessPlanes::of(&karst_costgraph::fracture_families(&view.costs()));
     let mut inserted = Insertions::new();
     for chain in chains.iter_mut() {
         let [shortest, longest] = p.meander_wavelength.unwrap_or_default();

@@ -495,10 +495,11 @@ fn cohesion_in_gamma_mode_merges_paths_into_trunks() {
 
 #[test]
 fn meanders_lengthen_conduits_within_the_bedding_plane() {
-    let base = scene("");
+    // No joint either (the assumed ones are planes to bend in too).
+    let base = scene("assumed_joints = false\n");
     let (samples, graph) = inputs(&base);
     let straight = build(&base, &samples, &graph).unwrap();
-    let bent = build(&scene("[skeleton]\nsinuosity = 1.2\n"), &samples, &graph).unwrap();
+    let bent = build(&scene("assumed_joints = false\n[skeleton]\nsinuosity = 1.2\n"), &samples, &graph).unwrap();
     let ratio = bent.total_length() / straight.total_length();
     assert!(ratio > 1.05 && ratio < 1.25, "{ratio}");
     // No horizon: the bedding is horizontal, so every original node keeps its elevation.
@@ -551,12 +552,47 @@ fn defaults_derived_from_the_scene_are_recorded_and_shape_the_network() {
     assert!(ends > 5 + points as usize / 2, "{ends} dead ends for {points} first-step tributaries");
     let text = crate::resolved_toml(&skeleton).unwrap();
     assert!(text.contains("[skeleton]\namplification_length = [18.0,90.0]\n"), "{text}");
+    // The flat ground has no lineament: the assumed joint sets run north–south and east–west.
+    let joints = &text[text.find("[[geology.fractures]]").expect("the assumed joints are recorded")..];
+    let joints = &joints[..joints.find("\n[skeleton]").unwrap_or(joints.len())];
+    assert!(joints.contains("azimuth = 0.0") && joints.contains("azimuth = 90.0"), "{joints}");
+    // Copied into the scene, they pin the same network.
+    let pinned = with_defaults(joints);
+    let (_, pinned_graph) = inputs(&pinned);
+    let again = build(&pinned, &samples, &pinned_graph).unwrap();
+    assert_eq!(again.derived.get("geology.fractures"), None);
+    assert_eq!(sample_links(&again), sample_links(&skeleton));
+    assert_eq!(route_positions(&again), route_positions(&skeleton), "the meanders bend within the same joints");
+}
+
+#[test]
+fn without_fracture_families_the_routes_follow_the_assumed_joints() {
+    let share_along = |extra: &str| {
+        let scene = with_defaults(extra);
+        let (samples, graph) = inputs(&scene);
+        let skeleton = build(&scene, &samples, &graph).unwrap();
+        let (mut along, mut total) = (0.0, 0.0);
+        for (a, b) in sample_links(&skeleton) {
+            let (p, q) = (samples.positions[a as usize], samples.positions[b as usize]);
+            let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+            let length = dx.hypot(dy);
+            // Within 10° of north–south or east–west.
+            let off_axis = dx.abs().min(dy.abs()) / length.max(1e-9);
+            total += length;
+            along += if off_axis < 10f64.to_radians().sin() { length } else { 0.0 };
+        }
+        along / total
+    };
+    let assumed = share_along("");
+    let isotropic = share_along("assumed_joints = false\n");
+    // Two sets of ±10° hold 2/9 of the azimuths of an isotropic network.
+    assert!(assumed > isotropic + 0.15, "{assumed} along the joints, {isotropic} without them");
 }
 
 #[test]
 fn values_the_scene_gives_are_not_derived() {
     let scene = with_defaults(
-        "[skeleton]\namplification_points = 3\namplification_length = [20.0, 60.0]\nmeander_wavelength = [30.0, 50.0]\n",
+        "assumed_joints = false\n[skeleton]\namplification_points = 3\namplification_length = [20.0, 60.0]\nmeander_wavelength = [30.0, 50.0]\n",
     );
     let (samples, graph) = inputs(&scene);
     let skeleton = build(&scene, &samples, &graph).unwrap();

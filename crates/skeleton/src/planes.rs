@@ -13,7 +13,7 @@
 //! none.
 
 use glam::DVec3;
-use karst_geology::Geology;
+use karst_geology::{FractureFamily, Geology};
 
 /// The fracture families' planes of a scene.
 pub struct WeaknessPlanes {
@@ -22,9 +22,11 @@ pub struct WeaknessPlanes {
 }
 
 impl WeaknessPlanes {
-    pub fn of(geology: &Geology) -> Self {
-        let fractures =
-            geology.fractures.iter().map(|f| (f.normal(), f.tolerance.to_radians().sin())).collect();
+    /// The planes of `families`: the scene's fracture families, or the joint sets the cost
+    /// model assumes without them ([`karst_costgraph::fracture_families`]), so that a passage the
+    /// costs made follow a joint bends within it either way.
+    pub fn of(families: &[FractureFamily]) -> Self {
+        let fractures = families.iter().map(|f| (f.normal(), f.tolerance.to_radians().sin())).collect();
         WeaknessPlanes { fractures }
     }
 
@@ -105,7 +107,7 @@ water_table = "base"
     #[test]
     fn a_passage_along_a_joint_and_a_parting_bends_in_the_joint() {
         let scene = karst_scene::Scene::parse(JOINTED, std::path::Path::new("jointed.toml")).unwrap();
-        let planes = WeaknessPlanes::of(scene.geology());
+        let planes = WeaknessPlanes::of(&scene.geology().fractures);
         let at = DVec3::new(50.0, 50.0, 20.0);
         // North–south and level: in both families; the joint (vertical) carries the bends.
         let across = planes.across(scene.geology(), at, DVec3::Y);

@@ -114,6 +114,14 @@ pub fn resolved_toml(skeleton: &Skeleton) -> Option<String> {
     let mut section = "";
     for (field, value) in &skeleton.derived {
         let (table, name) = field.split_once('.').unwrap_or(("skeleton", field));
+        if let Some(tables) = array_of_tables(value) {
+            for entries in tables {
+                text += &format!("\n[[{table}.{name}]]\n");
+                text.extend(entries.iter().map(|(key, v)| format!("{key} = {v}\n")));
+            }
+            section = "";
+            continue;
+        }
         if table != section {
             text += &format!("\n[{table}]\n");
             section = table;
@@ -121,6 +129,13 @@ pub fn resolved_toml(skeleton: &Skeleton) -> Option<String> {
         text += &format!("{name} = {value}\n");
     }
     Some(text)
+}
+
+/// The objects of `value` when it is a non-empty array of objects (written as TOML's array of
+/// tables, `[[geology.fractures]]`); their scalar values print the same in JSON and TOML.
+fn array_of_tables(value: &serde_json::Value) -> Option<Vec<&serde_json::Map<String, serde_json::Value>>> {
+    let items = value.as_array().filter(|a| !a.is_empty())?;
+    items.iter().map(serde_json::Value::as_object).collect()
 }
 
 /// `karst-skeleton render FILE --png PNG`.

@@ -38,7 +38,7 @@ pub fn amplitude(theta: f64) -> f64 {
 pub fn refine(view: &SkeletonView, theta: f64, nodes: &mut Vec<Node>, chains: &mut [Vec<u32>]) -> Insertions {
     let mut rng = Random::stream(view.seed, "skeleton", "tortuosity");
     let levels = view.skeleton.tortuosity_levels;
-    let planes = WeaknessPlanes::of(view.geology);
+    let planes = WeaknessPlanes::of(&karst_costgraph::fracture_families(&view.costs()));
     let mut inserted = Insertions::new();
     for chain in chains.iter_mut() {
         let mut refined = vec![chain[0]];

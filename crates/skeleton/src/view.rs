@@ -35,6 +35,8 @@ impl<'s> SkeletonView<'s> {
     /// the edges is made of.
     pub fn costs(&self) -> CostgraphView<'s> {
         CostgraphView {
+            domain: self.domain,
+            terrain: self.terrain,
             geology: self.geology,
             keypoints: self.keypoints,
             connectivity: self.connectivity,

@@ -33,6 +33,9 @@ pub struct CostgraphParams {
     pub alpha_inception: f64,
     /// karstnsim2024: α_F, weight of the fracture term.
     pub alpha_fracture: f64,
+    /// When `[geology]` has no fracture family, assume two vertical joint sets 90° apart
+    /// oriented along the terrain's lineaments (docs/costgraph.md, "Assumed joints").
+    pub assumed_joints: bool,
     /// karstnsim2024: α_WT, weight of the water-table term.
     pub alpha_water_table: f64,
     /// karstnsim2024: α_P, weight of the karstification-potential term.
@@ -69,6 +72,7 @@ impl Default for CostgraphParams {
             cost_floor: 0.01,
             alpha_inception: 1.0,
             alpha_fracture: 1.0,
+            assumed_joints: true,
             alpha_water_table: 1.0,
             alpha_potential: 1.0,
             inception_distance: 10.0,
