@@ -11,7 +11,8 @@
 //!   domain face, so it is a sealed pocket, kept only when it holds a sink or a spring;
 //! - cave alone: a hole in the karst volume is rock surrounded by cave air, an island; a piece
 //!   of cave is kept when it reaches the ground or a domain face (it opens to the outside) or
-//!   holds a sink or a spring, otherwise it is a sealed pocket.
+//!   holds a sink or a spring (encloses it or passes within a cell of it), otherwise it is a
+//!   sealed pocket.
 //!
 //! "Reaches" means a vertex within a quarter cell of the boundary: the polygonizer puts the
 //! vertices of a surface that meets the boundary on it, up to the interpolation clamp.
@@ -50,7 +51,7 @@ pub fn clean(surface: &mut TriMesh, solid: Solid, model: &SdfModel, anchors: &[D
         volume[c as usize] += surface.volume_of(std::iter::once(t));
         reaches[c as usize] |= t.iter().any(|&v| reach.reaches(surface.position(v)));
     }
-    let holds_anchor = |c: usize| anchors.iter().any(|&a| encloses(surface, &labels, c as u32, a));
+    let holds_anchor = |c: usize| anchors.iter().any(|&a| holds(surface, &labels, c as u32, a, cell_size));
     let verdicts: Vec<Verdict> =
         (0..count).map(|c| verdict(solid, volume[c], reaches[c], || holds_anchor(c))).collect();
     surface.removed = removed(&verdicts, &volume);
@@ -119,6 +120,22 @@ pub(crate) fn removed(verdicts: &[Verdict], volume: &[f64]) -> Removed {
         }
     }
     removed
+}
+
+/// Whether component `c` holds the anchor `p`: encloses it, or passes within a cell of it. The
+/// surface is resolved to a cell only: a sink just under the ground or a spring on a conduit's
+/// end may fall just outside the polygonized surface of the passage it opens, which must not
+/// make the whole cave a sealed pocket.
+fn holds(surface: &TriMesh, labels: &[u32], c: u32, p: DVec3, cell_size: f64) -> bool {
+    let corners = |t: &[u32; 3]| t.map(|v| surface.position(v));
+    let near =
+        surface.triangles.iter().zip(labels).any(|(t, &l)| l == c && touches(corners(t), p, cell_size));
+    near || encloses(surface, labels, c, p)
+}
+
+/// Whether a corner of the triangle lies within `cell_size` of `p`.
+pub(crate) fn touches(corners: [DVec3; 3], p: DVec3, cell_size: f64) -> bool {
+    corners.iter().any(|v| v.distance_squared(p) <= cell_size * cell_size)
 }
 
 /// Whether component `c` encloses `p`: parity of the crossings of a ray from p. The ray's

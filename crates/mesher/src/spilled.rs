@@ -127,7 +127,7 @@ impl SpilledSurface {
             found.triangles[c] += 1;
             Ok(())
         })?;
-        let holds = self.anchors_held(solid, &parent, &found, anchors)?;
+        let holds = self.anchors_held(solid, &parent, &found, anchors, cell_size)?;
         let verdicts: Vec<Verdict> = (0..found.volume.len())
             .map(|c| cleanup::verdict(solid, found.volume[c], found.reaches[c], || holds[c]))
             .collect();
@@ -142,20 +142,23 @@ impl SpilledSurface {
         Ok(())
     }
 
-    /// For each component, whether it encloses a sink or spring: asked only of those whose
+    /// For each component, whether it holds a sink or spring: asked only of those whose
     /// verdict depends on it ([`cleanup::asks_anchors`]), by the parity of the crossings of a ray
-    /// from each anchor with the component's triangles, as [`crate::clean`] does.
+    /// from each anchor with the component's triangles or a corner within a cell of the anchor
+    /// ([`cleanup::touches`]), as [`crate::clean`] does.
     fn anchors_held(
         &self,
         solid: Solid,
         parent: &[u32],
         found: &Components,
         anchors: &[DVec3],
+        cell_size: f64,
     ) -> io::Result<Vec<bool>> {
         let count = found.volume.len();
         let asked: Vec<bool> =
             (0..count).map(|c| cleanup::asks_anchors(solid, found.volume[c], found.reaches[c])).collect();
         let mut odd = vec![false; count * anchors.len()];
+        let mut near = vec![false; count];
         if !anchors.is_empty() && asked.contains(&true) {
             let direction = cleanup::ray();
             self.replay(|t, p| {
@@ -165,12 +168,15 @@ impl SpilledSurface {
                 if asked[c] {
                     for (a, &anchor) in anchors.iter().enumerate() {
                         odd[c * anchors.len() + a] ^= cleanup::crosses(p, anchor, direction);
+                        near[c] |= cleanup::touches(p, anchor, cell_size);
                     }
                 }
                 Ok(())
             })?;
         }
-        Ok((0..count).map(|c| odd[c * anchors.len()..(c + 1) * anchors.len()].contains(&true)).collect())
+        Ok((0..count)
+            .map(|c| near[c] || odd[c * anchors.len()..(c + 1) * anchors.len()].contains(&true))
+            .collect())
     }
 
     /// Reads the spills back in the polygonizer's pieces, calling `each` on every triangle with

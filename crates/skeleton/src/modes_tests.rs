@@ -499,7 +499,8 @@ fn meanders_lengthen_conduits_within_the_bedding_plane() {
     let base = scene("assumed_joints = false\n");
     let (samples, graph) = inputs(&base);
     let straight = build(&base, &samples, &graph).unwrap();
-    let bent = build(&scene("assumed_joints = false\n[skeleton]\nsinuosity = 1.2\n"), &samples, &graph).unwrap();
+    let bent =
+        build(&scene("assumed_joints = false\n[skeleton]\nsinuosity = 1.2\n"), &samples, &graph).unwrap();
     let ratio = bent.total_length() / straight.total_length();
     assert!(ratio > 1.05 && ratio < 1.25, "{ratio}");
     // No horizon: the bedding is horizontal, so every original node keeps its elevation.
@@ -562,7 +563,11 @@ fn defaults_derived_from_the_scene_are_recorded_and_shape_the_network() {
     let again = build(&pinned, &samples, &pinned_graph).unwrap();
     assert_eq!(again.derived.get("geology.fractures"), None);
     assert_eq!(sample_links(&again), sample_links(&skeleton));
-    assert_eq!(route_positions(&again), route_positions(&skeleton), "the meanders bend within the same joints");
+    assert_eq!(
+        route_positions(&again),
+        route_positions(&skeleton),
+        "the meanders bend within the same joints"
+    );
 }
 
 #[test]
