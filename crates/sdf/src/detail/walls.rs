@@ -64,9 +64,11 @@ impl ReliefNoise {
         SPECTRUM.value(&self.waves, self.wavelength, p)
     }
 
-    /// Upper bound of |∇r|.
+    /// Upper bound of |∇r|: the tight bound of its drawn waves
+    /// ([`Spectrum::gradient_bound_of`]), on average about two thirds of the sum of the
+    /// waves' own bounds.
     pub fn gradient_bound(&self) -> f64 {
-        SPECTRUM.gradient_bound(self.wavelength)
+        SPECTRUM.gradient_bound_of(&self.waves, self.wavelength)
     }
 
     fn validate(&self, field: &str) -> Result<(), karst_artifact::Invalid> {
