@@ -16,11 +16,13 @@ use karst_metrics::MetricsReport;
 use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::SceneFile;
 use karst_sampling::Samples;
+use karst_scene::params::PassageDetail;
 use karst_skeleton::Skeleton;
 use karst_streams::Streams;
 pub use karst_testkit::{root, scratch};
 
-/// The run of `fixtures/scenes/NAME.toml` up to streams and metrics (no mesh: the network
+/// The run of `fixtures/scenes/NAME.toml` (`NAME:LEVEL`: with `[sdf] passage_detail = LEVEL`)
+/// up to streams and metrics (no mesh: the network
 /// formats need none; the sdf only for the survey the metrics read), made once per test binary.
 pub fn network_run(name: &str) -> PathBuf {
     static RUNS: OnceLock<Mutex<HashMap<String, PathBuf>>> = OnceLock::new();
@@ -28,7 +30,15 @@ pub fn network_run(name: &str) -> PathBuf {
     let mut runs = runs.lock().unwrap_or_else(|e| e.into_inner());
     runs.entry(name.to_string())
         .or_insert_with(|| {
-            let scene = SceneFile::load(&root().join(format!("fixtures/scenes/{name}.toml"))).unwrap();
+            let (file, level) = name.split_once(':').map_or((name, None), |(f, l)| (f, Some(l)));
+            let mut scene = SceneFile::load(&root().join(format!("fixtures/scenes/{file}.toml"))).unwrap();
+            if let Some(level) = level {
+                scene.scene.sdf.passage_detail = match level {
+                    "passages" => PassageDetail::Passages,
+                    "full" => PassageDetail::Full,
+                    _ => panic!("{name}: no passage detail {level}"),
+                };
+            }
             let out = scratch(&format!("run-{name}")).keep();
             for stage in [
                 StageId::Sampling,
