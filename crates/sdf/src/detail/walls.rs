@@ -6,10 +6,12 @@
 //! octaves: the longest wavelength λ halves four times (4 m reaches 0.25 m), and
 //! each octave's amplitude is 0.6 times the one before ([`SPECTRUM`]), a spectrum flatter than Brownian
 //! relief so that the decimetre scallops and blades stay visible beside metre-scale alcoves.
-//! Values lie in [−1, 1] and the gradient is at most Σ_o g^o 2^o ω / W (ω = 2π/λ, W = Σ_o g^o),
-//! [`ReliefNoise::gradient_bound`]. A leaf of size s (a sphere's radius, a sweep's extent) gets
-//! the amplitude R = min(fraction·s, max); its value (f + A·n + R·r)/(1 + A·G + R·G_r) stays
-//! 1-Lipschitz (docs/sdf.md, "Rough walls").
+//! Values lie in [−1, 1] and the gradient is at most the tight bound over the sign patterns of
+//! the waves ([`ReliefNoise::gradient_bound`], below Σ_o g^o 2^o ω / W with ω = 2π/λ and
+//! W = Σ_o g^o). A leaf of size s (a sphere's radius, a sweep's extent) gets the amplitude
+//! R = min(fraction·s, max); its value, (f + A·n + R·r)/(1 + A·G + R·G_r) clamped to
+//! [f − A − R, f + A + R] (crate::primitive::Context), stays 1-Lipschitz (docs/sdf.md,
+//! "Rough walls").
 
 use glam::DVec3;
 use karst_scene::rng::Random;
