@@ -16,7 +16,7 @@ use karst_metrics::MetricsReport;
 use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::SceneFile;
 use karst_sampling::Samples;
-use karst_scene::params::PassageDetail;
+use karst_scene::Scene;
 use karst_skeleton::Skeleton;
 use karst_streams::Streams;
 pub use karst_testkit::{root, scratch};
@@ -31,14 +31,16 @@ pub fn network_run(name: &str) -> PathBuf {
     runs.entry(name.to_string())
         .or_insert_with(|| {
             let (file, level) = name.split_once(':').map_or((name, None), |(f, l)| (f, Some(l)));
-            let mut scene = SceneFile::load(&root().join(format!("fixtures/scenes/{file}.toml"))).unwrap();
-            if let Some(level) = level {
-                scene.scene.sdf.passage_detail = match level {
-                    "passages" => PassageDetail::Passages,
-                    "full" => PassageDetail::Full,
-                    _ => panic!("{name}: no passage detail {level}"),
-                };
-            }
+            let path = root().join(format!("fixtures/scenes/{file}.toml"));
+            let scene = match level {
+                None => SceneFile::load(&path).unwrap(),
+                Some(level) => {
+                    let text = std::fs::read_to_string(&path).unwrap();
+                    assert!(!text.contains("\n[sdf]"), "{name}: the scene has its own [sdf]");
+                    let text = format!("{text}\n[sdf]\npassage_detail = \"{level}\"\n");
+                    SceneFile { scene: Scene::parse(&text, &path).unwrap(), path }
+                }
+            };
             let out = scratch(&format!("run-{name}")).keep();
             for stage in [
                 StageId::Sampling,
