@@ -280,6 +280,13 @@ fn swmm_runs_steadily_to_what_hydro_says_with_a_continuity_error_under_one_perce
     swmm_is_steady(&["default", "karstnsim", "branchwork"]);
 }
 
+/// Passage profiles put rooms and pinches along the chains: short full conduits of a room's
+/// section, which the engine routes steadily only with its conduit lengthening (docs/exports.md).
+#[test]
+fn swmm_runs_steadily_with_passage_profiles() {
+    swmm_is_steady(&["branchwork:passages"]);
+}
+
 fn swmm_is_steady(scenes: &[&str]) {
     for &scene in scenes {
         let (continuity, springs, notes) = swmm_run(scene);

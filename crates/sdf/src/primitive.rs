@@ -181,22 +181,34 @@ impl<'a> Context<'a> {
         n
     }
 
-    /// detail(f) = (f + A·n + R·r)/(1 + A·G + R·G_r): both noises added, each bounded by its
-    /// gradient (crate::ops::detail with the relief's term; without relief, exactly it).
+    /// detail(f): f + A·n + R·r with both noises bounded by their gradients. Without relief
+    /// it is exactly crate::ops::detail. With relief, the quotient g = (f + A·n + R·r)/(1 + L)
+    /// (L = A·G + R·G_r) clamped to the shell [f − M, f + M] around f (M = A + R): where
+    /// f + A·n + R·r ≤ 0, f − M ≤ it and g ≤ 0, and where it is ≥ 0, f + M ≥ it and g ≥ 0,
+    /// so the clamp keeps the sign and the surface; a clamp of three 1-Lipschitz functions is
+    /// 1-Lipschitz. Far from the wall the value is f ∓ M, not f/(1 + L), which lets the mesher
+    /// and the BVH prove most of the space empty or full; beyond |f| ≥ M(2 + L)/L the clamp
+    /// settles the value and the noises are not evaluated (docs/sdf.md, "Rough walls").
     fn detail(&self, f: f64, p: DVec3, a: Amp) -> f64 {
         if let (Some((relief, gradient)), true) = (self.relief, a.relief > 0.0) {
+            let (m, lipschitz) = (a.total(), a.detail * self.detail_gradient + a.relief * gradient);
+            if f.abs() * lipschitz >= m * (2.0 + lipschitz) {
+                return f - m.copysign(f);
+            }
             let n = if a.detail > 0.0 { a.detail * self.noise(p) } else { 0.0 };
             let r = a.relief * self.relief_noise(relief, p);
-            return (f + n + r) / (1.0 + a.detail * self.detail_gradient + a.relief * gradient);
+            return ((f + n + r) / (1.0 + lipschitz)).clamp(f - m, f + m);
         }
         let amplitude = a.detail;
         if amplitude > 0.0 { ops::detail(f, self.noise(p), amplitude, self.detail_gradient) } else { f }
     }
 
-    /// The smallest value detail(f) can take for any noise: (f − A − R)/(1 + A·G + R·G_r).
+    /// The smallest value detail(f) can take for any noise (both at −1); detail is
+    /// nondecreasing in f, so this of a lower bound of f is a lower bound of detail(f).
     fn detail_floor(&self, f: f64, a: Amp) -> f64 {
         if let (Some((_, gradient)), true) = (self.relief, a.relief > 0.0) {
-            return (f - a.detail - a.relief) / (1.0 + a.detail * self.detail_gradient + a.relief * gradient);
+            let (m, lipschitz) = (a.total(), a.detail * self.detail_gradient + a.relief * gradient);
+            return ((f - m) / (1.0 + lipschitz)).clamp(f - m, f + m);
         }
         let amplitude = a.detail;
         if amplitude > 0.0 { (f - amplitude) / (1.0 + amplitude * self.detail_gradient) } else { f }

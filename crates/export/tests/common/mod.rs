@@ -16,11 +16,13 @@ use karst_metrics::MetricsReport;
 use karst_pipeline::make::{self, Selection};
 use karst_pipeline::scene::SceneFile;
 use karst_sampling::Samples;
+use karst_scene::Scene;
 use karst_skeleton::Skeleton;
 use karst_streams::Streams;
 pub use karst_testkit::{root, scratch};
 
-/// The run of `fixtures/scenes/NAME.toml` up to streams and metrics (no mesh: the network
+/// The run of `fixtures/scenes/NAME.toml` (`NAME:LEVEL`: with `[sdf] passage_detail = LEVEL`)
+/// up to streams and metrics (no mesh: the network
 /// formats need none; the sdf only for the survey the metrics read), made once per test binary.
 pub fn network_run(name: &str) -> PathBuf {
     static RUNS: OnceLock<Mutex<HashMap<String, PathBuf>>> = OnceLock::new();
@@ -28,7 +30,17 @@ pub fn network_run(name: &str) -> PathBuf {
     let mut runs = runs.lock().unwrap_or_else(|e| e.into_inner());
     runs.entry(name.to_string())
         .or_insert_with(|| {
-            let scene = SceneFile::load(&root().join(format!("fixtures/scenes/{name}.toml"))).unwrap();
+            let (file, level) = name.split_once(':').map_or((name, None), |(f, l)| (f, Some(l)));
+            let path = root().join(format!("fixtures/scenes/{file}.toml"));
+            let scene = match level {
+                None => SceneFile::load(&path).unwrap(),
+                Some(level) => {
+                    let text = std::fs::read_to_string(&path).unwrap();
+                    assert!(!text.contains("\n[sdf]"), "{name}: the scene has its own [sdf]");
+                    let text = format!("{text}\n[sdf]\npassage_detail = \"{level}\"\n");
+                    SceneFile { scene: Scene::parse(&text, &path).unwrap(), path }
+                }
+            };
             let out = scratch(&format!("run-{name}")).keep();
             for stage in [
                 StageId::Sampling,

@@ -172,6 +172,8 @@ pub fn rounded_box(q: DVec3, half: DVec3, round: f64) -> f64 {
 #[derive(Debug, Clone, Default)]
 pub struct RockField {
     pieces: Vec<Piece>,
+    /// Each piece's box ([`Piece::bounds`]), computed once.
+    boxes: Vec<(DVec3, DVec3)>,
     origin: DVec3,
     dims: [usize; 3],
     /// Per cell, the range of its pieces in `items`.
@@ -184,15 +186,14 @@ impl RockField {
         if pieces.is_empty() {
             return RockField::default();
         }
-        let boxes: Vec<(DVec3, DVec3)> =
-            pieces.iter().map(|p| p.bounds()).map(|(lo, hi)| (lo - REACH, hi + REACH)).collect();
-        let lo = boxes.iter().fold(DVec3::INFINITY, |m, b| m.min(b.0));
-        let hi = boxes.iter().fold(DVec3::NEG_INFINITY, |m, b| m.max(b.1));
+        let boxes: Vec<(DVec3, DVec3)> = pieces.iter().map(Piece::bounds).collect();
+        let lo = boxes.iter().fold(DVec3::INFINITY, |m, b| m.min(b.0 - REACH));
+        let hi = boxes.iter().fold(DVec3::NEG_INFINITY, |m, b| m.max(b.1 + REACH));
         let dims = ((hi - lo) / CELL).ceil().max(DVec3::ONE).to_array().map(|d| d as usize);
         let cells = dims[0] * dims[1] * dims[2];
         let mut lists: Vec<Vec<u32>> = vec![Vec::new(); cells];
         let index = |v: f64, o: f64, n: usize| (((v - o) / CELL).floor().max(0.0) as usize).min(n - 1);
-        for (k, (a, b)) in boxes.iter().enumerate() {
+        for (k, (a, b)) in boxes.iter().map(|&(a, b)| (a - REACH, b + REACH)).enumerate() {
             let from = [0, 1, 2].map(|i| index(a[i], lo[i], dims[i]));
             let to = [0, 1, 2].map(|i| index(b[i], lo[i], dims[i]));
             for z in from[2]..=to[2] {
@@ -210,7 +211,7 @@ impl RockField {
             items.extend(list);
         }
         starts.push(items.len() as u32);
-        RockField { pieces: pieces.to_vec(), origin: lo, dims, starts, items }
+        RockField { pieces: pieces.to_vec(), boxes, origin: lo, dims, starts, items }
     }
 
     pub fn is_empty(&self) -> bool {
@@ -219,7 +220,13 @@ impl RockField {
 
     /// min(REACH, the signed distance to the nearest piece): 1-Lipschitz.
     pub fn value(&self, p: DVec3) -> f64 {
-        let mut best = REACH;
+        self.value_below(p, REACH)
+    }
+
+    /// min(`limit`, the signed distance to the nearest piece) for `limit` ≤ [`REACH`]: a piece
+    /// whose box is at least `limit` away is not evaluated.
+    fn value_below(&self, p: DVec3, limit: f64) -> f64 {
+        let mut best = limit;
         if self.pieces.is_empty() {
             return best;
         }
@@ -233,22 +240,25 @@ impl RockField {
         }
         let cell = (z * self.dims[1] + y) * self.dims[0] + x;
         for &k in &self.items[self.starts[cell] as usize..self.starts[cell + 1] as usize] {
-            let piece = &self.pieces[k as usize];
-            let (lo, hi) = piece.bounds();
+            let (lo, hi) = self.boxes[k as usize];
             if crate::primitive::signed_box_distance(lo, hi, p) < best {
-                best = best.min(piece.distance(p));
+                best = best.min(self.pieces[k as usize].distance(p));
             }
         }
         best
     }
 
-    /// The cave with the pieces taken out of it: max(cave, −value).
+    /// The cave with the pieces taken out of it: max(cave, −value). Only pieces nearer than
+    /// −cave can change it (a piece at S ≥ −cave gives −S ≤ cave), so the search stops there:
+    /// with v = min(L, S) and L = min(REACH, −cave), max(cave, −v) is the same number, and a
+    /// point in the rock (cave ≥ 0) looks only at the pieces whose boxes hold it.
     pub fn carve(&self, cave: f64, p: DVec3) -> f64 {
-        if self.pieces.is_empty() { cave } else { cave.max(-self.value(p)) }
+        if self.pieces.is_empty() { cave } else { cave.max(-self.value_below(p, REACH.min(-cave))) }
     }
 
     pub fn memory(&self) -> usize {
-        self.pieces.len() * std::mem::size_of::<Piece>() + (self.starts.len() + self.items.len()) * 4
+        self.pieces.len() * (std::mem::size_of::<Piece>() + std::mem::size_of::<(DVec3, DVec3)>())
+            + (self.starts.len() + self.items.len()) * 4
     }
 }
 
@@ -335,6 +345,10 @@ mod tests {
         for (p, _) in Pairs::new(9, 20.0, 1.0).around(DVec3::new(10.0, 5.0, 4.0)).take(20_000) {
             let brute = pieces.iter().map(|q| q.distance(p)).fold(REACH, f64::min);
             assert_eq!(field.value(p), brute, "{p}");
+            // The carve's search stops at −cave and still gives max(cave, −min(REACH, S)).
+            for cave in [-6.0, -1.0, -0.2, 0.0, 0.3, 2.0, 9.0] {
+                assert_eq!(field.carve(cave, p).to_bits(), cave.max(-brute).to_bits(), "{p} {cave}");
+            }
         }
         assert_lipschitz(
             |p| field.carve(p.z - 6.0, p),

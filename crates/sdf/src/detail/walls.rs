@@ -6,10 +6,12 @@
 //! octaves: the longest wavelength λ halves four times (4 m reaches 0.25 m), and
 //! each octave's amplitude is 0.6 times the one before ([`SPECTRUM`]), a spectrum flatter than Brownian
 //! relief so that the decimetre scallops and blades stay visible beside metre-scale alcoves.
-//! Values lie in [−1, 1] and the gradient is at most Σ_o g^o 2^o ω / W (ω = 2π/λ, W = Σ_o g^o),
-//! [`ReliefNoise::gradient_bound`]. A leaf of size s (a sphere's radius, a sweep's extent) gets
-//! the amplitude R = min(fraction·s, max); its value (f + A·n + R·r)/(1 + A·G + R·G_r) stays
-//! 1-Lipschitz (docs/sdf.md, "Rough walls").
+//! Values lie in [−1, 1] and the gradient is at most the tight bound over the sign patterns of
+//! the waves ([`ReliefNoise::gradient_bound`], below Σ_o g^o 2^o ω / W with ω = 2π/λ and
+//! W = Σ_o g^o). A leaf of size s (a sphere's radius, a sweep's extent) gets the amplitude
+//! R = min(fraction·s, max); its value, (f + A·n + R·r)/(1 + A·G + R·G_r) clamped to
+//! [f − A − R, f + A + R] (crate::primitive::Context), stays 1-Lipschitz (docs/sdf.md,
+//! "Rough walls").
 
 use glam::DVec3;
 use karst_scene::rng::Random;
@@ -64,9 +66,11 @@ impl ReliefNoise {
         SPECTRUM.value(&self.waves, self.wavelength, p)
     }
 
-    /// Upper bound of |∇r|.
+    /// Upper bound of |∇r|: the tight bound of its drawn waves
+    /// ([`Spectrum::gradient_bound_of`]), on average about two thirds of the sum of the
+    /// waves' own bounds.
     pub fn gradient_bound(&self) -> f64 {
-        SPECTRUM.gradient_bound(self.wavelength)
+        SPECTRUM.gradient_bound_of(&self.waves, self.wavelength)
     }
 
     fn validate(&self, field: &str) -> Result<(), karst_artifact::Invalid> {
