@@ -53,7 +53,8 @@ pub fn lineament_azimuth(domain: &Domain, terrain: &Terrain) -> f64 {
         }
     }
     let anisotropy = (xx - yy).hypot(2.0 * xy);
-    if !(anisotropy > 1e-9 * (xx + yy)) {
+    // Isotropic (or no slope at all, or a NaN height): no axis.
+    if anisotropy.is_nan() || anisotropy <= 1e-9 * (xx + yy) {
         return 0.0;
     }
     // Angle of the major axis from east, counter-clockwise; the azimuth is from north, clockwise.
