@@ -30,8 +30,24 @@ fn check(python: &str, name: &str, net: &Network) {
         ours["tortuosity"],
         ours["aspl length weighted"]
     );
-    assert_same(&ours, &theirs, 1e-9, &[], name);
+    assert_same(&ours, &theirs, 1e-9, &skipped_on_this_cpu(python), name);
     std::fs::remove_dir_all(dir).expect("remove temp dir");
+}
+
+/// The keys karstnet computes differently on this CPU than the one karst-metrics follows: its
+/// azimuths come from numpy's vectorised arcsin, which lands exactly on 45° for a diagonal edge
+/// with AVX-512 (what `geometry::azimuth` reproduces) and one ulp below it on CPUs without
+/// (libm's value). A grid maze's diagonals then sit on either side of a Sturges bin edge at
+/// 45°, so the orientation entropies cannot be compared on such a CPU; every other key is.
+fn skipped_on_this_cpu(python: &str) -> Vec<&'static str> {
+    let probe = "import numpy as np; print(np.degrees(np.arcsin(np.full(64, np.sqrt(0.5))))[0] == 45.0)";
+    let out = std::process::Command::new(python).args(["-c", probe]).output().expect("python runs");
+    if String::from_utf8_lossy(&out.stdout).trim() == "True" {
+        Vec::new()
+    } else {
+        eprintln!("numpy's arcsin does not land on 45° on this CPU: orientation entropies not compared");
+        vec!["orientation entropy", "orientation entropy sturges"]
+    }
 }
 
 fn spec(tree_nodes: usize) -> CaveSpec {
