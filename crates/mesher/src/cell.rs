@@ -5,19 +5,24 @@
 
 use karst_sdf::{SdfModel, SectionSpec};
 
+use crate::spheres::Spheres;
+
 /// The cell of the cave alone and the water: `requested` when positive, else the
-/// [`CAVE_PERCENTILE`] of the karst leaves' half-thicknesses (capsule or sphere radius, half the
-/// smaller side of a sweep's section, chamber radius) weighted by the length of passage each
-/// stands for ([`half_thicknesses`]), at most `cell_size` and at least `cell_size` /
-/// [`CAVE_REFINE`]. The leaves thinner than the cell are meshed at the cell's half-thickness
-/// ([`thickened`]), so that every conduit is at least a cell thick: every point of space is
-/// within √3/2 cells of a lattice point, so such a conduit always holds lattice points and
-/// cannot fall between them.
+/// [`CAVE_PERCENTILE`] of the passages' sizes ([`passage_sizes`]: each passage's typical
+/// half-thickness along its length, its local pinches and rooms averaged out) weighted by the
+/// length of passage each stands for, at most `cell_size` and at least `cell_size` /
+/// [`CAVE_REFINE`]. The leaves thinner than the cell, a passage's pinches among them, are
+/// meshed at the cell's half-thickness ([`thickened`]), so that every conduit is at least a
+/// cell thick: every point of space is within √3/2 cells of a lattice point, so such a conduit
+/// always holds lattice points and cannot fall between them. A pinch is therefore drawn one
+/// cell thick, never closed, and the cell does not follow it: with passage profiles (`[sdf]
+/// passage_detail`) a passage pinches to crawls every few tens of metres, and a cell that
+/// followed every pinch would cost the inverse square of its size over the whole cave.
 pub fn cave_cell(model: &SdfModel, cell_size: f64, requested: f64) -> f64 {
     if requested > 0.0 {
         return requested;
     }
-    let mut sizes = half_thicknesses(model);
+    let mut sizes = passage_sizes(model);
     let size = weighted_percentile(&mut sizes, CAVE_PERCENTILE).unwrap_or(cell_size);
     size.clamp(cell_size / CAVE_REFINE, cell_size)
 }
@@ -27,29 +32,59 @@ pub fn cave_cell(model: &SdfModel, cell_size: f64, requested: f64) -> f64 {
 pub const CAVE_REFINE: f64 = 8.0;
 
 /// The share of the passages' length (0..1) thinner than the automatic cave cell: the cell
-/// follows the common passages, not the thinnest pinch, whose cost would grow as the inverse
-/// square of its size over the whole cave.
+/// follows the common passages, not the thinnest, whose cost would grow as the inverse square
+/// of their size over the whole cave.
 pub const CAVE_PERCENTILE: f64 = 0.5;
 
-/// Each karst leaf's half-thickness, metres, with the length of passage it stands for:
-/// a sweep's or a capsule's axis (each end section half of a sweep), a sphere's or a
-/// chamber's diameter.
-pub fn half_thicknesses(model: &SdfModel) -> Vec<(f64, f64)> {
+/// Each passage's typical half-thickness, metres, with its length: a straight segment (a run
+/// of sweeps, one per passage-profile piece) the length-weighted mean of its sections'
+/// half-thicknesses (half the smaller side); a tortuous conduit's group of spheres the mean
+/// radius of the spheres of its axis ([`Spheres::axis`], the largest sphere of each station,
+/// each standing for its diameter; the smaller ones filling the sections out to their corners
+/// are not passages of their own); a capsule its radius along its axis, a chamber its radius
+/// over its diameter.
+pub fn passage_sizes(model: &SdfModel) -> Vec<(f64, f64)> {
     let length = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
     let f = |p: [f32; 3]| p.map(f64::from);
     let mut sizes = Vec::new();
     sizes.extend(model.capsules.iter().map(|c| (c.radius, length(c.a, c.b).max(2.0 * c.radius))));
+    // (Σ size × length, Σ length) of the current run of sweeps.
+    let mut run = (0.0, 0.0);
     for s in &model.sweeps {
-        let half = length(f(s.sweep.a), f(s.sweep.b)) / 2.0;
-        sizes.push((section_half_thickness(&s.sweep.start), half));
-        sizes.push((section_half_thickness(&s.sweep.end), half));
+        if !s.continues && run.1 > 0.0 {
+            sizes.push((run.0 / run.1, run.1));
+            run = (0.0, 0.0);
+        }
+        let piece = length(f(s.sweep.a), f(s.sweep.b));
+        let size = (section_half_thickness(&s.sweep.start) + section_half_thickness(&s.sweep.end)) / 2.0;
+        run = (run.0 + size * piece, run.1 + piece);
+    }
+    if run.1 > 0.0 {
+        sizes.push((run.0 / run.1, run.1));
     }
     for group in &model.spheres {
-        sizes.extend(group.spheres.iter().map(|s| (s[3] as f64, 2.0 * s[3] as f64)));
+        let spheres = Spheres::of(&group.spheres);
+        let (sum, along) = spheres
+            .axis()
+            .map(|s| s[3] as f64)
+            .fold((0.0, 0.0), |(sum, along), r| (sum + 2.0 * r * r, along + 2.0 * r));
+        if along > 0.0 {
+            sizes.push((sum / along, along));
+        }
     }
     sizes.extend(model.chambers.iter().map(|c| (c.radius as f64, 2.0 * c.radius as f64)));
     sizes.retain(|&(r, w)| r > 0.0 && r.is_finite() && w.is_finite());
     sizes
+}
+
+/// Each karst leaf's half-thickness, metres (capsule or sphere radius, half the smaller side
+/// of each section of a sweep, chamber radius): what [`thickened`] raises to the cell.
+fn half_thicknesses(model: &SdfModel) -> impl Iterator<Item = f64> + '_ {
+    let capsules = model.capsules.iter().map(|c| c.radius);
+    let sweeps = model.sweeps.iter().flat_map(|s| [&s.sweep.start, &s.sweep.end].map(section_half_thickness));
+    let spheres = model.spheres.iter().flat_map(|g| g.spheres.iter().map(|s| s[3] as f64));
+    let chambers = model.chambers.iter().map(|c| c.radius as f64);
+    capsules.chain(sweeps).chain(spheres).chain(chambers)
 }
 
 /// Half the smaller side of a section.
@@ -81,7 +116,7 @@ pub fn weighted_percentile(pairs: &mut [(f64, f64)], share: f64) -> Option<f64> 
 /// conduit thinner than the cave cell is drawn one cell thick (its true size stays in sdf.bin
 /// and in the survey); the model is unchanged when no leaf is thinner.
 pub fn thickened(model: &SdfModel, floor: f64) -> Option<SdfModel> {
-    let thin = half_thicknesses(model).iter().any(|&(r, _)| r < floor);
+    let thin = half_thicknesses(model).any(|r| r < floor);
     if !thin {
         return None;
     }

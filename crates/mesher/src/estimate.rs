@@ -7,12 +7,13 @@
 //! domain's sides and bottom, the cave walls), or counted cell by cell on its terrain lattice
 //! when it has one ([`crate::terrain_lattice`]), the cave alone and its water at the cave cell.
 //! The cave's tortuous conduits are overlapping spheres: their union's area is probed, not
-//! summed ([`union_area`]).
+//! summed ([`Spheres::union_area`]).
 
 use karst_scene::budget::{Budget, Cheaper, Estimate, OverBudget};
 use karst_sdf::{CarvedTerrain, SdfModel};
 use rayon::prelude::*;
 
+use crate::spheres::Spheres;
 use crate::terrain_lattice::{TerrainLattice, coarse_cell};
 
 use crate::view::MesherView;
@@ -64,7 +65,7 @@ impl Areas {
                 tau * (shape.radius * shape.ratio.max(1.0)) as f64 * length
             })
             .sum();
-        let spheres: f64 = model.spheres.iter().map(|g| union_area(&g.spheres)).sum();
+        let spheres: f64 = model.spheres.iter().map(|g| Spheres::of(&g.spheres).union_area()).sum();
         let chambers: f64 = model.chambers.iter().map(|c| 2.0 * tau * (c.radius as f64 * 1.5).powi(2)).sum();
         let capsules: f64 = model.capsules.iter().map(|c| 2.0 * tau * c.radius.powi(2)).sum();
         Areas { outside: top + sides + size.x * size.y, cave: sweeps + spheres + chambers + capsules }
@@ -77,60 +78,6 @@ impl Areas {
         let cave_alone = self.cave / (cave * cave);
         [(self.outside + self.cave) / (cell * cell), cave_alone, cave_alone / 2.0]
     }
-}
-
-/// Directions at which each sphere's surface is probed by [`union_area`].
-const PROBES: usize = 24;
-
-/// The wall area of a tortuous conduit, overlapping spheres `(x, y, z, r)` in no particular
-/// order: each sphere's area times the share of [`PROBES`] points of its surface (a Fibonacci
-/// lattice) that lie inside no other sphere of the group, found through a hash grid of cells
-/// as wide as the mean diameter, each sphere listed in every cell its bounding box meets.
-fn union_area(spheres: &[[f32; 4]]) -> f64 {
-    let mean = spheres.iter().map(|s| s[3] as f64).sum::<f64>() / spheres.len().max(1) as f64;
-    if spheres.is_empty() || mean.is_nan() || mean <= 0.0 {
-        return 0.0;
-    }
-    let cell = 2.0 * mean;
-    let key = |p: [f64; 3]| p.map(|c| (c / cell).floor() as i64);
-    let mut grid: std::collections::HashMap<[i64; 3], Vec<usize>> = std::collections::HashMap::new();
-    for (i, s) in spheres.iter().enumerate() {
-        let (c, r) = ([s[0], s[1], s[2]].map(f64::from), s[3] as f64);
-        let (lo, hi) = (key(c.map(|v| v - r)), key(c.map(|v| v + r)));
-        for x in lo[0]..=hi[0] {
-            for y in lo[1]..=hi[1] {
-                for z in lo[2]..=hi[2] {
-                    grid.entry([x, y, z]).or_default().push(i);
-                }
-            }
-        }
-    }
-    let inside_another = |i: usize, p: [f64; 3]| {
-        grid.get(&key(p)).is_some_and(|near| {
-            near.iter().any(|&j| {
-                let t = spheres[j];
-                let d2 = (0..3).map(|c| (p[c] - t[c] as f64).powi(2)).sum::<f64>();
-                j != i && d2 < (t[3] as f64).powi(2)
-            })
-        })
-    };
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    let directions: Vec<[f64; 3]> = (0..PROBES)
-        .map(|k| {
-            let z = 1.0 - (2 * k + 1) as f64 / PROBES as f64;
-            let (r, phi) = ((1.0 - z * z).sqrt(), golden * k as f64);
-            [r * phi.cos(), r * phi.sin(), z]
-        })
-        .collect();
-    let exposed = |i: usize| {
-        let s = spheres[i].map(|v| v as f64);
-        let open =
-            directions.iter().filter(|u| !inside_another(i, [0, 1, 2].map(|c| s[c] + s[3] * u[c]))).count();
-        2.0 * std::f64::consts::TAU * s[3] * s[3] * open as f64 / PROBES as f64
-    };
-    // In parallel, summed in order: the estimate does not depend on the thread count.
-    let areas: Vec<f64> = (0..spheres.len()).into_par_iter().map(exposed).collect();
-    areas.iter().sum()
 }
 
 /// The mesher's work on a model at its cells, estimated from the model's domain, terrain and

@@ -28,6 +28,7 @@ mod polygonize;
 mod render;
 mod simplify;
 mod sink;
+mod spheres;
 mod spill;
 mod spilled;
 pub mod stage;
