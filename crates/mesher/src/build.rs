@@ -12,7 +12,7 @@ use std::io::Write;
 use karst_artifact::check::{self, MAX_COORDINATE};
 use karst_stage::ArtifactOut;
 
-use crate::cell::{cave_cell, thickened};
+use crate::cell::{cave_cells, thickened};
 use crate::cleanup::{Solid, clean};
 use crate::error::MesherError;
 use crate::payload::{Mesh, SurfaceCounts};
@@ -53,11 +53,10 @@ pub fn meshed_field(model: &SdfModel, cave_cell: f64) -> CarvedTerrain {
 fn checked_cells(view: &MesherView, model: &SdfModel) -> Result<f64, MesherError> {
     let params = view.mesher;
     check_lattice(model, "mesher.cell_size", params.cell_size)?;
-    let cave_cell = cave_cell(model, params.cell_size, params.cave_cell_size);
+    let cave_of = cave_cells(model, params.cave_cell_size);
+    let cave_cell = cave_of(params.cell_size);
     check_lattice(model, "mesher.cave_cell_size", cave_cell)?;
-    crate::estimate::check(view.budget, model, params.cell_size, |c| {
-        crate::cell::cave_cell(model, c, params.cave_cell_size)
-    })?;
+    crate::estimate::check(view.budget, model, params.cell_size, &cave_of)?;
     Ok(cave_cell)
 }
 

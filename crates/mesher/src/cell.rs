@@ -19,12 +19,20 @@ use crate::spheres::Spheres;
 /// passage_detail`) a passage pinches to crawls every few tens of metres, and a cell that
 /// followed every pinch would cost the inverse square of its size over the whole cave.
 pub fn cave_cell(model: &SdfModel, cell_size: f64, requested: f64) -> f64 {
-    if requested > 0.0 {
-        return requested;
+    cave_cells(model, requested)(cell_size)
+}
+
+/// [`cave_cell`] at any terrain cell, the passages' sizes read once (the work estimate tries
+/// several cells).
+pub fn cave_cells(model: &SdfModel, requested: f64) -> impl Fn(f64) -> f64 {
+    let size =
+        if requested > 0.0 { None } else { weighted_percentile(&mut passage_sizes(model), CAVE_PERCENTILE) };
+    move |cell_size| {
+        if requested > 0.0 {
+            return requested;
+        }
+        size.unwrap_or(cell_size).clamp(cell_size / CAVE_REFINE, cell_size)
     }
-    let mut sizes = passage_sizes(model);
-    let size = weighted_percentile(&mut sizes, CAVE_PERCENTILE).unwrap_or(cell_size);
-    size.clamp(cell_size / CAVE_REFINE, cell_size)
 }
 
 /// The automatic cave cell is at most this many times finer than the terrain's (the cost grows
