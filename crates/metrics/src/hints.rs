@@ -204,9 +204,11 @@ fn advice(key: &str, high: bool) -> (&'static str, &'static str, bool) {
     match (key, high) {
         ("mean length", true) => ("branches too long and too few", "skeleton.amplification_points", true),
         ("mean length", false) => ("branches too short", "skeleton.amplification_points", false),
-        ("cv length", false) => {
-            ("branch lengths too even (few long, few short)", "skeleton.amplification_exponent", false)
-        }
+        ("cv length", false) => (
+            "branch lengths too even: side passages cut every stretch to one length",
+            "skeleton.amplification_points",
+            false,
+        ),
         ("cv length", true) => {
             ("a few branches much longer than all others", "skeleton.amplification_exponent", true)
         }
@@ -222,7 +224,9 @@ fn advice(key: &str, high: bool) -> (&'static str, &'static str, bool) {
         ("orientation entropy", false) => ("passages all run one way", "skeleton.sinuosity", true),
         ("aspl", false) => ("too few junctions between the ends", "skeleton.amplification_steps", true),
         ("aspl", true) => ("junctions strung along too long paths", "skeleton.amplification_steps", false),
-        ("cpd", true) => ("the network hangs on one junction", "skeleton.amplification_points", true),
+        ("cpd", true) => {
+            ("the network hangs on one junction: no loop bypasses it", "skeleton.dead_end_fraction", false)
+        }
         ("cpd", false) => ("no trunk dominates", "skeleton.cohesion_phreatic", false),
         ("mean degree", false) => ("too many dead ends", "skeleton.dead_end_fraction", false),
         ("mean degree", true) => ("too many loops", "skeleton.dead_end_fraction", true),
@@ -294,6 +298,18 @@ mod tests {
             hints,
             ["tortuosity 1.030 < 1.121: passages too straight — skeleton.sinuosity is 1.05, raise it"]
         );
+    }
+
+    #[test]
+    fn a_dominant_junction_asks_for_loops() {
+        let skeleton = SkeletonParams::default();
+        let sampling = SamplingParams::default();
+        let derived = BTreeMap::new();
+        let p = Parameters { skeleton: &skeleton, sampling: &sampling, derived: &derived };
+        let hints = hints(&compared("cpd", 0.62), &p);
+        assert_eq!(hints.len(), 1);
+        assert!(hints[0].starts_with("cpd 0.620 > 0.572: the network hangs on one junction"), "{}", hints[0]);
+        assert!(hints[0].contains("skeleton.dead_end_fraction is 0.85, lower it"), "{}", hints[0]);
     }
 
     #[test]
