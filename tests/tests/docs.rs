@@ -46,7 +46,7 @@ fn the_checker_finds_planted_bad_references() {
     let repository = Repository::read(&root());
     let planted = "See `crates/raster/src/lib.rs` and crates/skeleton/src/nowhere.rs. The search is in \
                    `search.rs`, the radii in `radius.rs`; [scene](scene-gone.md); the `karst-raster` \
-                   binary and `karst_nowhere::Thing`. Fine: crates/skeleton/src/search.rs, \
+                   binary and `karst_nowhere::Thing`. Fine: crates/skeleton/src/route/search.rs, \
                    `crates/<stage>/src/view.rs`, [scene](scene.md), `karst-sampling`, https://x.invalid/src/a.rs.";
     let stale = repository.stale_references("docs/skeleton.md", planted);
     let expected = [

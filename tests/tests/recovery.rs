@@ -32,6 +32,7 @@ fn a_second_run_into_the_same_folder_is_refused_while_the_first_writes() {
         format: vec!["csv".into()],
         scene: None,
         json: false,
+        budget: None,
     };
     let err = karst_export::stage::export_run(&args).unwrap_err();
     assert!(err.to_string().contains("another run is writing to"), "{err}");
@@ -201,6 +202,7 @@ fn wrong_payloads_with_right_checksums_are_refused_by_every_reader() {
         format: vec!["obj".into()],
         scene: None,
         json: false,
+        budget: None,
     };
     let message = bad_input(karst_export::stage::export_run(&args));
     assert!(message.contains("cave.triangles[3]"), "{message}");

@@ -8,11 +8,18 @@
 //! (`export.gltf_max_mb`): larger surfaces are simplified to fit. The GIS rasters count one
 //! float per pixel before compression (an upper bound: the rasters are mostly no-data).
 
+use std::fmt;
+
 use karst_mesher::Mesh;
 use karst_sampling::Samples;
+use karst_scene::budget::bytes;
 use karst_scene::params::{ExportFormat, ExportParams, MeshSurface};
 use karst_skeleton::Skeleton;
 use karst_streams::Streams;
+
+/// The default budget of the meshes and the exports together, MB (MiB): what `karstgen run`
+/// and `karstgen export` allow without `--budget`.
+pub const DEFAULT_BUDGET_MB: f64 = 300.0;
 
 /// Bytes of a header, a document, or the fixed tables of a file.
 const HEADER: f64 = 4096.0;
@@ -88,6 +95,54 @@ pub fn format_bytes(format: ExportFormat, c: &Counts, params: &ExportParams, ras
         ExportFormat::Csv => 2.0 * HEADER + 105.0 * c.nodes + 115.0 * c.segments + 150.0 * c.stream_segments,
         ExportFormat::Gpkg => GPKG_TABLES + 400.0 * (c.segments + c.stream_segments),
         ExportFormat::Geotiff => 2.0 * (HEADER + 4.0 * raster_pixels),
+    }
+}
+
+/// What an export would write, said before a file is: the bytes of each chosen format, and
+/// beside them the bytes of the run's mesh.bin, which the output budget counts with them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Estimate {
+    pub formats: Vec<(ExportFormat, f64)>,
+    pub mesh_bytes: f64,
+}
+
+impl Estimate {
+    /// The bytes of `formats` for `counts` (`raster_pixels` the pixels of one GIS raster),
+    /// beside `mesh_bytes` of mesh.bin.
+    pub fn of(
+        formats: &[ExportFormat],
+        counts: &Counts,
+        params: &ExportParams,
+        raster_pixels: f64,
+        mesh_bytes: f64,
+    ) -> Estimate {
+        let formats = formats.iter().map(|&f| (f, format_bytes(f, counts, params, raster_pixels))).collect();
+        Estimate { formats, mesh_bytes }
+    }
+
+    /// Bytes of the exports.
+    pub fn exports(&self) -> f64 {
+        self.formats.iter().map(|(_, b)| b).sum()
+    }
+
+    /// Bytes of the exports and of mesh.bin, which the output budget holds together.
+    pub fn total(&self) -> f64 {
+        self.exports() + self.mesh_bytes
+    }
+}
+
+impl fmt::Display for Estimate {
+    /// `about 5.03 MiB of exports (gltf 4.83 MiB, csv 12.0 KiB) beside 2.77 MiB of mesh.bin`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let list: Vec<String> =
+            self.formats.iter().map(|(format, b)| format!("{} {}", format.name(), bytes(*b))).collect();
+        write!(
+            f,
+            "about {} of exports ({}) beside {} of mesh.bin",
+            bytes(self.exports()),
+            list.join(", "),
+            bytes(self.mesh_bytes)
+        )
     }
 }
 

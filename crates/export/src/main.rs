@@ -3,8 +3,9 @@
 //! - `run SCENE --out DIR` writes the scene's `[export]` formats into DIR/export/ and their
 //!   manifest into DIR/export.json;
 //! - `inspect FILE [--json]` prints a summary of export.json or the whole artifact;
-//! - `karst-export DIR [--format vtk,gocad,...] [--scene SCENE] [--json]` writes any formats of
-//!   the run in DIR (docs/exports.md), reading only the artifacts they need.
+//! - `karst-export DIR [--format vtk,gocad,...] [--scene SCENE] [--json] [--budget MB]` writes
+//!   any formats of the run in DIR (docs/exports.md), reading only the artifacts they need, after
+//!   printing their estimated bytes (refused beyond the budget).
 
 use std::process::ExitCode;
 

@@ -10,12 +10,14 @@ use karst_mesher::Mesh;
 use karst_metrics::MetricsReport;
 use karst_sampling::Samples;
 use karst_scene::Scene;
+use karst_scene::budget::bytes;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
 use karst_streams::Streams;
 
 use crate::build::{FOLDER, Input, Inputs, export, needs};
 use crate::error::ExportError;
+use crate::estimate::{Counts, DEFAULT_BUDGET_MB, Estimate, raster_pixels};
 use crate::network::NetworkView;
 use crate::payload::Manifest;
 use crate::view::ExportView;
@@ -89,7 +91,7 @@ impl Stage for ExportStage {
     }
 }
 
-/// `karstgen export DIR [--format a,b] [--scene SCENE] [--json]`.
+/// `karstgen export DIR [--format a,b] [--scene SCENE] [--json] [--budget MB]`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ExportArgs {
     /// The run's output folder (holding skeleton.json, hydro.json, streams.json, mesh.bin, ...).
@@ -106,6 +108,10 @@ pub struct ExportArgs {
     /// Print the manifest (name, format, bytes, blake3 of every file) as JSON.
     #[arg(long)]
     pub json: bool,
+    /// The bytes the exports may take with the run's mesh.bin, MB (MiB; default 300, as for
+    /// `karstgen run`): beyond it nothing is written.
+    #[arg(long, value_name = "MB", value_parser = parse_budget)]
+    pub budget: Option<f64>,
 }
 
 /// Writes the exports of the run in `args.dir` on demand, reading only the artifacts the
@@ -178,6 +184,23 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
         domain: scene.as_ref().map(Scene::domain),
         frame: &frame,
     };
+    // Said before a file is written, and held against the budget as the run does.
+    let counts = Counts::of(inputs.skeleton, inputs.samples, inputs.streams, inputs.mesh, &params.surfaces);
+    let extent = inputs.domain.map_or([0.0; 2], |d| [0, 1].map(|a| d.max[a] - d.min[a]));
+    let mesh_bytes = std::fs::metadata(args.dir.join(Input::Mesh.file_name())).map_or(0, |m| m.len()) as f64;
+    let estimate =
+        Estimate::of(&chosen, &counts, &params, raster_pixels(extent, params.raster_cell), mesh_bytes);
+    let budget = args.budget.unwrap_or(DEFAULT_BUDGET_MB) * MB;
+    if estimate.total() > budget {
+        return Err(StageError::input(format!(
+            "{}: the export would write {estimate}, more than the budget of {}: choose fewer formats \
+             (--format, export.formats) or surfaces (export.surfaces), lower export.gltf_max_mb, or \
+             give --budget MB to allow it",
+            args.dir.display(),
+            bytes(budget)
+        )));
+    }
+    eprintln!("{:<10} estimate    {estimate} (budget {})", "export", bytes(budget));
     // Every failure here is about the user's folder or files, an unwritable path included.
     let manifest = export(&inputs, &params, &args.dir).map_err(StageError::input)?;
     if args.json {
@@ -194,6 +217,16 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
         }
     }
     Ok(())
+}
+
+const MB: f64 = (1u64 << 20) as f64;
+
+/// `--budget MB`: a number of MB above 0.
+fn parse_budget(megabytes: &str) -> Result<f64, String> {
+    match megabytes.trim().parse::<f64>() {
+        Ok(mb) if mb.is_finite() && mb > 0.0 => Ok(mb),
+        _ => Err(format!("\"{megabytes}\" is not a budget: give a number of MB above 0")),
+    }
 }
 
 fn parse_format(name: &str) -> Result<ExportFormat, StageError> {

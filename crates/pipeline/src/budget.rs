@@ -9,7 +9,7 @@
 
 use karst_artifact::{StageId, read_artifact};
 use karst_export::ExportView;
-use karst_export::estimate::{Counts, format_bytes, raster_pixels};
+use karst_export::estimate::{Counts, DEFAULT_BUDGET_MB, Estimate, raster_pixels};
 use karst_mesher::Mesh;
 use karst_mesher::{MesherView, Work};
 use karst_sampling::Samples;
@@ -23,7 +23,7 @@ use karst_streams::Streams;
 use crate::options::OptionError;
 
 /// The default budget of the meshes and the exports, MB (MiB).
-pub const DEFAULT_MESH_MB: f64 = 300.0;
+pub const DEFAULT_MESH_MB: f64 = DEFAULT_BUDGET_MB;
 
 /// Bytes the outputs of a run may take.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -91,18 +91,9 @@ pub fn check_export(job: &Job, budget: OutputBudget) -> Result<String, StageErro
     let extent = [0, 1].map(|a| view.domain.max[a] - view.domain.min[a]);
     let pixels = raster_pixels(extent, params.raster_cell);
     let formats = karst_export::formats(params, view.frame);
-    let each: Vec<(&str, f64)> =
-        formats.iter().map(|&f| (f.name(), format_bytes(f, &counts, params, pixels))).collect();
-    let exports: f64 = each.iter().map(|(_, b)| b).sum();
     let mesh_bytes = std::fs::metadata(&mesh_file).map_or(0, |m| m.len()) as f64;
-    let list: Vec<String> = each.iter().map(|(name, b)| format!("{name} {}", bytes(*b))).collect();
-    let estimate = format!(
-        "about {} of exports ({}) beside {} of mesh.bin",
-        bytes(exports),
-        list.join(", "),
-        bytes(mesh_bytes)
-    );
-    if exports + mesh_bytes > budget.mesh_bytes {
+    let estimate = Estimate::of(&formats, &counts, params, pixels, mesh_bytes);
+    if estimate.total() > budget.mesh_bytes {
         return Err(StageError::scene(format!(
             "{}: the export would write {estimate}, more than the budget of {}: drop formats from \
              export.formats or surfaces from export.surfaces, lower export.gltf_max_mb, raise \

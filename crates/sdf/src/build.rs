@@ -14,7 +14,7 @@
 //!   the section's deepest candidate inside it; each sphere is inscribed (its radius is the centre's depth in the
 //!   section), and spheres inside a bigger kept one (grown by `COVER` spacings) are dropped;
 //! - `chamber` segments become noise-biased chambers around the segment;
-//! - every wet segment also gets its water piece ([`crate::water`]).
+//! - every wet segment also gets its water piece ([`crate::water::conduits`]).
 
 use glam::{DVec2, DVec3};
 
@@ -23,15 +23,15 @@ use karst_scene::params::SdfParams;
 use karst_scene::rng::Random;
 use karst_skeleton::{Conduit, ConduitType, Skeleton};
 
-use crate::chamber::ChamberSpec;
 use crate::error::SdfError;
-use crate::noise::WaveNoise;
 use crate::payload::{SdfModel, SphereGroup, TypedSweep, WaterSpec};
-use crate::section::{Section, Shape};
-use crate::sweep::{SectionSpec, SweepSpec, frame, tortuosity};
-use crate::terrain::TerrainField;
+use crate::tree::chamber::ChamberSpec;
+use crate::tree::noise::WaveNoise;
+use crate::tree::section::{Section, Shape};
+use crate::tree::sweep::{SectionSpec, SweepSpec, frame, tortuosity};
+use crate::tree::terrain::TerrainField;
 use crate::view::SdfView;
-use crate::water::{self, Water};
+use crate::water::conduits::{self, Water};
 
 /// The model of the scene carved by the conduits of `skeleton`, with the water of `hydro`.
 pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfModel, SdfError> {
@@ -85,8 +85,8 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
                     model.sweeps.push(TypedSweep { kind, continues: k > 0, sweep });
                 }
                 let height = sweep.floor().abs() * 2.0;
-                let segment = water::Segment { kind, zones, water: wet.water, depth: wet.depth, height };
-                if let Some(spec) = water_piece(&sweep, water::level(&segment)) {
+                let segment = conduits::Segment { kind, zones, water: wet.water, depth: wet.depth, height };
+                if let Some(spec) = water_piece(&sweep, conduits::level(&segment)) {
                     model.water.push(spec);
                 }
             }

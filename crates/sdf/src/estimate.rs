@@ -10,7 +10,7 @@ use karst_scene::budget::{Cheaper, Estimate, OverBudget};
 use karst_scene::params::SdfParams;
 use karst_skeleton::{ConduitType, Skeleton};
 
-use crate::sweep::tortuosity;
+use crate::tree::sweep::tortuosity;
 use crate::view::SdfView;
 
 /// Bytes per candidate sphere (centre, radius, station) while a segment is pruned, and per

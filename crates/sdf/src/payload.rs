@@ -11,12 +11,12 @@ use karst_geology::Domain;
 use karst_skeleton::ConduitType;
 
 use crate::Capsule;
-use crate::chamber::ChamberSpec;
 use crate::detail::FullDetail;
-use crate::noise::WaveNoise;
-use crate::surface_water::SurfacePieces;
-use crate::sweep::{SweepSpec, to_dvec};
-use crate::terrain::TerrainField;
+use crate::tree::chamber::ChamberSpec;
+use crate::tree::noise::WaveNoise;
+use crate::tree::sweep::{SweepSpec, to_dvec};
+use crate::tree::terrain::TerrainField;
+use crate::water::surface::SurfacePieces;
 
 /// The spheres of one tortuous conduit, with their conduit type (for the detail amplitude).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -28,7 +28,7 @@ pub struct SphereGroup {
 
 /// A sweep with its conduit type. `continues`: the sweep is the next piece of the previous
 /// sweep's straight segment (a passage profile's pieces), and the two are one leaf, capped at
-/// the run's ends only ([`crate::sweep::SweepTable::push_run`]).
+/// the run's ends only ([`crate::tree::sweep::SweepTable::push_run`]).
 ///
 /// In the artifact (postcard) the type and the flag are one byte, the type's index plus
 /// [`CONTINUES`]: without profiles that is the byte the type alone was, so `passage_detail =
@@ -113,7 +113,7 @@ pub struct SdfModel {
     /// Cui et al.'s bias b of the chambers, in (0, 0.5].
     pub chamber_bias: f64,
     /// Riverbeds, plunge basins, overhangs and surface water from the streams stage
-    /// ([`crate::surface_water`]); empty without streams.
+    /// ([`crate::water::surface`]); empty without streams.
     pub surface: SurfacePieces,
     /// Rough walls, speleothems and breakdown (`passage_detail = "full"`); no bytes at all
     /// when empty, so it must stay the last field ([`crate::detail`]).

@@ -298,7 +298,7 @@ pub fn write_sections_png(ratio: f64, asymmetry: f64, scale: f64, path: &Path) -
 
 /// The picture [`write_sections_png`] writes.
 fn sections_picture(ratio: f64, asymmetry: f64, scale: f64) -> Canvas {
-    use crate::section::{Section, Shape};
+    use crate::tree::section::{Section, Shape};
     use karst_skeleton::ConduitType;
 
     let cell = (scale * 4.0).ceil() as usize;

@@ -11,11 +11,11 @@ use karst_streams::Streams;
 
 use crate::build::build;
 use crate::error::SdfError;
-use crate::field::CarvedTerrain;
+use crate::field::carved::CarvedTerrain;
 use crate::payload::SdfModel;
 use crate::slice::{self, Plane};
-use crate::surface_water;
 use crate::view::SdfView;
+use crate::water::surface;
 
 /// Stage 6: the signed-distance model of the carved terrain and of the water.
 pub struct SdfStage;
@@ -33,7 +33,7 @@ impl Stage for SdfStage {
         (skeleton, hydro, streams): &(Skeleton, Hydro, Streams),
     ) -> Result<SdfModel, SdfError> {
         let mut model = build(view, skeleton, hydro)?;
-        surface_water::add(&mut model, streams, view.streams);
+        surface::add(&mut model, streams, view.streams);
         Ok(model)
     }
 

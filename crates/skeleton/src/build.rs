@@ -7,14 +7,15 @@ use karst_sampling::Samples;
 use karst_scene::params::SkeletonMode;
 use karst_scene::{KeyPointKind, keypoints_of};
 
-use crate::assemble::NetworkBuilder;
-use crate::ends::{ends, sinks_in_order};
+use crate::defaults;
 use crate::error::SkeletonError;
-use crate::karstnsim::PhaseSetup;
+use crate::modes::karstnsim::PhaseSetup;
+use crate::modes::{amplify, gamma, karstnsim};
+use crate::network::assemble::NetworkBuilder;
 use crate::payload::{Route, Skeleton};
-use crate::search::{CostSetOf, EdgeCosts};
+use crate::route::ends::{ends, sinks_in_order};
+use crate::route::search::{CostSetOf, EdgeCosts};
 use crate::view::SkeletonView;
-use crate::{amplify, defaults, gamma, karstnsim};
 
 /// Builds the network of `scene` on the cost graph; each spring routes on the cost set of its
 /// water table. What `[skeleton]` leaves out of the tributaries and meanders is derived from the

@@ -25,7 +25,7 @@ use karst_sampling::Samples;
 use karst_scene::params::SkeletonParams;
 use karst_scene::{KeyPointKind, keypoints_of};
 
-use crate::assemble::NetworkBuilder;
+use crate::network::assemble::NetworkBuilder;
 use crate::view::SkeletonView;
 
 /// Conduit length per first-step tributary, in sampling radii. Chosen on the realism

@@ -11,7 +11,7 @@ use karst_stage::{Stage, StageError};
 
 use crate::build::build;
 use crate::error::SkeletonError;
-use crate::karstnet;
+use crate::output::karstnet;
 use crate::payload::{ConduitType, Skeleton, Zone};
 use crate::view::SkeletonView;
 
@@ -155,7 +155,7 @@ pub struct RenderArgs {
 pub fn render(args: &RenderArgs) -> Result<(), StageError> {
     let (_, skeleton) = read_artifact::<Skeleton>(&args.file)?;
     let title = args.title.clone().unwrap_or_else(|| args.file.display().to_string());
-    crate::render::render(&skeleton, &title)
+    crate::output::render::render(&skeleton, &title)
         .write_png(&args.png)
         .map_err(|e| StageError::failure(format!("{}: cannot write the picture: {e}", args.png.display())))
 }

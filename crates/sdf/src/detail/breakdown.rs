@@ -15,7 +15,7 @@
 //! radius). The chamber is a dome of three stacked balls over the node (centres 0.2 R, 0.7 R and
 //! 1.1 R above it, radii 0.9 R, 0.75 R and 0.5 R; R the largest radius), roughened like every
 //! sphere leaf by the chamber type's detail and the wall relief (the noise-walled chamber leaf
-//! of crate::chamber is not 1-Lipschitz across its foundation's wall, where its value jumps
+//! of crate::tree::chamber is not 1-Lipschitz across its foundation's wall, where its value jumps
 //! from the noise's to the foundation's); `breakdown_blocks` blocks lie on the floor
 //! within 0.8 R of the node: rounded boxes of edge 0.1 R to 0.5 R (at most 3 m), flattened as
 //! bedded slabs are, turned about the vertical at random and tilted by up to 25°, sunk by a
@@ -28,7 +28,7 @@ use karst_skeleton::{ConduitType, Skeleton, Zone};
 
 use super::rock::{Piece, PieceKind, Shape};
 use super::speleothems::trace;
-use crate::field::CarvedTerrain;
+use crate::field::carved::CarvedTerrain;
 use crate::payload::SphereGroup;
 
 /// A node that breaks down: its position and the largest radius meeting there.

@@ -87,7 +87,7 @@ impl<'de> Deserialize<'de> for FullDetail {
 mod tests {
     use super::*;
     use crate::SdfModel;
-    use crate::field::CarvedTerrain;
+    use crate::field::carved::CarvedTerrain;
     use crate::synthetic;
     use crate::view::SdfView;
     use karst_scene::{Scene, SceneView};
@@ -119,14 +119,14 @@ mod tests {
         assert!(speleothems.len() > 50, "{} speleothems", speleothems.len());
         for piece in speleothems {
             let rock::Shape::Cone { a, b, .. } = piece.shape else { panic!("{piece:?}") };
-            let mid = (crate::sweep::to_dvec(a) + crate::sweep::to_dvec(b)) * 0.5;
+            let mid = (crate::tree::sweep::to_dvec(a) + crate::tree::sweep::to_dvec(b)) * 0.5;
             // Not in the water of the plain cave (no rock pieces), flooded or stream.
             assert!(bare.water(mid) > 0.0, "{piece:?} is in water ({})", bare.water(mid));
             if let (rock::PieceKind::Stalagmite | rock::PieceKind::Column, rock::Shape::Cone { ra, .. }) =
                 (piece.kind, piece.shape)
             {
                 // Its foot stands on a dry floor, not in a stream.
-                let foot = crate::sweep::to_dvec(a) + glam::DVec3::Z * (ra as f64 + 0.05);
+                let foot = crate::tree::sweep::to_dvec(a) + glam::DVec3::Z * (ra as f64 + 0.05);
                 assert!(bare.water(foot) > 0.0, "{piece:?} stands in water ({})", bare.water(foot));
             }
         }

@@ -11,7 +11,7 @@ use super::rock::Piece;
 use super::walls::{Relief, ReliefNoise};
 use super::{Features, FullDetail, breakdown, sediment, speleothems};
 use crate::SdfModel;
-use crate::field::CarvedTerrain;
+use crate::field::carved::CarvedTerrain;
 
 /// Adds `full` passage detail to a built model: the relief of every wall, the breakdown
 /// chambers and their blocks, the speleothems. Placement sphere-traces the model's own walls

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 use karst_artifact::Invalid;
 use karst_artifact::check::{self, MAX_COORDINATE, ensure};
 
-use crate::sweep::to_dvec;
+use crate::tree::sweep::to_dvec;
 
 /// How far the grid looks for pieces, metres (the clamp of S).
 pub const REACH: f64 = 4.0;
@@ -241,7 +241,7 @@ impl RockField {
         let cell = (z * self.dims[1] + y) * self.dims[0] + x;
         for &k in &self.items[self.starts[cell] as usize..self.starts[cell + 1] as usize] {
             let (lo, hi) = self.boxes[k as usize];
-            if crate::primitive::signed_box_distance(lo, hi, p) < best {
+            if crate::field::primitive::signed_box_distance(lo, hi, p) < best {
                 best = best.min(self.pieces[k as usize].distance(p));
             }
         }

@@ -16,7 +16,7 @@ use karst_skeleton::Skeleton;
 
 use super::rock::{Piece, PieceKind, Shape};
 use super::speleothems::trace;
-use crate::field::CarvedTerrain;
+use crate::field::carved::CarvedTerrain;
 
 /// Steepest segment (rise over run) that holds a fill.
 pub const MAX_GRADIENT: f64 = 0.03;

@@ -18,7 +18,7 @@
 //! the nearer wall (15 %) or, where a stalactite and a stalagmite of the station's length
 //! would meet, a column (10 %; none over a stream). Lengths are `speleothem_length` times a
 //! log-normal factor (σ = 0.5), at most 70 % of the passage height. Water segments follow
-//! crate::water::level; a station whose point is in water is skipped, one with water on the
+//! crate::water::conduits::level; a station whose point is in water is skipped, one with water on the
 //! floor below it grows nothing from the floor, and a piece whose middle or far end would be
 //! in water is dropped.
 //!
@@ -34,8 +34,8 @@ use karst_scene::rng::Random;
 use karst_skeleton::Skeleton;
 
 use super::rock::{Piece, PieceKind, Shape};
-use crate::field::CarvedTerrain;
-use crate::water::{self, Water};
+use crate::field::carved::CarvedTerrain;
+use crate::water::conduits::{self, Water};
 
 /// Steepest segment that carries speleothems (rise over run): 45°.
 const MAX_SLOPE: f64 = 1.0;
@@ -72,14 +72,14 @@ pub fn place(
             );
             let Some(wet) = hydro.conduits.get(c).and_then(|h| h.segments.get(i)) else { continue };
             let radius = conduit.radius[i].max(conduit.radius[i + 1]) * p.radius_scale;
-            let segment = water::Segment {
+            let segment = conduits::Segment {
                 kind: conduit.types[i],
                 zones: [skeleton.nodes[a].zone, skeleton.nodes[b].zone],
                 water: wet.water,
                 depth: wet.depth,
                 height: 2.0 * radius,
             };
-            let stream = match water::level(&segment) {
+            let stream = match conduits::level(&segment) {
                 Water::Flooded => continue,
                 Water::Stream { .. } => true,
                 Water::None => false,

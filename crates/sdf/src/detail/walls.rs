@@ -1,8 +1,8 @@
 //! Rough walls: band-limited relief from decimetres to metres on every conduit wall, its
 //! amplitude a fraction of the local passage size (bounded), added to each sweep and sphere
-//! leaf beside the per-type detail noise (crate::primitive::Context::detail).
+//! leaf beside the per-type detail noise (crate::field::primitive::Context::detail).
 //!
-//! The relief is a fractal sum of plane waves like [`crate::noise::WaveNoise`], with more
+//! The relief is a fractal sum of plane waves like [`crate::tree::noise::WaveNoise`], with more
 //! octaves: the longest wavelength λ halves four times (4 m reaches 0.25 m), and
 //! each octave's amplitude is 0.6 times the one before ([`SPECTRUM`]), a spectrum flatter than Brownian
 //! relief so that the decimetre scallops and blades stay visible beside metre-scale alcoves.
@@ -10,14 +10,14 @@
 //! the waves ([`ReliefNoise::gradient_bound`], below Σ_o g^o 2^o ω / W with ω = 2π/λ and
 //! W = Σ_o g^o). A leaf of size s (a sphere's radius, a sweep's extent) gets the amplitude
 //! R = min(fraction·s, max); its value, (f + A·n + R·r)/(1 + A·G + R·G_r) clamped to
-//! [f − A − R, f + A + R] (crate::primitive::Context), stays 1-Lipschitz (docs/sdf.md,
+//! [f − A − R, f + A + R] (crate::field::primitive::Context), stays 1-Lipschitz (docs/sdf.md,
 //! "Rough walls").
 
 use glam::DVec3;
 use karst_scene::rng::Random;
 use serde::{Deserialize, Serialize};
 
-use crate::noise::{Spectrum, Wave};
+use crate::tree::noise::{Spectrum, Wave};
 
 /// The relief's spectrum: the longest wavelength and four halvings, three waves each, each
 /// octave 0.6 times the amplitude of the one before.

@@ -28,7 +28,7 @@ use serde::{Deserialize, Serialize};
 
 use karst_skeleton::ConduitType;
 
-use crate::section::{CONTROL, Section, Shape, unit_blend};
+use crate::tree::section::{CONTROL, Section, Shape, unit_blend};
 
 /// A section as the artifact stores it: the blend, half and half, of two conduit types' shapes
 /// (the types of the segments meeting at a node), with one shape.

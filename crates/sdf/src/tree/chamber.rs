@@ -15,9 +15,9 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use crate::noise::WaveNoise;
-use crate::ops;
-use crate::sweep::to_dvec;
+use crate::tree::noise::WaveNoise;
+use crate::tree::ops;
+use crate::tree::sweep::to_dvec;
 
 /// A chamber as the artifact stores it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -32,12 +32,12 @@ use karst_scene::KeyPointKind;
 use rayon::prelude::*;
 
 use crate::Route;
-use crate::ahead::Ahead;
-use crate::cohesion_bound::{CohesionBound, NetworkDistance};
-use crate::ends::{End, candidate_springs, chosen_springs, ends, sample_of, sinks_in_order};
 use crate::error::SkeletonError;
-use crate::search::{Cohesive, EdgeCosts, Tree, astar_to_set, min_cost_per_metre};
-use crate::spring_distance::{InEdges, LEGS_WORTH_THE_COSTS, costs_to};
+use crate::route::ahead::Ahead;
+use crate::route::cohesion_bound::{CohesionBound, NetworkDistance};
+use crate::route::ends::{End, candidate_springs, chosen_springs, ends, sample_of, sinks_in_order};
+use crate::route::search::{Cohesive, EdgeCosts, Tree, astar_to_set, min_cost_per_metre};
+use crate::route::spring_distance::{InEdges, LEGS_WORTH_THE_COSTS, costs_to};
 use crate::view::SkeletonView;
 
 /// The cost set of a water table, by name.
@@ -408,7 +408,7 @@ pub fn mark_used(graph: &CostGraph, edges: &[usize], used: &mut [bool]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::search::dijkstra;
+    use crate::route::search::dijkstra;
 
     /// 0 (a sink) → 1 → 2 (the water table) down a shaft; from 2 the spring 4 is reached back up
     /// through 1 and along a cheap inherited conduit 1 → 3 → 4, or directly at a high price.

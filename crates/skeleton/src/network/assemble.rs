@@ -7,13 +7,13 @@ use std::collections::{HashMap, HashSet};
 use karst_geology::Point;
 use karst_sampling::Samples;
 
-use crate::classify::classify;
-use crate::nodes::{is_keypoint, node};
-use crate::passages::{self, ConduitPassage, PassageProfiles};
+use crate::network::classify::classify;
+use crate::network::nodes::{is_keypoint, node};
+use crate::network::shape::passages::{self, ConduitPassage, PassageProfiles};
+use crate::network::shape::radii::ConduitRadii;
+use crate::network::shape::{meander, tortuosity};
 use crate::payload::{Conduit, Node, Route, Skeleton};
-use crate::radii::ConduitRadii;
 use crate::view::SkeletonView;
-use crate::{meander, tortuosity};
 
 /// The network as it grows: nodes in order of first appearance, undirected links.
 #[derive(Default)]

@@ -18,9 +18,9 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 use karst_scene::rng::Random;
 
-use crate::nodes::node_at;
+use crate::network::nodes::node_at;
+use crate::network::shape::planes::WeaknessPlanes;
 use crate::payload::{Node, Route};
-use crate::planes::WeaknessPlanes;
 use crate::view::SkeletonView;
 
 /// Draws per displaced midpoint before it stays straight.

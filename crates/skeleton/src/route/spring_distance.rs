@@ -22,7 +22,7 @@
 
 use karst_costgraph::CostGraph;
 
-use crate::search::{Direct, RadixHeap};
+use crate::route::search::{Direct, RadixHeap};
 
 /// Candidate legs towards one spring in a phase from which its least costs are computed.
 pub const LEGS_WORTH_THE_COSTS: usize = 10;
@@ -98,7 +98,7 @@ pub fn costs_to(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::search::{Cohesive, EdgeCosts, dijkstra};
+    use crate::route::search::{Cohesive, EdgeCosts, dijkstra};
     use karst_scene::rng::Random;
 
     /// A random directed graph: each node joined to 6 others at random costs.

@@ -18,12 +18,12 @@
 use glam::{DVec3, Vec3, Vec4};
 
 use crate::Capsule;
-use crate::chamber::Chamber;
-use crate::primitive::{
+use crate::field::primitive::{
     CAPSULE, CHAMBER, Context, Leaf, SPHERE, SWEEP, WATER, WaterLeaf, capsule_value, chamber_value,
     signed_box_distance, sphere_value, sweep_floor, sweep_value, water_value,
 };
-use crate::sweep::SweepLeaf;
+use crate::tree::chamber::Chamber;
+use crate::tree::sweep::SweepLeaf;
 
 /// The count of a candidate that is a single capsule.
 const ONE_CAPSULE: u32 = 1 | (CAPSULE as u32) << 16;

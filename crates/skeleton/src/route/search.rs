@@ -28,7 +28,7 @@ use glam::DVec3;
 use karst_costgraph::CostGraph;
 use rayon::prelude::*;
 
-use crate::ahead::{Ahead, HINT_EVERY, HINTED};
+use crate::route::ahead::{Ahead, HINT_EVERY, HINTED};
 
 /// No predecessor.
 const NONE: u32 = u32::MAX;

@@ -9,20 +9,21 @@
 //!   water, which stays inside K and, like the cave mesh, inside the domain and under the
 //!   ground (a spring on the domain's side would otherwise leave the water surface open there).
 //!
-//! All are 1-Lipschitz (see [`crate::ops`]). The union over leaves runs through the BVH and only
+//! All are 1-Lipschitz (see [`crate::tree::ops`]). The union over leaves runs through the BVH and only
 //! needs the leaves that can go below −rock + blend; everything else cannot change eval.
 
 use glam::DVec3;
 
-use crate::bvh::{Bvh, Candidate};
-use crate::chamber::Chamber;
+use crate::SdfModel;
 use crate::detail::rock::RockField;
-use crate::ops::REACH;
+use crate::field::bvh::{Bvh, Candidate};
+use crate::field::primitive::{Context, Leaf, WaterLeaf};
 use crate::payload::detail_factor;
-use crate::primitive::{Context, Leaf, WaterLeaf};
-use crate::surface_water::SurfaceField;
-use crate::sweep::{SweepSpec, SweepTable};
-use crate::{SdfModel, ops};
+use crate::tree::chamber::Chamber;
+use crate::tree::ops;
+use crate::tree::ops::REACH;
+use crate::tree::sweep::{SweepSpec, SweepTable};
+use crate::water::surface::SurfaceField;
 use karst_skeleton::ConduitType;
 
 /// The leaves that can matter within a box: see [`CarvedTerrain::near`].
@@ -335,8 +336,8 @@ fn water_leaves(model: &SdfModel, sweeps: &mut SweepTable) -> Vec<Leaf> {
 mod tests {
     use super::*;
     use crate::Capsule;
-    use crate::terrain::TerrainField;
     use crate::testing::{Pairs, assert_lipschitz};
+    use crate::tree::terrain::TerrainField;
     use karst_geology::Domain;
 
     fn field() -> CarvedTerrain {

@@ -2,7 +2,7 @@
 //!
 //! Every leaf i contributes v_i(p) = max(detail(f_i(p)), box_i(p)) (spheres: see
 //! [`sphere_value`]), where f_i is the leaf's 1-Lipschitz bound, detail adds the per-type fBm
-//! of amplitude A_i with its gradient compensated (see [`crate::ops::detail`]), and box_i is
+//! of amplitude A_i with its gradient compensated (see [`crate::tree::ops::detail`]), and box_i is
 //! the distance to the leaf's box grown by A_i (signed: negative inside). The max keeps the
 //! bound and changes nothing inside the box (there the box's value is at most minus the
 //! distance to the leaf's surface), but guarantees v_i ≥ distance to the box, which makes the
@@ -19,11 +19,11 @@ use glam::DVec3;
 use karst_skeleton::ConduitType;
 
 use crate::Capsule;
-use crate::chamber::Chamber;
 use crate::detail::walls::Relief;
-use crate::noise::WaveNoise;
-use crate::ops;
-use crate::sweep::{SweepLeaf, SweepTable, to_dvec};
+use crate::tree::chamber::Chamber;
+use crate::tree::noise::WaveNoise;
+use crate::tree::ops;
+use crate::tree::sweep::{SweepLeaf, SweepTable, to_dvec};
 
 /// A leaf before it is placed in the BVH.
 #[derive(Debug, Clone)]
@@ -182,7 +182,7 @@ impl<'a> Context<'a> {
     }
 
     /// detail(f): f + A·n + R·r with both noises bounded by their gradients. Without relief
-    /// it is exactly crate::ops::detail. With relief, the quotient g = (f + A·n + R·r)/(1 + L)
+    /// it is exactly crate::tree::ops::detail. With relief, the quotient g = (f + A·n + R·r)/(1 + L)
     /// (L = A·G + R·G_r) clamped to the shell [f − M, f + M] around f (M = A + R): where
     /// f + A·n + R·r ≤ 0, f − M ≤ it and g ≤ 0, and where it is ≥ 0, f + M ≥ it and g ≥ 0,
     /// so the clamp keeps the sign and the surface; a clamp of three 1-Lipschitz functions is

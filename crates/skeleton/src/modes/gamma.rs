@@ -30,12 +30,12 @@ use karst_sampling::Samples;
 use karst_scene::KeyPointKind;
 
 use crate::Route;
-use crate::assemble::NetworkBuilder;
-use crate::ends::{End, chosen_springs, ends, sample_of, sinks_in_order};
 use crate::error::SkeletonError;
-use crate::karstnsim::mark_used;
-use crate::nodes::is_phreatic;
-use crate::search::{Tree, ZonedCohesive, astar, dijkstra, min_cost_per_metre};
+use crate::modes::karstnsim::mark_used;
+use crate::network::assemble::NetworkBuilder;
+use crate::network::nodes::is_phreatic;
+use crate::route::ends::{End, chosen_springs, ends, sample_of, sinks_in_order};
+use crate::route::search::{Tree, ZonedCohesive, astar, dijkstra, min_cost_per_metre};
 use crate::view::SkeletonView;
 
 /// The pairs (i, j), i < j, of the γ-skeleton of the distance matrix `d` (symmetric, zero

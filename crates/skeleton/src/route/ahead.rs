@@ -6,7 +6,7 @@
 //! The legs of one sink run in parallel, but most sinks have one long leg, so one core searches
 //! while the other waits. [`Ahead`] gives that core the rows the search will read next: every
 //! [`HINT_EVERY`] settled nodes the search hands over the [`HINTED`] unsettled nodes of least
-//! key in its heap ([`crate::search::RadixHeap::lowest`]), and a helper thread costs their rows.
+//! key in its heap ([`crate::route::search::RadixHeap::lowest`]), and a helper thread costs their rows.
 //!
 //! A consistent A* settles every node whose key is below the target's, so a node of the heap's
 //! lowest keys is nearly always settled later: what the helper costs is what the search would
@@ -123,7 +123,7 @@ mod tests {
     use karst_scene::{Scene, SceneView};
 
     use super::*;
-    use crate::search::{EdgeCosts, astar_to_set, min_cost_per_metre};
+    use crate::route::search::{EdgeCosts, astar_to_set, min_cost_per_metre};
 
     const SCENE: &str = r#"
 name = "ahead"

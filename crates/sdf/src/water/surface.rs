@@ -26,7 +26,7 @@
 //! The carved rock is max(rock, −carve) and the surface water max(water, −carved rock): the
 //! water stays in the air and fills the beds to their surface. Spring mouths are capsules from
 //! the key point to the mouth, added to the karst so that the conduit opens onto the stream.
-//! Both unions are clamped like the karst's (at [`crate::ops::REACH`], or farther from every
+//! Both unions are clamped like the karst's (at [`crate::tree::ops::REACH`], or farther from every
 //! piece), and a grid of 2D cells lists the pieces that can matter at each point.
 
 use glam::{DVec2, DVec3};
@@ -39,7 +39,7 @@ use karst_artifact::Invalid;
 use karst_artifact::check::{self, MAX_COORDINATE};
 
 use crate::Capsule;
-use crate::ops::REACH;
+use crate::tree::ops::REACH;
 
 /// A riverbed or a plunge basin: see the module documentation.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

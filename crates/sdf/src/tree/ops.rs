@@ -48,8 +48,8 @@ pub fn detail(f: f64, noise: f64, amplitude: f64, gradient_bound: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::noise::WaveNoise;
     use crate::testing::{Pairs, assert_lipschitz};
+    use crate::tree::noise::WaveNoise;
     use karst_scene::rng::Random;
 
     fn ball(c: DVec3, r: f64) -> impl Fn(DVec3) -> f64 {

@@ -42,12 +42,12 @@ use karst_scene::KeyPointKind;
 use karst_scene::params::SkeletonMode;
 use karst_scene::rng::Random;
 
-use crate::assemble::NetworkBuilder;
-use crate::ends::{End, sample_of};
 use crate::error::SkeletonError;
-use crate::nodes::is_keypoint;
-use crate::planes::bedding_normal;
-use crate::search::{Blocked, EdgeCosts, dijkstra_to_set};
+use crate::network::assemble::NetworkBuilder;
+use crate::network::nodes::is_keypoint;
+use crate::network::shape::planes::bedding_normal;
+use crate::route::ends::{End, sample_of};
+use crate::route::search::{Blocked, EdgeCosts, dijkstra_to_set};
 use crate::view::SkeletonView;
 
 /// Tries to draw one point inside the bedrock before giving up on it.

@@ -292,9 +292,9 @@ impl CohesionBound<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::karstnsim::mark_used;
-    use crate::search::{Cohesive, EdgeCosts, astar_to_set, dijkstra, min_cost_per_metre};
-    use crate::spring_distance::{InEdges, costs_to};
+    use crate::modes::karstnsim::mark_used;
+    use crate::route::search::{Cohesive, EdgeCosts, astar_to_set, dijkstra, min_cost_per_metre};
+    use crate::route::spring_distance::{InEdges, costs_to};
     use karst_costgraph::CostGraph;
     use karst_scene::rng::Random;
 

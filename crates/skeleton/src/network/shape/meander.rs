@@ -23,10 +23,10 @@ use std::f64::consts::{PI, TAU};
 use glam::DVec3;
 use karst_scene::rng::Random;
 
-use crate::nodes::node_at;
+use crate::network::nodes::node_at;
+use crate::network::shape::planes::WeaknessPlanes;
+use crate::network::shape::tortuosity::Insertions;
 use crate::payload::Node;
-use crate::planes::WeaknessPlanes;
-use crate::tortuosity::Insertions;
 use crate::view::SkeletonView;
 
 /// Halvings of an offset that leaves the bedrock before the point stays on the chord.

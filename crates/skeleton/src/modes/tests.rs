@@ -6,11 +6,11 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use crate::ends::End;
 use crate::error::SkeletonError;
-use crate::karstnsim;
+use crate::modes::karstnsim;
 use crate::payload::Skeleton;
-use crate::search::EdgeCosts;
+use crate::route::ends::End;
+use crate::route::search::EdgeCosts;
 use crate::view::SkeletonView;
 use karst_costgraph::CostgraphView;
 use karst_costgraph::{CostGraph, Costing};
@@ -112,7 +112,7 @@ fn build(scene: &Scene, samples: &Samples, graph: &CostGraph) -> Result<Skeleton
 }
 
 fn sinks_in_order(scene: &Scene) -> Vec<End<'_>> {
-    crate::ends::sinks_in_order(&SkeletonView::of(scene))
+    crate::route::ends::sinks_in_order(&SkeletonView::of(scene))
 }
 
 fn route(
