@@ -120,9 +120,10 @@ max = 1.0
 "#;
 
 /// The least relative reduction of the distance to Sakany the search must reach: about half of
-/// what CMA-ES reaches with this budget (84 %; the run is deterministic), far above what the
-/// scene alone gives (0).
-const LEAST_REDUCTION: f64 = 0.40;
+/// what CMA-ES reaches with this budget (36.5 %; the run is deterministic), far above what the
+/// scene alone gives (0). The network defaults of issue 38 (loops, fewer tributaries) start tiny
+/// closer to Sakany: before them the search reached 84 % from farther away.
+const LEAST_REDUCTION: f64 = 0.18;
 
 /// Calibrates the tiny scene to Sakany with `calibrate` ([`run`] or [`run_with`] another
 /// optimiser); returns the relative reduction of the distance (1 − after / before) from
