@@ -10,7 +10,7 @@ use karst_mesher::Mesh;
 use karst_metrics::MetricsReport;
 use karst_sampling::Samples;
 use karst_scene::Scene;
-use karst_scene::budget::bytes;
+use karst_scene::budget::{MB, bytes};
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
 use karst_streams::Streams;
@@ -218,8 +218,6 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
     }
     Ok(())
 }
-
-const MB: f64 = (1u64 << 20) as f64;
 
 /// `--budget MB`: a number of MB above 0.
 fn parse_budget(megabytes: &str) -> Result<f64, String> {

@@ -25,13 +25,14 @@ pub fn cave_cell(model: &SdfModel, cell_size: f64, requested: f64) -> f64 {
 /// [`cave_cell`] at any terrain cell, the passages' sizes read once (the work estimate tries
 /// several cells).
 pub fn cave_cells(model: &SdfModel, requested: f64) -> impl Fn(f64) -> f64 {
-    let size =
-        if requested > 0.0 { None } else { weighted_percentile(&mut passage_sizes(model), CAVE_PERCENTILE) };
+    let automatic = requested <= 0.0;
+    let size = automatic.then(|| weighted_percentile(&mut passage_sizes(model), CAVE_PERCENTILE)).flatten();
     move |cell_size| {
-        if requested > 0.0 {
-            return requested;
+        if automatic {
+            size.unwrap_or(cell_size).clamp(cell_size / CAVE_REFINE, cell_size)
+        } else {
+            requested
         }
-        size.unwrap_or(cell_size).clamp(cell_size / CAVE_REFINE, cell_size)
     }
 }
 

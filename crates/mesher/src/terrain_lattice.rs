@@ -144,12 +144,12 @@ fn cuts(field: &CarvedTerrain, fine: &Lattice, ratio: u64, margin: f64) -> Vec<C
     // less and plus the Lipschitz bound times half its diagonal, so a column no cut can reach
     // costs four heights, not (ratio + 1)² (a fine cell far below the raster's).
     let column_may_be_cut = |i0: u64, j0: u64, i1: u64, j1: u64| {
-        let h = [corner(i0, j0).1, corner(i1, j0).1, corner(i0, j1).1, corner(i1, j1).1];
-        let (lo, hi) = h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        let corners = [corner(i0, j0), corner(i1, j0), corner(i0, j1), corner(i1, j1)];
+        let (lo, hi) =
+            corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(_, v)| (a.min(v), b.max(v)));
         let reach = terrain.lipschitz() * cell * 0.5 * ((i1 - i0) as f64).hypot((j1 - j0) as f64);
         let (bottom, top) = ((lo - reach).max(floor), (hi + reach).min(ceiling));
-        let (a, b) = (corner(i0, j0).0, corner(i1, j1).0);
-        bottom > top || field.may_carve(a.extend(bottom), b.extend(top), margin)
+        bottom > top || field.may_carve(corners[0].0.extend(bottom), corners[3].0.extend(top), margin)
     };
     let column = |&[i0, j0]: &[u64; 2]| -> Vec<Cut> {
         let (i1, j1) = ((i0 + ratio).min(cells[0]), (j0 + ratio).min(cells[1]));

@@ -14,7 +14,7 @@ use karst_mesher::Mesh;
 use karst_mesher::{MesherView, Work};
 use karst_sampling::Samples;
 use karst_scene::SceneView;
-use karst_scene::budget::bytes;
+use karst_scene::budget::{MB, bytes};
 use karst_sdf::SdfModel;
 use karst_skeleton::Skeleton;
 use karst_stage::{Job, StageError};
@@ -47,8 +47,6 @@ impl OutputBudget {
         Ok(OutputBudget { mesh_bytes: megabytes * MB })
     }
 }
-
-const MB: f64 = (1u64 << 20) as f64;
 
 /// The mesher's work on the scene of `job` and the sdf.bin of its folder, as the line printed
 /// before the mesher runs; a bad-input error (exit 2) when it is beyond `budget`.

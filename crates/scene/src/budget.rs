@@ -14,6 +14,9 @@ use std::fmt;
 /// room for the inputs already in memory, the system and the artifact being written.
 pub const DEFAULT_BYTES: u64 = 16 << 30;
 
+/// Bytes of the MB (MiB) the output budgets and `export.gltf_max_mb` are given in.
+pub const MB: f64 = (1u64 << 20) as f64;
+
 /// How much memory a stage may plan to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Budget {

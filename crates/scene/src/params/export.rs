@@ -159,7 +159,7 @@ impl Default for ExportParams {
 impl ExportParams {
     /// The bound of `karst.glb`, bytes; `None` when it is written at full resolution.
     pub fn gltf_bound(&self) -> Option<f64> {
-        (!self.gltf_full).then(|| self.gltf_max_mb.unwrap_or(DEFAULT_GLTF_MB) * (1u64 << 20) as f64)
+        (!self.gltf_full).then(|| self.gltf_max_mb.unwrap_or(DEFAULT_GLTF_MB) * crate::budget::MB)
     }
 
     pub(crate) fn check(&self, c: &mut Checks) {
