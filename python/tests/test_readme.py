@@ -23,7 +23,7 @@ EXEMPT = {
 }
 EXEMPT_STARTS = {
     "cargo xtask test": "the test suite itself",
-    "karstgen view out/default --serve": "serves until stopped, and needs the default scene's run",
+    "karstgen view out/default --serve": "serves until stopped (test_view_serve.py serves tiny's run)",
     "pip install": "the test venv installs the wheel itself (cargo xtask test)",
     "karstgen diff out/a/": "placeholder runs a and b",
     "karstgen metrics --karstnet path/to/": "a placeholder path",
