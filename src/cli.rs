@@ -74,7 +74,7 @@ pub struct RunArgs {
     pub max_memory: Option<karst_scene::budget::Budget>,
     /// MB the meshes may take (default 300): the mesher's work is estimated before it runs,
     /// and a run above this stops, naming the fields that lower it.
-    #[arg(long, value_name = "MB", value_parser = parse_budget)]
+    #[arg(long, value_name = "MB")]
     pub budget: Option<OutputBudget>,
 }
 
@@ -207,12 +207,6 @@ fn parse_stage(name: &str) -> Result<StageId, String> {
         let names: Vec<&str> = StageId::ALL.iter().map(|s| s.name()).collect();
         format!("unknown stage \"{name}\"; stages: {}", names.join(", "))
     })
-}
-
-fn parse_budget(megabytes: &str) -> Result<OutputBudget, String> {
-    let value =
-        megabytes.trim().parse::<f64>().map_err(|_| format!("\"{megabytes}\" is not a number of MB"))?;
-    OutputBudget::megabytes(value).map_err(|e| e.to_string())
 }
 
 /// The `karstgen` process: parses the command line, runs the command, returns the exit code.

@@ -17,10 +17,6 @@ use karst_scene::params::{ExportFormat, ExportParams, MeshSurface};
 use karst_skeleton::Skeleton;
 use karst_streams::Streams;
 
-/// The default budget of the meshes and the exports together, MB (MiB): what `karstgen run`
-/// and `karstgen export` allow without `--budget`.
-pub const DEFAULT_BUDGET_MB: f64 = 300.0;
-
 /// Bytes of a header, a document, or the fixed tables of a file.
 const HEADER: f64 = 4096.0;
 /// The GeoPackage's fixed tables (SQLite pages, spatial reference systems, styles).

@@ -10,14 +10,15 @@ use karst_mesher::Mesh;
 use karst_metrics::MetricsReport;
 use karst_sampling::Samples;
 use karst_scene::Scene;
-use karst_scene::budget::{MB, bytes};
+use karst_scene::budget::bytes;
+use karst_scene::output_budget::OutputBudget;
 use karst_skeleton::Skeleton;
 use karst_stage::{Stage, StageError};
 use karst_streams::Streams;
 
 use crate::build::{FOLDER, Input, Inputs, export, needs};
 use crate::error::ExportError;
-use crate::estimate::{Counts, DEFAULT_BUDGET_MB, Estimate, raster_pixels};
+use crate::estimate::{Counts, Estimate, raster_pixels};
 use crate::network::NetworkView;
 use crate::payload::Manifest;
 use crate::view::ExportView;
@@ -110,8 +111,8 @@ pub struct ExportArgs {
     pub json: bool,
     /// The bytes the exports may take with the run's mesh.bin, MB (MiB; default 300, as for
     /// `karstgen run`): beyond it nothing is written.
-    #[arg(long, value_name = "MB", value_parser = parse_budget)]
-    pub budget: Option<f64>,
+    #[arg(long, value_name = "MB")]
+    pub budget: Option<OutputBudget>,
 }
 
 /// Writes the exports of the run in `args.dir` on demand, reading only the artifacts the
@@ -190,7 +191,7 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
     let mesh_bytes = std::fs::metadata(args.dir.join(Input::Mesh.file_name())).map_or(0, |m| m.len()) as f64;
     let estimate =
         Estimate::of(&chosen, &counts, &params, raster_pixels(extent, params.raster_cell), mesh_bytes);
-    let budget = args.budget.unwrap_or(DEFAULT_BUDGET_MB) * MB;
+    let budget = args.budget.unwrap_or_default().bytes;
     if estimate.total() > budget {
         return Err(StageError::input(format!(
             "{}: the export would write {estimate}, more than the budget of {}: choose fewer formats \
@@ -217,14 +218,6 @@ pub fn export_run(args: &ExportArgs) -> Result<(), StageError> {
         }
     }
     Ok(())
-}
-
-/// `--budget MB`: a number of MB above 0.
-fn parse_budget(megabytes: &str) -> Result<f64, String> {
-    match megabytes.trim().parse::<f64>() {
-        Ok(mb) if mb.is_finite() && mb > 0.0 => Ok(mb),
-        _ => Err(format!("\"{megabytes}\" is not a budget: give a number of MB above 0")),
-    }
 }
 
 fn parse_format(name: &str) -> Result<ExportFormat, StageError> {

@@ -3,50 +3,24 @@
 //! printed; before the export runs, the bytes of each of its formats are estimated from the
 //! counts of the artifacts ([`karst_export::estimate`]) and printed, and held with mesh.bin's
 //! size against the same budget. Beyond the budget (`karstgen run --budget MB`, default
-//! [`DEFAULT_MESH_MB`]) the run stops with exit code 2, the estimate and the fields and flag
+//! [`DEFAULT_OUTPUT_MB`]) the run stops with exit code 2, the estimate and the fields and flag
 //! that lower or raise it, before a cell is evaluated or a file written. Budgets are bytes, not seconds: a refusal does not depend on the
 //! machine's speed. (The memory budget, `--max-memory`, is checked by each stage itself.)
 
 use karst_artifact::{StageId, read_artifact};
 use karst_export::ExportView;
-use karst_export::estimate::{Counts, DEFAULT_BUDGET_MB, Estimate, raster_pixels};
+use karst_export::estimate::{Counts, Estimate, raster_pixels};
 use karst_mesher::Mesh;
 use karst_mesher::{MesherView, Work};
 use karst_sampling::Samples;
 use karst_scene::SceneView;
-use karst_scene::budget::{MB, bytes};
+use karst_scene::budget::bytes;
 use karst_sdf::SdfModel;
 use karst_skeleton::Skeleton;
 use karst_stage::{Job, StageError};
 use karst_streams::Streams;
 
-use crate::options::OptionError;
-
-/// The default budget of the meshes and the exports, MB (MiB).
-pub const DEFAULT_MESH_MB: f64 = DEFAULT_BUDGET_MB;
-
-/// Bytes the outputs of a run may take.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct OutputBudget {
-    /// Bytes of the meshes (mesh.bin) and of the exports.
-    pub mesh_bytes: f64,
-}
-
-impl Default for OutputBudget {
-    fn default() -> Self {
-        OutputBudget { mesh_bytes: DEFAULT_MESH_MB * MB }
-    }
-}
-
-impl OutputBudget {
-    /// A budget of `megabytes` MB (MiB) for the meshes; refused unless finite and > 0.
-    pub fn megabytes(megabytes: f64) -> Result<OutputBudget, OptionError> {
-        if !(megabytes.is_finite() && megabytes > 0.0) {
-            return Err(OptionError::new("--budget", megabytes, "a budget is a number of MB above 0"));
-        }
-        Ok(OutputBudget { mesh_bytes: megabytes * MB })
-    }
-}
+pub use karst_scene::output_budget::{DEFAULT_OUTPUT_MB, OutputBudget};
 
 /// The mesher's work on the scene of `job` and the sdf.bin of its folder, as the line printed
 /// before the mesher runs; a bad-input error (exit 2) when it is beyond `budget`.
@@ -63,16 +37,16 @@ pub fn check_mesher(job: &Job, budget: OutputBudget) -> Result<String, StageErro
         bytes(work.bytes),
         view.mesher.cell_size
     );
-    if work.bytes > budget.mesh_bytes {
+    if work.bytes > budget.bytes {
         return Err(StageError::scene(format!(
             "{}: the mesher would make {estimate}, more than the budget of {}: raise mesher.cell_size \
              or mesher.cave_cell_size (the bytes grow as 1 / cell²) to lower it, or run with --budget MB \
              to allow it",
             job.scene_path.display(),
-            bytes(budget.mesh_bytes)
+            bytes(budget.bytes)
         )));
     }
-    Ok(format!("{:<10} estimate    {estimate} (budget {})", "mesher", bytes(budget.mesh_bytes)))
+    Ok(format!("{:<10} estimate    {estimate} (budget {})", "mesher", bytes(budget.bytes)))
 }
 
 /// The export's work on the artifacts of `job`'s folder, as the line printed before the export
@@ -91,14 +65,14 @@ pub fn check_export(job: &Job, budget: OutputBudget) -> Result<String, StageErro
     let formats = karst_export::formats(params, view.frame);
     let mesh_bytes = std::fs::metadata(&mesh_file).map_or(0, |m| m.len()) as f64;
     let estimate = Estimate::of(&formats, &counts, params, pixels, mesh_bytes);
-    if estimate.total() > budget.mesh_bytes {
+    if estimate.total() > budget.bytes {
         return Err(StageError::scene(format!(
             "{}: the export would write {estimate}, more than the budget of {}: drop formats from \
              export.formats or surfaces from export.surfaces, lower export.gltf_max_mb, raise \
              mesher.cell_size or mesher.cave_cell_size, or run with --budget MB to allow it",
             job.scene_path.display(),
-            bytes(budget.mesh_bytes)
+            bytes(budget.bytes)
         )));
     }
-    Ok(format!("{:<10} estimate    {estimate} (budget {})", "export", bytes(budget.mesh_bytes)))
+    Ok(format!("{:<10} estimate    {estimate} (budget {})", "export", bytes(budget.bytes)))
 }

@@ -20,6 +20,7 @@ pub mod keypoint;
 mod links;
 mod load;
 mod localize;
+pub mod output_budget;
 pub mod params;
 pub mod point_table;
 pub mod rng;
