@@ -420,3 +420,43 @@ fn a_raster_terrain_is_meshed_coarsely_away_from_its_openings_and_stays_closed()
     let one = with_threads(1, || karst_mesher::polygonize_terrain(&field, 1.0));
     assert_eq!((one.vertices, one.triangles), (coarse.vertices, coarse.triangles));
 }
+
+/// A 320 × 240 m heightfield of 8 m pixels and vertical shafts opening at `openings`.
+fn raster_with_shafts(openings: &[[f64; 2]]) -> SdfModel {
+    let (nx, ny) = (42u32, 32u32);
+    let heights = (0..ny)
+        .flat_map(|j| {
+            (0..nx).map(move |i| {
+                let (x, y) = (i as f64 * 8.0, j as f64 * 8.0);
+                30.0 + 6.0 * (x / 25.0).sin() * (y / 31.0).cos() + 0.02 * x
+            })
+        })
+        .collect();
+    let grid = karst_geology::heightfield::HeightGrid::new([-4.0, -4.0], 8.0, nx, ny, heights);
+    SdfModel {
+        capsules: openings
+            .iter()
+            .map(|&[x, y]| Capsule { a: [x, y, 45.0], b: [x, y, 12.0], radius: 2.0 })
+            .collect(),
+        ..SdfModel::new(Domain { min: [0.0, 0.0, 0.0], max: [320.0, 240.0, 50.0] }, TerrainField::Grid(grid))
+    }
+}
+
+#[test]
+fn two_far_apart_openings_do_not_refine_the_ground_between_them() {
+    let triangles = |openings: &[[f64; 2]]| {
+        let field = CarvedTerrain::new(raster_with_shafts(openings));
+        let lattice = karst_mesher::TerrainLattice::of(&field, 1.0).expect("8 m pixels over 1 m cells");
+        assert_eq!(lattice.patches.len(), openings.len());
+        let mesh = karst_mesher::polygonize_patched(&field, &lattice).expect("the rims are stitched");
+        assert_watertight("raster terrain with shafts", &mesh);
+        mesh.triangles.len() as f64
+    };
+    let (a, b) = ([60.0, 50.0], [250.0, 190.0]);
+    let (none, one, other, both) = (triangles(&[]), triangles(&[a]), triangles(&[b]), triangles(&[a, b]));
+    // Each opening adds its patch; together they add the sum, not the crossing of their slabs
+    // (which would refine a 2 × 30 m wide cross through the whole domain).
+    let sum = none + (one - none) + (other - none);
+    assert!(one > none * 1.2 && other > none * 1.2, "{none} {one} {other}");
+    assert!((both - sum).abs() < 0.03 * sum, "{both} vs {sum} = {none} + the two patches");
+}
