@@ -362,9 +362,9 @@ fn stitch(
         replaced.push(k);
         let t = mesh.triangles[k];
         let third = |a: u32, b: u32| t.iter().copied().find(|&v| v != a && v != b).ok_or(Unstitched);
-        match group {
-            &[(_, a, b, increasing)] => fan(&path(a, b, increasing)?, third(a, b)?, &mut joins.fans),
-            &[(_, a0, b0, i0), (_, a1, b1, i1)] => {
+        match *group {
+            [(_, a, b, increasing)] => fan(&path(a, b, increasing)?, third(a, b)?, &mut joins.fans),
+            [(_, a0, b0, i0), (_, a1, b1, i1)] => {
                 let ((a, b, first), (c, second)) =
                     if b0 == a1 { ((a0, b0, i0), (b1, i1)) } else { ((a1, b1, i1), (b0, i0)) };
                 let one = path(a, b, first)?;
