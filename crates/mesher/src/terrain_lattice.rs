@@ -1,18 +1,19 @@
 //! The carved terrain's lattice: at the ground's own resolution away from the caves and the
-//! streams, at `mesher.cell_size` where they cut the rock.
+//! streams, in fine patches at `mesher.cell_size` where they cut the rock.
 //!
 //! A heightfield of 30 m pixels holds no detail finer than 30 m, so a lattice of 2 m cells
 //! over it spends 225 times the triangles of its pixels on nothing but bilinear facets. The
 //! terrain lattice is therefore *rectilinear*: along each axis its planes are those of the
 //! uniform lattice of `mesher.cell_size` (the *fine* cell), kept every `k`-th one (the
 //! *coarse* cell, k fine cells: the raster's pixel, or for an analytic terrain a cell derived
-//! from the extent, [`coarse_cell`]) and every one inside the *fine windows*, the ranges along
-//! the axis where a karst leaf or a surface-water piece comes near the ground
-//! ([`CarvedTerrain::carves`]: openings, shafts, riverbeds, pools). A rectilinear lattice
-//! has the topology of a regular one, so marching cubes on it are as closed, manifold and
-//! oriented as on the regular lattice ([`crate::warp`] runs the polygonizer on it unchanged).
-//! The price of the windows being whole slabs: a window's fine planes cross the whole domain,
-//! where they only split the coarse cells (more, thinner triangles along the slab).
+//! from the extent, [`coarse_cell`]). Where a karst leaf or a surface-water piece comes near
+//! the ground ([`CarvedTerrain::carves`]: openings, shafts, riverbeds, pools) the cuts are
+//! clustered into [`Patch`]es, boxes of the lattice meshed on lattices of their own, fine in x
+//! and y, and stitched to the coarse ground ([`crate::patches`]). A rectilinear lattice has the
+//! topology of a regular one, so marching cubes on it are as closed, manifold and oriented as
+//! on the regular lattice ([`crate::warp`] runs the polygonizer on it unchanged). Cuts no patch
+//! can hold (near the walls or the floor) are *fine windows* of the lattice instead: every
+//! plane of the fine lattice in their ranges, whole slabs across the domain.
 
 use glam::{DVec2, DVec3};
 
