@@ -460,3 +460,20 @@ fn two_far_apart_openings_do_not_refine_the_ground_between_them() {
     assert!(one > none * 1.2 && other > none * 1.2, "{none} {one} {other}");
     assert!((both - sum).abs() < 0.03 * sum, "{both} vs {sum} = {none} + the two patches");
 }
+
+#[test]
+fn an_opening_by_a_wall_is_a_fine_window_beside_the_patches_and_the_terrain_stays_closed() {
+    // The shaft 4 m from the west wall: no patch can stand inside the wall there, so its cut is
+    // a fine window of whole slabs; the other opening is a patch.
+    let field = CarvedTerrain::new(raster_with_shafts(&[[4.0, 120.0], [250.0, 190.0]]));
+    let lattice = karst_mesher::TerrainLattice::of(&field, 1.0).expect("8 m pixels over 1 m cells");
+    assert_eq!(lattice.patches.len(), 1);
+    let fine_at = |x: f64| lattice.planes[0].windows(2).any(|w| w[0] <= x && x < w[1] && w[1] - w[0] == 1.0);
+    assert!(fine_at(4.5) && !fine_at(120.5), "the wall's shaft is a window, the middle coarse");
+    let mesh = karst_mesher::polygonize_patched(&field, &lattice).expect("the rim is stitched");
+    assert_watertight("raster terrain, a window and a patch", &mesh);
+    let one = with_threads(1, || karst_mesher::polygonize_terrain(&field, 1.0));
+    let two = with_threads(2, || karst_mesher::polygonize_terrain(&field, 1.0));
+    assert_eq!((&one.vertices, &one.triangles), (&mesh.vertices, &mesh.triangles));
+    assert_eq!((one.vertices, one.triangles), (two.vertices, two.triangles));
+}
