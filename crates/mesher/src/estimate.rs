@@ -130,14 +130,39 @@ const LATTICE_TRIANGLES_PER_CELL: f64 = 2.0;
 
 /// The cells of the terrain lattice that the carved terrain crosses, counted column by column:
 /// in each column of the ground the z cells between the lowest and the highest of its corners'
-/// heights (at least one), the cells of the domain's sides under the ground and of its floor.
-/// The caves' walls inside the rock are not counted: away from the fine windows the coarse
-/// cells do not resolve them (their pockets are filled by the cleanup).
+/// heights (at least one), the cells of the domain's sides under the ground and of its floor;
+/// over each fine patch, its own lattice's columns instead of the coarse ones. The caves'
+/// walls inside the rock are not counted: away from the patches and the fine windows the
+/// coarse cells do not resolve them (their pockets are filled by the cleanup).
 fn lattice_cells(lattice: &TerrainLattice, model: &SdfModel) -> f64 {
     let [xs, ys, zs] = &lattice.planes;
     let (floor, ceiling) = (model.domain.min[2], model.domain.max[2]);
     let ground = |i: usize, j: usize| model.terrain.height(xs[i], ys[j]).clamp(floor, ceiling);
     // z planes below height h.
+    let below = |h: f64| zs.partition_point(|&z| z < h) as f64;
+    let (nx, ny) = (xs.len() - 1, ys.len() - 1);
+    let patches: f64 = lattice
+        .patches
+        .iter()
+        .map(|p| {
+            let [pxs, pys, pzs] = &p.lattice.planes;
+            ground_cells(model, pxs, pys, pzs)
+                - ground_cells(model, &xs[p.lo[0]..=p.hi[0]], &ys[p.lo[1]..=p.hi[1]], zs)
+        })
+        .sum();
+    let side = |heights: &mut dyn Iterator<Item = f64>| heights.map(|h| below(h) - below(floor)).sum::<f64>();
+    let sides = side(&mut (0..nx).map(|i| ground(i, 0)))
+        + side(&mut (0..nx).map(|i| ground(i, ny)))
+        + side(&mut (0..ny).map(|j| ground(0, j)))
+        + side(&mut (0..ny).map(|j| ground(nx, j)));
+    ground_cells(model, xs, ys, zs) + patches + sides + (nx * ny) as f64
+}
+
+/// The cells of the lattice of planes `xs`, `ys`, `zs` that the ground crosses: in each column
+/// the z cells between the lowest and the highest of its corners' heights, at least one.
+fn ground_cells(model: &SdfModel, xs: &[f64], ys: &[f64], zs: &[f64]) -> f64 {
+    let (floor, ceiling) = (model.domain.min[2], model.domain.max[2]);
+    let ground = |i: usize, j: usize| model.terrain.height(xs[i], ys[j]).clamp(floor, ceiling);
     let below = |h: f64| zs.partition_point(|&z| z < h) as f64;
     let (nx, ny) = (xs.len() - 1, ys.len() - 1);
     let rows: Vec<f64> = (0..ny)
@@ -153,13 +178,7 @@ fn lattice_cells(lattice: &TerrainLattice, model: &SdfModel) -> f64 {
                 .sum()
         })
         .collect();
-    let top: f64 = rows.iter().sum();
-    let side = |heights: &mut dyn Iterator<Item = f64>| heights.map(|h| below(h) - below(floor)).sum::<f64>();
-    let sides = side(&mut (0..nx).map(|i| ground(i, 0)))
-        + side(&mut (0..nx).map(|i| ground(i, ny)))
-        + side(&mut (0..ny).map(|j| ground(0, j)))
-        + side(&mut (0..ny).map(|j| ground(nx, j)));
-    top + sides + (nx * ny) as f64
+    rows.iter().sum()
 }
 
 /// Refuses lattices whose meshes would not fit in the memory budget, naming the cell that

@@ -31,12 +31,7 @@ impl<'a, V: Volume> Warped<'a, V> {
 
     /// φ(u): the world point of lattice-space point `u`.
     pub fn to_world(&self, u: DVec3) -> DVec3 {
-        let axis = |a: usize, u: f64| {
-            let planes = &self.lattice.planes[a];
-            let i = (u.floor().max(0.0) as usize).min(planes.len() - 2);
-            planes[i] + (u - i as f64) * (planes[i + 1] - planes[i])
-        };
-        DVec3::new(axis(0, u.x), axis(1, u.y), axis(2, u.z))
+        self.lattice.to_world(u)
     }
 }
 
@@ -104,20 +99,32 @@ impl<V: Volume, S: MeshSink> MeshSink for ToWorld<'_, '_, V, S> {
 }
 
 /// The carved terrain of `field` polygonized into `sink` on its terrain lattice at fine cell
-/// `cell` ([`TerrainLattice::of`]), or on the uniform lattice of `cell` when the terrain's
-/// coarse cell is not two fine ones; returns the field evaluations.
+/// `cell` ([`TerrainLattice::of`]) with its fine patches stitched in ([`crate::patches`]), or
+/// on the uniform lattice of `cell` when the terrain's coarse cell is not two fine ones;
+/// returns the field evaluations. Should a patch's rim not close as its construction
+/// promises, every cut becomes a fine window of whole slabs ([`TerrainLattice::slabs`]).
 pub fn polygonize_terrain_into<S: MeshSink>(
     field: &karst_sdf::CarvedTerrain,
     cell: f64,
     sink: &mut S,
 ) -> Result<u64, S::Error> {
-    match TerrainLattice::of(field, cell) {
-        None => crate::polygonize::polygonize_into(field, cell, sink),
-        Some(lattice) => {
-            let warp = Warped::new(field, &lattice);
-            crate::polygonize::polygonize_into(&warp, 1.0, &mut ToWorld { warp: &warp, sink })
+    let Some(lattice) = TerrainLattice::of(field, cell) else {
+        return crate::polygonize::polygonize_into(field, cell, sink);
+    };
+    let lattice = if lattice.patches.is_empty() {
+        lattice
+    } else {
+        match crate::patches::polygonize_patched(field, &lattice) {
+            Ok(mesh) => {
+                sink.vertices(&mesh.vertices)?;
+                sink.triangles(&mesh.triangles)?;
+                return Ok(mesh.field_evaluations);
+            }
+            Err(crate::patches::Unstitched) => TerrainLattice::slabs(field, cell).unwrap_or(lattice),
         }
-    }
+    };
+    let warp = Warped::new(field, &lattice);
+    crate::polygonize::polygonize_into(&warp, 1.0, &mut ToWorld { warp: &warp, sink })
 }
 
 /// [`polygonize_terrain_into`] gathered in memory.
