@@ -39,27 +39,14 @@ pub struct Samples {
     /// Positions `[x, y, z]`, metres. Key points come first, in scene order, then every other
     /// sample (on the surfaces or in the volume: see `tags`) along a Morton curve through the
     /// domain, so that neighbours in space are mostly neighbours in the arrays.
-    #[serde(deserialize_with = "exact")]
     pub positions: Vec<[f64; 3]>,
     /// One tag per position.
-    #[serde(deserialize_with = "exact")]
     pub tags: Vec<Tag>,
     /// The smallest Poisson-disk radius of the field, metres.
     pub radius: f64,
     /// The radius field used: two samples p, q (not both key points) are at least
     /// min(r(p), r(q)) apart.
     pub radius_field: SpacingField,
-}
-
-/// A sequence read into a vector that holds exactly its elements. Serde grows the vector as
-/// it reads, doubling it (it allocates at most a megabyte ahead of a length that a corrupted
-/// file may inflate), which can leave up to half of its capacity unused: 38 MB of the regional
-/// scene's 5 million samples (BENCHMARKS.md), held through every later stage otherwise.
-/// Shrinking a large allocation hands its tail back without a copy.
-fn exact<'de, D: serde::Deserializer<'de>, T: Deserialize<'de>>(deserializer: D) -> Result<Vec<T>, D::Error> {
-    let mut values = Vec::deserialize(deserializer)?;
-    values.shrink_to_fit();
-    Ok(values)
 }
 
 impl Payload for Samples {
@@ -182,16 +169,6 @@ mod tests {
         let same = |a: &[f64; 3], b: &[f64; 3]| a.iter().zip(b).all(|(x, y)| x == y);
         (0..positions.len())
             .find_map(|b| (0..b).find(|&a| same(&positions[a], &positions[b])).map(|a| (a, b)))
-    }
-
-    #[test]
-    fn sequences_are_read_without_spare_capacity() {
-        // 1000 elements read one by one into a doubling vector would leave it 1024 long.
-        let positions: Vec<[f64; 3]> = (0..1000).map(|i| [f64::from(i), 0.5, -2.0]).collect();
-        let json = serde_json::to_string(&positions).expect("serializable");
-        let read: Vec<[f64; 3]> = exact(&mut serde_json::Deserializer::from_str(&json)).expect("readable");
-        assert_eq!(read, positions);
-        assert_eq!(read.capacity(), read.len());
     }
 
     #[test]
