@@ -13,6 +13,7 @@ use crate::modes::karstnsim::PhaseSetup;
 use crate::modes::{amplify, gamma, karstnsim};
 use crate::network::assemble::NetworkBuilder;
 use crate::payload::{Route, Skeleton};
+use crate::route::edge_set::EdgeSet;
 use crate::route::ends::{ends, sinks_in_order};
 use crate::route::search::{CostSetOf, EdgeCosts};
 use crate::view::SkeletonView;
@@ -64,7 +65,7 @@ fn mode_routes(
             let cost_set =
                 |table: &str| -> &dyn EdgeCosts { &sets[graph.cost_set_of_water_table(table).unwrap_or(0)] };
             let sinks = sinks_in_order(view);
-            let mut inherited = vec![false; graph.edge_count()];
+            let mut inherited = EdgeSet::new(graph.edge_count());
             let mut routes = Vec::new();
             for (index, mut setup) in phase_setups(view, graph).into_iter().enumerate() {
                 network.phase = index as u32;
@@ -73,9 +74,7 @@ fn mode_routes(
                 for (_, path) in &done.routes {
                     network.add_path(path);
                 }
-                for (old, new) in inherited.iter_mut().zip(&done.used) {
-                    *old |= *new;
-                }
+                inherited.union_with(&done.used);
                 routes = done.routes;
             }
             Ok(routes)
@@ -132,7 +131,7 @@ fn phase_setups<'a>(view: &SkeletonView<'a>, graph: &CostGraph) -> Vec<PhaseSetu
         .iter()
         .map(|phase| PhaseSetup {
             springs: springs.iter().filter(|s| phase.springs.iter().any(|n| n == s.name)).copied().collect(),
-            inherited: Vec::new(),
+            inherited: EdgeSet::default(),
             inherited_cost: phase.inherited_cost,
             weights: phase.weights.clone(),
         })

@@ -34,6 +34,7 @@ use crate::error::SkeletonError;
 use crate::modes::karstnsim::mark_used;
 use crate::network::assemble::NetworkBuilder;
 use crate::network::nodes::is_phreatic;
+use crate::route::edge_set::EdgeSet;
 use crate::route::ends::{End, chosen_springs, ends, sample_of, sinks_in_order};
 use crate::route::search::{Tree, ZonedCohesive, astar, dijkstra, min_cost_per_metre};
 use crate::view::SkeletonView;
@@ -127,7 +128,7 @@ fn draw_paths(
         samples.positions.iter().map(|&q| is_phreatic(view.geology, DVec3::from_array(q))).collect();
     let per_metre =
         min_cost_per_metre(graph, &samples.positions) * p.cohesion_vadose.min(p.cohesion_phreatic);
-    let mut used = vec![false; graph.edge_count()];
+    let mut used = EdgeSet::new(graph.edge_count());
     for (a, b) in order {
         let costs = ZonedCohesive {
             base: graph,

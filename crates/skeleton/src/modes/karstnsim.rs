@@ -35,6 +35,7 @@ use crate::Route;
 use crate::error::SkeletonError;
 use crate::route::ahead::Ahead;
 use crate::route::cohesion_bound::{CohesionBound, NetworkDistance};
+use crate::route::edge_set::EdgeSet;
 use crate::route::ends::{End, candidate_springs, chosen_springs, ends, sample_of, sinks_in_order};
 use crate::route::search::{Cohesive, EdgeCosts, Tree, astar_to_set, min_cost_per_metre};
 use crate::route::spring_distance::{InEdges, LEGS_WORTH_THE_COSTS, costs_to};
@@ -48,7 +49,7 @@ pub struct PhaseSetup<'a> {
     /// The springs active in the phase.
     pub springs: Vec<End<'a>>,
     /// Edges used by the conduits of the earlier phases.
-    pub inherited: Vec<bool>,
+    pub inherited: EdgeSet,
     /// Cost factor of those edges.
     pub inherited_cost: f64,
     /// Sink weights during the phase, by name (others keep their own).
@@ -60,7 +61,7 @@ impl<'a> PhaseSetup<'a> {
     pub fn single(view: &SkeletonView<'a>, graph: &CostGraph) -> Self {
         PhaseSetup {
             springs: ends(view, KeyPointKind::Spring),
-            inherited: vec![false; graph.edge_count()],
+            inherited: EdgeSet::new(graph.edge_count()),
             inherited_cost: 1.0,
             weights: BTreeMap::new(),
         }
@@ -77,7 +78,7 @@ struct Leg {
 /// The routes of one phase and the edges its conduits use.
 pub struct PhaseRoutes {
     pub routes: Vec<(Route, Vec<usize>)>,
-    pub used: Vec<bool>,
+    pub used: EdgeSet,
 }
 
 /// Routes `sinks` (in this order) to their springs in `phase`; returns each route with its
@@ -160,7 +161,7 @@ fn route_sinks<'g>(
     (to_springs, ahead): (&mut SpringCosts, Option<&Ahead>),
 ) -> Result<PhaseRoutes, SkeletonError> {
     let springs = &phase.springs;
-    let mut used = vec![false; graph.edge_count()];
+    let mut used = EdgeSet::new(graph.edge_count());
     let mut per_metre: BTreeMap<String, f64> = BTreeMap::new();
     let mut routes = Vec::new();
     // The network's samples so far, for the phreatic searches' bound (cohesion_bound.rs).
@@ -327,7 +328,7 @@ fn leg(
     view: &SkeletonView,
     samples: &Samples,
     costs: &dyn EdgeCosts,
-    used: &[bool],
+    used: &EdgeSet,
     known: Known,
     per_metre: f64,
     table: &Surface,
@@ -393,14 +394,14 @@ fn depth_bound(table: &Surface, p: DVec3) -> f64 {
 }
 
 /// Marks `edges` and their reverse edges used.
-pub fn mark_used(graph: &CostGraph, edges: &[usize], used: &mut [bool]) {
+pub fn mark_used(graph: &CostGraph, edges: &[usize], used: &mut EdgeSet) {
     for &e in edges {
-        used[e] = true;
+        used.insert(e);
         let v = graph.targets[e] as usize;
         let u = graph.offsets.partition_point(|&o| o as usize <= e) - 1;
         let first = graph.offsets[v] as usize;
         if let Some(j) = graph.out_edges(v).position(|(t, _)| t == u) {
-            used[first + j] = true;
+            used.insert(first + j);
         }
     }
 }

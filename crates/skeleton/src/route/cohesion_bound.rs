@@ -293,6 +293,7 @@ impl CohesionBound<'_> {
 mod tests {
     use super::*;
     use crate::modes::karstnsim::mark_used;
+    use crate::route::edge_set::EdgeSet;
     use crate::route::search::{Cohesive, EdgeCosts, astar_to_set, dijkstra, min_cost_per_metre};
     use crate::route::spring_distance::{InEdges, costs_to};
     use karst_costgraph::CostGraph;
@@ -346,7 +347,7 @@ mod tests {
         let graph = neighbour_graph(&mut rng, &positions);
         let per_metre = min_cost_per_metre(&graph, &positions);
         let factor = 0.3;
-        let mut used = vec![false; graph.edge_count()];
+        let mut used = EdgeSet::new(graph.edge_count());
         let mut field = NetworkDistance::with_reach(&positions, 15.0);
         let targets = [3, 250, 511, 698];
         let in_edges = InEdges::of(&graph);
@@ -397,7 +398,7 @@ mod tests {
             mark_used(&graph, &edges, &mut used);
             field.add(&path);
         }
-        assert!(used.iter().filter(|u| **u).count() > 10);
+        assert!((0..graph.edge_count()).filter(|&e| used.contains(e)).count() > 10);
     }
 
     #[test]

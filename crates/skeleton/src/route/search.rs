@@ -28,6 +28,8 @@ use glam::DVec3;
 use karst_costgraph::CostGraph;
 use rayon::prelude::*;
 
+use crate::route::edge_set::EdgeSet;
+
 use crate::route::ahead::{Ahead, HINT_EVERY, HINTED};
 
 /// No predecessor.
@@ -62,17 +64,17 @@ pub struct Direct<'a> {
     pub layers: [Option<Layer<'a>>; 2],
 }
 
-/// A cohesion layer: edges marked in `used` cost `factor` times more (P_red < 1: less).
+/// A cohesion layer: the edges in `used` cost `factor` times more (P_red < 1: less).
 #[derive(Clone, Copy)]
 pub struct Layer<'a> {
-    pub used: &'a [bool],
+    pub used: &'a EdgeSet,
     pub factor: f64,
 }
 
 impl Layer<'_> {
     #[inline]
     fn apply(&self, edge: usize, cost: f64) -> f64 {
-        if self.used[edge] { cost * self.factor } else { cost }
+        if self.used.contains(edge) { cost * self.factor } else { cost }
     }
 }
 
@@ -144,10 +146,10 @@ impl EdgeCosts for CostSetOf<'_> {
 }
 
 /// A cost set whose edges already used by the network cost `factor` times less (KarstNSim's
-/// cohesion P_red, §1.4 and §4.5): `used[edge]` marks them.
+/// cohesion P_red, §1.4 and §4.5): `used` holds them.
 pub struct Cohesive<'a> {
     pub base: &'a dyn EdgeCosts,
-    pub used: &'a [bool],
+    pub used: &'a EdgeSet,
     pub factor: f64,
 }
 
@@ -157,7 +159,9 @@ impl EdgeCosts for Cohesive<'_> {
     }
 
     fn for_each_out(&self, node: usize, f: &mut dyn FnMut(usize, usize, f64)) {
-        self.base.for_each_out(node, &mut |e, t, c| f(e, t, if self.used[e] { c * self.factor } else { c }));
+        self.base.for_each_out(node, &mut |e, t, c| {
+            f(e, t, if self.used.contains(e) { c * self.factor } else { c })
+        });
     }
 
     fn direct(&self) -> Option<Direct<'_>> {
@@ -172,7 +176,7 @@ impl EdgeCosts for Cohesive<'_> {
 /// their cost, used edges out of a vadose node `factors[0]` times.
 pub struct ZonedCohesive<'a> {
     pub base: &'a dyn EdgeCosts,
-    pub used: &'a [bool],
+    pub used: &'a EdgeSet,
     pub phreatic: &'a [bool],
     pub factors: [f64; 2],
 }
@@ -184,7 +188,8 @@ impl EdgeCosts for ZonedCohesive<'_> {
 
     fn for_each_out(&self, node: usize, f: &mut dyn FnMut(usize, usize, f64)) {
         let factor = self.factors[usize::from(self.phreatic[node])];
-        self.base.for_each_out(node, &mut |e, t, c| f(e, t, if self.used[e] { c * factor } else { c }));
+        self.base
+            .for_each_out(node, &mut |e, t, c| f(e, t, if self.used.contains(e) { c * factor } else { c }));
     }
 }
 
@@ -640,8 +645,8 @@ mod tests {
     #[test]
     fn cohesion_makes_used_edges_attractive() {
         let (graph, _) = line_graph();
-        let mut used = vec![false; graph.edge_count()];
-        used[2] = true; // 0 → 3 direct, 5 × 0.1 = 0.5
+        let mut used = EdgeSet::new(graph.edge_count());
+        used.insert(2); // 0 → 3 direct, 5 × 0.1 = 0.5
         let cohesive = Cohesive { base: &graph, used: &used, factor: 0.1 };
         let tree = dijkstra(&cohesive, 0, &[3]);
         assert_eq!(tree.path(3), Some(vec![0, 3]));

@@ -98,6 +98,7 @@ pub fn costs_to(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::route::edge_set::EdgeSet;
     use crate::route::search::{Cohesive, EdgeCosts, dijkstra};
     use karst_scene::rng::Random;
 
@@ -122,7 +123,12 @@ mod tests {
     fn the_least_costs_to_a_spring_are_each_samples_dijkstra_cost() {
         let mut rng = Random::stream(8, "test", "spring-distance");
         let graph = random_graph(&mut rng, 300);
-        let inherited: Vec<bool> = (0..graph.edge_count()).map(|_| rng.range(0.0, 1.0) < 0.2).collect();
+        let mut inherited = EdgeSet::new(graph.edge_count());
+        for e in 0..graph.edge_count() {
+            if rng.range(0.0, 1.0) < 0.2 {
+                inherited.insert(e);
+            }
+        }
         let costs = Cohesive { base: &graph, used: &inherited, factor: 1.0 };
         let in_edges = InEdges::of(&graph);
         let discounted = Cohesive { base: &graph, used: &inherited, factor: 0.5 };
