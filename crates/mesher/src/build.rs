@@ -19,9 +19,9 @@ use crate::payload::{Mesh, SurfaceCounts};
 use crate::polygonize::{polygonize, polygonize_into};
 use crate::simplify::simplify;
 use crate::spilled::{self, SpilledSurface};
+use crate::terrain::{polygonize_terrain, polygonize_terrain_into};
 use crate::view::MesherView;
 use crate::volume::{Cave, Water};
-use crate::warp::{polygonize_terrain, polygonize_terrain_into};
 
 /// The meshes of `model` under the scene's `[mesher]` cells, the sinks and springs kept open.
 pub fn build(view: &MesherView, model: &SdfModel) -> Result<Mesh, MesherError> {
