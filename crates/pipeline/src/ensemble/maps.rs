@@ -25,6 +25,7 @@ use karst_skeleton::Skeleton;
 use karst_stage::StageError;
 
 use super::record::Figures;
+use crate::options::OptionError;
 
 /// The rasters' grid and where it lies, as `ensemble.json` records it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -64,8 +65,8 @@ impl MapGrid {
 }
 
 /// A depth band `MIN..MAX` (metres below ground, MIN ≤ MAX), as `--depth-band` takes it.
-pub fn parse_depth_band(text: &str) -> Result<[f64; 2], String> {
-    let bad = || format!("--depth-band: \"{text}\" is not MIN..MAX in metres below ground (e.g. 0..50)");
+pub fn parse_depth_band(text: &str) -> Result<[f64; 2], OptionError> {
+    let bad = || OptionError::new("--depth-band", text, "not MIN..MAX in metres below ground (e.g. 0..50)");
     let (min, max) = text.split_once("..").ok_or_else(bad)?;
     let parse = |v: &str| v.trim().parse::<f64>().ok().filter(|v| v.is_finite());
     match (parse(min), parse(max)) {
@@ -130,7 +131,7 @@ mod tests {
         assert_eq!(parse_depth_band("0..50"), Ok([0.0, 50.0]));
         assert_eq!(parse_depth_band(" 10.5 .. 20 "), Ok([10.5, 20.0]));
         for bad in ["50..0", "0-50", "a..b", "..", "0..inf"] {
-            assert!(parse_depth_band(bad).unwrap_err().contains("--depth-band"), "{bad}");
+            assert!(parse_depth_band(bad).unwrap_err().to_string().contains("--depth-band"), "{bad}");
         }
     }
 }
