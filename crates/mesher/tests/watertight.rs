@@ -346,19 +346,24 @@ fn a_conduit_thinner_than_the_automatic_cave_cell_is_meshed_one_cell_thick_and_w
     assert!(missed_reach < d[1], "a 2 m lattice should miss most of the 0.3 m conduit: {missed_reach}");
 }
 
-/// A 120 × 100 m heightfield of 8 m pixels (two hills and a valley), a conduit that opens in
-/// the valley floor and a sealed one deep below.
-fn raster_model() -> SdfModel {
-    let (nx, ny) = (17u32, 15u32);
+/// An `nx` × `ny` heightfield of 8 m pixels centred on the domain's 8 m grid: hills and
+/// valleys about 30 m up, rising by `slope` towards +x.
+fn hills(nx: u32, ny: u32, slope: f64) -> karst_geology::heightfield::HeightGrid {
     let heights = (0..ny)
         .flat_map(|j| {
             (0..nx).map(move |i| {
                 let (x, y) = (i as f64 * 8.0, j as f64 * 8.0);
-                30.0 + 6.0 * (x / 25.0).sin() * (y / 31.0).cos() + 0.04 * x
+                30.0 + 6.0 * (x / 25.0).sin() * (y / 31.0).cos() + slope * x
             })
         })
         .collect();
-    let grid = karst_geology::heightfield::HeightGrid::new([-4.0, -4.0], 8.0, nx, ny, heights);
+    karst_geology::heightfield::HeightGrid::new([-4.0, -4.0], 8.0, nx, ny, heights)
+}
+
+/// A 120 × 100 m heightfield of 8 m pixels (two hills and a valley), a conduit that opens in
+/// the valley floor and a sealed one deep below.
+fn raster_model() -> SdfModel {
+    let grid = hills(17, 15, 0.04);
     SdfModel {
         capsules: vec![
             Capsule { a: [60.0, 50.0, 40.0], b: [62.0, 48.0, 15.0], radius: 2.0 },
@@ -423,16 +428,7 @@ fn a_raster_terrain_is_meshed_coarsely_away_from_its_openings_and_stays_closed()
 
 /// A 320 × 240 m heightfield of 8 m pixels and vertical shafts opening at `openings`.
 fn raster_with_shafts(openings: &[[f64; 2]]) -> SdfModel {
-    let (nx, ny) = (42u32, 32u32);
-    let heights = (0..ny)
-        .flat_map(|j| {
-            (0..nx).map(move |i| {
-                let (x, y) = (i as f64 * 8.0, j as f64 * 8.0);
-                30.0 + 6.0 * (x / 25.0).sin() * (y / 31.0).cos() + 0.02 * x
-            })
-        })
-        .collect();
-    let grid = karst_geology::heightfield::HeightGrid::new([-4.0, -4.0], 8.0, nx, ny, heights);
+    let grid = hills(42, 32, 0.02);
     SdfModel {
         capsules: openings
             .iter()
