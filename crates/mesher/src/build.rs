@@ -15,6 +15,7 @@ use karst_stage::ArtifactOut;
 use crate::cell::{cave_cells, thickened};
 use crate::cleanup::{Solid, clean};
 use crate::error::MesherError;
+use crate::estimate::{self, Work};
 use crate::payload::{Mesh, SurfaceCounts};
 use crate::polygonize::{polygonize, polygonize_into};
 use crate::simplify::simplify;
@@ -49,14 +50,22 @@ pub fn meshed_field(model: &SdfModel, cave_cell: f64) -> CarvedTerrain {
     CarvedTerrain::new(thickened(model, cave_cell).unwrap_or_else(|| model.clone()))
 }
 
-/// The cave cell of the scene's `[mesher]`, once both cells and the work they make are checked.
+/// The cave cell of the scene's `[mesher]`, once both cells and the work they make are checked:
+/// against the memory budget, and against the run's output budget when it has one (the
+/// estimate line is then printed on stderr, as `karstgen run` shows it before the mesher runs).
 fn checked_cells(view: &MesherView, model: &SdfModel) -> Result<f64, MesherError> {
     let params = view.mesher;
     check_lattice(model, "mesher.cell_size", params.cell_size)?;
     let cave_of = cave_cells(model, params.cave_cell_size);
     let cave_cell = cave_of(params.cell_size);
     check_lattice(model, "mesher.cave_cell_size", cave_cell)?;
-    crate::estimate::check(view.budget, model, params.cell_size, &cave_of)?;
+    // One estimate for both budgets: the run's output, printed before any cell is evaluated,
+    // and the memory peak.
+    let work = Work::at(model, params.cell_size, cave_cell);
+    if let Some(output) = view.output_budget {
+        eprintln!("{}", estimate::held_to(output, &work, params.cell_size)?);
+    }
+    estimate::check(view.budget, &work, model, params.cell_size, &cave_of)?;
     Ok(cave_cell)
 }
 

@@ -17,6 +17,13 @@ pub enum MesherError {
     /// The streamed stage could not write its spill files or its artifact.
     #[error("cannot write the mesh: {0}")]
     Write(String),
+    /// mesh.bin would pass the run's output budget (`karstgen run --budget`).
+    #[error(
+        "the mesher would make {estimate}, more than the budget of {budget}: raise mesher.cell_size \
+         or mesher.cave_cell_size (the bytes grow as 1 / cell²) to lower it, or run with --budget MB \
+         to allow it"
+    )]
+    OverOutput { estimate: String, budget: String },
     #[error(transparent)]
     OverBudget(#[from] karst_scene::budget::OverBudget),
 }
@@ -24,9 +31,10 @@ pub enum MesherError {
 impl Failure for MesherError {
     fn blame(&self) -> Blame {
         match self {
-            MesherError::LatticeTooFine { .. } | MesherError::Empty { .. } | MesherError::OverBudget(_) => {
-                Blame::Scene
-            }
+            MesherError::LatticeTooFine { .. }
+            | MesherError::Empty { .. }
+            | MesherError::OverOutput { .. }
+            | MesherError::OverBudget(_) => Blame::Scene,
             MesherError::Write(_) => Blame::Internal,
         }
     }

@@ -1,6 +1,7 @@
 //! The mesher's work estimate, made before any cell is evaluated: [`Work`] (surface cells,
 //! triangles and the bytes of mesh.bin, held against the output budget of a run) and
-//! [`check`] (the memory peak, held against the memory budget). About 2 triangles come per
+//! [`check`] (the memory peak, held against the memory budget); both from one estimate per
+//! run, and [`held_to`] holds the bytes to a run's output budget. About 2 triangles come per
 //! cell² of the surface areas estimated here, counted at 2.5, and a triangle costs about 64
 //! bytes at the peak (its share of the vertices, the bricks and the cleanup; measured in
 //! BENCHMARKS.md, "mesher"). The surfaces: the carved terrain at `cell_size` (the ground, the
@@ -9,10 +10,12 @@
 //! The cave's tortuous conduits are overlapping spheres: their union's area is probed, not
 //! summed ([`Spheres::union_area`]).
 
-use karst_scene::budget::{Budget, Cheaper, Estimate, OverBudget};
+use karst_scene::budget::{Budget, Cheaper, Estimate, OverBudget, bytes};
+use karst_scene::output_budget::OutputBudget;
 use karst_sdf::{CarvedTerrain, SdfModel};
 use rayon::prelude::*;
 
+use crate::error::MesherError;
 use crate::spheres::Spheres;
 use crate::terrain_lattice::{TerrainLattice, coarse_cell};
 
@@ -182,17 +185,17 @@ fn ground_cells(model: &SdfModel, xs: &[f64], ys: &[f64], zs: &[f64]) -> f64 {
 }
 
 /// Refuses lattices whose meshes would not fit in the memory budget, naming the cell that
-/// drives the estimate; `cave_of` gives the cave cell of a terrain cell. The triangles are
-/// [`Work::at`]'s (the carved terrain counted on its terrain lattice when it has one), each
-/// [`BYTES_PER_TRIANGLE`] at the peak.
+/// drives the estimate; `work` is [`Work::at`] `cell` and its cave cell (the carved terrain
+/// counted on its terrain lattice when it has one), each triangle [`BYTES_PER_TRIANGLE`] at
+/// the peak; `cave_of` gives the cave cell of a terrain cell, for the cell that would fit.
 pub fn check(
     budget: Budget,
+    work: &Work,
     model: &SdfModel,
     cell: f64,
     cave_of: impl Fn(f64) -> f64,
 ) -> Result<(), OverBudget> {
     let cave = cave_of(cell);
-    let work = Work::at(model, cell, cave);
     let peak = |w: Work| w.triangles * BYTES_PER_TRIANGLE;
     let triangles = format!("{:.2e} triangles", work.triangles);
     // The terrain's cell is to blame when its triangles dominate, or when the automatic cave
@@ -200,15 +203,34 @@ pub fn check(
     let cave_follows_cell = cave_of(2.0 * cell) != cave;
     if cave_follows_cell || work.terrain_triangles >= work.triangles - work.terrain_triangles {
         let estimate =
-            Estimate { what: triangles, bytes: peak(work), field: "mesher.cell_size".into(), value: cell };
+            Estimate { what: triangles, bytes: peak(*work), field: "mesher.cell_size".into(), value: cell };
         budget.check(estimate, Cheaper::Larger, false, |c| peak(Work::at(model, c, cave_of(c))))
     } else {
         let estimate = Estimate {
             what: triangles,
-            bytes: peak(work),
+            bytes: peak(*work),
             field: "mesher.cave_cell_size".into(),
             value: cave,
         };
         budget.check(estimate, Cheaper::Larger, false, |c| peak(Work::at(model, cell, c)))
     }
+}
+
+/// Holds `work` at terrain cell `cell` to a run's output budget: the line a run prints before
+/// the mesher starts, or the refusal (with the estimate and what lowers or raises it) when
+/// mesh.bin would pass the budget. Bytes, not seconds: a refusal does not depend on the
+/// machine's speed.
+pub fn held_to(budget: OutputBudget, work: &Work, cell: f64) -> Result<String, MesherError> {
+    let estimate = format!(
+        "about {:.2e} surface cells, {:.2e} triangles ({:.2e} of the terrain), {} of meshes at \
+         mesher.cell_size = {cell} m",
+        work.cells,
+        work.triangles,
+        work.terrain_triangles,
+        bytes(work.bytes),
+    );
+    if work.bytes > budget.bytes {
+        return Err(MesherError::OverOutput { estimate, budget: bytes(budget.bytes) });
+    }
+    Ok(format!("{:<10} estimate    {estimate} (budget {})", "mesher", bytes(budget.bytes)))
 }

@@ -1,6 +1,7 @@
-//! The output budget of a run: before the mesher runs, its work is estimated from sdf.bin and
-//! the scene's cells ([`karst_mesher::Work`]: surface cells, triangles, bytes of the meshes) and
-//! printed; before the export runs, the bytes of each of its formats are estimated from the
+//! The output budget of a run: the mesher holds its own work estimate to it (the run sets it on
+//! the scene, [`karst_scene::Scene::set_output_budget`]; [`karst_mesher::Work`]: surface cells,
+//! triangles, bytes of the meshes, printed before it starts, the same estimate as its memory
+//! check); before the export runs, the bytes of each of its formats are estimated from the
 //! counts of the artifacts ([`karst_export::estimate`]) and printed, and held with mesh.bin's
 //! size against the same budget. Beyond the budget (`karstgen run --budget MB`, default
 //! [`DEFAULT_OUTPUT_MB`]) the run stops with exit code 2, the estimate and the fields and flag
@@ -11,43 +12,14 @@ use karst_artifact::{StageId, read_artifact};
 use karst_export::ExportView;
 use karst_export::estimate::{Counts, Estimate, raster_pixels};
 use karst_mesher::Mesh;
-use karst_mesher::{MesherView, Work};
 use karst_sampling::Samples;
 use karst_scene::SceneView;
 use karst_scene::budget::bytes;
-use karst_sdf::SdfModel;
 use karst_skeleton::Skeleton;
 use karst_stage::{Job, StageError};
 use karst_streams::Streams;
 
 pub use karst_scene::output_budget::{DEFAULT_OUTPUT_MB, OutputBudget};
-
-/// The mesher's work on the scene of `job` and the sdf.bin of its folder, as the line printed
-/// before the mesher runs; a bad-input error (exit 2) when it is beyond `budget`.
-pub fn check_mesher(job: &Job, budget: OutputBudget) -> Result<String, StageError> {
-    let (_, model) = read_artifact::<SdfModel>(&job.artifact(StageId::Sdf))?;
-    let view = MesherView::of(job.scene);
-    let work = Work::of(&view, &model);
-    let estimate = format!(
-        "about {:.2e} surface cells, {:.2e} triangles ({:.2e} of the terrain), {} of meshes at \
-         mesher.cell_size = {} m",
-        work.cells,
-        work.triangles,
-        work.terrain_triangles,
-        bytes(work.bytes),
-        view.mesher.cell_size
-    );
-    if work.bytes > budget.bytes {
-        return Err(StageError::scene(format!(
-            "{}: the mesher would make {estimate}, more than the budget of {}: raise mesher.cell_size \
-             or mesher.cave_cell_size (the bytes grow as 1 / cell²) to lower it, or run with --budget MB \
-             to allow it",
-            job.scene_path.display(),
-            bytes(budget.bytes)
-        )));
-    }
-    Ok(format!("{:<10} estimate    {estimate} (budget {})", "mesher", bytes(budget.bytes)))
-}
 
 /// The export's work on the artifacts of `job`'s folder, as the line printed before the export
 /// runs; a bad-input error (exit 2) when mesh.bin and the exports would pass `budget`.

@@ -24,7 +24,8 @@ pub struct Selection {
     pub to: Option<StageId>,
     /// Run every stage, even when up to date.
     pub force: bool,
-    /// What the outputs may take (`--budget`): the mesher's estimate is held against it.
+    /// What the outputs may take (`--budget`): the mesher holds its estimate to it (set on the
+    /// run's scene) and the export its own, before either writes anything.
     pub budget: OutputBudget,
 }
 
@@ -86,7 +87,9 @@ pub fn run(
     // Each stage takes the payloads it reads from the stage before it when they are still in
     // memory, instead of reading back the artifacts just written.
     let handoff = Handoff::new();
-    let job = Job { handoff: Some(&handoff), ..Job::new(&scene.path, &scene.scene, out) };
+    let mut held = scene.scene.clone();
+    held.set_output_budget(selection.budget);
+    let job = Job { handoff: Some(&handoff), ..Job::new(&scene.path, &held, out) };
     let mut reports = Vec::new();
     for stage in StageId::ALL {
         handoff.begin(stage);
@@ -96,9 +99,6 @@ pub fn run(
         } else if !forced(stage, selection) && up_to_date(&job, stage) {
             Outcome::UpToDate
         } else {
-            if stage == StageId::Mesher {
-                eprintln!("{}", crate::budget::check_mesher(&job, selection.budget)?);
-            }
             if stage == StageId::Export {
                 eprintln!("{}", crate::budget::check_export(&job, selection.budget)?);
             }

@@ -71,6 +71,10 @@ pub struct Scene {
     /// The memory the stages may plan to use: set by the command line, in no key.
     #[serde(skip)]
     pub(crate) budget: crate::budget::Budget,
+    /// The bytes the run's meshes and exports may take, when a run holds them to it (`karstgen
+    /// run --budget`): set by the command line, in no key.
+    #[serde(skip)]
+    pub(crate) output_budget: Option<crate::output_budget::OutputBudget>,
 }
 
 /// `[connectivity]`: which sink may drain to which spring.
@@ -204,6 +208,17 @@ impl Scene {
     /// Sets the memory budget (`--max-memory`).
     pub fn set_budget(&mut self, budget: crate::budget::Budget) {
         self.budget = budget;
+    }
+
+    /// The output budget the mesher holds its estimate to, when the run has one.
+    pub fn output_budget(&self) -> Option<crate::output_budget::OutputBudget> {
+        self.output_budget
+    }
+
+    /// Sets the output budget (`karstgen run --budget`): the mesher then prints its estimate
+    /// before it starts and refuses work beyond it.
+    pub fn set_output_budget(&mut self, budget: crate::output_budget::OutputBudget) {
+        self.output_budget = Some(budget);
     }
 
     /// The coordinate reference system (`crs = "EPSG:2154"`), when the scene names one. Like

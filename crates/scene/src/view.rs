@@ -8,8 +8,9 @@
 //! sections the key hashes ([`SceneView::SECTIONS`]) is generated from the same field list as
 //! the struct, so what a stage can read and what its key covers cannot differ.
 //!
-//! Every view also carries what is no section: the memory budget (`--max-memory`, in no key:
-//! it decides whether a stage refuses, never what it writes) and the local frame (origin and
+//! Every view also carries what is no section: the memory budget (`--max-memory`) and the
+//! output budget of a run (`karstgen run --budget`), both in no key (they decide whether a
+//! stage refuses, never what it writes), and the local frame (origin and
 //! CRS, in every key: see `karst_artifact::stages::stage_key`).
 
 use serde::Serialize;
@@ -214,6 +215,9 @@ macro_rules! view {
             )*
             /// The memory the stage may plan to use (`--max-memory`): no section, in no key.
             pub budget: $crate::budget::Budget,
+            /// The bytes the run's meshes and exports may take (`karstgen run --budget`), when
+            /// the run holds them to it: no section, in no key.
+            pub output_budget: Option<$crate::output_budget::OutputBudget>,
             /// The local frame the artifacts record (origin and CRS): no section, in every key.
             pub frame: &$s $crate::view::Frame,
         }
@@ -226,6 +230,7 @@ macro_rules! view {
                 $name {
                     $($field: <$crate::view::part::$part as $crate::view::Part<$s>>::of(scene),)*
                     budget: scene.budget(),
+                    output_budget: scene.output_budget(),
                     frame: scene.frame(),
                 }
             }

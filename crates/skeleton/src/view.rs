@@ -43,6 +43,7 @@ impl<'s> SkeletonView<'s> {
             costgraph: self.costgraph,
             forced_links: &self.skeleton.forced_links,
             budget: self.budget,
+            output_budget: self.output_budget,
             frame: self.frame,
         }
     }
