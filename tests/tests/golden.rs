@@ -1,8 +1,13 @@
 //! The tiny scene's artifacts are pinned in fixtures/golden/tiny: a change in any stage's output
-//! shows here (rerun `cargo xtask bless` and explain the change in the commit).
+//! shows here (rerun `cargo xtask bless` and explain the change in the commit). With `[sdf]
+//! passage_detail = "off"` its skeleton and sdf are pinned in fixtures/golden/tiny-off: the
+//! artifacts of karstgen before passage detail, which `off` promises byte for byte (rerun with
+//! `KARSTGEN_BLESS_OFF=1` to rewrite them, and say why in the commit).
 
+use karst_artifact::StageId;
 use karst_pipeline::diff;
-use karstgen_tests::{artifacts, root, run_with_threads, scratch};
+use karst_pipeline::make::Selection;
+use karstgen_tests::{artifacts, root, run, run_with_threads, scratch};
 
 #[test]
 fn tiny_scene_matches_the_golden_artifacts() {
@@ -17,6 +22,31 @@ fn tiny_scene_matches_the_golden_artifacts() {
         }
     }
     assert!(failures.is_empty(), "artifacts differ from the goldens:\n{}", failures.join("\n"));
+}
+
+#[test]
+fn passage_detail_off_writes_the_skeleton_and_sdf_of_before() {
+    let out = scratch("golden-off");
+    let text = std::fs::read_to_string(root().join("fixtures/scenes/tiny.toml")).unwrap();
+    assert!(!text.contains("\n[sdf]"), "tiny has its own [sdf]: set passage_detail in it");
+    let scene = out.join("tiny-off.toml");
+    std::fs::write(&scene, format!("{text}\n[sdf]\npassage_detail = \"off\"\n")).unwrap();
+    run(&scene, &out, &Selection { to: Some(StageId::Sdf), ..Selection::default() }).unwrap();
+    let golden = root().join("fixtures/golden/tiny-off");
+    let bless = std::env::var_os("KARSTGEN_BLESS_OFF").is_some();
+    for stage in [StageId::Skeleton, StageId::Sdf] {
+        let (pinned, made) = (golden.join(stage.file_name()), out.join(stage.file_name()));
+        if bless {
+            std::fs::copy(&made, &pinned).unwrap();
+        }
+        assert!(
+            std::fs::read(&pinned).unwrap() == std::fs::read(&made).unwrap(),
+            "{} with passage_detail = \"off\" differs from {}:\n{}",
+            stage.file_name(),
+            pinned.display(),
+            diff::diff(&pinned, &made, 1e-9).unwrap().summary()
+        );
+    }
 }
 
 #[test]

@@ -7,6 +7,8 @@
 //! Every network preset (these and the default scene) must stay inside the ten real-cave ranges
 //! of karstnet's metrics (Collon et al. 2017), and agree with fixtures/metrics/<preset>.json,
 //! the values the README's table shows (`cargo xtask metrics-table --write` rewrites both).
+//! Their passages, surveyed on the carved geometry by the survey stage, must stay inside the
+//! nine ranges of the surveyed caves' cross-sections (fixtures/passages/passage-ranges.json).
 
 use std::sync::OnceLock;
 
@@ -16,6 +18,7 @@ use karst_metrics::{characterize, network_of};
 use karst_pipeline::make::Selection;
 use karst_scene::{KeyPointKind, Link, Scene, keypoints_of};
 use karst_skeleton::{ConduitType, Skeleton};
+use karst_survey::Survey;
 use karstgen_tests::{root, run, scratch};
 
 const PRESETS: [&str; 6] =
@@ -214,4 +217,30 @@ fn a_straight_conduit_is_outside_the_ranges() {
     skeleton.conduits = vec![conduit];
     let failures = range_failures("branchwork", &skeleton);
     assert!(failures.iter().any(|f| f.contains("outside the real caves")), "{failures:?}");
+}
+
+/// The nine statistics of the passages of `preset`'s default run (sampling to sdf, then the
+/// survey) that fall outside the surveyed caves' ranges.
+fn passage_failures(preset: &str) -> Vec<String> {
+    let out = scratch(&format!("passages-{preset}"));
+    let scene = root().join(format!("fixtures/scenes/{preset}.toml"));
+    run(&scene, &out, &Selection { to: Some(StageId::Sdf), ..Selection::default() }).unwrap();
+    run(&scene, &out, &Selection { only: Some(StageId::Survey), ..Selection::default() }).unwrap();
+    let (_, survey) = read_artifact::<Survey>(&out.join(StageId::Survey.file_name())).unwrap();
+    std::fs::remove_dir_all(&out).unwrap();
+    assert_eq!(survey.statistics.len(), 9, "{preset}: the survey's statistics");
+    survey
+        .statistics
+        .iter()
+        .filter(|(_, s)| !s.inside)
+        .map(|(name, s)| {
+            format!("{preset}: {name} = {:?} outside the surveyed caves' [{}, {}]", s.value, s.min, s.max)
+        })
+        .collect()
+}
+
+#[test]
+fn network_presets_passages_stay_inside_the_surveyed_caves_ranges() {
+    let failures: Vec<String> = NETWORK_PRESETS.iter().flat_map(|&preset| passage_failures(preset)).collect();
+    assert!(failures.is_empty(), "passages unlike the surveyed caves':\n{}", failures.join("\n"));
 }

@@ -28,10 +28,10 @@ pub struct SdfParams {
     pub chamber_scale: f64,
     /// Cui et al.'s bias b of the chamber walls, in (0, 0.5]: small hugs the foundation.
     pub chamber_bias: f64,
-    /// How much passage detail the cave gets (docs/sdf.md): `off` (the default, until full detail
-    /// fits the mesher's time and the SWMM export stays steady with it) keeps every conduit's size
-    /// and shape as the radius process gives them; `passages` and `full` vary the cross-sections
-    /// along each conduit as surveyed passages do.
+    /// How much passage detail the cave gets (docs/sdf.md): `full` (the default) and `passages`
+    /// vary the cross-sections along each conduit as surveyed passages do, `full` adding rough
+    /// walls, speleothems, breakdown and sediment floors; `off` keeps every conduit's size and
+    /// shape as the radius process gives them (the artifacts of karstgen before passage detail).
     pub passage_detail: PassageDetail,
     /// `full` only: amplitude of the rough-wall relief, as a fraction of the local passage
     /// radius (docs/sdf.md, "Rough walls").
@@ -77,11 +77,12 @@ pub const MAX_BREAKDOWN_BLOCKS: u32 = 200;
 pub enum PassageDetail {
     /// The sizes of the radius process alone, constant shapes: the artifacts karstgen wrote
     /// before passage detail existed, byte for byte.
-    #[default]
     Off,
     /// Cross-sections whose size and shape vary along each conduit (docs/skeleton.md).
     Passages,
-    /// `passages` with rough walls, speleothems, breakdown and sediment floors (docs/sdf.md).
+    /// `passages` with rough walls, speleothems, breakdown and sediment floors (docs/sdf.md):
+    /// the default.
+    #[default]
     Full,
 }
 
@@ -119,7 +120,7 @@ impl Default for SdfParams {
             detail_wavelength: 3.0,
             chamber_scale: 2.0,
             chamber_bias: 0.2,
-            passage_detail: PassageDetail::Off,
+            passage_detail: PassageDetail::Full,
             wall_relief: 0.12,
             wall_relief_max: 0.5,
             wall_wavelength: 4.0,

@@ -87,13 +87,13 @@ impl NetworkBuilder {
         let mut radii = ConduitRadii::new(view.skeleton, view.seed, nodes.len());
         let mut passages = view.passage_detail.varies().then(|| PassageProfiles::new(view.seed, nodes.len()));
         let junction = passages::junctions(&chains, nodes.len());
-        let flow = passages::flow_shares(&chains, &routes);
+        let flow = passages::flow_factors(&chains, &routes, &nodes);
         let at = |i: u32| Point::from_array(nodes[i as usize].position);
         let conduits = chains
             .into_iter()
             .zip(phases)
             .zip(flow)
-            .map(|((chain, phase), flow_share)| {
+            .map(|((chain, phase), flow)| {
                 let types: Vec<_> = chain.windows(2).map(|w| classify(view, at(w[0]), at(w[1]))).collect();
                 let ends = [chain[0], chain[chain.len() - 1]];
                 let keypoints = ends.iter().filter_map(|&i| nodes[i as usize].keypoint.clone()).collect();
@@ -107,7 +107,7 @@ impl NetworkBuilder {
                             types: &types,
                             radius: &radius,
                             junction,
-                            flow_share,
+                            flow,
                         };
                         let (profile, at_nodes) = passages.conduit(&passage);
                         radius = at_nodes;

@@ -29,7 +29,10 @@
 //!
 //! - flow: conduits grow with the discharge they carry (hydraulic geometry: a channel's width
 //!   grows as a power of its discharge); the share s of the routes' total weight through the
-//!   conduit gives the factor 0.6 + 0.5·√s, from dry tributaries (0.6) to the trunk (1.1);
+//!   conduit gives 0.6 + 0.5·√s, from dry tributaries (0.6) to the trunk (1.1), divided by the
+//!   length-weighted root mean square of these over the network ([`flow_factors`]): flow moves
+//!   size from the tributaries to the trunk, it does not shrink a cave of many tributaries (a
+//!   maze) below the size the radius process gives it;
 //! - junctions: where passages meet, mixing corrosion and the breakdown of the roof over the
 //!   wider span enlarge them: 1 + [`JUNCTION_WIDENING`]·exp(−d / r) within a few radii r of a
 //!   junction, d the distance along the conduit.
@@ -68,10 +71,12 @@ pub const TAIL: f64 = 0.1;
 pub const Z_MAX: f64 = 3.5;
 /// How much wider a passage is at a junction (a fraction of its size).
 pub const JUNCTION_WIDENING: f64 = 0.6;
-/// Smallest half-width and half-height, metres: a crawl a caver still passes, and a passage
-/// the mesher keeps open at a cave cell of half a metre or more (it meshes the conduits
-/// thinner than its cave cell one cell thick).
+/// Smallest half-width, metres: a squeeze a caver still passes sideways.
 pub const MIN_HALF_WIDTH: f64 = 0.5;
+/// Smallest half-height, metres: a bedding-plane crawl half a metre high, as surveys record
+/// them. The mesher keeps any passage open whatever its size: it meshes the conduits thinner
+/// than its cave cell one cell thick.
+pub const MIN_HALF_HEIGHT: f64 = 0.25;
 /// Fastest change of the half-width and of the half-height along a passage, metres per metre: a
 /// wall opens or closes at up to 45° to the passage. Rooms open and pinches close over metres,
 /// not within one profile spacing (breakdown and dissolution widen a passage gradually); at
@@ -116,8 +121,8 @@ pub struct ConduitPassage<'a> {
     pub radius: &'a [f64],
     /// Whether each node of the chain is a junction.
     pub junction: Vec<bool>,
-    /// The conduit's share of the routes' total weight, in [0, 1].
-    pub flow_share: f64,
+    /// The conduit's flow factor ([`flow_factors`]).
+    pub flow: f64,
 }
 
 /// Passage profiles, drawn in conduit order.
@@ -150,7 +155,7 @@ impl PassageProfiles {
             Some(s) => s,
             None => State { size: self.normal(), shape: self.normal() },
         };
-        let flow = 0.6 + 0.5 * c.flow_share.clamp(0.0, 1.0).sqrt();
+        let flow = c.flow;
         let mut profile = Vec::new();
         let mut node_points = Vec::with_capacity(c.chain.len());
         let mut last = 0.0;
@@ -213,7 +218,7 @@ fn point(at: f64, base: f64, state: State, bias: f64, factor: f64) -> ProfilePoi
     let ratio = (SHAPE_SPREAD * heavy(state.shape) + bias).exp().clamp(RATIO_LIMITS[0], RATIO_LIMITS[1]);
     let room = (ROOM * base * factor).max(MIN_HALF_WIDTH);
     let radius = (base * size * factor / ratio.sqrt()).clamp(MIN_HALF_WIDTH, room);
-    let height = (radius * ratio).clamp(MIN_HALF_WIDTH, room);
+    let height = (radius * ratio).clamp(MIN_HALF_HEIGHT, room);
     ProfilePoint { at, radius, ratio: height / radius }
 }
 
@@ -221,7 +226,8 @@ fn point(at: f64, base: f64, state: State, bias: f64, factor: f64) -> ProfilePoi
 /// metres per metre: each becomes the middle of its largest [`SLOPE`]-Lipschitz minorant and
 /// its smallest [`SLOPE`]-Lipschitz majorant (a forward and a backward pass each), the
 /// [`SLOPE`]-Lipschitz profile nearest the drawn one in the largest difference. Rooms then open
-/// and pinches close over several metres; both stay at least [`MIN_HALF_WIDTH`].
+/// and pinches close over several metres; they stay at least [`MIN_HALF_WIDTH`] and
+/// [`MIN_HALF_HEIGHT`].
 fn limit_slopes(profile: &mut [ProfilePoint]) {
     let at: Vec<f64> = profile.iter().map(|p| p.at).collect();
     let width = lipschitz_middle(&at, profile.iter().map(|p| p.radius).collect());
@@ -279,9 +285,25 @@ fn rms_size_factor() -> f64 {
         / std::f64::consts::TAU.sqrt().sqrt()
 }
 
+/// Each conduit's flow factor: 0.6 + 0.5·√s for its share s of the routes' total weight
+/// ([`flow_shares`]), divided by the root mean square of these factors over the network, each
+/// conduit weighted by its length, so that the network's mean cross-section area stays the
+/// radius process's (as [`rms_size_factor`] keeps it along a passage): the trunk is larger and
+/// the tributaries smaller than the radius process, the cave as a whole neither.
+pub fn flow_factors(chains: &[Vec<u32>], routes: &[Route], nodes: &[Node]) -> Vec<f64> {
+    let at = |i: u32| DVec3::from_array(nodes[i as usize].position);
+    let lengths: Vec<f64> =
+        chains.iter().map(|c| c.windows(2).map(|w| at(w[0]).distance(at(w[1]))).sum()).collect();
+    let factors: Vec<f64> =
+        flow_shares(chains, routes).iter().map(|s| 0.6 + 0.5 * s.clamp(0.0, 1.0).sqrt()).collect();
+    let total: f64 = lengths.iter().sum();
+    let mean_square = factors.iter().zip(&lengths).map(|(f, l)| f * f * l).sum::<f64>() / total;
+    if total > 0.0 { factors.iter().map(|f| f / mean_square.sqrt()).collect() } else { factors }
+}
+
 /// Each conduit's share of the routes' total weight: the weight of the routes through its
 /// first segment over the sum of all routes' weights (0 without routes).
-pub fn flow_shares(chains: &[Vec<u32>], routes: &[Route]) -> Vec<f64> {
+fn flow_shares(chains: &[Vec<u32>], routes: &[Route]) -> Vec<f64> {
     let mut through: HashMap<(u32, u32), f64> = HashMap::new();
     for route in routes {
         for w in route.nodes.windows(2) {
@@ -335,7 +357,7 @@ mod tests {
             types: &types,
             radius: &radius,
             junction: vec![false; n],
-            flow_share: 1.0,
+            flow: 1.1,
         };
         PassageProfiles::new(seed, n).conduit(&passage).0
     }
@@ -387,7 +409,7 @@ mod tests {
         // The profile's radius is 2 m and its flow factor 1.1.
         let room = ROOM * 2.0 * 1.1;
         assert!(p.iter().all(|q| q.radius <= room + 1e-9 && height(q) <= room + 1e-9));
-        assert!(p.iter().all(|q| q.radius >= MIN_HALF_WIDTH - 1e-12 && height(q) >= MIN_HALF_WIDTH - 1e-12));
+        assert!(p.iter().all(|q| q.radius >= MIN_HALF_WIDTH - 1e-12 && height(q) >= MIN_HALF_HEIGHT - 1e-12));
     }
 
     #[test]
@@ -430,7 +452,7 @@ mod tests {
                 types: &types,
                 radius: &radius,
                 junction,
-                flow_share: 0.0,
+                flow: 0.6,
             };
             PassageProfiles::new(1, 41).conduit(&passage).0
         };
@@ -459,6 +481,17 @@ mod tests {
         let routes = vec![route(vec![0, 1, 2], 3.0), route(vec![3, 1, 2], 1.0)];
         assert_eq!(flow_shares(&chains, &routes), vec![0.75, 1.0, 0.25]);
         assert_eq!(junctions(&chains, 4), vec![false, true, false, false]);
+        // Lengths 10, 10 and 20 m: the factors keep their ratios and a length-weighted mean
+        // square of 1.
+        let (mut nodes, _) = straight(4, 10.0);
+        nodes[3].position = [10.0, 20.0, 0.0];
+        let factors = flow_factors(&chains, &routes, &nodes);
+        let raw = [0.6 + 0.5 * 0.75f64.sqrt(), 1.1, 0.85];
+        let mean_square =
+            (10.0 * factors[0].powi(2) + 10.0 * factors[1].powi(2) + 20.0 * factors[2].powi(2)) / 40.0;
+        assert!((mean_square - 1.0).abs() < 1e-12, "{factors:?}");
+        assert!((factors[1] / factors[2] - raw[1] / raw[2]).abs() < 1e-12, "{factors:?}");
+        assert!((factors[0] / factors[1] - raw[0] / raw[1]).abs() < 1e-12, "{factors:?}");
     }
 
     #[test]
