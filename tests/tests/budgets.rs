@@ -118,14 +118,15 @@ fn a_mesher_cell_of_five_centimetres_is_refused_before_the_mesher_runs() {
 #[test]
 fn exports_beyond_the_budget_are_refused_before_a_file_is_written() {
     let out = scratch("export-budget");
-    // tiny's meshes are estimated at about 0.8 MiB (0.5 MB written) and its exports at about
-    // 1.4 MiB beside them: a 1.5 MB budget lets the mesher run and stops the export.
-    let budget = karst_pipeline::budget::OutputBudget::megabytes(1.5).unwrap();
+    // tiny's meshes (full passage detail) are estimated at about 4.9 MiB (3.1 MiB written) and
+    // its exports at about 5.6 MiB beside them: a 6.5 MB budget lets the mesher run and stops
+    // the export.
+    let budget = karst_pipeline::budget::OutputBudget::megabytes(6.5).unwrap();
     let selection = Selection { budget, ..Selection::default() };
     let err = run(&root().join("fixtures/scenes/tiny.toml"), &out, &selection).unwrap_err();
     assert_eq!(err.exit_code(), 2, "{err}");
     let message = err.to_string();
-    for part in ["the export would write about", "gltf", "beside", "of mesh.bin", "budget of 1.5"] {
+    for part in ["the export would write about", "gltf", "beside", "of mesh.bin", "budget of 6.5"] {
         assert!(message.contains(part), "{part}: {message}");
     }
     for advice in ["export.formats", "export.gltf_max_mb", "mesher.cell_size", "--budget MB"] {
@@ -155,7 +156,9 @@ fn the_6_km_real_terrain_case_is_estimated_within_the_default_budget_before_the_
     let work = karst_mesher::Work::of(&view, &model);
     let budget = karst_pipeline::budget::OutputBudget::default();
     assert!(work.bytes < budget.bytes, "{work:?} beyond {budget:?}");
-    // Its mesh and its glb (at most the gltf bound) leave room in the budget for the rest.
-    assert!(work.bytes < budget.bytes / 2.0, "{work:?}");
+    // Its mesh and its glb (at most the gltf bound) leave room in the budget for the rest: with
+    // the default passage detail the automatic cave cell is coarsened to half the budget
+    // (`Work::planned`), which the estimate then meets to the byte.
+    assert!(work.bytes <= budget.bytes / 2.0 * (1.0 + 1e-9), "{work:?}");
     fs::remove_dir_all(&out).unwrap();
 }

@@ -11,7 +11,8 @@
 //! summed ([`Spheres::union_area`]).
 
 use karst_scene::budget::{Budget, Cheaper, Estimate, OverBudget, bytes};
-use karst_scene::output_budget::OutputBudget;
+use karst_scene::budget::MB;
+use karst_scene::output_budget::{DEFAULT_OUTPUT_MB, OutputBudget};
 use karst_sdf::{CarvedTerrain, SdfModel};
 use rayon::prelude::*;
 
@@ -28,6 +29,10 @@ const BYTES_PER_TRIANGLE: f64 = 64.0;
 /// Bytes of mesh.bin per triangle: half a vertex (three f32) and three u32 indices, a little
 /// less once encoded (13.7 to 15.3 on the fixture scenes).
 const MESH_BYTES_PER_TRIANGLE: f64 = 15.0;
+
+/// The share of the default output budget the automatic cave cell leaves the meshes: the rest
+/// is the exports' (the glb alone may take a third of it).
+pub const MESH_SHARE: f64 = 0.5;
 /// Terrain samples per axis for its area.
 const SAMPLES: usize = 64;
 
@@ -101,8 +106,26 @@ impl Work {
     /// The work of meshing `model` under `view`'s `[mesher]` cells (the cave cell derived from
     /// the conduits when not set, as the mesher does).
     pub fn of(view: &MesherView, model: &SdfModel) -> Work {
-        let cell = view.mesher.cell_size;
-        Work::at(model, cell, crate::cell::cave_cell(model, cell, view.mesher.cave_cell_size))
+        Work::planned(model, view.mesher.cell_size, view.mesher.cave_cell_size).1
+    }
+
+    /// The cave cell the mesher uses at terrain cell `cell` (`requested` when positive) and its
+    /// work. The automatic cave cell ([`crate::cell::cave_cell`]) is coarsened when the meshes
+    /// would pass [`MESH_SHARE`] of the default output budget, so that a large scene's default
+    /// run keeps room for its exports: the cave's and the water's bytes grow as the inverse
+    /// square of their cell, and the conduits thinner than the coarser cell are still meshed a
+    /// cell thick, never closed (issue 40: the defaults adapt to the scene's extent).
+    pub fn planned(model: &SdfModel, cell: f64, requested: f64) -> (f64, Work) {
+        let cave = crate::cell::cave_cell(model, cell, requested);
+        let work = Work::at(model, cell, cave);
+        let share = MESH_SHARE * DEFAULT_OUTPUT_MB * MB;
+        if requested > 0.0 || work.bytes <= share || cave >= cell {
+            return (cave, work);
+        }
+        let terrain = work.terrain_triangles * MESH_BYTES_PER_TRIANGLE;
+        let room = (share - terrain).max(share / 4.0);
+        let coarser = (cave * ((work.bytes - terrain) / room).sqrt()).min(cell);
+        (coarser, Work::at(model, cell, coarser))
     }
 
     /// The work of meshing `model` at terrain cell `cell` and cave cell `cave`. On a terrain

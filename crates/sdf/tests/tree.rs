@@ -190,8 +190,9 @@ fn check_detailed_preset(name: &str, pairs: usize, brute: usize) {
     check_sign(&field, brute, name);
 }
 
-/// Central-difference estimates of |∇f| (eval and cave) at points near the leaves and the
-/// rock pieces: at most 1 up to the estimate's error, where the relief is steepest.
+/// The slope of the field (eval and cave) at points near the leaves and the rock pieces, along
+/// its central-difference gradient: at most 1 up to the quotient's error, where the relief is
+/// steepest.
 fn check_gradient(field: &CarvedTerrain, n: usize) {
     let h = 1e-4;
     let mut steepest: f64 = 0.0;
@@ -204,10 +205,15 @@ fn check_gradient(field: &CarvedTerrain, n: usize) {
                 f(p + DVec3::Y * h) - f(p - DVec3::Y * h),
                 f(p + DVec3::Z * h) - f(p - DVec3::Z * h),
             ) / (2.0 * h);
-            // Central differences of a 1-Lipschitz function may exceed 1 by a little where a min or
-            // a max switches between the axes' samples.
-            assert!(g.length() <= 1.0 + 1e-2, "{name}: |∇f({p})| ≈ {}", g.length());
-            steepest = steepest.max(g.length());
+            // The slope along the estimated gradient's direction, one difference quotient: where
+            // a min or a max switches between the axes' samples the three axes' differences come
+            // from different pieces and their vector may exceed 1 (1.017 at a point of the
+            // default scene whose every directional quotient is below 0.9999), while the slope
+            // along one direction is a Lipschitz quotient itself.
+            let u = g.normalize_or_zero();
+            let slope = (f(p + u * h) - f(p - u * h)).abs() / (2.0 * h);
+            assert!(slope <= 1.0 + 1e-3, "{name}: slope {slope} at {p} along {u} (|∇f| ≈ {})", g.length());
+            steepest = steepest.max(slope);
         }
     }
     assert!(steepest > 0.5, "the estimates found no slope at all ({steepest})");

@@ -4,6 +4,9 @@
 //   node browser.mjs missing URL FILE    the page of a run lacking FILE lists it, without error
 //   node browser.mjs bench URL [PNG]     time to interactive and to settled, bytes transferred,
 //                                        and optionally a screenshot of the settled view
+//   node browser.mjs shot URL PNG [IDS]  the settled view without the network's lines nor the
+//                                        layers IDS (comma-separated, e.g. water); URL may stand
+//                                        inside: #from=x,y,z&to=x,y,z (examples/inside.rs)
 //
 // puppeteer-core is found through KARSTGEN_NODE_MODULES (set by `cargo xtask test`).
 // Prints one JSON line of results; exits 1 with the failed assertions.
@@ -26,7 +29,7 @@ if (!modules) {
 }
 const puppeteer = createRequire(path.join(modules, 'noop.js'))('puppeteer-core');
 
-const [mode, url, arg] = process.argv.slice(2);
+const [mode, url, arg, extra] = process.argv.slice(2);
 
 /** Opens the page, recording console errors, failed requests and the bytes received. */
 async function open(browser) {
@@ -248,11 +251,25 @@ async function bench(browser, png) {
   return { interactive, settled, marks, megabytes: traffic.bytes / 1e6, requests: traffic.requests, triangles };
 }
 
+async function shot(browser, png, hidden = '') {
+  const { page, problems } = await open(browser);
+  for (const id of ['network', ...hidden.split(',').filter(Boolean)]) {
+    const layer = await page.$(`#layer-${id}`);
+    if (layer && await layer.evaluate((e) => e.checked && !e.disabled)) await layer.click();
+  }
+  await page.waitForFunction(() => window.karstView.settled(), { timeout: 120_000, polling: 50 });
+  await page.evaluate(() => { document.getElementById('status').textContent = ''; });
+  const canvas = await page.$('#canvas');
+  await canvas.screenshot({ path: png });
+  assert.deepEqual(problems, []);
+  return { png, camera: await page.evaluate(() => window.karstView.cameraPosition()) };
+}
+
 const browser = await puppeteer.launch({ executablePath: CHROMIUM, args: FLAGS, headless: true });
 try {
-  const run = { test, missing, bench }[mode];
-  if (!run) throw new Error(`unknown mode ${mode}: test, missing or bench`);
-  const results = await run(browser, arg);
+  const run = { test, missing, bench, shot }[mode];
+  if (!run) throw new Error(`unknown mode ${mode}: test, missing, bench or shot`);
+  const results = await run(browser, arg, extra);
   console.log(JSON.stringify(results));
 } catch (e) {
   console.error(e.message);

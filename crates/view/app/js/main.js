@@ -95,6 +95,7 @@ async function main() {
     viewer,
     settled: () => surfaces.settled(),
     walking: () => walk.walking,
+    standAt: (from, to) => walk.standAt(from, to),
     cameraPosition: () => viewer.camera.position.toArray(),
     projectNodes: () => (data.skeleton?.nodes ?? []).map((n) => viewer.project(n.position)),
     streams: () => streams?.probe() ?? [],
@@ -109,8 +110,21 @@ async function main() {
   status.textContent = '';
   await viewer.start();
   performance.mark('karst:drawn');
+  const viewpoint = standingPoint(location.hash);
+  if (viewpoint) walk.standAt(viewpoint.from, viewpoint.to);
   window.karstView.readyAt = performance.now();
   window.karstView.ready = true;
+}
+
+/** `#from=x,y,z&to=x,y,z` of the page's address, or null when absent or malformed. */
+function standingPoint(hash) {
+  const params = new URLSearchParams(hash.replace(/^#/, ''));
+  const point = (key) => {
+    const v = (params.get(key) ?? '').split(',').map(Number);
+    return v.length === 3 && v.every(Number.isFinite) ? v : null;
+  };
+  const [from, to] = [point('from'), point('to')];
+  return from && to ? { from, to } : null;
 }
 
 /** A click (not a drag) on the canvas picks a node or segment and shows its route. */

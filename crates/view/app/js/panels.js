@@ -91,12 +91,12 @@ export function walkControls(data, walk, viewer, run) {
   speed.addEventListener('input', showSpeed);
   showSpeed();
   button.addEventListener('click', () => {
-    if (walk.walking) walk.stop();
+    if (walk.inside) walk.stop();
     else walk.start(Number(select.value));
-    button.textContent = walk.walking ? 'stop' : 'walk';
+    button.textContent = walk.inside ? 'stop' : 'walk';
   });
   viewer.onFrame(() => {
-    button.textContent = walk.walking ? 'stop' : 'walk';
+    button.textContent = walk.inside ? 'stop' : 'walk';
   });
   $('screenshot').addEventListener('click', () => {
     const url = viewer.screenshot();

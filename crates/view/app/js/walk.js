@@ -1,5 +1,8 @@
-// The first-person walk: the camera travels along a sink-to-spring route of the skeleton, at
-// eye level on the conduits' axis, looking ahead, while the orbit controls rest.
+// The first-person views: the walk, where the camera travels along a sink-to-spring route of
+// the skeleton, at eye level on the conduits' axis, looking ahead, and the standing view, where
+// it stands at one point of the cave looking at another (`#from=x,y,z&to=x,y,z` in the page's
+// address, in the skeleton's coordinates: a viewpoint to share, and how the pictures from
+// inside in docs/viewer.md are made). The orbit controls rest meanwhile.
 
 import * as THREE from 'three';
 
@@ -11,6 +14,7 @@ export class Walk {
     this.speed = 12;
     this.curve = null;
     this.walking = false;
+    this.inside = false;
     viewer.onFrame(() => this.step());
   }
 
@@ -25,23 +29,46 @@ export class Walk {
     this.length = this.curve.getLength();
     this.travelled = 0;
     this.last = performance.now();
+    this.enter();
     this.walking = true;
-    this.saved = { position: this.viewer.camera.position.clone(), target: this.viewer.controls.target.clone(), near: this.viewer.camera.near };
-    this.viewer.controls.enabled = false;
-    this.viewer.camera.near = 0.05;
-    this.viewer.camera.updateProjectionMatrix();
-    this.hide(true);
-    this.viewer.changed();
     return true;
   }
 
+  /** Stands at `from` looking at `to` (skeleton coordinates), until `stop`. */
+  standAt(from, to) {
+    if (!this.inside) this.enter();
+    const e = this.viewer.exaggeration;
+    const [here, there] = [from, to].map((p) => new THREE.Vector3(p[0], p[1], p[2] * e));
+    if (there.distanceTo(here) < 1e-6) there.x += 1e-3;
+    this.viewer.camera.position.copy(here);
+    this.viewer.camera.lookAt(there);
+    this.viewer.changed();
+  }
+
+  /** Leaves the orbit view for a first-person one: near clipping plane, outside layers hidden. */
+  enter() {
+    if (this.inside) return;
+    this.inside = true;
+    const { camera, controls } = this.viewer;
+    this.saved = { position: camera.position.clone(), target: controls.target.clone(), near: camera.near, fov: camera.fov };
+    controls.enabled = false;
+    // A person's field of view in a passage, wider than the orbit view's 45°.
+    camera.fov = 70;
+    camera.near = 0.05;
+    camera.updateProjectionMatrix();
+    this.hide(true);
+    this.viewer.changed();
+  }
+
   stop() {
-    if (!this.walking) return;
+    if (!this.inside) return;
     this.walking = false;
+    this.inside = false;
     const { camera, controls } = this.viewer;
     camera.position.copy(this.saved.position);
     controls.target.copy(this.saved.target);
     camera.near = this.saved.near;
+    camera.fov = this.saved.fov;
     camera.updateProjectionMatrix();
     controls.enabled = true;
     controls.update();
