@@ -10,8 +10,7 @@
 //! The cave's tortuous conduits are overlapping spheres: their union's area is probed, not
 //! summed ([`Spheres::union_area`]).
 
-use karst_scene::budget::{Budget, Cheaper, Estimate, OverBudget, bytes};
-use karst_scene::budget::MB;
+use karst_scene::budget::{Budget, Cheaper, Estimate, MB, OverBudget, bytes};
 use karst_scene::output_budget::{DEFAULT_OUTPUT_MB, OutputBudget};
 use karst_sdf::{CarvedTerrain, SdfModel};
 use rayon::prelude::*;
