@@ -59,7 +59,8 @@ fn checked_cells(view: &MesherView, model: &SdfModel) -> Result<f64, MesherError
     let cave_of = cave_cells(model, params.cave_cell_size);
     // One estimate for both budgets: the run's output, printed before any cell is evaluated,
     // and the memory peak.
-    let (cave_cell, work) = Work::planned(model, params.cell_size, params.cave_cell_size);
+    let (cave_cell, work) =
+        Work::planned(model, params.cell_size, params.cave_cell_size, cave_of(params.cell_size));
     check_lattice(model, "mesher.cave_cell_size", cave_cell)?;
     if let Some(output) = view.output_budget {
         eprintln!("{}", estimate::held_to(output, &work, params.cell_size)?);

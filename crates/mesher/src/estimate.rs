@@ -105,17 +105,18 @@ impl Work {
     /// The work of meshing `model` under `view`'s `[mesher]` cells (the cave cell derived from
     /// the conduits when not set, as the mesher does).
     pub fn of(view: &MesherView, model: &SdfModel) -> Work {
-        Work::planned(model, view.mesher.cell_size, view.mesher.cave_cell_size).1
+        let (cell, requested) = (view.mesher.cell_size, view.mesher.cave_cell_size);
+        Work::planned(model, cell, requested, crate::cell::cave_cell(model, cell, requested)).1
     }
 
-    /// The cave cell the mesher uses at terrain cell `cell` (`requested` when positive) and its
-    /// work. The automatic cave cell ([`crate::cell::cave_cell`]) is coarsened when the meshes
-    /// would pass [`MESH_SHARE`] of the default output budget, so that a large scene's default
-    /// run keeps room for its exports: the cave's and the water's bytes grow as the inverse
-    /// square of their cell, and the conduits thinner than the coarser cell are still meshed a
-    /// cell thick, never closed (issue 40: the defaults adapt to the scene's extent).
-    pub fn planned(model: &SdfModel, cell: f64, requested: f64) -> (f64, Work) {
-        let cave = crate::cell::cave_cell(model, cell, requested);
+    /// The cave cell the mesher uses at terrain cell `cell` and its work, from `cave`, the cave
+    /// cell of `requested` ([`crate::cell::cave_cell`]: `requested` when positive, else the
+    /// passages'). The automatic cave cell is coarsened when the meshes would pass
+    /// [`MESH_SHARE`] of the default output budget, so that a large scene's default run keeps
+    /// room for its exports: the cave's and the water's bytes grow as the inverse square of
+    /// their cell, and the conduits thinner than the coarser cell are still meshed a cell
+    /// thick, never closed (issue 40: the defaults adapt to the scene's extent).
+    pub fn planned(model: &SdfModel, cell: f64, requested: f64, cave: f64) -> (f64, Work) {
         let work = Work::at(model, cell, cave);
         let share = MESH_SHARE * DEFAULT_OUTPUT_MB * MB;
         if requested > 0.0 || work.bytes <= share || cave >= cell {
@@ -124,7 +125,21 @@ impl Work {
         let terrain = work.terrain_triangles * MESH_BYTES_PER_TRIANGLE;
         let room = (share - terrain).max(share / 4.0);
         let coarser = (cave * ((work.bytes - terrain) / room).sqrt()).min(cell);
-        (coarser, Work::at(model, cell, coarser))
+        (coarser, work.with_coarser_cave(coarser / cave))
+    }
+
+    /// The same work with the cave and the water meshed at a cell `ratio` times coarser: their
+    /// cells ([`Areas::cells`]) go as the inverse square of the cell, the terrain's stay.
+    fn with_coarser_cave(self, ratio: f64) -> Work {
+        let cave_triangles = self.triangles - self.terrain_triangles;
+        let scaled = cave_triangles / (ratio * ratio);
+        let triangles = self.terrain_triangles + scaled;
+        Work {
+            cells: self.cells - (cave_triangles - scaled) / TRIANGLES_PER_CELL,
+            terrain_triangles: self.terrain_triangles,
+            triangles,
+            bytes: triangles * MESH_BYTES_PER_TRIANGLE,
+        }
     }
 
     /// The work of meshing `model` at terrain cell `cell` and cave cell `cave`. On a terrain
@@ -255,4 +270,24 @@ pub fn held_to(budget: OutputBudget, work: &Work, cell: f64) -> Result<String, M
         return Err(MesherError::OverOutput { estimate, budget: bytes(budget.bytes) });
     }
     Ok(format!("{:<10} estimate    {estimate} (budget {})", "mesher", bytes(budget.bytes)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use karst_artifact::read_artifact;
+
+    #[test]
+    fn a_coarser_cave_is_derived_as_the_estimate_would_count_it() {
+        let path = karst_testkit::fixture("fixtures/golden/tiny/sdf.bin");
+        let (_, model) = read_artifact::<SdfModel>(&path).unwrap();
+        let (cell, cave) = (3.0, 0.75);
+        let derived = Work::at(&model, cell, cave).with_coarser_cave(2.0);
+        let counted = Work::at(&model, cell, 2.0 * cave);
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
+        assert!(close(derived.cells, counted.cells), "{derived:?} {counted:?}");
+        assert!(close(derived.triangles, counted.triangles), "{derived:?} {counted:?}");
+        assert!(close(derived.bytes, counted.bytes), "{derived:?} {counted:?}");
+        assert_eq!(derived.terrain_triangles, counted.terrain_triangles);
+    }
 }

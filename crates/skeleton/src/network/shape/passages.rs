@@ -297,8 +297,11 @@ pub fn flow_factors(chains: &[Vec<u32>], routes: &[Route], nodes: &[Node]) -> Ve
     let factors: Vec<f64> =
         flow_shares(chains, routes).iter().map(|s| 0.6 + 0.5 * s.clamp(0.0, 1.0).sqrt()).collect();
     let total: f64 = lengths.iter().sum();
-    let mean_square = factors.iter().zip(&lengths).map(|(f, l)| f * f * l).sum::<f64>() / total;
-    if total > 0.0 { factors.iter().map(|f| f / mean_square.sqrt()).collect() } else { factors }
+    if total <= 0.0 {
+        return factors;
+    }
+    let rms = (factors.iter().zip(&lengths).map(|(f, l)| f * f * l).sum::<f64>() / total).sqrt();
+    factors.iter().map(|f| f / rms).collect()
 }
 
 /// Each conduit's share of the routes' total weight: the weight of the routes through its
