@@ -5,6 +5,9 @@
 //! whose boxes come within REACH of a point, found in a uniform grid; it only lowers the
 //! magnitude of the cave's value deeper than REACH inside a room, which stays a distance bound.
 
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -167,8 +170,10 @@ pub fn rounded_box(q: DVec3, half: DVec3, round: f64) -> f64 {
     d.max(DVec3::ZERO).length() + d.max_element().min(0.0) - round
 }
 
-/// The pieces in a uniform grid: each cell lists the pieces whose boxes come within
-/// [`REACH`] of it.
+/// The pieces in a sparse uniform grid: each cell that some piece's box comes within
+/// [`REACH`] of lists those pieces. Only such cells are stored (a hash of their keys), so the
+/// grid's memory follows the pieces, not the extent of the cave they are scattered over (a
+/// dense grid over a 6 km scene's speleothems was gigabytes).
 #[derive(Debug, Clone, Default)]
 pub struct RockField {
     pieces: Vec<Piece>,
@@ -176,8 +181,8 @@ pub struct RockField {
     boxes: Vec<(DVec3, DVec3)>,
     origin: DVec3,
     dims: [usize; 3],
-    /// Per cell, the range of its pieces in `items`.
-    starts: Vec<u32>,
+    /// Per listed cell (by its key), the range of its pieces in `items`.
+    cells: HashMap<u64, (u32, u32), BuildHasherDefault<CellHasher>>,
     items: Vec<u32>,
 }
 
@@ -190,28 +195,27 @@ impl RockField {
         let lo = boxes.iter().fold(DVec3::INFINITY, |m, b| m.min(b.0 - REACH));
         let hi = boxes.iter().fold(DVec3::NEG_INFINITY, |m, b| m.max(b.1 + REACH));
         let dims = ((hi - lo) / CELL).ceil().max(DVec3::ONE).to_array().map(|d| d as usize);
-        let cells = dims[0] * dims[1] * dims[2];
-        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); cells];
         let index = |v: f64, o: f64, n: usize| (((v - o) / CELL).floor().max(0.0) as usize).min(n - 1);
+        // (cell key, piece), sorted by cell then piece: each cell's list in piece order.
+        let mut listed: Vec<(u64, u32)> = Vec::new();
         for (k, (a, b)) in boxes.iter().map(|&(a, b)| (a - REACH, b + REACH)).enumerate() {
             let from = [0, 1, 2].map(|i| index(a[i], lo[i], dims[i]));
             let to = [0, 1, 2].map(|i| index(b[i], lo[i], dims[i]));
             for z in from[2]..=to[2] {
                 for y in from[1]..=to[1] {
                     for x in from[0]..=to[0] {
-                        lists[(z * dims[1] + y) * dims[0] + x].push(k as u32);
+                        listed.push((key(dims, [x, y, z]), k as u32));
                     }
                 }
             }
         }
-        let mut starts = Vec::with_capacity(cells + 1);
-        let mut items = Vec::new();
-        for list in lists {
-            starts.push(items.len() as u32);
-            items.extend(list);
+        listed.sort_unstable();
+        let mut cells = HashMap::default();
+        let items = listed.iter().map(|&(_, k)| k).collect();
+        for (start, run) in runs(&listed) {
+            cells.insert(listed[start].0, (start as u32, (start + run) as u32));
         }
-        starts.push(items.len() as u32);
-        RockField { pieces: pieces.to_vec(), boxes, origin: lo, dims, starts, items }
+        RockField { pieces: pieces.to_vec(), boxes, origin: lo, dims, cells, items }
     }
 
     pub fn is_empty(&self) -> bool {
@@ -238,8 +242,8 @@ impl RockField {
         if x >= self.dims[0] || y >= self.dims[1] || z >= self.dims[2] {
             return best;
         }
-        let cell = (z * self.dims[1] + y) * self.dims[0] + x;
-        for &k in &self.items[self.starts[cell] as usize..self.starts[cell + 1] as usize] {
+        let Some(&(start, end)) = self.cells.get(&key(self.dims, [x, y, z])) else { return best };
+        for &k in &self.items[start as usize..end as usize] {
             let (lo, hi) = self.boxes[k as usize];
             if crate::field::primitive::signed_box_distance(lo, hi, p) < best {
                 best = best.min(self.pieces[k as usize].distance(p));
@@ -258,7 +262,46 @@ impl RockField {
 
     pub fn memory(&self) -> usize {
         self.pieces.len() * (std::mem::size_of::<Piece>() + std::mem::size_of::<(DVec3, DVec3)>())
-            + (self.starts.len() + self.items.len()) * 4
+            + self.cells.capacity() * (std::mem::size_of::<(u64, (u32, u32))>() + 1)
+            + self.items.len() * 4
+    }
+}
+
+/// A grid cell's key: its index in the dense grid of `dims` cells.
+fn key(dims: [usize; 3], [x, y, z]: [usize; 3]) -> u64 {
+    ((z as u64 * dims[1] as u64) + y as u64) * dims[0] as u64 + x as u64
+}
+
+/// The runs of equal keys in sorted `listed`: (first index, length).
+fn runs(listed: &[(u64, u32)]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let mut start = 0;
+    std::iter::from_fn(move || {
+        let first = listed.get(start)?.0;
+        let run = listed[start..].iter().take_while(|e| e.0 == first).count();
+        let out = (start, run);
+        start += run;
+        Some(out)
+    })
+}
+
+/// Hashes a cell key in one multiplication (Fibonacci hashing): the keys are distinct
+/// integers, which need no stronger mixing, and the field looks one up per evaluation.
+#[derive(Default)]
+pub struct CellHasher(u64);
+
+impl Hasher for CellHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(self.0 ^ b as u64);
+        }
+    }
+
+    fn write_u64(&mut self, key: u64) {
+        self.0 = key.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
     }
 }
 
