@@ -46,7 +46,7 @@ fn every_estimating_stage_refuses_with_its_field_and_a_value_that_fits() {
     );
     assert!(k.contains("costgraph.k = ") && k.contains("would fit"), "{k}");
 
-    let sdf = refusal::<karst_sdf::SdfStage>(&out, ("seed = 7", "seed = 7"), "64K");
+    let sdf = refusal::<karst_sdf::SdfStage>(&out, ("seed = 7", "seed = 7"), "32K");
     assert!(sdf.contains("sdf.radius_scale = 1 means about") && sdf.contains("sphere candidates"), "{sdf}");
 
     let mesher = refusal::<karst_mesher::MesherStage>(&out, ("cell_size = 3.0", "cell_size = 0.01"), "16G");
@@ -118,15 +118,15 @@ fn a_mesher_cell_of_five_centimetres_is_refused_before_the_mesher_runs() {
 #[test]
 fn exports_beyond_the_budget_are_refused_before_a_file_is_written() {
     let out = scratch("export-budget");
-    // tiny's meshes (full passage detail) are estimated at about 4.9 MiB (3.1 MiB written) and
-    // its exports at about 5.6 MiB beside them: a 6.5 MB budget lets the mesher run and stops
+    // tiny's meshes (full passage detail) are estimated at about 1.7 MiB (0.97 MiB written) and
+    // its exports at about 2.2 MiB beside them: a 2.5 MB budget lets the mesher run and stops
     // the export.
-    let budget = karst_pipeline::budget::OutputBudget::megabytes(6.5).unwrap();
+    let budget = karst_pipeline::budget::OutputBudget::megabytes(2.5).unwrap();
     let selection = Selection { budget, ..Selection::default() };
     let err = run(&root().join("fixtures/scenes/tiny.toml"), &out, &selection).unwrap_err();
     assert_eq!(err.exit_code(), 2, "{err}");
     let message = err.to_string();
-    for part in ["the export would write about", "gltf", "beside", "of mesh.bin", "budget of 6.5"] {
+    for part in ["the export would write about", "gltf", "beside", "of mesh.bin", "budget of 2.5"] {
         assert!(message.contains(part), "{part}: {message}");
     }
     for advice in ["export.formats", "export.gltf_max_mb", "mesher.cell_size", "--budget MB"] {

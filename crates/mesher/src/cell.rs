@@ -8,9 +8,8 @@ use karst_sdf::{SdfModel, SectionSpec};
 use crate::spheres::Spheres;
 
 /// The cell of the cave alone and the water: `requested` when positive, else the
-/// [`CAVE_PERCENTILE`] of the passages' sizes ([`passage_sizes`]: each passage's typical
-/// half-thickness along its length, its local pinches and rooms averaged out) weighted by the
-/// length of passage each stands for, at most `cell_size` and at least `cell_size` /
+/// [`CAVE_PERCENTILE`] of the passages' sizes ([`passage_sizes`]: the half-thickness along
+/// each passage, as its profile samples it) weighted by the length of passage each stands for, at most `cell_size` and at least `cell_size` /
 /// [`CAVE_REFINE`]. The leaves thinner than the cell, a passage's pinches among them, are
 /// meshed at the cell's half-thickness ([`thickened`]), so that every conduit is at least a
 /// cell thick: every point of space is within √3/2 cells of a lattice point, so such a conduit
@@ -45,9 +44,9 @@ pub const CAVE_REFINE: f64 = 8.0;
 /// of their size over the whole cave.
 pub const CAVE_PERCENTILE: f64 = 0.5;
 
-/// Each passage's typical half-thickness, metres, with its length: a straight segment (a run
-/// of sweeps, one per passage-profile piece) the length-weighted mean of its sections'
-/// half-thicknesses (half the smaller side); a tortuous conduit's group of spheres the mean
+/// Each passage's half-thickness, metres, with its length: each sweep (a segment, or a piece
+/// of a segment's passage profile) the mean of its end sections' depths at the axis
+/// ([`section_depth`]); a tortuous conduit's group of spheres the mean
 /// radius of the spheres of its axis ([`Spheres::axis`], the largest sphere of each station,
 /// each standing for its diameter; the smaller ones filling the sections out to their corners
 /// are not passages of their own); a capsule its radius along its axis, a chamber its radius
@@ -57,20 +56,12 @@ pub fn passage_sizes(model: &SdfModel) -> Vec<(f64, f64)> {
     let f = |p: [f32; 3]| p.map(f64::from);
     let mut sizes = Vec::new();
     sizes.extend(model.capsules.iter().map(|c| (c.radius, length(c.a, c.b).max(2.0 * c.radius))));
-    // (Σ size × length, Σ length) of the current run of sweeps.
-    let mut run = (0.0, 0.0);
-    for s in &model.sweeps {
-        if !s.continues && run.1 > 0.0 {
-            sizes.push((run.0 / run.1, run.1));
-            run = (0.0, 0.0);
-        }
+    // A run of sweeps through a passage profile: each piece, as the profile samples the
+    // passage. A segment without a profile is one piece.
+    sizes.extend(model.sweeps.iter().map(|s| {
         let piece = length(f(s.sweep.a), f(s.sweep.b));
-        let size = (section_half_thickness(&s.sweep.start) + section_half_thickness(&s.sweep.end)) / 2.0;
-        run = (run.0 + size * piece, run.1 + piece);
-    }
-    if run.1 > 0.0 {
-        sizes.push((run.0 / run.1, run.1));
-    }
+        (((section_depth(&s.sweep.start) + section_depth(&s.sweep.end)) / 2.0), piece)
+    }));
     for group in &model.spheres {
         let spheres = Spheres::of(&group.spheres);
         let (sum, along) = spheres
@@ -94,6 +85,15 @@ fn half_thicknesses(model: &SdfModel) -> impl Iterator<Item = f64> + '_ {
     let spheres = model.spheres.iter().flat_map(|g| g.spheres.iter().map(|s| s[3] as f64));
     let chambers = model.chambers.iter().map(|c| c.radius as f64);
     capsules.chain(sweeps).chain(spheres).chain(chambers)
+}
+
+/// A section's half-thickness where a caver stands: its depth at the axis (the radius of the
+/// sphere inscribed there, as a tortuous conduit's stations take it), or half its smaller side
+/// when the axis lies outside it. A canyon's or a keyhole's slot is narrower than its
+/// half-width times its height factor, which half the smaller side would count.
+fn section_depth(s: &SectionSpec) -> f64 {
+    let depth = -s.section().distance(glam::DVec2::ZERO);
+    if depth > 0.0 { depth } else { section_half_thickness(s) }
 }
 
 /// Half the smaller side of a section.

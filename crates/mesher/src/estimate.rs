@@ -30,8 +30,10 @@ const BYTES_PER_TRIANGLE: f64 = 64.0;
 const MESH_BYTES_PER_TRIANGLE: f64 = 15.0;
 
 /// The share of the default output budget the automatic cave cell leaves the meshes: the rest
-/// is the exports' (the glb alone may take a third of it).
-pub const MESH_SHARE: f64 = 0.5;
+/// is the exports' (the glb alone may take a third of it) and the network's artifacts (a 6 km
+/// real-terrain scene's run folder: 124 MB of exports and 43 MB of network artifacts beside
+/// mesh.bin, BENCHMARKS.md).
+pub const MESH_SHARE: f64 = 1.0 / 3.0;
 /// Terrain samples per axis for its area.
 const SAMPLES: usize = 64;
 
@@ -66,10 +68,9 @@ impl Areas {
             .sweeps
             .iter()
             .map(|s| {
-                let shape = s.sweep.start.shape;
                 let length =
                     glam::Vec3::from_array(s.sweep.a).distance(glam::Vec3::from_array(s.sweep.b)) as f64;
-                tau * (shape.radius * shape.ratio.max(1.0)) as f64 * length
+                (perimeter(s.sweep.start.shape) + perimeter(s.sweep.end.shape)) / 2.0 * length
             })
             .sum();
         let spheres: f64 = model.spheres.iter().map(|g| Spheres::of(&g.spheres).union_area()).sum();
@@ -85,6 +86,14 @@ impl Areas {
         let cave_alone = self.cave / (cave * cave);
         [(self.outside + self.cave) / (cell * cell), cave_alone, cave_alone / 2.0]
     }
+}
+
+/// A section's perimeter, metres: the ellipse of its half-width and half-height (Ramanujan's
+/// approximation; a tube's circle exactly, a flat bed's or a tall canyon's ellipse rather than
+/// the circle around it).
+fn perimeter(shape: karst_sdf::Shape) -> f64 {
+    let (a, b) = (shape.radius as f64, (shape.radius * shape.ratio) as f64);
+    std::f64::consts::PI * (3.0 * (a + b) - ((3.0 * a + b) * (a + 3.0 * b)).sqrt())
 }
 
 /// The mesher's work on a model at its cells, estimated from the model's domain, terrain and

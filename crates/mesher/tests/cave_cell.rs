@@ -1,11 +1,12 @@
-//! The automatic cave cell follows each passage's typical half-thickness (docs/mesher.md, "The
-//! cave's own cell"): a segment's run of profile pieces counts once at its length-weighted
-//! mean, not at its pinch; a tortuous conduit's spheres count at their axis, not at the small
-//! spheres filling its sections.
+//! The automatic cave cell follows the passages' half-thickness (docs/mesher.md, "The cave's
+//! own cell"): each piece of a segment's profile counts at its depth, weighted by its length, so
+//! a short pinch does not set the cell; a tortuous conduit's spheres (`passage_detail = "off"`)
+//! count at their axis, not at the small spheres filling its sections.
 
 use karst_artifact::read_artifact;
 use karst_mesher::cave_cell;
-use karst_sdf::{SdfModel, Shape};
+use karst_sdf::{SdfModel, SectionSpec, Shape};
+use karst_skeleton::ConduitType;
 use karst_testkit::fixture;
 
 /// The tiny scene's model with no karst leaf: its sweeps and sphere groups serve as templates.
@@ -22,35 +23,36 @@ fn empty() -> (SdfModel, SdfModel) {
     (tiny, empty)
 }
 
-fn round(radius: f32) -> Shape {
-    Shape { radius, ratio: 1.0, asymmetry: 0.0 }
+fn round(radius: f32) -> SectionSpec {
+    SectionSpec { kinds: [ConduitType::Tube; 2], shape: Shape { radius, ratio: 1.0, asymmetry: 0.0 } }
 }
 
 #[test]
-fn a_pinched_segment_counts_once_at_its_mean_half_thickness() {
+fn a_pinched_segment_counts_piece_by_piece_at_its_depth() {
     let (tiny, mut model) = empty();
-    // Four 10 m pieces through half-widths 2, 2, 0.5 (a pinch), 2, 2 m: piece means 2, 1.25,
-    // 1.25, 2, so the segment's mean is 1.625 m (leaf by leaf, the sections' median was 2 m).
+    // Four 10 m pieces of round sections through half-widths 2, 2, 0.5 (a pinch), 2, 2 m: piece
+    // means 2, 1.25, 1.25, 2, so the median of the 40 m is 1.25 m (the segment's mean 1.625,
+    // its sections' median 2).
     let radii = [2.0, 2.0, 0.5, 2.0, 2.0];
     for k in 0..4 {
         let mut s = tiny.sweeps[0];
         s.continues = k > 0;
         s.sweep.a = [10.0 * k as f32, 50.0, 50.0];
         s.sweep.b = [10.0 * (k + 1) as f32, 50.0, 50.0];
-        s.sweep.start.shape = round(radii[k]);
-        s.sweep.end.shape = round(radii[k + 1]);
+        s.sweep.start = round(radii[k]);
+        s.sweep.end = round(radii[k + 1]);
         model.sweeps.push(s);
     }
-    assert!((cave_cell(&model, 4.0, 0.0) - 1.625).abs() < 1e-6, "{}", cave_cell(&model, 4.0, 0.0));
-    // Two segments: the longer one's size is the median.
+    assert!((cave_cell(&model, 4.0, 0.0) - 1.25).abs() < 1e-3, "{}", cave_cell(&model, 4.0, 0.0));
+    // Another 30 m segment at 0.75 m: of 70 m, 30 at 0.75 and 20 at 1.25 reach half.
     let mut other = tiny.sweeps[0];
     other.continues = false;
     other.sweep.a = [0.0, 80.0, 50.0];
     other.sweep.b = [30.0, 80.0, 50.0];
-    other.sweep.start.shape = round(0.75);
-    other.sweep.end.shape = round(0.75);
+    other.sweep.start = round(0.75);
+    other.sweep.end = round(0.75);
     model.sweeps.push(other);
-    assert!((cave_cell(&model, 4.0, 0.0) - 1.625).abs() < 1e-6);
+    assert!((cave_cell(&model, 4.0, 0.0) - 1.25).abs() < 1e-3, "{}", cave_cell(&model, 4.0, 0.0));
     // The pinch is still below the cell: the mesher draws it one cell thick.
     assert!(cave_cell(&model, 4.0, 0.0) > 0.5);
 }

@@ -5,9 +5,15 @@
 //!   node's to the next, or, when the conduit has a passage profile (`[sdf] passage_detail`),
 //!   through the section of each profile point between them (the segment's type at the
 //!   profile's radius and ratio), one sweep from each to the next;
-//! - a conduit whose tortuosity (1 − chord/length) is at most `sdf.tortuosity` becomes one sweep
-//!   per segment, plus a sphere inscribed at each inner node to close the bends;
-//! - a more tortuous conduit becomes a union of spheres: cross-sections are placed along it
+//! - with passage profiles, every conduit becomes one sweep per segment through its profile's
+//!   sections, each run on past its nodes so that the sweeps meet as mitred joints
+//!   ([`crate::mitre`]): the profile's sections (canyons, beds, keyholes) keep their shapes
+//!   through the bends, and a tortuous passage costs a leaf per segment, not thousands of
+//!   spheres filling its sections out to their corners;
+//! - without (`[sdf] passage_detail = "off"`, the paper's construction), a conduit whose
+//!   tortuosity (1 − chord/length) is at most `sdf.tortuosity` becomes one sweep per segment,
+//!   plus a sphere inscribed at each inner node to close the bends;
+//! - and a more tortuous one a union of spheres: cross-sections are placed along it
 //!   every `sdf.sphere_spacing` radii (along a passage profile, the local half-thickness), oriented by the curve's tangent (averaged at the nodes);
 //!   sphere centres are drawn on a jittered lattice of the same spacing in each section plane
 //!   and kept when at least half a spacing (the paper's R/2 selection) and `MIN_DEPTH` times
@@ -24,6 +30,7 @@ use karst_scene::rng::Random;
 use karst_skeleton::{Conduit, ConduitType, Skeleton};
 
 use crate::error::SdfError;
+use crate::mitre::{self, Junctions};
 use crate::payload::{SdfModel, SphereGroup, TypedSweep, WaterSpec};
 use crate::tree::chamber::ChamberSpec;
 use crate::tree::noise::WaveNoise;
@@ -59,6 +66,9 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
         WaveNoise::draw(&mut Random::stream(view.seed, "sdf", "chamber"), mean_radius * p.chamber_scale);
     let mut lean = Random::stream(view.seed, "sdf", "asymmetry");
     let mut jitter = Random::stream(view.seed, "sdf", "spheres");
+    // With passage profiles every conduit is swept, its bends mitred.
+    let profiled = p.passage_detail.varies();
+    let junctions = profiled.then(|| Junctions::of(skeleton));
     let progress = karst_stage::progress::bar(skeleton.conduits.len() as u64, "sdf");
     for (c, conduit) in skeleton.conduits.iter().enumerate() {
         let points = conduit_points(skeleton, conduit);
@@ -66,7 +76,14 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
         let at_nodes = conduit.node_profile_points(&arc_lengths(&points));
         let sections = node_sections(p, conduit, c, &at_nodes, asymmetry)?;
         let pieces = passage_pieces(p, conduit, c, &points, &sections, &at_nodes, asymmetry)?;
-        let tortuous = tortuosity(&points) > p.tortuosity && points.len() > 2;
+        let tortuous = !profiled && tortuosity(&points) > p.tortuosity && points.len() > 2;
+        let run_ons = match &junctions {
+            Some(junctions) => {
+                let sections: Vec<Section> = sections.iter().map(SectionSpec::section).collect();
+                mitre::run_ons(&points, &sections, junctions.continuations(skeleton, c))
+            }
+            None => vec![[0.0; 2]; pieces.len()],
+        };
         for (i, segment) in pieces.iter().enumerate() {
             let kind = conduit.types[i];
             let zones = [conduit.nodes[i], conduit.nodes[i + 1]].map(|n| skeleton.nodes[n as usize].zone);
@@ -79,11 +96,17 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
                     radius: radius * p.chamber_scale as f32,
                 });
             }
-            for (k, w) in segment.windows(2).enumerate() {
-                let sweep = SweepSpec { a: to_f32(w[0].1), b: to_f32(w[1].1), start: w[0].2, end: w[1].2 };
-                if kind != ConduitType::Chamber && !tortuous {
-                    model.sweeps.push(TypedSweep { kind, continues: k > 0, sweep });
-                }
+            if kind != ConduitType::Chamber && !tortuous {
+                let run = run_on(segment, run_ons[i]);
+                let sweeps = run.windows(2).map(|w| sweep_of(w[0], w[1]));
+                model.sweeps.extend(sweeps.enumerate().map(|(k, sweep)| TypedSweep {
+                    kind,
+                    continues: k > 0,
+                    sweep,
+                }));
+            }
+            for w in segment.windows(2) {
+                let sweep = sweep_of(w[0], w[1]);
                 let height = sweep.floor().abs() * 2.0;
                 let segment = conduits::Segment { kind, zones, water: wet.water, depth: wet.depth, height };
                 if let Some(spec) = water_piece(&sweep, conduits::level(&segment)) {
@@ -93,7 +116,7 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
         }
         if tortuous {
             model.spheres.extend(sphere_groups(conduit, &points, &pieces, p.sphere_spacing, &mut jitter));
-        } else {
+        } else if !profiled {
             model.spheres.extend(joint_spheres(conduit, &points, &sections));
         }
         progress.inc(1);
@@ -209,6 +232,32 @@ fn passage_pieces(
         .collect()
 }
 
+/// The sweep from one passage point to the next.
+fn sweep_of(from: Piece, to: Piece) -> SweepSpec {
+    SweepSpec { a: to_f32(from.1), b: to_f32(to.1), start: from.2, end: to.2 }
+}
+
+/// A segment's passage points with its run-ons ([`mitre::run_ons`]): the start section held
+/// over `before` metres ahead of the start node and the end section over `after` metres past
+/// the end node (none when shorter than a millimetre).
+fn run_on(segment: &[Piece], [before, after]: [f64; 2]) -> Vec<Piece> {
+    let (first, last) = (segment[0], segment[segment.len() - 1]);
+    let length = first.1.distance(last.1);
+    let way = (last.1 - first.1) / length;
+    let mut run = Vec::with_capacity(segment.len() + 2);
+    if before >= MIN_RUN_ON {
+        run.push((-before / length, first.1 - way * before, first.2));
+    }
+    run.extend_from_slice(segment);
+    if after >= MIN_RUN_ON {
+        run.push((1.0 + after / length, last.1 + way * after, last.2));
+    }
+    run
+}
+
+/// Run-ons shorter than this (metres) are left out.
+const MIN_RUN_ON: f64 = 1e-3;
+
 fn water_piece(sweep: &SweepSpec, water: Water) -> Option<WaterSpec> {
     match water {
         Water::None => None,
@@ -220,8 +269,8 @@ fn water_piece(sweep: &SweepSpec, water: Water) -> Option<WaterSpec> {
     }
 }
 
-/// Spheres inscribed at the inner nodes of a swept conduit, closing the wedges that flat-capped
-/// sweeps leave on the outside of bends.
+/// Spheres inscribed at the inner nodes of a swept conduit without a passage profile, closing
+/// the wedges that flat-capped sweeps leave on the outside of bends.
 fn joint_spheres(conduit: &Conduit, points: &[DVec3], sections: &[SectionSpec]) -> Option<SphereGroup> {
     let spheres: Vec<[f32; 4]> = (1..points.len().saturating_sub(1))
         .filter_map(|i| {
@@ -421,6 +470,7 @@ fn to_f32(p: DVec3) -> [f32; 3] {
 mod tests {
     use super::*;
     use crate::synthetic;
+    use karst_scene::params::PassageDetail;
     use karst_scene::{Scene, SceneView};
     use karst_stage::{Blame, Failure};
 
@@ -462,8 +512,9 @@ mod tests {
     }
 
     #[test]
-    fn a_straight_conduit_is_swept_and_a_winding_one_is_spheres() {
-        let model = build_with(|_, _| {}).unwrap();
+    fn without_profiles_a_straight_conduit_is_swept_and_a_winding_one_is_spheres() {
+        let off = |scene: &mut Scene, _: &mut Skeleton| scene.sdf_mut().passage_detail = PassageDetail::Off;
+        let model = build_with(off).unwrap();
         assert!(!model.sweeps.is_empty() && !model.spheres.is_empty());
         let straight = [DVec3::ZERO, DVec3::new(10.0, 0.0, 0.0), DVec3::new(20.0, 0.1, 0.0)];
         assert!(tortuosity(&straight) < 1e-3);
@@ -484,10 +535,39 @@ mod tests {
         let mut first = model.clone();
         first.sweeps[0].continues = true;
         assert_eq!(first.validate().unwrap_err().field, "sweeps[0].continues");
+        let second = (1..model.sweeps.len()).find(|&k| !model.sweeps[k].continues).expect("two runs");
         let mut elsewhere = model.clone();
-        elsewhere.sweeps[1].continues = true;
+        elsewhere.sweeps[second].continues = true;
         let e = elsewhere.validate().unwrap_err();
-        assert_eq!(e.field, "sweeps[1].continues", "{e:?}");
+        assert_eq!(e.field, format!("sweeps[{second}].continues"), "{e:?}");
+    }
+
+    /// A profiled conduit turning a right angle: the outside corner of the bend, beyond the
+    /// sphere a joint would inscribe at the node, is cave (the two legs run on as a mitre), and
+    /// the rock past the mitre's corner stays rock.
+    #[test]
+    fn a_right_angle_bend_is_mitred_on_its_outside() {
+        let model = build_with(|scene, skeleton| {
+            scene.sdf_mut().passage_detail = PassageDetail::Passages;
+            scene.sdf_mut().detail = 0.0;
+            let conduit = &mut skeleton.conduits[0];
+            conduit.radius.iter_mut().for_each(|r| *r = 2.0);
+            conduit.types.iter_mut().for_each(|t| *t = ConduitType::Tube);
+            let corner = [[500.0, 500.0, 120.0], [530.0, 500.0, 120.0], [530.0, 530.0, 120.0]];
+            for (node, at) in conduit.nodes.iter().zip(corner) {
+                skeleton.nodes[*node as usize].position = at;
+            }
+            // The rest of the conduit goes on straight up the second leg.
+            for (k, node) in conduit.nodes.iter().enumerate().skip(3) {
+                skeleton.nodes[*node as usize].position = [530.0, 530.0 + 20.0 * (k - 2) as f64, 120.0];
+            }
+        })
+        .unwrap();
+        let field = crate::CarvedTerrain::new(model);
+        let outside_corner = DVec3::new(531.6, 498.4, 120.0);
+        assert!(outside_corner.distance(DVec3::new(530.0, 500.0, 120.0)) > 2.2, "beyond a joint sphere");
+        assert!(field.cave(outside_corner) < 0.0, "{}", field.cave(outside_corner));
+        assert!(field.cave(DVec3::new(533.0, 497.0, 120.0)) > 0.0);
     }
 
     #[test]

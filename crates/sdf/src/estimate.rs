@@ -1,5 +1,6 @@
-//! The sdf stage's work estimate, made before any leaf is built: a straight conduit costs a
-//! sweep and a joint sphere per segment; a tortuous one (`sdf.tortuosity`) is cut into
+//! The sdf stage's work estimate, made before any leaf is built: with passage profiles every
+//! segment is a sweep per profile piece and two run-ons; without, a straight conduit costs a
+//! sweep and a joint sphere per segment, and a tortuous one (`sdf.tortuosity`) is cut into
 //! cross-sections every `sdf.sphere_spacing` radii, each offering a lattice of candidate
 //! spheres of that spacing over the section: the candidates grow as 1 / (spacing × radius)
 //! along the conduit, which a tiny `sdf.radius_scale` makes unbounded.
@@ -23,6 +24,10 @@ const EXTENT: f64 = 2.0;
 fn primitives(p: &SdfParams, skeleton: &Skeleton, scale: f64) -> f64 {
     let mut total = 0.0;
     for conduit in &skeleton.conduits {
+        if p.passage_detail.varies() {
+            total += 3.0 * conduit.types.len() as f64 + conduit.profile.len() as f64;
+            continue;
+        }
         let points: Vec<DVec3> =
             conduit.nodes.iter().map(|&n| DVec3::from_array(skeleton.nodes[n as usize].position)).collect();
         let tortuous = tortuosity(&points) > p.tortuosity && points.len() > 2;

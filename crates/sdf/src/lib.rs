@@ -18,6 +18,7 @@ pub mod detail;
 mod error;
 mod estimate;
 mod field;
+mod mitre;
 mod payload;
 mod slice;
 pub mod stage;

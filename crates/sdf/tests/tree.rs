@@ -32,8 +32,12 @@ fn field_of(scene: &Path, dir: &Path) -> CarvedTerrain {
 }
 
 fn synthetic_field(conduits: usize) -> CarvedTerrain {
+    synthetic_field_in(&synthetic_scene(), conduits)
+}
+
+fn synthetic_field_in(scene: &karst_scene::Scene, conduits: usize) -> CarvedTerrain {
     let (skeleton, hydro) = synthetic::network(5, conduits, 12);
-    CarvedTerrain::new(build(&SdfView::of(&synthetic_scene()), &skeleton, &hydro).unwrap())
+    CarvedTerrain::new(build(&SdfView::of(scene), &skeleton, &hydro).unwrap())
 }
 
 /// A small deterministic generator.
@@ -364,12 +368,20 @@ fn every_preset_is_tested() {
     }
 }
 
+/// Both constructions: every conduit swept with mitred bends (the default), and the paper's
+/// unions of spheres for the tortuous conduits (`passage_detail = "off"`).
 #[test]
 fn synthetic_tree_is_one_lipschitz() {
-    let field = synthetic_field(160);
-    assert!(field.leaves() > 2000, "{} leaves", field.leaves());
-    assert!(!field.model().chambers.is_empty() && !field.model().sweeps.is_empty());
-    check_tree(&field, 20_000);
+    let mitred = synthetic_field(160);
+    assert!(mitred.model().spheres.is_empty(), "every conduit is swept");
+    assert!(!mitred.model().chambers.is_empty() && mitred.leaves() > 500, "{} leaves", mitred.leaves());
+    check_tree(&mitred, 20_000);
+    let text = format!("{}\n[sdf]\npassage_detail = \"off\"\n", synthetic::SCENE);
+    let off = karst_scene::Scene::parse(&text, std::path::Path::new("synthetic.toml")).unwrap();
+    let spheres = synthetic_field_in(&off, 160);
+    assert!(spheres.leaves() > 2000, "{} leaves", spheres.leaves());
+    assert!(!spheres.model().spheres.is_empty() && !spheres.model().sweeps.is_empty());
+    check_tree(&spheres, 20_000);
 }
 
 /// The BVH changes nothing, and the sign of f agrees with a brute-force inside test.

@@ -14,9 +14,10 @@ pub struct SdfParams {
     /// Sideways shear of the sections' upper half, in half-widths (meander undercuts); each
     /// conduit leans to a random side.
     pub asymmetry: f64,
-    /// Conduits whose tortuosity 1 − chord/length exceeds this become unions of spheres.
+    /// Conduits whose tortuosity 1 − chord/length exceeds this become unions of spheres
+    /// (without passage profiles, `passage_detail = "off"`; with them every conduit is swept).
     pub tortuosity: f64,
-    /// Spacing of the spheres of tortuous conduits, in conduit radii.
+    /// Spacing of the spheres of tortuous conduits, in conduit radii (`passage_detail = "off"`).
     pub sphere_spacing: f64,
     /// Radius of the smooth union where conduits open to the surface, metres.
     pub blend: f64,

@@ -76,6 +76,12 @@ impl Section {
         self.control.iter().map(|c| c.length()).fold(0.0, f64::max)
     }
 
+    /// How far the section reaches along unit direction `u` from the axis, at most: the
+    /// farthest control point's projection (the curve lies in their hull).
+    pub fn reach(&self, u: DVec2) -> f64 {
+        self.control.iter().map(|c| c.dot(u)).fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// Lowest y of the curve (the floor): the hull's lowest control point is a lower bound,
     /// the on-curve midpoints an upper bound; arcs are evaluated at their extremum.
     pub fn floor(&self) -> f64 {
