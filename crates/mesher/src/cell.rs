@@ -9,8 +9,8 @@ use crate::spheres::Spheres;
 
 /// The cell of the cave alone and the water: `requested` when positive, else the
 /// [`CAVE_PERCENTILE`] of the passages' sizes ([`passage_sizes`]: the half-thickness along
-/// each passage, as its profile samples it) weighted by the length of passage each stands for, at most `cell_size` and at least `cell_size` /
-/// [`CAVE_REFINE`]. The leaves thinner than the cell, a passage's pinches among them, are
+/// each passage, as its profile samples it) weighted by the length of passage each stands for,
+/// at most `cell_size` and at least `cell_size` / [`CAVE_REFINE`]. The leaves thinner than the cell, a passage's pinches among them, are
 /// meshed at the cell's half-thickness ([`thickened`]), so that every conduit is at least a
 /// cell thick: every point of space is within √3/2 cells of a lattice point, so such a conduit
 /// always holds lattice points and cannot fall between them. A pinch is therefore drawn one

@@ -7,9 +7,7 @@
 //! deepest point, smaller ones out to its corners), so the spheres' count and their radii say
 //! little about the passage until it is known which lie inside which.
 
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
-
+use karst_sdf::KeyMap;
 use rayon::prelude::*;
 
 /// A group of spheres and a grid of cells as wide as their mean diameter, each sphere listed
@@ -21,28 +19,7 @@ pub struct Spheres<'a> {
     spheres: &'a [[f32; 4]],
     cell: f64,
     grid: Vec<(u64, u32)>,
-    cells: HashMap<u64, (usize, usize), BuildHasherDefault<KeyHasher>>,
-}
-
-/// Hashes a grid key by Fibonacci hashing (the keys are spread by the multiplication; no
-/// per-process seed, though nothing depends on the table's order).
-#[derive(Default)]
-struct KeyHasher(u64);
-
-impl Hasher for KeyHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(b as u64);
-        }
-    }
-
-    fn write_u64(&mut self, key: u64) {
-        self.0 = (self.0 ^ key).wrapping_mul(0x9E37_79B9_7F4A_7C15).rotate_left(29);
-    }
+    cells: KeyMap<(usize, usize)>,
 }
 
 /// Bits of each cell index in a grid key.
@@ -55,7 +32,7 @@ impl<'a> Spheres<'a> {
     /// The grid of `spheres` (empty without spheres or with a non-positive mean radius).
     pub fn of(spheres: &'a [[f32; 4]]) -> Spheres<'a> {
         let mean = spheres.iter().map(|s| s[3] as f64).sum::<f64>() / spheres.len().max(1) as f64;
-        let mut out = Spheres { spheres, cell: 2.0 * mean, grid: Vec::new(), cells: HashMap::default() };
+        let mut out = Spheres { spheres, cell: 2.0 * mean, grid: Vec::new(), cells: KeyMap::default() };
         if spheres.is_empty() || mean.is_nan() || mean <= 0.0 {
             return out;
         }

@@ -78,10 +78,7 @@ pub fn build(view: &SdfView, skeleton: &Skeleton, hydro: &Hydro) -> Result<SdfMo
         let pieces = passage_pieces(p, conduit, c, &points, &sections, &at_nodes, asymmetry)?;
         let tortuous = !profiled && tortuosity(&points) > p.tortuosity && points.len() > 2;
         let run_ons = match &junctions {
-            Some(junctions) => {
-                let sections: Vec<Section> = sections.iter().map(SectionSpec::section).collect();
-                mitre::run_ons(&points, &sections, junctions.continuations(skeleton, c))
-            }
+            Some(junctions) => mitre::run_ons(&points, &sections, junctions.continuations(skeleton, c)),
             None => vec![[0.0; 2]; pieces.len()],
         };
         for (i, segment) in pieces.iter().enumerate() {

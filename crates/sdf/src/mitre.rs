@@ -21,7 +21,7 @@ use glam::{DVec2, DVec3};
 use karst_skeleton::Skeleton;
 
 use crate::tree::section::Section;
-use crate::tree::sweep::frame;
+use crate::tree::sweep::{SectionSpec, frame};
 
 /// The ends of the conduits at each node: (conduit, which end, the direction leaving the node
 /// into the conduit).
@@ -84,7 +84,11 @@ fn node_of(nodes: &[u32], end: End) -> Option<u32> {
 /// The run-on of each segment of a conduit past its [start, end] node, metres: `points` the
 /// conduit's nodes, `sections` their sections, `continuations` the flow directions arriving
 /// at the first node and leaving the last ([`Junctions::continuations`]).
-pub fn run_ons(points: &[DVec3], sections: &[Section], continuations: [Option<DVec3>; 2]) -> Vec<[f64; 2]> {
+pub fn run_ons(
+    points: &[DVec3],
+    sections: &[SectionSpec],
+    continuations: [Option<DVec3>; 2],
+) -> Vec<[f64; 2]> {
     let ways: Vec<DVec3> = points.windows(2).map(|w| (w[1] - w[0]).normalize()).collect();
     let n = ways.len();
     let mut out = vec![[0.0; 2]; n];
@@ -95,11 +99,12 @@ pub fn run_ons(points: &[DVec3], sections: &[Section], continuations: [Option<DV
         let cos = arriving.dot(leaving);
         // The outside of the bend: for the leg arriving, away from the way the next leaves;
         // for the leg leaving, towards the way the previous came from.
+        let section = section.section();
         if i > 0 {
-            out[i - 1][1] = run_on(section, arriving, arriving * cos - leaving, cos);
+            out[i - 1][1] = run_on(&section, arriving, arriving * cos - leaving, cos);
         }
         if i < n {
-            out[i][0] = run_on(section, leaving, arriving - leaving * cos, cos);
+            out[i][0] = run_on(&section, leaving, arriving - leaving * cos, cos);
         }
     }
     out
@@ -127,8 +132,12 @@ mod tests {
 
     use crate::tree::section::Shape;
 
-    fn square(half: f32) -> Section {
-        Section::of(ConduitType::Tube, Shape { radius: half, ratio: 1.0, asymmetry: 0.0 })
+    fn tube(radius: f32, ratio: f32) -> SectionSpec {
+        SectionSpec { kinds: [ConduitType::Tube; 2], shape: Shape { radius, ratio, asymmetry: 0.0 } }
+    }
+
+    fn square(half: f32) -> SectionSpec {
+        tube(half, 1.0)
     }
 
     #[test]
@@ -142,7 +151,7 @@ mod tests {
 
     #[test]
     fn a_bend_runs_both_legs_on_by_the_mitre_and_a_sharp_one_by_the_reach() {
-        let reach = square(2.0).reach(DVec2::X);
+        let reach = square(2.0).section().reach(DVec2::X);
         for (degrees, expected) in
             [(30.0_f64, reach * 15f64.to_radians().tan()), (90.0, reach), (150.0, reach)]
         {
@@ -162,12 +171,13 @@ mod tests {
 
     #[test]
     fn a_flat_passage_bending_down_runs_on_by_its_half_height_not_its_half_width() {
-        let bed = Section::of(ConduitType::Tube, Shape { radius: 4.0, ratio: 0.25, asymmetry: 0.0 });
+        let bed = tube(4.0, 0.25);
         let down = 20f64.to_radians();
         let points =
             [DVec3::ZERO, DVec3::X * 10.0, DVec3::X * 10.0 + DVec3::new(down.cos(), 0.0, -down.sin()) * 10.0];
         let runs = run_ons(&points, &[bed; 3], [None, None]);
-        let half_height = bed.reach(DVec2::Y).max(bed.reach(-DVec2::Y));
+        let section = bed.section();
+        let half_height = section.reach(DVec2::Y).max(section.reach(-DVec2::Y));
         assert!(runs[0][1] > 0.0 && runs[0][1] <= half_height * 10f64.to_radians().tan() + 1e-9, "{runs:?}");
     }
 }

@@ -5,15 +5,13 @@
 //! whose boxes come within REACH of a point, found in a uniform grid; it only lowers the
 //! magnitude of the cave's value deeper than REACH inside a room, which stays a distance bound.
 
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
-
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
 use karst_artifact::Invalid;
 use karst_artifact::check::{self, MAX_COORDINATE, ensure};
 
+use crate::key_map::KeyMap;
 use crate::tree::sweep::to_dvec;
 
 /// How far the grid looks for pieces, metres (the clamp of S).
@@ -182,7 +180,7 @@ pub struct RockField {
     origin: DVec3,
     dims: [usize; 3],
     /// Per listed cell (by its key), the range of its pieces in `items`.
-    cells: HashMap<u64, (u32, u32), BuildHasherDefault<CellHasher>>,
+    cells: KeyMap<(u32, u32)>,
     items: Vec<u32>,
 }
 
@@ -210,11 +208,13 @@ impl RockField {
             }
         }
         listed.sort_unstable();
-        let mut cells = HashMap::default();
-        let items = listed.iter().map(|&(_, k)| k).collect();
-        for (start, run) in runs(&listed) {
-            cells.insert(listed[start].0, (start as u32, (start + run) as u32));
+        let mut cells = KeyMap::default();
+        let mut start = 0;
+        for run in listed.chunk_by(|a, b| a.0 == b.0) {
+            cells.insert(run[0].0, (start as u32, (start + run.len()) as u32));
+            start += run.len();
         }
+        let items = listed.iter().map(|&(_, k)| k).collect();
         RockField { pieces: pieces.to_vec(), boxes, origin: lo, dims, cells, items }
     }
 
@@ -270,39 +270,6 @@ impl RockField {
 /// A grid cell's key: its index in the dense grid of `dims` cells.
 fn key(dims: [usize; 3], [x, y, z]: [usize; 3]) -> u64 {
     ((z as u64 * dims[1] as u64) + y as u64) * dims[0] as u64 + x as u64
-}
-
-/// The runs of equal keys in sorted `listed`: (first index, length).
-fn runs(listed: &[(u64, u32)]) -> impl Iterator<Item = (usize, usize)> + '_ {
-    let mut start = 0;
-    std::iter::from_fn(move || {
-        let first = listed.get(start)?.0;
-        let run = listed[start..].iter().take_while(|e| e.0 == first).count();
-        let out = (start, run);
-        start += run;
-        Some(out)
-    })
-}
-
-/// Hashes a cell key in one multiplication (Fibonacci hashing): the keys are distinct
-/// integers, which need no stronger mixing, and the field looks one up per evaluation.
-#[derive(Default)]
-pub struct CellHasher(u64);
-
-impl Hasher for CellHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(self.0 ^ b as u64);
-        }
-    }
-
-    fn write_u64(&mut self, key: u64) {
-        self.0 = key.wrapping_mul(0x9E37_79B9_7F4A_7C15);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
 }
 
 #[cfg(test)]
