@@ -407,6 +407,15 @@ impl Bvh {
         out.sort_by(|x, y| key(x).total_cmp(&key(y)).then(x.count.cmp(&y.count)).then(x.first.cmp(&y.first)));
     }
 
+    /// min(`limit`, the smallest gap between the box [lo, hi] and the boxes of the leaf nodes
+    /// `among`): a lower bound of [`Bvh::min_value_among`] at every point of that box with that
+    /// limit, since a leaf's value is at least the distance to its leaf node's box. Positive
+    /// exactly when no leaf node's box meets the box (the f32 boxes are rounded outwards and
+    /// the subtractions round monotonically, so a positive gap is never a rounding artefact).
+    pub fn gap_among(among: &[Candidate], lo: DVec3, hi: DVec3, limit: f64) -> f64 {
+        among.iter().map(|c| (c.lo - hi).max(lo - c.hi).max(DVec3::ZERO).length()).fold(limit, f64::min)
+    }
+
     /// min(limit, min over the leaves of the leaf nodes `among` of their value at p). A leaf
     /// node whose box is no closer than the running minimum is skipped without being opened.
     pub fn min_value_among(&self, among: &[Candidate], p: DVec3, limit: f64, ctx: &Context) -> f64 {

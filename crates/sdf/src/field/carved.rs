@@ -30,6 +30,8 @@ use karst_skeleton::ConduitType;
 #[derive(Debug, Clone, Default)]
 pub struct Near {
     reach: f64,
+    /// The leaf nodes farther than this from the box were left out.
+    margin: f64,
     caves: Vec<Candidate>,
     water: Vec<Candidate>,
 }
@@ -196,7 +198,7 @@ impl CarvedTerrain {
     }
 
     fn gather(&self, lo: DVec3, hi: DVec3, reach: f64, margin: f64, water: bool) -> Near {
-        let mut near = Near { reach, caves: Vec::new(), water: Vec::new() };
+        let mut near = Near { reach, margin, caves: Vec::new(), water: Vec::new() };
         self.caves.near_box(lo, hi, margin, &mut near.caves);
         if water {
             self.water.near_box(lo, hi, margin, &mut near.water);
@@ -223,6 +225,30 @@ impl CarvedTerrain {
         self.cave((lo + hi) * 0.5) < within.min(REACH)
             || within >= REACH
             || self.surface.carves_within(lo.truncate(), hi.truncate(), margin)
+    }
+
+    /// A lower bound of [`CarvedTerrain::cave_below_ground_near`] over the box [lo, hi] (inside
+    /// the box `near` was gathered for, with a reach at most `near`'s): the gap from the box to
+    /// the nearest karst leaf node, at most the gathering margin and REACH. The cave is at
+    /// least the karst, whose leaves are at least their boxes' distance, so a positive floor
+    /// proves the box free of caves however large it is; the value at its centre cannot, the
+    /// karst being clamped at REACH (the mesher's octree would split all the rock far from the
+    /// conduits down to boxes of half diagonal below REACH).
+    pub fn cave_floor(&self, near: &Near, lo: DVec3, hi: DVec3) -> f64 {
+        Bvh::gap_among(&near.caves, lo, hi, near.margin.min(REACH))
+    }
+
+    /// A lower bound of [`CarvedTerrain::water_near`] over the box [lo, hi], as
+    /// [`CarvedTerrain::cave_floor`]: the water in the conduits is at least the cave and at least
+    /// its pieces (at least their leaf nodes' gaps), and the surface water, where the scene has
+    /// some, at least its value at the box's centre less the half diagonal (1-Lipschitz).
+    pub fn water_floor(&self, near: &Near, lo: DVec3, hi: DVec3) -> f64 {
+        let pieces = Bvh::gap_among(&near.water, lo, hi, near.margin.min(REACH));
+        let under = self.cave_floor(near, lo, hi).max(pieces);
+        if self.surface.is_empty() || under <= 0.0 {
+            return under;
+        }
+        under.min(self.surface_water((lo + hi) * 0.5) - (hi - lo).length() * 0.5)
     }
 
     /// The karst volume alone: negative inside the conduits and chambers; 1-Lipschitz.
