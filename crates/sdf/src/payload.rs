@@ -14,7 +14,7 @@ use crate::Capsule;
 use crate::detail::FullDetail;
 use crate::tree::chamber::ChamberSpec;
 use crate::tree::noise::WaveNoise;
-use crate::tree::sweep::{SweepSpec, to_dvec};
+use crate::tree::sweep::{SectionChecks, SweepSpec, to_dvec};
 use crate::tree::terrain::TerrainField;
 use crate::water::surface::SurfacePieces;
 
@@ -139,8 +139,9 @@ impl Payload for SdfModel {
         for (i, c) in self.capsules.iter().enumerate() {
             c.validate(&|| format!("capsules[{i}]"))?;
         }
+        let mut sections = SectionChecks::default();
         for (i, s) in self.sweeps.iter().enumerate() {
-            validate_sweep(&|| format!("sweeps[{i}].sweep"), &s.sweep)?;
+            validate_sweep(&|| format!("sweeps[{i}].sweep"), &s.sweep, &mut sections)?;
         }
         let mut first = 0;
         for run in self.sweep_runs() {
@@ -159,7 +160,7 @@ impl Payload for SdfModel {
             check::positive(|| format!("chambers[{i}].radius"), c.radius as f64, MAX_COORDINATE)?;
         }
         for (i, w) in self.water.iter().enumerate() {
-            validate_sweep(&|| format!("water[{i}].sweep"), &w.sweep)?;
+            validate_sweep(&|| format!("water[{i}].sweep"), &w.sweep, &mut sections)?;
             if let Some(level) = w.level {
                 check::within(|| format!("water[{i}].level"), level as f64, -MAX_COORDINATE, MAX_COORDINATE)?;
             }
@@ -176,7 +177,11 @@ impl Payload for SdfModel {
 
 /// A sweep between two distinct finite points, with sections of finite positive size that do
 /// not intersect themselves.
-fn validate_sweep(at: &dyn Fn() -> String, sweep: &SweepSpec) -> Result<(), Invalid> {
+fn validate_sweep(
+    at: &dyn Fn() -> String,
+    sweep: &SweepSpec,
+    sections: &mut SectionChecks,
+) -> Result<(), Invalid> {
     check::position_f32(|| format!("{}.a", at()), &sweep.a)?;
     check::position_f32(|| format!("{}.b", at()), &sweep.b)?;
     ensure(sweep.a != sweep.b, at, || "starts where it ends: a sweep of length 0".into())?;
@@ -185,7 +190,7 @@ fn validate_sweep(at: &dyn Fn() -> String, sweep: &SweepSpec) -> Result<(), Inva
         check::positive(|| format!("{}.{end}.shape.radius", at()), shape.radius as f64, MAX_COORDINATE)?;
         check::within(|| format!("{}.{end}.shape.ratio", at()), shape.ratio as f64, 1e-3, 1e3)?;
         check::within(|| format!("{}.{end}.shape.asymmetry", at()), shape.asymmetry as f64, -1.0, 1.0)?;
-        spec.section().check().map_err(|e| Invalid::new(format!("{}.{end}", at()), e.to_string()))?;
+        sections.check(spec).map_err(|e| Invalid::new(format!("{}.{end}", at()), e.to_string()))?;
     }
     Ok(())
 }
