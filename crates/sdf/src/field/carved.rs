@@ -227,8 +227,8 @@ impl CarvedTerrain {
             || self.surface.carves_within(lo.truncate(), hi.truncate(), margin)
     }
 
-    /// A lower bound of [`CarvedTerrain::cave_below_ground_near`] over the box [lo, hi] (inside
-    /// the box `near` was gathered for, with a reach at most `near`'s): the gap from the box to
+    /// A lower bound of the cave alone (`cave_below_ground` with no reach) over the box
+    /// [lo, hi], inside the box `near` was gathered for: the gap from the box to
     /// the nearest karst leaf node, at most the gathering margin and REACH. The cave is at
     /// least the karst, whose leaves are at least their boxes' distance, so a positive floor
     /// proves the box free of caves however large it is; the value at its centre cannot, the
@@ -238,7 +238,7 @@ impl CarvedTerrain {
         Bvh::gap_among(&near.caves, lo, hi, near.margin.min(REACH))
     }
 
-    /// A lower bound of [`CarvedTerrain::water_near`] over the box [lo, hi], as
+    /// A lower bound of the water ([`CarvedTerrain::water`]) over the box [lo, hi], as
     /// [`CarvedTerrain::cave_floor`]: the water in the conduits is at least the cave and at least
     /// its pieces (at least their leaf nodes' gaps), and the surface water, where the scene has
     /// some, at least its value at the box's centre less the half diagonal (1-Lipschitz).
