@@ -32,7 +32,7 @@ pub trait Volume: Sync {
 
     /// [`Volume::bound`] of each of `boxes`, all inside the box [lo, hi], into `out` (one per
     /// box). Fields that search for their nearest primitive gather the candidates of [lo, hi]
-    /// once ([`bounds_near`]).
+    /// once ([`bounds_from`]).
     fn bounds(&self, lo: DVec3, hi: DVec3, boxes: &[(DVec3, DVec3)], out: &mut [f64]) {
         let _ = (lo, hi);
         for (o, &(l, h)) in out.iter_mut().zip(boxes) {
@@ -42,19 +42,6 @@ pub trait Volume: Sync {
 
     /// The box the solid lies in, `(lo, hi)`.
     fn extent(&self) -> (DVec3, DVec3);
-}
-
-/// [`Volume::bounds`] as the default [`Volume::bound`] computes them, from `value(p, reach)`,
-/// the field's [`Volume::eval_within`] at the boxes' centres evaluated with the largest of the
-/// boxes' reaches (the candidates near [lo, hi] gathered once for it). Where a box's own reach
-/// would give an exact value this one is exact too, the same bits; elsewhere both bounds are
-/// positive: the octree keeps the same boxes.
-fn bounds_near(boxes: &[(DVec3, DVec3)], out: &mut [f64], mut value: impl FnMut(DVec3, f64) -> f64) {
-    let half = |&(l, h): &(DVec3, DVec3)| (h - l).length() * 0.5;
-    let reach = widest_reach(boxes);
-    for (o, b) in out.iter_mut().zip(boxes) {
-        *o = (value((b.0 + b.1) * 0.5, reach).abs() - half(b)).max(0.0);
-    }
 }
 
 /// The reach the boxes' bounds are evaluated with: the largest half diagonal among them (a
@@ -70,9 +57,12 @@ fn bound_of_one(volume: &impl Volume, lo: DVec3, hi: DVec3) -> f64 {
     out[0]
 }
 
-/// [`Volume::bounds`] of the cave and the water: `floor(lo, hi)`, a lower bound of the field
-/// over a box that is positive only where the box holds none of the solid, and where it is not
-/// positive [`bounds_near`]'s bound from `value`.
+/// [`Volume::bounds`] as the default [`Volume::bound`] computes them, from `value(p, reach)`,
+/// the field's [`Volume::eval_within`] at the boxes' centres evaluated with the largest of the
+/// boxes' reaches (the candidates near [lo, hi] gathered once for it): where a box's own reach
+/// would give an exact value this one is exact too, elsewhere both bounds are positive, so the
+/// octree keeps the same boxes. Before that, `floor(lo, hi)`: a lower bound of the field over a
+/// box that is positive only where the box holds none of the solid (0: no such test).
 fn bounds_from(
     boxes: &[(DVec3, DVec3)],
     out: &mut [f64],
@@ -107,9 +97,12 @@ impl Volume for CarvedTerrain {
 
     fn bounds(&self, lo: DVec3, hi: DVec3, boxes: &[(DVec3, DVec3)], out: &mut [f64]) {
         let mut near = None;
-        bounds_near(boxes, out, |p, reach| {
-            self.eval_near(near.get_or_insert_with(|| self.near(lo, hi, reach)), p, reach)
-        });
+        bounds_from(
+            boxes,
+            out,
+            |_, _| 0.0,
+            |p, reach| self.eval_near(near.get_or_insert_with(|| self.near(lo, hi, reach)), p, reach),
+        );
     }
 
     fn extent(&self) -> (DVec3, DVec3) {
