@@ -99,23 +99,35 @@ pub fn write_streamed(
     let anchors = anchors(view.keypoints);
     let failed = |e: std::io::Error| MesherError::Write(e.to_string());
     let dir = artifact.path().parent().map_or_else(|| std::path::PathBuf::from("."), |d| d.to_path_buf());
-    let spilled =
-        |volume: &dyn Fn(&mut SpilledSurface) -> std::io::Result<u64>, name, clean: Option<(Solid, f64)>| {
-            let mut surface = SpilledSurface::create(&dir, name, clean.is_some())?;
-            surface.field_evaluations = volume(&mut surface)?;
-            surface.finish()?;
-            if let Some((solid, cell)) = clean {
-                surface.clean(solid, model, &anchors, cell)?;
-            }
-            Ok(surface)
-        };
-    let terrain =
-        spilled(&|s| polygonize_terrain_into(&field, cell, s), "terrain", Some((Solid::Rock, cell)))
-            .map_err(failed)?;
-    let cave =
-        spilled(&|s| polygonize_into(&Cave(&field), cave_cell, s), "cave", Some((Solid::Cave, cave_cell)))
-            .map_err(failed)?;
-    let water = spilled(&|s| polygonize_into(&Water(&field), cave_cell, s), "water", None).map_err(failed)?;
+    let spilled = |volume: &(dyn Fn(&mut SpilledSurface) -> std::io::Result<u64> + Sync),
+                   name,
+                   clean: Option<(Solid, f64)>| {
+        let mut surface = SpilledSurface::create(&dir, name, clean.is_some())?;
+        surface.field_evaluations = volume(&mut surface)?;
+        surface.finish()?;
+        if let Some((solid, cell)) = clean {
+            surface.clean(solid, model, &anchors, cell)?;
+        }
+        Ok::<_, std::io::Error>(surface)
+    };
+    // The three surfaces are independent (each spills to its own files): polygonized side by
+    // side, one surface's serial steps (a slab's barrier, the cleanup) overlap the others' work.
+    let (terrain, (cave, water)) = rayon::join(
+        || spilled(&|s| polygonize_terrain_into(&field, cell, s), "terrain", Some((Solid::Rock, cell))),
+        || {
+            rayon::join(
+                || {
+                    spilled(
+                        &|s| polygonize_into(&Cave(&field), cave_cell, s),
+                        "cave",
+                        Some((Solid::Cave, cave_cell)),
+                    )
+                },
+                || spilled(&|s| polygonize_into(&Water(&field), cave_cell, s), "water", None),
+            )
+        },
+    );
+    let (terrain, cave, water) = (terrain.map_err(failed)?, cave.map_err(failed)?, water.map_err(failed)?);
     not_empty(cell, cave_cell, [terrain.triangles() as usize, cave.triangles() as usize])?;
     artifact
         .write(|w| {
