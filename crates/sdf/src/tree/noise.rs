@@ -53,7 +53,7 @@ impl Spectrum {
         for octave in waves.chunks(self.waves) {
             for w in octave {
                 let d = DVec3::new(w.direction[0] as f64, w.direction[1] as f64, w.direction[2] as f64);
-                sum += amplitude * (frequency * d.dot(p) + w.phase as f64).sin();
+                sum += amplitude * sine(frequency * d.dot(p) + w.phase as f64);
             }
             frequency *= 2.0;
             amplitude *= self.gain;
@@ -114,6 +114,63 @@ impl Spectrum {
         }
         Ok(())
     }
+}
+
+/// sin(x), accurate to about 2e-16 for |x| up to [`REDUCED`] (beyond, the standard library's).
+///
+/// The waves' arguments are world coordinates times up to tens of radians per metre: 10⁸ rad and
+/// more on a projected terrain, where the C library's sine leaves its fast reduction (47 ns a
+/// call against 10 ns below, measured here). Here x = k·π/2 + r with π/2 in three parts (24, 24
+/// and 53 bits), so k·part is exact for |k| < 2²⁹ and r is found to the last bit of |r| ≤ π/4;
+/// then the Taylor polynomials of sin r and cos r to degree 15 and 16 (remainders below 5e-17
+/// there).
+fn sine(x: f64) -> f64 {
+    if x.is_nan() || x.abs() >= REDUCED {
+        return x.sin();
+    }
+    // x·2/π rounded to the nearest integer by adding and removing 1.5·2⁵² (exact below 2⁵¹;
+    // `f64::round` is a call into the C library).
+    let k = (x * std::f64::consts::FRAC_2_PI + ROUNDING) - ROUNDING;
+    let r = ((x - k * HALF_PI[0]) - k * HALF_PI[1]) - k * HALF_PI[2];
+    let z = r * r;
+    let sin = r + r * z * horner(z, &SIN);
+    let cos = 1.0 - 0.5 * z + z * z * horner(z, &COS);
+    // The quadrant k mod 4 picks ±sin r or ±cos r: both computed and selected without a branch
+    // (the quadrants of successive waves are random, a branch on them mispredicts).
+    let quadrant = k as i64 as u64;
+    let value = if quadrant & 1 == 0 { sin } else { cos };
+    f64::from_bits(value.to_bits() ^ ((quadrant & 2) << 62))
+}
+
+/// |x| below which [`sine`] reduces the argument itself: k = x·2/π stays below 2²⁹.
+const REDUCED: f64 = 8.0e8;
+const ROUNDING: f64 = 6_755_399_441_055_744.0;
+/// π/2 = HALF_PI[0] + HALF_PI[1] + HALF_PI[2] to about 10⁻³¹, the first two of 24 bits.
+const HALF_PI: [f64; 3] = [1.570_796_370_506_286_6, -4.371_138_828_673_793e-8, -1.715_124_499_442_883e-15];
+/// sin r = r + r·z·(SIN[0] + z·SIN[1] + …), z = r²: −1/3!, 1/5!, … −1/15!.
+const SIN: [f64; 7] = [
+    -1.0 / 6.0,
+    1.0 / 120.0,
+    -1.0 / 5_040.0,
+    1.0 / 362_880.0,
+    -1.0 / 39_916_800.0,
+    1.0 / 6_227_020_800.0,
+    -1.0 / 1_307_674_368_000.0,
+];
+/// cos r = 1 − z/2 + z²·(COS[0] + z·COS[1] + …): 1/4!, −1/6!, … 1/16!.
+const COS: [f64; 7] = [
+    1.0 / 24.0,
+    -1.0 / 720.0,
+    1.0 / 40_320.0,
+    -1.0 / 3_628_800.0,
+    1.0 / 479_001_600.0,
+    -1.0 / 87_178_291_200.0,
+    1.0 / 20_922_789_888_000.0,
+];
+
+/// c[0] + z·c[1] + z²·c[2] + …
+fn horner(z: f64, c: &[f64]) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &ci| acc * z + ci)
 }
 
 /// One plane wave of an octave: unit direction and phase.
@@ -191,6 +248,27 @@ mod tests {
             steepest = steepest.max(gradient);
         }
         assert!(steepest > 0.5 * tight, "{steepest} vs {tight}");
+    }
+
+    #[test]
+    fn the_waves_sine_is_the_sine_to_the_last_bits_at_world_coordinates() {
+        let mut random = Random::stream(5, "sdf", "test");
+        let mut worst: f64 = 0.0;
+        for scale in [1.0, 10.0, 1e3, 1e6, 1e8, 7.9e8, 2e9] {
+            for _ in 0..20_000 {
+                let x = random.range(-scale, scale);
+                worst = worst.max((sine(x) - x.sin()).abs());
+            }
+        }
+        assert!(worst < 1e-15, "{worst}");
+        // Quadrant edges: k·π/2 on either side, where sine switches polynomials.
+        for k in [1.0, 2.0, 3.0, 4.0, 1e6, 1e8 + 1.0, 5e8 + 3.0] {
+            let edge = k * std::f64::consts::FRAC_PI_2;
+            for x in [edge.next_down(), edge, edge.next_up()] {
+                assert!((sine(x) - x.sin()).abs() < 1e-15, "{x}");
+            }
+        }
+        assert!(sine(f64::NAN).is_nan() && sine(f64::INFINITY).is_nan());
     }
 
     #[test]
