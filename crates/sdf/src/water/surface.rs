@@ -358,14 +358,17 @@ fn outline_bounds(outline: &Outline) -> (DVec2, DVec2) {
 fn outline_distance(outline: &Outline, p: DVec2) -> f64 {
     match outline {
         Outline::Disc { centre, radius } => p.distance(DVec2::from_array(*centre)) - radius,
-        Outline::Cells { rectangles } => rectangles
-            .iter()
-            .map(|r| {
-                let (lo, hi) = (DVec2::new(r[0], r[1]), DVec2::new(r[2], r[3]));
-                let d = (lo - p).max(p - hi);
-                d.max(DVec2::ZERO).length() + d.max_element().min(0.0)
-            })
-            .fold(f64::INFINITY, f64::min),
+        Outline::Cells { rectangles } => rectangles.iter().fold(f64::INFINITY, |best, r| {
+            let (lo, hi) = (DVec2::new(r[0], r[1]), DVec2::new(r[2], r[3]));
+            let d = (lo - p).max(p - hi);
+            // The larger axis gap is at most the rectangle's signed distance (equal inside):
+            // most of a lake's rows stop at this test, before the root.
+            if d.max_element() >= best {
+                best
+            } else {
+                best.min(d.max(DVec2::ZERO).length() + d.max_element().min(0.0))
+            }
+        }),
         Outline::Polygon { points } => {
             let pts: Vec<DVec2> = points.iter().map(|q| DVec2::from_array(*q)).collect();
             let outside = karst_streams::polygon_distance(&pts, p);
