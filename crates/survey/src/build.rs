@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use karst_sdf::{CarvedTerrain, SdfModel};
+use karst_sdf::{CarvedTerrain, Near, SdfModel};
 use karst_skeleton::{ConduitType, Skeleton, Zone};
 
 use crate::area::open_area;
@@ -37,10 +37,9 @@ const AREA_SIDE: f64 = 2.0;
 /// The survey of the cave `model` carved along `skeleton`.
 pub fn build(skeleton: &Skeleton, model: &SdfModel) -> Result<Survey, SurveyError> {
     let field = CarvedTerrain::new(model.clone());
-    let cave = |p: DVec3, reach: f64| field.cave_below_ground(p, reach);
     let placed = stations::place(skeleton);
     let junctions = stations::junctions(skeleton);
-    let stations: Vec<Station> = placed.par_iter().map(|p| survey_station(&cave, p, &junctions)).collect();
+    let stations: Vec<Station> = placed.par_iter().map(|p| survey_station(&field, p, &junctions)).collect();
     if !stations.iter().any(|s| s.width > 0.0) {
         let search = placed.iter().map(search_radius).fold(0.0, f64::max);
         return Err(SurveyError::NothingOpen { stations: stations.len(), search });
@@ -59,15 +58,18 @@ fn search_radius(p: &Placed) -> f64 {
     (SEARCH * p.radius).max(MIN_SEARCH)
 }
 
-/// One station measured: chords, area, and whether it is near a junction.
-/// `cave(p, reach)` is the cave's bound, searched up to `reach` outside it.
-fn survey_station(cave: &(impl Fn(DVec3, f64) -> f64 + Sync), p: &Placed, junctions: &[DVec3]) -> Station {
-    let chords = measure(&|q| cave(q, CAVE_REACH), p.position, p.tangent, search_radius(p));
+/// One station measured on the cave of `field`: chords, area, and whether it is near a junction.
+fn survey_station(field: &CarvedTerrain, p: &Placed, junctions: &[DVec3]) -> Station {
+    let search = search_radius(p);
+    let around = Around::new(field, p.position, search + CHORD_BOX * p.radius, CAVE_REACH);
+    let chords = measure(&|q| around.cave(q), p.position, p.tangent, search);
     let (width, height, area, centre) = match chords {
         Some(c) => {
             let side = AREA_SIDE * c.width.max(c.height);
-            let reach = side * AREA_REACH;
-            (c.width, c.height, open_area(&|q| cave(q, reach), c.centre, plane(p.tangent), side), c.centre)
+            // The lattice's square, whatever its orientation, lies within its half diagonal.
+            let around =
+                Around::new(field, c.centre, side * std::f64::consts::FRAC_1_SQRT_2, side * AREA_REACH);
+            (c.width, c.height, open_area(&|q| around.cave(q), c.centre, plane(p.tangent), side), c.centre)
         }
         None => (0.0, 0.0, 0.0, p.position),
     };
@@ -84,6 +86,38 @@ fn survey_station(cave: &(impl Fn(DVec3, f64) -> f64 + Sync), p: &Placed, juncti
         zone: p.zone,
         shaft: is_shaft(p.tangent),
         junction,
+    }
+}
+
+/// Half the side of the box whose karst leaves a station's chords gather, beyond the search for
+/// an open point: in the skeleton's half-widths there. Points outside it (a chord running far
+/// along a chamber) read the whole hierarchy.
+const CHORD_BOX: f64 = 4.0;
+
+/// The cave's bound around one point ([`CarvedTerrain::cave_below_ground`] searched up to
+/// `reach` outside the cave): the karst leaves that can matter in a box around it gathered once,
+/// as the mesher's bricks do, instead of a walk down the hierarchy at every point the chords and
+/// the area read. Bit for bit the same values (`CarvedTerrain::near_cave`).
+struct Around<'a> {
+    field: &'a CarvedTerrain,
+    near: Near,
+    lo: DVec3,
+    hi: DVec3,
+    reach: f64,
+}
+
+impl<'a> Around<'a> {
+    fn new(field: &'a CarvedTerrain, centre: DVec3, half: f64, reach: f64) -> Self {
+        let (lo, hi) = (centre - DVec3::splat(half), centre + DVec3::splat(half));
+        Around { field, near: field.near_cave(lo, hi, reach), lo, hi, reach }
+    }
+
+    fn cave(&self, p: DVec3) -> f64 {
+        if p.cmpge(self.lo).all() && p.cmple(self.hi).all() {
+            self.field.cave_below_ground_near(&self.near, p, self.reach)
+        } else {
+            self.field.cave_below_ground(p, self.reach)
+        }
     }
 }
 
