@@ -91,25 +91,76 @@ pub fn run(
     held.set_output_budget(selection.budget);
     let job = Job { handoff: Some(&handoff), ..Job::new(&scene.path, &held, out) };
     let mut reports = Vec::new();
-    for stage in StageId::ALL {
+    let mut stages = StageId::ALL.into_iter().peekable();
+    while let Some(stage) = stages.next() {
         handoff.begin(stage);
-        let start = Instant::now();
-        let outcome = if !selected(stage, selection) {
-            Outcome::Skipped
-        } else if !forced(stage, selection) && up_to_date(&job, stage) {
-            Outcome::UpToDate
-        } else {
-            if stage == StageId::Export {
-                eprintln!("{}", crate::budget::check_export(&job, selection.budget)?);
-            }
-            let ran = registry::stage(stage).run(&job)?;
-            Outcome::Ran { headline: ran.headline, notes: ran.notes }
+        let plan = plan_of(&job, stage, selection);
+        // The next stage runs beside this one when both run and it reads nothing this one
+        // writes (the survey beside the mesher): its inputs are final already, and the two
+        // share the threads, each filling the other's serial moments.
+        let beside = stages.next_if(|&next| {
+            plan == Plan::Run && may_run_beside(stage, next) && plan_of(&job, next, selection) == Plan::Run
+        });
+        let (first, second) = match beside {
+            None => (timed(|| execute(&job, stage, plan, selection)), None),
+            Some(next) => std::thread::scope(|scope| {
+                let second = scope.spawn(|| timed(|| execute(&job, next, Plan::Run, selection)));
+                let first = timed(|| execute(&job, stage, plan, selection));
+                (first, Some(second.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))))
+            }),
         };
-        let line = StageReport { stage, outcome, seconds: start.elapsed().as_secs_f64() };
-        report(&line);
-        reports.push(line);
+        for (stage, (outcome, seconds)) in std::iter::once((stage, first)).chain(beside.zip(second)) {
+            let line = StageReport { stage, outcome: outcome?, seconds };
+            report(&line);
+            reports.push(line);
+        }
     }
     Ok(reports)
+}
+
+/// Whether `next` may run beside `stage`: it reads nothing `stage` writes.
+fn may_run_beside(stage: StageId, next: StageId) -> bool {
+    !next.inputs().contains(&stage)
+}
+
+/// What [`run`] does with a stage.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Plan {
+    Skip,
+    UpToDate,
+    Run,
+}
+
+fn plan_of(job: &Job, stage: StageId, selection: &Selection) -> Plan {
+    if !selected(stage, selection) {
+        Plan::Skip
+    } else if !forced(stage, selection) && up_to_date(job, stage) {
+        Plan::UpToDate
+    } else {
+        Plan::Run
+    }
+}
+
+/// Carries out `plan` for `stage`; the export first holds its estimate to the run's budget.
+fn execute(job: &Job, stage: StageId, plan: Plan, selection: &Selection) -> Result<Outcome, StageError> {
+    Ok(match plan {
+        Plan::Skip => Outcome::Skipped,
+        Plan::UpToDate => Outcome::UpToDate,
+        Plan::Run => {
+            if stage == StageId::Export {
+                eprintln!("{}", crate::budget::check_export(job, selection.budget)?);
+            }
+            let ran = registry::stage(stage).run(job)?;
+            Outcome::Ran { headline: ran.headline, notes: ran.notes }
+        }
+    })
+}
+
+/// `f`'s result and the seconds it took.
+fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let start = Instant::now();
+    let value = f();
+    (value, start.elapsed().as_secs_f64())
 }
 
 fn selected(stage: StageId, selection: &Selection) -> bool {
@@ -147,6 +198,13 @@ pub fn up_to_date(job: &Job, stage: StageId) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn only_the_survey_runs_beside_the_stage_before_it() {
+        let pairs: Vec<[StageId; 2]> =
+            StageId::ALL.windows(2).filter(|w| may_run_beside(w[0], w[1])).map(|w| [w[0], w[1]]).collect();
+        assert_eq!(pairs, [[StageId::Mesher, StageId::Survey]]);
+    }
 
     #[test]
     fn a_stage_s_notes_follow_its_line() {

@@ -1,6 +1,7 @@
 //! Payloads handed from one stage to the next within one pipeline run.
 //!
-//! `karstgen run` runs the stages one after the other in one process. Each stage writes its
+//! `karstgen run` runs the stages one after the other in one process (a stage that reads nothing
+//! of the one before it may run beside it: it then takes its payloads as that one's next stage). Each stage writes its
 //! artifact, and the next one would read it back: open the file, hash the payload, decode it
 //! and check it again, for a payload that is still in memory: on the large scenes a good part
 //! of the skeleton's time, and a cost graph of gigabytes (BENCHMARKS.md). A
