@@ -49,9 +49,9 @@ fn every_estimating_stage_refuses_with_its_field_and_a_value_that_fits() {
     let sdf = refusal::<karst_sdf::SdfStage>(&out, ("seed = 7", "seed = 7"), "32K");
     assert!(sdf.contains("sdf.radius_scale = 1 means about") && sdf.contains("sphere candidates"), "{sdf}");
 
-    let mesher = refusal::<karst_mesher::MesherStage>(&out, ("cell_size = 3.0", "cell_size = 0.01"), "16G");
+    let mesher = refusal::<karst_mesher::MesherStage>(&out, ("cell_size = 3.0", "cell_size = 0.05"), "1G");
     assert!(
-        mesher.contains("mesher.cell_size = 0.01 means about") && mesher.contains("triangles"),
+        mesher.contains("mesher.cell_size = 0.05 means about") && mesher.contains("triangles"),
         "{mesher}"
     );
     assert!(mesher.contains("mesher.cell_size = ") && mesher.contains("would fit"), "{mesher}");
